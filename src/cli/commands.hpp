@@ -1,0 +1,12 @@
+#pragma once
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace j232::cli {
+
+// Each command registers its subcommand and returns the function that runs it
+// (returning an exit code from exit_codes.hpp) once the command line is parsed.
+using Runner = std::function<int()>;
+Runner add_impact_command(CLI::App& app);
+
+}  // namespace j232::cli

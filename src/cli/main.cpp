@@ -1,0 +1,33 @@
+// j232: Monte Carlo assessor for the SAE J232 thrown-object test.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "scenario/input_error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace j232::cli;
+  CLI::App app{"j232 " J232_VERSION " — simulates the SAE J232 thrown-object test of rotary mowers"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "j232 " J232_VERSION);
+  const Runner impact = add_impact_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kOk : kBadInput;
+  }
+  try {
+    if (app.got_subcommand("impact")) return impact();
+  } catch (const j232::scenario::InputError& e) {
+    fmt::print(stderr, "j232: error: {}\n", e.what());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "j232: internal error: {}\n(please report this with the input that caused it)\n", e.what());
+    return kInternal;
+  }
+  return kInternal;
+}

@@ -1,0 +1,175 @@
+#include "scenario/toml_reader.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+
+namespace j232::scenario {
+
+TableReader::TableReader(const toml::table& table, std::string file, std::string path)
+    : table_(&table), file_(std::move(file)), path_(std::move(path)), used_(std::make_shared<std::set<std::string, std::less<>>>()) {}
+
+std::string TableReader::full(std::string_view key) const {
+  return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
+}
+
+const toml::node* TableReader::node(std::string_view key) const {
+  used_->insert(std::string(key));
+  return table_->get(key);
+}
+
+bool TableReader::has(std::string_view key) const { return table_->contains(key); }
+
+std::optional<int> TableReader::line_of(std::string_view key) const {
+  if (const toml::node* n = table_->get(key)) return static_cast<int>(n->source().begin.line);
+  if (table_->source().begin.line > 0) return static_cast<int>(table_->source().begin.line);
+  return std::nullopt;
+}
+
+InputError TableReader::error(std::string_view key, std::string expected) const {
+  const toml::node* n = table_->get(key);
+  // Values set from command-line options carry no source position: blame the command line.
+  const bool from_command_line = n && n->source().begin.line == 0;
+  return InputError(from_command_line ? std::string() : file_, from_command_line ? std::nullopt : line_of(key),
+                    from_command_line ? fmt::format("option for {}", full(key)) : full(key),
+                    n ? shown(*n) : std::string(), std::move(expected));
+}
+
+std::string TableReader::shown(const toml::node& n) const {
+  std::ostringstream out;
+  if (n.is_table()) return "{...}";
+  if (n.is_array()) return "[...]";
+  n.visit([&](const auto& v) { out << v; });
+  return out.str();
+}
+
+namespace {
+const char* range_words(Range range) {
+  switch (range) {
+    case Range::Positive: return "positive ";
+    case Range::NonNegative: return "non-negative ";
+    case Range::UnitInterval: return "";
+    case Range::Any: return "";
+  }
+  return "";
+}
+bool in_range(double v, Range range) {
+  switch (range) {
+    case Range::Positive: return v > 0.0;
+    case Range::NonNegative: return v >= 0.0;
+    case Range::UnitInterval: return v >= 0.0 && v <= 1.0;
+    case Range::Any: return true;
+  }
+  return true;
+}
+}  // namespace
+
+std::optional<double> TableReader::optional_quantity(std::string_view key, units::Kind kind, Range range) const {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  const std::string expected = fmt::format("expected {}{}{}", range_words(range), units::describe(kind),
+                                           range == Range::UnitInterval ? " between 0 and 1" : "");
+  double value = 0.0;
+  if (auto s = n->value<std::string>()) {
+    try {
+      value = units::parse(*s, kind);
+    } catch (const units::UnitError& e) {
+      throw error(key, e.what());
+    }
+  } else if (auto d = n->value<double>(); d && (n->is_floating_point() || n->is_integer())) {
+    if (kind != units::Kind::Dimensionless)
+      throw error(key, fmt::format("a number needs a unit here; {}", expected));
+    value = *d;
+  } else {
+    throw error(key, expected);
+  }
+  if (!std::isfinite(value) || !in_range(value, range)) throw error(key, expected);
+  return value;
+}
+
+double TableReader::quantity(std::string_view key, units::Kind kind, Range range) const {
+  if (auto v = optional_quantity(key, kind, range)) return *v;
+  throw error(key, fmt::format("missing; expected {}{}", range_words(range), units::describe(kind)));
+}
+
+double TableReader::quantity_or(std::string_view key, units::Kind kind, double fallback, Range range) const {
+  return optional_quantity(key, kind, range).value_or(fallback);
+}
+
+std::string TableReader::string_or(std::string_view key, std::string fallback,
+                                   const std::vector<std::string>& allowed) const {
+  const toml::node* n = node(key);
+  if (!n) return fallback;
+  std::string choices;
+  for (const auto& a : allowed) choices += (choices.empty() ? "\"" : ", \"") + a + "\"";
+  auto s = n->value<std::string>();
+  if (!s) throw error(key, allowed.empty() ? std::string("expected a string") : fmt::format("expected one of {}", choices));
+  if (allowed.empty()) return *s;
+  for (const auto& a : allowed)
+    if (*s == a) return *s;
+  throw error(key, fmt::format("expected one of {}", choices));
+}
+
+bool TableReader::boolean_or(std::string_view key, bool fallback) const {
+  const toml::node* n = node(key);
+  if (!n) return fallback;
+  if (!n->is_boolean()) throw error(key, "expected true or false");
+  return *n->value<bool>();
+}
+
+long long TableReader::integer_or(std::string_view key, long long fallback, long long min, long long max) const {
+  const toml::node* n = node(key);
+  if (!n) return fallback;
+  if (!n->is_integer()) throw error(key, fmt::format("expected a whole number from {} to {}", min, max));
+  const long long v = *n->value<long long>();
+  if (v < min || v > max) throw error(key, fmt::format("expected a whole number from {} to {}", min, max));
+  return v;
+}
+
+std::optional<TableReader> TableReader::table(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  if (!n->is_table()) throw error(key, "expected a table");
+  return TableReader(*n->as_table(), file_, full(key));
+}
+
+std::vector<TableReader> TableReader::array_of_tables(std::string_view key) const {
+  const toml::node* n = node(key);
+  std::vector<TableReader> out;
+  if (!n) return out;
+  const toml::array* array = n->as_array();
+  if (!array) throw error(key, "expected an array of tables ([[" + full(key) + "]])");
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const toml::table* t = (*array)[i].as_table();
+    if (!t) throw error(key, "expected an array of tables ([[" + full(key) + "]])");
+    out.emplace_back(*t, file_, fmt::format("{}[{}]", full(key), i + 1));
+  }
+  return out;
+}
+
+void TableReader::refuse_unknown_keys() const {
+  for (const auto& [k, v] : *table_) {
+    if (used_->count(k.str())) continue;
+    std::string known;
+    for (const auto& u : *used_) known += (known.empty() ? "" : ", ") + u;
+    throw InputError(file_, static_cast<int>(v.source().begin.line), full(k.str()), "",
+                     known.empty() ? std::string("unknown key (this table takes no keys)")
+                                   : fmt::format("unknown key; this table takes: {}", known));
+  }
+}
+
+toml::table parse_toml_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError::file_problem(file, std::nullopt, "cannot open the file for reading");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  try {
+    return toml::parse(buffer.str(), file);
+  } catch (const toml::parse_error& e) {
+    throw InputError::file_problem(file, static_cast<int>(e.source().begin.line),
+                                   fmt::format("not valid TOML: {}", e.description()));
+  }
+}
+
+}  // namespace j232::scenario

@@ -1,0 +1,43 @@
+#include <catch2/catch.hpp>
+
+#include "units/quantity.hpp"
+
+using namespace j232::units;
+
+TEST_CASE("units: common mower quantities convert to SI", "[units]") {
+  CHECK(parse("22 lb", Kind::Mass) == Approx(9.97903214));
+  CHECK(parse("170 g", Kind::Mass) == Approx(0.170));
+  CHECK(parse("24 in", Kind::Length) == Approx(0.6096));
+  CHECK(parse("2 ft", Kind::Length) == Approx(0.6096));
+  CHECK(parse("1000 rpm", Kind::AngularSpeed) == Approx(104.71975512));
+  CHECK(parse("104.71975512 rad/s", Kind::AngularSpeed) == Approx(104.71975512));
+  CHECK(parse("1000 rev/min", Kind::AngularSpeed) == Approx(104.71975512));
+  CHECK(parse("440 ft/min", Kind::Speed) == Approx(2.2352));
+  CHECK(parse("5 mph", Kind::Speed) == Approx(2.2352));
+  CHECK(parse("18 km/h", Kind::Speed) == Approx(5.0));
+  CHECK(parse("1.2 lb ft^2", Kind::Inertia) == Approx(1.2 * pound * foot * foot));
+  CHECK(parse("0.05 kg*m^2", Kind::Inertia) == Approx(0.05));
+  CHECK(parse("110 J/m", Kind::EnergyPerLength) == Approx(110.0));
+  CHECK(parse("9.81 m/s^2", Kind::Acceleration) == Approx(9.81));
+  CHECK(parse("1.2 kg/m^3", Kind::Density) == Approx(1.2));
+  CHECK(parse("90 deg", Kind::Angle) == Approx(pi / 2));
+  CHECK(parse("0.9", Kind::Dimensionless) == Approx(0.9));
+  CHECK(parse("90 %", Kind::Dimensionless) == Approx(0.9));
+  CHECK(parse("  -3.5e-1 m ", Kind::Length) == Approx(-0.35));
+  CHECK(parse("+2 in", Kind::Length) == Approx(0.0508));
+}
+
+TEST_CASE("units: wrong or unknown units are refused with a useful message", "[units]") {
+  CHECK_THROWS_WITH(parse("22 lbs", Kind::Mass), Catch::Contains("unknown unit \"lbs\""));
+  CHECK_THROWS_WITH(parse("22 lb", Kind::Length), Catch::Contains("expected a length"));
+  CHECK_THROWS_WITH(parse("22", Kind::Mass), Catch::Contains("has no unit"));
+  CHECK_THROWS_WITH(parse("lb", Kind::Mass), Catch::Contains("does not start with a number"));
+  CHECK_THROWS_WITH(parse("", Kind::Mass), Catch::Contains("does not start with a number"));
+  CHECK_THROWS_WITH(parse("30 deg", Kind::Dimensionless), Catch::Contains("wrong kind of unit"));
+  CHECK_THROWS_WITH(parse("3 m/", Kind::Speed), Catch::Contains("ends with an operator"));
+  CHECK_THROWS_WITH(parse("3 m^x", Kind::Length), Catch::Contains("bad exponent"));
+  CHECK_THROWS_WITH(parse("3 m//s", Kind::Speed), Catch::Contains("misplaced"));
+  CHECK_THROWS_WITH(parse("1000 rpm", Kind::Speed), Catch::Contains("expected a speed"));
+  CHECK_THROWS(parse("nan m", Kind::Length));
+  CHECK_THROWS(parse("inf m", Kind::Length));
+}
