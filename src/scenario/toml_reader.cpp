@@ -36,10 +36,15 @@ InputError TableReader::error(std::string_view key, std::string expected) const 
                     n ? shown(*n) : std::string(), std::move(expected));
 }
 
+// The value as the user wrote it: strings in double quotes, numbers in shortest form.
 std::string TableReader::shown(const toml::node& n) const {
-  std::ostringstream out;
   if (n.is_table()) return "{...}";
   if (n.is_array()) return "[...]";
+  if (auto s = n.value_exact<std::string>()) return fmt::format("\"{}\"", *s);
+  if (auto i = n.value_exact<int64_t>()) return fmt::format("{}", *i);
+  if (auto d = n.value_exact<double>()) return fmt::format("{}", *d);
+  if (auto b = n.value_exact<bool>()) return *b ? "true" : "false";
+  std::ostringstream out;
   n.visit([&](const auto& v) { out << v; });
   return out.str();
 }
