@@ -30,7 +30,7 @@ std::optional<int> TableReader::line_of(std::string_view key) const {
 InputError TableReader::error(std::string_view key, std::string expected) const {
   const toml::node* n = table_->get(key);
   // Values set from command-line options carry no source position: blame the command line.
-  const bool from_command_line = n && n->source().begin.line == 0;
+  const bool from_command_line = n && !n->source().path;
   return InputError(from_command_line ? std::string() : file_, from_command_line ? std::nullopt : line_of(key),
                     from_command_line ? fmt::format("option for {}", full(key)) : full(key),
                     n ? shown(*n) : std::string(), std::move(expected));
