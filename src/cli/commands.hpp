@@ -8,5 +8,7 @@ namespace j232::cli {
 // (returning an exit code from exit_codes.hpp) once the command line is parsed.
 using Runner = std::function<int()>;
 Runner add_impact_command(CLI::App& app);
+Runner add_run_command(CLI::App& app);
+Runner add_scene_command(CLI::App& app);
 
 }  // namespace j232::cli

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "j232 " J232_VERSION);
   const Runner impact = add_impact_command(app);
+  const Runner run = add_run_command(app);
+  const Runner scene = add_scene_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -22,6 +24,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("impact")) return impact();
+    if (app.got_subcommand("run")) return run();
+    if (app.got_subcommand("scene")) return scene();
   } catch (const j232::scenario::InputError& e) {
     fmt::print(stderr, "j232: error: {}\n", e.what());
     return kBadInput;

@@ -52,7 +52,6 @@ blade::Blade read_blade(const TableReader& t) {
     b.arms.push_back(std::move(arm));
   }
 
-  t.refuse_unknown_keys();
   if (!b.hub.constant_speed && b.hub.inertia() <= 0.0 && b.arms.empty())
     throw t.error("hub", "the blade has no inertia: give [blade.hub] a bar_mass and bar_length or an inertia, "
                          "or add [[blade.arms]]");

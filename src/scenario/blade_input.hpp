@@ -15,6 +15,8 @@
 
 namespace j232::scenario {
 
+// Reads speed, hub and arms. The caller may read further keys of the same table
+// (the assessment's blade height, thickness, lift) and then refuses unknown ones.
 blade::Blade read_blade(const TableReader& blade_table);
 
 }  // namespace j232::scenario

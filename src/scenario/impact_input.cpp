@@ -77,6 +77,7 @@ ImpactCase read_impact_case(const toml::table& document, const std::string& file
   auto blade_table = root.table("blade");
   if (!blade_table) throw root.error("blade", "missing; expected a [blade] table");
   c.blade = read_blade(*blade_table);
+  blade_table->refuse_unknown_keys();
 
   auto contact = root.table("contact");
   if (!contact) throw root.error("contact", "missing; expected a [contact] table with the contact radius");

@@ -1,0 +1,44 @@
+#pragma once
+// One nail's life, start to end, as one short function (DESIGN.md §3): sample the
+// feed, find the strike, resolve the impact, fly. Everything the nails of a scenario
+// share (blade model, edges, scene) is built once here; simulate() allocates nothing.
+#include <memory>
+#include <vector>
+
+#include "blade/blade_model.hpp"
+#include "blade/impact.hpp"
+#include "feed/feed.hpp"
+#include "flight/nail_flight.hpp"
+#include "scenario/scenario.hpp"
+#include "scene/scene.hpp"
+
+namespace j232::assess {
+
+struct NailOutcome {
+  flight::FlightResult flight;  // fate NotStruck when the blade missed it
+  double exit_speed = 0;        // m/s after the blade (0 if not struck)
+  double contact_radius = 0;
+};
+
+class Simulator {
+ public:
+  // Builds the blade model and the scene; throws scenario::InputError for bad meshes
+  // or an unsound blade.
+  explicit Simulator(const scenario::Scenario& scenario);
+
+  NailOutcome simulate(std::uint64_t replicate, int nail) const;
+
+  const scenario::Scenario& scenario() const { return scenario_; }
+  const scene::Scene& scene() const { return *scene_; }
+  double deck_radius() const { return context_.deck_radius; }
+
+ private:
+  scenario::Scenario scenario_;
+  blade::BladeModel model_;
+  std::vector<feed::Edge> edges_;
+  std::unique_ptr<scene::Scene> scene_;
+  std::vector<scenario::GuardSpec> guards_;
+  flight::FlightContext context_;
+};
+
+}  // namespace j232::assess

@@ -1,0 +1,50 @@
+#include "assess/statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace j232::assess {
+
+Interval wilson(std::uint64_t k, std::uint64_t n, double z) {
+  if (n == 0) return {0, 0, 1};
+  const double nn = static_cast<double>(n), p = static_cast<double>(k) / nn, z2 = z * z;
+  const double centre = (p + z2 / (2 * nn)) / (1 + z2 / nn);
+  const double half = z / (1 + z2 / nn) * std::sqrt(p * (1 - p) / nn + z2 / (4 * nn * nn));
+  return {p, std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+double quantile_sorted(const std::vector<double>& v, double p) {
+  if (v.empty()) return 0;
+  const double h = (static_cast<double>(v.size()) - 1) * p;
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const auto hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (h - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+void Histogram::add(double v) {
+  const double b = std::max(0.0, v / bin_width);
+  const auto i = std::min(static_cast<std::size_t>(b), counts.size() - 1);
+  ++counts[i];
+  ++total;
+  sum += v;
+}
+
+void Histogram::merge(const Histogram& o) {
+  for (std::size_t i = 0; i < counts.size(); ++i) counts[i] += o.counts[i];
+  total += o.total;
+  sum += o.sum;
+}
+
+double Histogram::quantile(double p) const {
+  if (total == 0) return 0;
+  const double target = p * static_cast<double>(total);
+  double below = 0;
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    const double c = static_cast<double>(counts[i]);
+    if (below + c >= target && c > 0) return bin_width * (static_cast<double>(i) + (target - below) / c);
+    below += c;
+  }
+  return bin_width * static_cast<double>(counts.size());
+}
+
+}  // namespace j232::assess

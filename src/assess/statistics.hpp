@@ -1,0 +1,36 @@
+#pragma once
+// Small, exact statistics for Monte Carlo tallies.
+#include <cstdint>
+#include <vector>
+
+namespace j232::assess {
+
+struct Interval {
+  double estimate = 0, low = 0, high = 0;
+};
+
+// Wilson score interval for k successes in n trials (z = 1.96 for 95 %). Well behaved at
+// k = 0 and k = n, where the normal approximation collapses to zero width.
+Interval wilson(std::uint64_t successes, std::uint64_t trials, double z = 1.959963984540054);
+
+// Quantile p of values (sorted ascending), linear interpolation between order
+// statistics (Hyndman & Fan type 7, as R and NumPy by default).
+double quantile_sorted(const std::vector<double>& sorted, double p);
+
+// A fixed-bin histogram: merging is exact and order-free, so it is deterministic
+// across threads; quantiles are read to within one bin.
+struct Histogram {
+  double bin_width = 1;
+  std::vector<std::uint64_t> counts;  // last bin collects everything beyond
+  std::uint64_t total = 0;
+  double sum = 0;  // for the exact mean (summed per chunk, merged in chunk order)
+
+  Histogram() = default;
+  Histogram(double bin_width, std::size_t bins) : bin_width(bin_width), counts(bins, 0) {}
+  void add(double v);
+  void merge(const Histogram& other);
+  double mean() const { return total ? sum / static_cast<double>(total) : 0.0; }
+  double quantile(double p) const;  // bin midpoint interpolation
+};
+
+}  // namespace j232::assess

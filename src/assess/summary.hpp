@@ -1,0 +1,33 @@
+#pragma once
+// What a run means: P(pass) with its interval, each criterion's share distribution and
+// pass probability, the verdict and the criterion that decides it (DESIGN.md §4.5).
+#include <array>
+#include <string>
+
+#include "assess/runner.hpp"
+
+namespace j232::assess {
+
+struct CriterionSummary {
+  std::string name;
+  double limit = 0;
+  double mean_share = 0, q05 = 0, q50 = 0, q95 = 0;
+  Interval pass;
+};
+
+struct Summary {
+  std::uint64_t replicates = 0, nails = 0, struck = 0, marks = 0;
+  Interval pass;
+  double required = 0;
+  bool passes = false;
+  bool settled = false;  // the 95 % interval lies wholly on one side of `required`
+  std::array<CriterionSummary, kCategories> criteria;
+  int deciding = 0;  // the criterion least likely to pass
+  double marks_per_nail = 0;
+  std::array<std::uint64_t, flight::kFates> fates{};
+  double queries_per_nail = 0;
+};
+
+Summary summarise(const Assessment& a, const scenario::CriteriaSpec& criteria);
+
+}  // namespace j232::assess

@@ -1,0 +1,183 @@
+#include "flight/nail_flight.hpp"
+
+#include <boost/random/normal_distribution.hpp>
+#include <cmath>
+
+#include "board/board.hpp"
+
+namespace j232::flight {
+
+const char* fate_name(Fate f) {
+  switch (f) {
+    case Fate::NotStruck: return "not_struck";
+    case Fate::Contained: return "contained_by_housing";
+    case Fate::StoppedByGuard: return "stopped_by_guard";
+    case Fate::MarkedBoard: return "marked_board";
+    case Fate::Escaped: return "escaped";
+  }
+  return "unknown";
+}
+
+namespace {
+
+constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
+constexpr double kMaxChord = 0.5;    // m
+constexpr double kLift = 0.002;      // m: a sliding nail's centre above the ground
+
+// Restitution along the normal n (facing the incoming nail), Coulomb friction along the surface.
+Vec3 bounce(const Vec3& v, const Vec3& n, double e, double mu) {
+  const double vn = v.dot(n);  // < 0: approaching
+  if (vn >= 0) return v;
+  const Vec3 tangential = v - vn * n;
+  const double vt = tangential.norm();
+  const double slip = mu * (1 + e) * (-vn);  // friction impulse per unit mass, at most stopping the slip
+  const Vec3 t_after = vt > slip ? Vec3(tangential * (1 - slip / vt)) : Vec3::Zero();
+  return t_after - e * vn * n;
+}
+
+// The normal tilted by a random angle (roughness) about a random axis in the surface.
+Vec3 rough_normal(const Vec3& n, double roughness, random::Stream& rng) {
+  if (roughness <= 0) return n;
+  boost::random::normal_distribution<double> tilt(0.0, roughness);
+  const double angle = tilt(rng);
+  const double psi = 2 * 3.14159265358979323846 * rng.uniform();
+  Vec3 u = n.unitOrthogonal();
+  const Vec3 w = n.cross(u);
+  const Vec3 axis = std::cos(psi) * u + std::sin(psi) * w;
+  return (n * std::cos(angle) + axis.cross(n) * std::sin(angle)).normalized();
+}
+
+}  // namespace
+
+FlightResult fly(const Body& start, double length, double diameter, double mass, const Drag& drag,
+                 const FlightContext& ctx, random::Stream& rng) {
+  const scenario::Scenario& s = *ctx.scenario;
+  FlightResult r;
+  Body b = start;
+  scene::Skip skip;
+  bool last_contact_guard = false;
+  bool ended_at_rest = false;
+  const double t_end = start.time + s.run.time_limit;
+
+  auto record_mark = [&](const Vec3& point, double energy, bool zone, bool puncture) {
+    if (r.mark_count < FlightResult::kMaxMarks) r.marks[static_cast<std::size_t>(r.mark_count)] = {point, energy, zone, puncture};
+    ++r.mark_count;
+    (zone ? (puncture ? r.punctures_zone : r.hits_zone) : (puncture ? r.punctures_outside : r.hits_outside)) += 1;
+  };
+
+  // What the surface at `hit` does to the nail arriving as `b`. Returns false when the nail stops.
+  auto respond = [&](const scene::Hit& hit) -> bool {
+    const Vec3 n = hit.normal;
+    const double vn = b.velocity.dot(n);
+    switch (hit.surface) {
+      case scene::Surface::TargetZone:
+      case scene::Surface::TargetOutside: {
+        const double energy = 0.5 * mass * vn * vn;
+        const double width = board::presented_width(length, diameter, b.axis.dot(n));
+        const board::Mark mark = board::classify(energy, width, s.board);
+        if (mark != board::Mark::None)
+          record_mark(hit.point, energy, hit.surface == scene::Surface::TargetZone, mark == board::Mark::Puncture);
+        if (mark == board::Mark::Puncture) return false;
+        b.velocity = bounce(b.velocity, n, s.board.restitution, 0.3);
+        last_contact_guard = false;
+        break;
+      }
+      case scene::Surface::Housing:
+      case scene::Surface::Deflector:
+        b.velocity = bounce(b.velocity, n, s.housing.restitution.at(-vn), s.housing.friction);
+        last_contact_guard = false;
+        break;
+      case scene::Surface::Guard: {
+        const auto& g = ctx.guards->at(hit.guard);
+        if (rng.uniform() < g.openness) {
+          b.velocity *= g.pass_speed_factor;  // slips between the links, losing speed
+          return true;
+        }
+        b.velocity = bounce(b.velocity, n, g.restitution, g.friction);
+        last_contact_guard = true;
+        break;
+      }
+      case scene::Surface::Ground: {
+        const Vec3 rough = rough_normal(n, s.ground.roughness, rng);
+        b.velocity = bounce(b.velocity, rough, s.ground.restitution, s.ground.friction);
+        const double out = b.velocity.dot(n);
+        if (out < 0) b.velocity -= 2 * out * n;  // a rough facet cannot send it into the ground
+        break;
+      }
+    }
+    ++r.bounces;
+    return true;
+  };
+
+  for (;;) {
+    if (b.time >= t_end || r.bounces > s.run.max_bounces) break;
+    const double horizontal = std::hypot(b.position.x(), b.position.y());
+    if (horizontal > ctx.escape_radius || b.position.z() < -1.0) break;
+
+    const double dt = std::min(chord_step(b, s.run.chord_tolerance, kMaxChord, drag), t_end - b.time);
+    const Body next = advance(b, dt, drag);
+    const Vec3 chord = next.position - b.position;
+    const double len = chord.norm();
+    if (!(len > 1e-12)) {
+      b = next;
+      continue;
+    }
+    ++r.queries;
+    const auto hit = ctx.scene->first_hit(b.position, chord / len, len, skip);
+    if (!hit) {
+      b = next;
+      skip = {};
+      continue;
+    }
+    b = advance(b, dt * hit->distance / len, drag);
+    b.position = hit->point;
+    skip = {};
+    skip.add(hit->face);
+    if (!respond(*hit)) break;  // punctured
+
+    // On the ground with too little rebound to fly: slide to rest, or into a wall.
+    if (hit->surface == scene::Surface::Ground && b.velocity.dot(hit->normal) < kSlideBelow) {
+      Vec3 slide = b.velocity - b.velocity.dot(hit->normal) * hit->normal;
+      const double speed = slide.norm();
+      const double decel = s.ground.friction * 9.80665;
+      if (speed < s.run.rest_speed || decel <= 0) {
+        ended_at_rest = true;
+        break;
+      }
+      slide /= speed;
+      const double distance = speed * speed / (2 * decel);
+      const Vec3 from = b.position + kLift * hit->normal;
+      ++r.queries;
+      const auto wall = ctx.scene->first_hit(from, slide, distance, skip);
+      if (!wall) {
+        b.position = from + distance * slide;
+        b.time += speed / decel;
+        ended_at_rest = true;
+        break;
+      }
+      const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
+      b.time += (speed - arrive) / decel;
+      b.position = wall->point;
+      b.velocity = arrive * slide;
+      skip = {};
+      skip.add(wall->face);
+      if (!respond(*wall)) break;
+    }
+    if (b.velocity.norm() < s.run.rest_speed) {
+      ended_at_rest = true;
+      break;
+    }
+  }
+  (void)ended_at_rest;
+  r.flight_time = b.time - start.time;
+  const double horizontal = std::hypot(b.position.x(), b.position.y());
+  if (r.mark_count > 0)
+    r.fate = Fate::MarkedBoard;
+  else if (horizontal <= ctx.deck_radius && b.position.z() > -1.0)
+    r.fate = last_contact_guard ? Fate::StoppedByGuard : Fate::Contained;
+  else
+    r.fate = Fate::Escaped;
+  return r;
+}
+
+}  // namespace j232::flight

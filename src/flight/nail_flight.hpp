@@ -1,0 +1,59 @@
+#pragma once
+// One thrown nail from the blade to its end: chords against the scene, and what each
+// surface does to it (DESIGN.md §4.3):
+//   target (operator zone or outside): the board model marks it (hit / puncture); a
+//       puncture stops the nail, anything else bounces off the board;
+//   housing, deflector: bounce with restitution e(v) and Coulomb friction;
+//   guard (chain or belting): passes between the links with probability `openness`,
+//       keeping `pass_speed_factor` of its speed, or bounces;
+//   ground: bounce with restitution, friction and a random tilt of the local normal
+//       (roughness); once the rebound is too weak to leave the ground (< 0.5 m/s) it
+//       slides to rest under friction, still able to strike a wall on the way.
+// The nail ends punctured, at rest, after max_bounces or time_limit, or leaving the scene.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "flight/trajectory.hpp"
+#include "random/stream.hpp"
+#include "scenario/scenario.hpp"
+#include "scene/scene.hpp"
+
+namespace j232::flight {
+
+enum class Fate : std::uint8_t { NotStruck, Contained, StoppedByGuard, MarkedBoard, Escaped };
+inline constexpr int kFates = 5;
+const char* fate_name(Fate f);
+
+struct MarkRecord {
+  Vec3 point = Vec3::Zero();
+  double normal_energy = 0;     // J
+  bool in_zone = false;
+  bool puncture = false;
+};
+
+struct FlightResult {
+  Fate fate = Fate::Escaped;
+  static constexpr int kMaxMarks = 4;  // marks beyond this are counted but not located
+  std::array<MarkRecord, kMaxMarks> marks{};
+  int mark_count = 0;
+  int hits_zone = 0, punctures_zone = 0, hits_outside = 0, punctures_outside = 0;
+  int bounces = 0;
+  int queries = 0;  // scene ray queries (for the benchmark)
+  double flight_time = 0;
+};
+
+// What the flight needs beyond the body: scene, the scenario's surfaces, and settings.
+struct FlightContext {
+  const scene::Scene* scene = nullptr;
+  const scenario::Scenario* scenario = nullptr;
+  double escape_radius = 0;  // horizontal distance at which the nail has left the test
+  double deck_radius = 0;
+  const std::vector<scenario::GuardSpec>* guards = nullptr;  // indexed by the scene's guard index
+};
+
+// `nail_length`, `nail_diameter` for the board model; `drag` already scaled to this nail's mass.
+FlightResult fly(const Body& start, double nail_length, double nail_diameter, double nail_mass, const Drag& drag,
+                 const FlightContext& context, random::Stream& rng);
+
+}  // namespace j232::flight

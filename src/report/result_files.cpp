@@ -1,0 +1,110 @@
+#include "report/result_files.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "report/scenario_json.hpp"
+#include "units/quantity.hpp"
+
+namespace j232::report {
+
+namespace {
+using json = nlohmann::ordered_json;
+
+json interval_json(const assess::Interval& i) {
+  return {{"estimate", i.estimate}, {"low", i.low}, {"high", i.high}, {"confidence", 0.95}, {"method", "Wilson score"}};
+}
+
+json histogram_json(const assess::Histogram& h, const char* unit) {
+  return {{"unit", unit},     {"count", h.total},          {"mean", h.mean()},
+          {"q05", h.quantile(0.05)}, {"q50", h.quantile(0.5)}, {"q95", h.quantile(0.95)},
+          {"bin_width", h.bin_width}, {"counts", h.counts}};
+}
+}  // namespace
+
+json result_json(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
+                 const Provenance& p) {
+  json criteria = json::array();
+  for (const auto& c : sum.criteria)
+    criteria.push_back({{"name", c.name},
+                        {"limit", c.limit},
+                        {"mean_share", c.mean_share},
+                        {"share_q05", c.q05},
+                        {"share_q50", c.q50},
+                        {"share_q95", c.q95},
+                        {"pass_probability", interval_json(c.pass)}});
+  json fates;
+  for (int f = 0; f < flight::kFates; ++f)
+    fates[flight::fate_name(static_cast<flight::Fate>(f))] = {
+        {"nails", sum.fates[f]}, {"fraction", sum.nails ? static_cast<double>(sum.fates[f]) / sum.nails : 0.0}};
+  json assumed = json::array();
+  for (const auto& x : assumptions(s)) assumed.push_back({{"assumption", x.what}, {"source", x.source}});
+  return {
+      {"program", "j232 run"},
+      {"verdict", sum.passes ? "passes" : "fails"},
+      {"verdict_settled", sum.settled},
+      {"pass_probability", interval_json(sum.pass)},
+      {"required_pass_probability", sum.required},
+      {"deciding_criterion", sum.criteria[sum.deciding].name},
+      {"denominator", s.criteria.denominator == scenario::CriteriaSpec::Denominator::Marks ? "marks" : "nails_fed"},
+      {"criteria", criteria},
+      {"replicates", sum.replicates},
+      {"nails_fed", sum.nails},
+      {"nails_struck", sum.struck},
+      {"marks", sum.marks},
+      {"marks_per_nail", sum.marks_per_nail},
+      {"marks_not_located", a.unlocated_marks},
+      {"fates", fates},
+      {"exit_speed", histogram_json(a.exit_speed, "m/s")},
+      {"mark_energy", histogram_json(a.mark_energy, "J")},
+      {"contact_radius", histogram_json(a.contact_radius, "m")},
+      {"scene_queries_per_nail", sum.queries_per_nail},
+      {"assumptions", assumed},
+      {"scenario", scenario_json(s)},
+      // The only part that differs between runs of the same scenario and seed.
+      {"provenance",
+       {{"version", p.version},
+        {"git_revision", p.git_revision},
+        {"date", p.date},
+        {"seed", s.run.seed},
+        {"threads", p.threads},
+        {"wall_time_s", p.wall_seconds},
+        {"nails_per_second", p.wall_seconds > 0 ? static_cast<double>(sum.nails) / p.wall_seconds : 0.0}}},
+  };
+}
+
+std::string marks_csv(const scenario::Scenario& s, const assess::Assessment& a) {
+  std::string out = "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark\n";
+  out.reserve(out.size() + a.marks.size() * 80);
+  (void)s;
+  for (const auto& m : a.marks) {
+    const auto& p = m.mark.point;
+    double az = std::atan2(p.y(), p.x()) * 180.0 / units::pi;
+    if (az < 0) az += 360.0;
+    fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{}\n", m.replicate,
+                   m.nail, p.x(), p.y(), p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside",
+                   m.mark.normal_energy, m.mark.puncture ? "puncture" : "hit");
+  }
+  return out;
+}
+
+std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum) {
+  std::string out;
+  out += fmt::format("{}\n", s.title);
+  out += fmt::format("VERDICT: {} SAE J232 (as simulated){}\n", sum.passes ? "PASSES" : "FAILS",
+                     sum.settled ? "" : " — not settled: the 95 % interval straddles the required probability");
+  out += fmt::format("  P(pass one test) = {:.3f}  (95 % interval {:.3f} to {:.3f}; required {:.2f}; {} replicates)\n",
+                     sum.pass.estimate, sum.pass.low, sum.pass.high, sum.required, sum.replicates);
+  out += fmt::format("  {:<20} {:>8} {:>10} {:>17} {:>10}\n", "criterion", "limit", "mean", "5-95 % range", "P(pass)");
+  for (int c = 0; c < assess::kCategories; ++c) {
+    const auto& cs = sum.criteria[c];
+    out += fmt::format("  {:<20} {:>7.1f}% {:>9.2f}% {:>7.2f}-{:<7.2f}% {:>10.3f}{}\n", cs.name, 100 * cs.limit,
+                       100 * cs.mean_share, 100 * cs.q05, 100 * cs.q95, cs.pass.estimate,
+                       c == sum.deciding ? "  <- decides" : "");
+  }
+  out += fmt::format("  nails: {} fed, {} struck ({:.1f} %), {:.3f} marks per nail\n", sum.nails, sum.struck,
+                     sum.nails ? 100.0 * sum.struck / sum.nails : 0.0, sum.marks_per_nail);
+  return out;
+}
+
+}  // namespace j232::report

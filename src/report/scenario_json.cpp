@@ -1,0 +1,200 @@
+#include "report/scenario_json.hpp"
+
+#include <fmt/format.h>
+
+#include "units/quantity.hpp"
+
+namespace j232::report {
+
+namespace {
+using json = nlohmann::ordered_json;
+constexpr double kDeg = 180.0 / units::pi;
+
+json restitution_json(const blade::Restitution& r) {
+  if (r.model == blade::Restitution::Model::Constant) return {{"model", "constant"}, {"e", r.e}};
+  return {{"model", "power_law"},
+          {"coefficient", r.coefficient},
+          {"exponent", r.exponent},
+          {"maximum", r.maximum},
+          {"reference_speed_m_s", r.reference_speed}};
+}
+
+json blade_json(const scenario::Scenario& s) {
+  const auto& b = s.blade;
+  json arms = json::array();
+  for (const auto& a : b.arms) {
+    json links = json::array();
+    for (const auto& l : a.links)
+      links.push_back({{"length_m", l.length},
+                       {"mass_kg", l.mass},
+                       {"centre_of_mass_m", l.centre()},
+                       {"inertia_kg_m2", l.inertia()},
+                       {"seized", l.seized}});
+    arms.push_back({{"azimuth_deg", a.azimuth * kDeg}, {"pivot_radius_m", a.pivot_radius}, {"links", links}});
+  }
+  return {{"speed_rpm", b.omega / units::rpm},
+          {"speed_rad_s", b.omega},
+          {"height_m", s.geometry.height},
+          {"thickness_m", s.geometry.thickness},
+          {"lift_angle_deg", s.geometry.lift_angle * kDeg},
+          {"mass_kg", b.mass()},
+          {"tip_radius_m", b.tip_radius()},
+          {"hub",
+           {{"bar_mass_kg", b.hub.bar_mass},
+            {"bar_length_m", b.hub.bar_length},
+            {"bar_mount", b.hub.bar_mount == blade::BarMount::End ? "end" : "centre"},
+            {"inertia_kg_m2", b.hub.extra_inertia},
+            {"drive_inertia_kg_m2", b.hub.drive_inertia},
+            {"drive", b.hub.constant_speed ? "constant_speed" : "free"}}},
+          {"arms", arms}};
+}
+
+json guard_json(const scenario::GuardSpec& g) {
+  return {{"name", g.name},
+          {"azimuth_from_deg", g.azimuth_from * kDeg},
+          {"azimuth_to_deg", g.azimuth_to * kDeg},
+          {"bottom_m", g.bottom},
+          {"openness", g.openness},
+          {"pass_speed_factor", g.pass_speed_factor},
+          {"restitution", g.restitution},
+          {"friction", g.friction}};
+}
+}  // namespace
+
+nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
+  json stations = json::array();
+  for (const auto& st : s.feed.stations) stations.push_back({{"radius_m", st.radius}, {"azimuth_deg", st.azimuth * kDeg}});
+  json guards = json::array(), deflectors = json::array(), meshes = json::array();
+  for (const auto& g : s.housing.guards) guards.push_back(guard_json(g));
+  for (const auto& d : s.housing.deflectors)
+    deflectors.push_back({{"name", d.name},
+                          {"azimuth_from_deg", d.azimuth_from * kDeg},
+                          {"azimuth_to_deg", d.azimuth_to * kDeg},
+                          {"radius_m", d.radius},
+                          {"bottom_m", d.bottom},
+                          {"top_m", d.top}});
+  for (const auto& m : s.meshes) meshes.push_back({{"path", m.path}, {"label", m.label}, {"scale", m.scale}});
+  json zone;
+  if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector)
+    zone = {{"kind", "sector"},
+            {"azimuth_from_deg", s.zone.azimuth_from * kDeg},
+            {"azimuth_to_deg", s.zone.azimuth_to * kDeg},
+            {"bottom_m", s.zone.bottom},
+            {"top_m", s.zone.top}};
+  else
+    zone = {{"kind", "derived"},
+            {"seat_x_m", s.zone.seat_x},
+            {"seat_y_m", s.zone.seat_y},
+            {"seat_z_m", s.zone.seat_z},
+            {"shoulder_height_m", s.zone.shoulder_height},
+            {"shoulder_half_width_m", s.zone.shoulder_half_width},
+            {"reach_m", s.zone.reach},
+            {"knee_height_m", s.zone.knee_height}};
+  return {
+      {"file", s.file},
+      {"title", s.title},
+      {"blade", blade_json(s)},
+      {"restitution", restitution_json(s.restitution)},
+      {"nail",
+       {{"length_m", s.nail.length},
+        {"diameter_m", s.nail.diameter},
+        {"head_diameter_m", s.nail.head_diameter},
+        {"mass_kg", s.nail.mass},
+        {"length_tolerance_m", s.nail.length_tolerance},
+        {"mass_tolerance_kg", s.nail.mass_tolerance}}},
+      {"feed",
+       {{"nails", s.feed.nails},
+        {"stations", stations},
+        {"drop_height_m", s.feed.drop_height},
+        {"outlet_diameter_m", s.feed.outlet_diameter},
+        {"outlet_speed_max_m_s", s.feed.outlet_speed_max},
+        {"tilt_max_deg", s.feed.tilt_max * kDeg},
+        {"ground_speed_m_s", s.feed.ground_speed}}},
+      {"housing",
+       {{"deck_radius_m", s.housing.deck_radius},
+        {"skirt_bottom_m", s.housing.skirt_bottom},
+        {"skirt_depth_m", s.housing.skirt_depth},
+        {"restitution", restitution_json(s.housing.restitution)},
+        {"friction", s.housing.friction},
+        {"guards", guards},
+        {"deflectors", deflectors}}},
+      {"ground",
+       {{"restitution", s.ground.restitution}, {"friction", s.ground.friction}, {"roughness_deg", s.ground.roughness * kDeg}}},
+      {"target",
+       {{"distance_m", s.target.distance},
+        {"radius_m", s.blade.tip_radius() + s.target.distance},
+        {"bottom_m", s.target.bottom},
+        {"top_m", s.target.top},
+        {"segments", s.target.segments}}},
+      {"meshes", meshes},
+      {"operator_zone", zone},
+      {"board",
+       {{"puncture_energy_per_width_J_m", s.board.puncture_energy_per_width},
+        {"hit_fraction", s.board.hit_fraction},
+        {"restitution", s.board.restitution}}},
+      {"criteria",
+       {{"hits_zone", s.criteria.hits_zone},
+        {"punctures_zone", s.criteria.punctures_zone},
+        {"hits_outside", s.criteria.hits_outside},
+        {"punctures_outside", s.criteria.punctures_outside},
+        {"denominator", s.criteria.denominator == scenario::CriteriaSpec::Denominator::Marks ? "marks" : "nails_fed"},
+        {"required_pass_probability", s.criteria.required_pass_probability}}},
+      {"air",
+       {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}}},
+      {"run",
+       {{"replicates", s.run.replicates},
+        {"seed", s.run.seed},
+        {"target_half_width", s.run.target_half_width ? json(*s.run.target_half_width) : json(nullptr)},
+        {"max_replicates", s.run.max_replicates},
+        {"chord_tolerance_m", s.run.chord_tolerance},
+        {"time_limit_s", s.run.time_limit},
+        {"max_bounces", s.run.max_bounces},
+        {"rest_speed_m_s", s.run.rest_speed}}},
+  };
+}
+
+std::vector<Assumption> assumptions(const scenario::Scenario& s) {
+  std::vector<Assumption> a;
+  const char* params = "shared/reference/physical-parameters.md";
+  a.push_back({"Impact: impulse-momentum model of the blade (hub + pinned links), frictionless central-plane contact, "
+               "nail as a slender rod struck off centre; the blade is back at speed and radially aligned for every nail",
+               "report 445-1 Ch. 2, generalised (docs/model.md)"});
+  a.push_back({fmt::format("Nail-on-blade restitution: {}", s.restitution.model == blade::Restitution::Model::Constant
+                                                                   ? fmt::format("e = {:g}", s.restitution.e)
+                                                                   : std::string("e(v) power law")),
+               "report 445-1 (0.3-0.9); Johnson, Contact Mechanics 11.4 for e(v)"});
+  a.push_back({fmt::format("Nail: {:.1f} mm long, {:.2f} mm shank, {:.2f} g +/- {:.2f} g", s.nail.length * 1e3,
+                           s.nail.diameter * 1e3, s.nail.mass * 1e3, s.nail.mass_tolerance * 1e3),
+               fmt::format("{} (6d box nail)", params)});
+  a.push_back({fmt::format("Feed: {} nails, dropped {:.0f} mm onto the blade at {} station(s), upright within {:.0f} deg",
+                           s.feed.nails, s.feed.drop_height * 1e3, s.feed.stations.size(), s.feed.tilt_max * 180 / units::pi),
+               "estimate: SAE J232 feed geometry not available (DESIGN.md 4.2)"});
+  a.push_back({fmt::format("Board: puncture at {:g} J/m of presented width, hit at {:g} of that; normal kinetic energy",
+                           s.board.puncture_energy_per_width, s.board.hit_fraction),
+               fmt::format("{} (estimate: no published value for 350# double-wall)", params)});
+  a.push_back({fmt::format("Target ring {:.0f} mm outside the tip circle, {:.0f} to {:.0f} mm above ground",
+                           s.target.distance * 1e3, s.target.bottom * 1e3, s.target.top * 1e3),
+               fmt::format("{} (ANSI B71.1 enclosure wording as stand-in)", params)});
+  a.push_back({s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector
+                   ? std::string("Operator zone: explicit sector of the board")
+                   : fmt::format("Operator zone: board seen from the blade toward the 95th-percentile reach envelope of "
+                                 "an operator seated at ({:.2f}, {:.2f}, {:.2f}) m",
+                                 s.zone.seat_x, s.zone.seat_y, s.zone.seat_z),
+               fmt::format("{} (MIL-STD-1472G reach values)", params)});
+  a.push_back({fmt::format("Ground: restitution {:g}, friction {:g}, roughness {:.0f} deg", s.ground.restitution,
+                           s.ground.friction, s.ground.roughness * 180 / units::pi),
+               fmt::format("{} (turf, estimate)", params)});
+  a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3", s.air.cd_normal,
+                                        s.air.cd_axial, s.air.density)
+                          : std::string("Air drag off (conservative: faster nails)"),
+               fmt::format("{} (handbook)", params)});
+  a.push_back({s.criteria.denominator == scenario::CriteriaSpec::Denominator::NailsFed
+                   ? std::string("Shares are of the nails fed")
+                   : std::string("Shares are of all marks (the report's literal wording)"),
+               "DESIGN.md 2"});
+  a.push_back({fmt::format("Verdict: passes when P(pass) >= {:g}", s.criteria.required_pass_probability),
+               "program default (not part of SAE J232)"});
+  return a;
+}
+
+}  // namespace j232::report

@@ -1,0 +1,164 @@
+#pragma once
+// A J232 assessment scenario: everything one simulated test needs, typed, checked
+// and in SI (DESIGN.md §3). Defaults are the sourced values of
+// shared/reference/physical-parameters.md or report 445-1; docs/model.md lists them
+// with their sources, and every result echoes the values used.
+//
+// World frame: origin on the spindle axis at ground level, z up, x forward (the
+// direction of travel), y to the left. The blade turns counter-clockwise seen from
+// above. Azimuth is measured from +x toward +y.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "blade/blade.hpp"
+#include "blade/restitution.hpp"
+
+namespace j232::scenario {
+
+struct NailSpec {  // uncoated 6d steel box nail
+  double length = 0.0508;          // 2 in
+  double diameter = 0.00251;       // 0.099 in shank
+  double head_diameter = 0.00676;  // 0.266 in
+  double mass = 0.0020;            // 2.0 g
+  double length_tolerance = 0.0008;  // +/- (uniform)
+  double mass_tolerance = 0.0001;    // +/- (uniform): 1.9-2.1 g
+};
+
+struct FeedStation {
+  double radius = 0.0;   // from the spindle, m
+  double azimuth = 0.0;  // rad
+};
+
+struct FeedSpec {
+  int nails = 150;
+  std::vector<FeedStation> stations;  // nails go to stations in turn; default: one, 2 in inside the tip circle, in front
+  double drop_height = 0.30;          // funnel outlet above the top of the blade, m
+  double outlet_diameter = 0.025;     // funnel outlet, m: uniform position within it
+  double outlet_speed_max = 0.5;      // speed leaving the outlet, uniform in [0, max], m/s
+  double tilt_max = 0.0873;           // nail axis within this cone about vertical (5 deg)
+  double ground_speed = 0.0;          // mower travel speed; the nail drifts backward relative to the mower, m/s
+};
+
+struct BladeGeometry {
+  double height = 0.076;      // blade plane above ground, m (3 in)
+  double thickness = 0.006;   // m; a nail is struck while it spans this slab
+  double lift_angle = 0.0;    // edge bevel / lift: the contact normal tilts up by this angle, rad
+};
+
+struct GuardSpec {  // chain or belting curtain hanging from the skirt
+  std::string name = "guard";
+  double azimuth_from = 0.0, azimuth_to = 0.0;  // rad, counter-clockwise from -> to
+  double bottom = 0.010;                        // lower edge above ground, m
+  double openness = 0.35;                       // probability a nail passes between the links
+  double pass_speed_factor = 0.7;               // speed kept when passing
+  double restitution = 0.2;                     // bounce off the curtain
+  double friction = 0.5;
+};
+
+struct DeflectorSpec {  // a solid vertical panel inside or outside the skirt
+  std::string name = "deflector";
+  double azimuth_from = 0.0, azimuth_to = 0.0;
+  double radius = 0.0;
+  double bottom = 0.0, top = 0.0;
+};
+
+struct HousingSpec {
+  double deck_radius = 0.0;           // default: tip radius + 50 mm
+  double skirt_bottom = 0.038;        // above ground (skid shoes 1.5 in below the blade)
+  double skirt_depth = 0.175;         // skirt bottom to deck plate
+  blade::Restitution restitution = blade::Restitution::power_law(1.06, -0.25, 0.9);  // steel on steel
+  double friction = 0.4;
+  std::vector<GuardSpec> guards;
+  std::vector<DeflectorSpec> deflectors;
+};
+
+struct GroundSpec {  // turf
+  double restitution = 0.15;
+  double friction = 0.5;
+  double roughness = 0.1745;  // std. dev. of the local surface normal's tilt, rad (10 deg)
+};
+
+struct MeshFile {
+  std::string path;
+  std::string label;  // ground, housing, deflector, guard, target, operator_zone
+  double scale = 1.0;  // file units to metres
+  // Guard properties when label == "guard".
+  GuardSpec guard;
+};
+
+struct TargetSpec {
+  double distance = 0.610;  // board wall outside the tip circle, m
+  double bottom = 0.0;      // board bottom above ground, m
+  double top = 0.0;         // default: blade height + 0.610 m
+  int segments = 360;       // around the ring
+};
+
+struct OperatorZoneSpec {
+  enum class Kind { Sector, Derived } kind = Kind::Derived;
+  // Sector: an azimuth range and height range of the target board.
+  double azimuth_from = 0.0, azimuth_to = 0.0, bottom = 0.0, top = 0.0;
+  // Derived (DESIGN.md §4.4): seated operator; seat index point position.
+  double seat_x = 2.0, seat_y = 0.0, seat_z = 0.90;
+  double shoulder_height = 0.646;   // above the seat
+  double shoulder_half_width = 0.20;
+  double reach = 0.942;             // extended reach, 95th-percentile male
+  double knee_height = 0.604;
+};
+
+struct BoardSpec {  // double-wall 350# corrugated board
+  double puncture_energy_per_width = 110.0;  // J/m
+  double hit_fraction = 0.3;                 // hit threshold / puncture threshold
+  double restitution = 0.1;                  // a nail that does not puncture bounces off
+};
+
+struct CriteriaSpec {  // report 445-1, Chapter 3 (SAE J232)
+  double hits_zone = 0.20, punctures_zone = 0.005, hits_outside = 0.15, punctures_outside = 0.05;
+  enum class Denominator { NailsFed, Marks } denominator = Denominator::NailsFed;
+  // The verdict: the mower passes when its estimated probability of passing one
+  // physical test is at least this. A program default, not part of SAE J232.
+  double required_pass_probability = 0.9;
+};
+
+struct AirSpec {
+  bool drag = true;
+  double density = 1.2;
+  double cd_normal = 1.0;  // cross-flow on the shank
+  double cd_axial = 0.8;   // end-on
+};
+
+struct RunSpec {
+  long long replicates = 1000;
+  unsigned long long seed = 1;
+  int threads = 0;                      // 0: all cores
+  std::optional<double> target_half_width;  // stop rule on the P(pass) interval
+  long long max_replicates = 100000;
+  double chord_tolerance = 0.001;       // max sag of a flight chord, m
+  double time_limit = 3.0;              // s of flight per nail
+  int max_bounces = 40;
+  double rest_speed = 0.3;              // m/s: slower after a bounce is at rest
+};
+
+struct Scenario {
+  std::string file;
+  std::string title;
+  blade::Blade blade;
+  BladeGeometry geometry;
+  blade::Restitution restitution = blade::Restitution::constant(0.9);  // nail on blade
+  NailSpec nail;
+  FeedSpec feed;
+  HousingSpec housing;
+  GroundSpec ground;
+  TargetSpec target;
+  std::vector<MeshFile> meshes;  // when present they replace the generated housing and targets
+  OperatorZoneSpec zone;
+  BoardSpec board;
+  CriteriaSpec criteria;
+  AirSpec air;
+  RunSpec run;
+};
+
+// Reads and checks a scenario file. Throws InputError naming file, line, key, value.
+Scenario read_scenario(const std::string& file);
+
+}  // namespace j232::scenario

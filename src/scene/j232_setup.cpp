@@ -1,0 +1,154 @@
+#include "scene/j232_setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "scenario/input_error.hpp"
+#include "scene/mesh_io.hpp"
+#include "scene/operator_zone.hpp"
+#include "units/quantity.hpp"
+
+namespace j232::scene {
+
+namespace {
+
+constexpr double kTwoPi = 2 * units::pi;
+
+double arc_span(double from, double to) {
+  double span = std::fmod(to - from, kTwoPi);
+  if (span <= 0) span += kTwoPi;
+  return span;
+}
+
+// A vertical cylindrical patch from azimuth `from` counter-clockwise over `span`,
+// between heights z0 and z1, cut at the given azimuths and heights; each quad labelled
+// by `label(centre)`.
+template <class Label>
+void add_wall(Soup& soup, double radius, const std::vector<double>& azimuths, const std::vector<double>& heights,
+              Label label, std::uint16_t guard = 0) {
+  std::vector<std::vector<std::uint32_t>> ids(azimuths.size());
+  for (std::size_t i = 0; i < azimuths.size(); ++i)
+    for (double z : heights) ids[i].push_back(soup.add_point({radius * std::cos(azimuths[i]), radius * std::sin(azimuths[i]), z}));
+  for (std::size_t i = 0; i + 1 < azimuths.size(); ++i)
+    for (std::size_t k = 0; k + 1 < heights.size(); ++k) {
+      const double a = 0.5 * (azimuths[i] + azimuths[i + 1]), z = 0.5 * (heights[k] + heights[k + 1]);
+      soup.add_quad(ids[i][k], ids[i + 1][k], ids[i + 1][k + 1], ids[i][k + 1],
+                    label(Vec3(radius * std::cos(a), radius * std::sin(a), z)), guard);
+    }
+}
+
+std::vector<double> arc_breaks(double from, double span, double max_step, std::vector<double> extra = {}) {
+  const int n = std::max(1, static_cast<int>(std::ceil(span / max_step)));
+  std::vector<double> a;
+  for (int i = 0; i <= n; ++i) a.push_back(from + span * i / n);
+  for (double e : extra) {
+    const double rel = std::fmod(e - from + 2 * kTwoPi, kTwoPi);
+    if (rel > 1e-9 && rel < span - 1e-9) a.push_back(from + rel);
+  }
+  std::sort(a.begin(), a.end());
+  a.erase(std::unique(a.begin(), a.end(), [](double x, double y) { return std::abs(x - y) < 1e-9; }), a.end());
+  return a;
+}
+
+std::vector<double> height_breaks(double z0, double z1, double max_step, std::vector<double> extra = {}) {
+  const int n = std::max(1, static_cast<int>(std::ceil((z1 - z0) / max_step)));
+  std::vector<double> h;
+  for (int i = 0; i <= n; ++i) h.push_back(z0 + (z1 - z0) * i / n);
+  for (double e : extra)
+    if (e > z0 + 1e-9 && e < z1 - 1e-9) h.push_back(e);
+  std::sort(h.begin(), h.end());
+  h.erase(std::unique(h.begin(), h.end(), [](double x, double y) { return std::abs(x - y) < 1e-9; }), h.end());
+  return h;
+}
+
+void add_disc(Soup& soup, double radius, double z, int segments, Surface label) {
+  const std::uint32_t centre = soup.add_point({0, 0, z});
+  std::vector<std::uint32_t> rim;
+  for (int i = 0; i < segments; ++i) {
+    const double a = kTwoPi * i / segments;
+    rim.push_back(soup.add_point({radius * std::cos(a), radius * std::sin(a), z}));
+  }
+  for (int i = 0; i < segments; ++i) soup.add_triangle(centre, rim[i], rim[(i + 1) % segments], label);
+}
+
+void add_ground(Soup& soup, double half) {
+  const auto a = soup.add_point({-half, -half, 0}), b = soup.add_point({half, -half, 0});
+  const auto c = soup.add_point({half, half, 0}), d = soup.add_point({-half, half, 0});
+  soup.add_quad(a, b, c, d, Surface::Ground);
+}
+
+void add_target_ring(Soup& soup, const scenario::Scenario& s, const OperatorZone& zone) {
+  std::vector<double> extra_az, extra_z;
+  if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector) {
+    extra_az = {s.zone.azimuth_from, s.zone.azimuth_to};
+    extra_z = {s.zone.bottom, s.zone.top};
+  }
+  const auto az = arc_breaks(0.0, kTwoPi, kTwoPi / s.target.segments, extra_az);
+  const auto hz = height_breaks(s.target.bottom, s.target.top, 0.05, extra_z);
+  add_wall(soup, target_radius(s), az, hz,
+           [&](const Vec3& c) { return zone.contains(c) ? Surface::TargetZone : Surface::TargetOutside; });
+}
+
+}  // namespace
+
+double target_radius(const scenario::Scenario& s) { return s.blade.tip_radius() + s.target.distance; }
+
+Soup build_scene_soup(const scenario::Scenario& s) {
+  Soup soup;
+  const OperatorZone zone(s.zone, s.geometry.height);
+  const double ground_half = target_radius(s) + 2.0;
+
+  if (!s.meshes.empty()) {
+    bool has_ground = false;
+    std::uint16_t guard = 0;
+    for (std::size_t i = 0; i < s.meshes.size(); ++i) {
+      const auto& m = s.meshes[i];
+      Surface label = Surface::Housing;
+      if (m.label == "ground") label = Surface::Ground, has_ground = true;
+      if (m.label == "deflector") label = Surface::Deflector;
+      if (m.label == "guard") label = Surface::Guard;
+      if (m.label == "target") label = Surface::TargetOutside;
+      if (m.label == "operator_zone") label = Surface::TargetZone;
+      Soup part;
+      try {
+        part = read_mesh(m.path, label, m.scale, label == Surface::Guard ? guard++ : 0);
+      } catch (const std::runtime_error& e) {
+        throw scenario::InputError(s.file, std::nullopt, fmt::format("meshes[{}].path", i + 1), "", e.what());
+      }
+      // Plain target meshes carry the scenario's operator zone.
+      if (label == Surface::TargetOutside)
+        for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+          const auto& tri = part.triangles[t];
+          if (zone.contains((part.points[tri[0]] + part.points[tri[1]] + part.points[tri[2]]) / 3.0))
+            part.labels[t] = Surface::TargetZone;
+        }
+      soup.append(part);
+    }
+    if (!has_ground) add_ground(soup, ground_half);
+    return soup;
+  }
+
+  add_ground(soup, ground_half);
+  const auto& h = s.housing;
+  const double deck_top = h.skirt_bottom + h.skirt_depth;
+  add_disc(soup, h.deck_radius, deck_top, 96, Surface::Housing);
+  add_wall(soup, h.deck_radius, arc_breaks(0.0, kTwoPi, kTwoPi / 96), {h.skirt_bottom, deck_top},
+           [](const Vec3&) { return Surface::Housing; });
+  for (std::size_t g = 0; g < h.guards.size(); ++g) {
+    const auto& guard = h.guards[g];
+    const double span = arc_span(guard.azimuth_from, guard.azimuth_to);
+    add_wall(soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, kTwoPi / 96), {guard.bottom, h.skirt_bottom},
+             [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(g));
+  }
+  for (const auto& d : h.deflectors) {
+    const double span = arc_span(d.azimuth_from, d.azimuth_to);
+    add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, kTwoPi / 96), {d.bottom, d.top},
+             [](const Vec3&) { return Surface::Deflector; });
+  }
+  add_target_ring(soup, s, zone);
+  return soup;
+}
+
+}  // namespace j232::scene

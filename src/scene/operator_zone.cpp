@@ -1,0 +1,44 @@
+#include "scene/operator_zone.hpp"
+
+#include <cmath>
+
+#include "units/quantity.hpp"
+
+namespace j232::scene {
+
+bool within_arc(double a, double from, double to) {
+  const double two_pi = 2 * units::pi;
+  auto wrap = [&](double x) { x = std::fmod(x, two_pi); return x < 0 ? x + two_pi : x; };
+  if (std::abs(to - from) >= two_pi - 1e-12) return true;  // a full turn
+  return wrap(a - from) <= wrap(to - from);
+}
+
+OperatorZone::OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_height)
+    : spec_(spec), blade_centre_(0, 0, blade_height) {
+  if (spec.kind == scenario::OperatorZoneSpec::Kind::Derived) {
+    const double shoulder_z = spec.seat_z + spec.shoulder_height;
+    spheres_.push_back({{spec.seat_x, spec.seat_y + spec.shoulder_half_width, shoulder_z}, spec.reach});
+    spheres_.push_back({{spec.seat_x, spec.seat_y - spec.shoulder_half_width, shoulder_z}, spec.reach});
+    // Knees ahead of the seat index point at seat height; the lower legs hang within knee height.
+    spheres_.push_back({{spec.seat_x + 0.35, spec.seat_y, spec.seat_z}, spec.knee_height});
+  }
+}
+
+bool OperatorZone::contains(const Vec3& p) const {
+  if (spec_.kind == scenario::OperatorZoneSpec::Kind::Sector)
+    return within_arc(std::atan2(p.y(), p.x()), spec_.azimuth_from, spec_.azimuth_to) && p.z() >= spec_.bottom &&
+           p.z() <= spec_.top;
+  // A nail crossing the board at p on a straight line from the blade: does that line,
+  // continued beyond the board, enter the envelope?
+  const Vec3 d = (p - blade_centre_).normalized();
+  for (const auto& s : spheres_) {
+    const Vec3 m = p - s.centre;
+    const double b = m.dot(d);
+    const double c = m.squaredNorm() - s.radius * s.radius;
+    if (c <= 0.0) return true;  // the board point is inside the envelope
+    if (b < 0.0 && b * b - c >= 0.0) return true;  // the sphere lies ahead and the line meets it
+  }
+  return false;
+}
+
+}  // namespace j232::scene

@@ -1,0 +1,34 @@
+#pragma once
+// Which part of the target board is the operator zone (DESIGN.md §4.4): an explicit
+// sector (azimuth and height ranges), or derived from a seated operator: the board
+// points through which a straight line from the blade reaches the 95th-percentile
+// reach envelope — spheres of the extended reach about each shoulder, and a sphere
+// of knee-height radius about the knees.
+#include <vector>
+
+#include "scenario/scenario.hpp"
+#include "scene/soup.hpp"
+
+namespace j232::scene {
+
+class OperatorZone {
+ public:
+  OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_height);
+  bool contains(const Vec3& board_point) const;
+
+  struct Sphere {
+    Vec3 centre;
+    double radius;
+  };
+  const std::vector<Sphere>& envelope() const { return spheres_; }
+
+ private:
+  scenario::OperatorZoneSpec spec_;
+  Vec3 blade_centre_;
+  std::vector<Sphere> spheres_;
+};
+
+// True when azimuth a lies on the counter-clockwise arc from -> to.
+bool within_arc(double a, double from, double to);
+
+}  // namespace j232::scene

@@ -1,0 +1,59 @@
+#pragma once
+// The scene a thrown nail flies through: a CGAL Surface_mesh with a label per face,
+// indexed by a CGAL AABB tree for first-hit ray queries (DESIGN.md §4.3–4.4). CGAL
+// stays inside scene.cpp; this header is all the rest of the program sees.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "scene/soup.hpp"
+
+namespace j232::scene {
+
+struct Hit {
+  double distance = 0;   // along the ray, m
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // unit, facing back against the ray
+  Surface surface = Surface::Ground;
+  std::uint32_t face = 0;
+  std::uint16_t guard = 0;
+};
+
+// Faces a query must not report (the one a nail just left, and neighbours met at an edge).
+struct Skip {
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::uint32_t faces[4] = {kNone, kNone, kNone, kNone};
+  bool contains(std::uint32_t f) const { return f == faces[0] || f == faces[1] || f == faces[2] || f == faces[3]; }
+  void add(std::uint32_t f) {
+    for (auto& slot : faces)
+      if (slot == kNone) { slot = f; return; }
+    faces[3] = f;
+  }
+};
+
+class Scene {
+ public:
+  // Throws std::invalid_argument for an empty scene or a degenerate (zero-area) face.
+  explicit Scene(Soup soup);
+  ~Scene();
+  Scene(Scene&&) noexcept;
+  Scene& operator=(Scene&&) noexcept;
+
+  // First surface along from + t dir, 0 < t <= max_distance (dir: unit vector).
+  std::optional<Hit> first_hit(const Vec3& from, const Vec3& dir, double max_distance, const Skip& skip = {}) const;
+
+  const Soup& soup() const;
+  std::size_t face_count() const;
+  double face_area(std::uint32_t face) const;
+  Vec3 face_centroid(std::uint32_t face) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Writes the labelled scene for a mesh viewer: .ply (face property "label" and a colour
+// per label) or .obj (one group per label). Throws std::runtime_error on I/O failure.
+void export_scene(const Soup& soup, const std::string& path);
+
+}  // namespace j232::scene
