@@ -12,6 +12,7 @@ const char* fate_name(Fate f) {
     case Fate::NotStruck: return "not_struck";
     case Fate::Contained: return "contained_by_housing";
     case Fate::StoppedByGuard: return "stopped_by_guard";
+    case Fate::ReachedBoardUnmarked: return "reached_board_unmarked";
     case Fate::MarkedBoard: return "marked_board";
     case Fate::Escaped: return "escaped";
   }
@@ -57,6 +58,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   scene::Skip skip;
   bool last_contact_guard = false;
   bool ended_at_rest = false;
+  bool at_board = false;
   const double t_end = start.time + s.run.time_limit;
 
   auto record_mark = [&](const Vec3& point, double energy, bool zone, bool puncture) {
@@ -77,10 +79,9 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
         const board::Mark mark = board::classify(energy, width, s.board);
         if (mark != board::Mark::None)
           record_mark(hit.point, energy, hit.surface == scene::Surface::TargetZone, mark == board::Mark::Puncture);
-        if (mark == board::Mark::Puncture) return false;
-        b.velocity = bounce(b.velocity, n, s.board.restitution, 0.3);
-        last_contact_guard = false;
-        break;
+        // The board is the test's catcher: a nail that does not go through it drops at its foot.
+        at_board = true;
+        return false;
       }
       case scene::Surface::Housing:
       case scene::Surface::Deflector:
@@ -133,35 +134,42 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     b.position = hit->point;
     skip = {};
     skip.add(hit->face);
-    if (!respond(*hit)) break;  // punctured
+    if (!respond(*hit)) break;  // stopped by the board
 
-    // On the ground with too little rebound to fly: slide to rest, or into a wall.
+    // On the ground with too little rebound to fly: slide to rest, or into a wall and on.
     if (hit->surface == scene::Surface::Ground && b.velocity.dot(hit->normal) < kSlideBelow) {
-      Vec3 slide = b.velocity - b.velocity.dot(hit->normal) * hit->normal;
-      const double speed = slide.norm();
+      const Vec3 up = hit->normal;
       const double decel = s.ground.friction * 9.80665;
-      if (speed < s.run.rest_speed || decel <= 0) {
-        ended_at_rest = true;
-        break;
+      bool stopped = false;
+      while (!stopped) {
+        Vec3 slide = b.velocity - b.velocity.dot(up) * up;
+        const double speed = slide.norm();
+        if (speed < s.run.rest_speed || decel <= 0 || r.bounces > s.run.max_bounces) {
+          ended_at_rest = true;
+          break;
+        }
+        slide /= speed;
+        const double distance = speed * speed / (2 * decel);
+        const Vec3 from = b.position + kLift * up;
+        ++r.queries;
+        const auto wall = ctx.scene->first_hit(from, slide, distance, skip);
+        if (!wall) {
+          b.position = from + distance * slide;
+          b.time += speed / decel;
+          b.velocity = Vec3::Zero();
+          ended_at_rest = true;
+          break;
+        }
+        const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
+        b.time += (speed - arrive) / decel;
+        b.position = wall->point;
+        b.velocity = arrive * slide;
+        skip = {};
+        skip.add(wall->face);
+        stopped = !respond(*wall);
+        if (wall->surface == scene::Surface::Ground) break;  // slid onto another ground face: fly on from there
       }
-      slide /= speed;
-      const double distance = speed * speed / (2 * decel);
-      const Vec3 from = b.position + kLift * hit->normal;
-      ++r.queries;
-      const auto wall = ctx.scene->first_hit(from, slide, distance, skip);
-      if (!wall) {
-        b.position = from + distance * slide;
-        b.time += speed / decel;
-        ended_at_rest = true;
-        break;
-      }
-      const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
-      b.time += (speed - arrive) / decel;
-      b.position = wall->point;
-      b.velocity = arrive * slide;
-      skip = {};
-      skip.add(wall->face);
-      if (!respond(*wall)) break;
+      if (stopped || ended_at_rest) break;
     }
     if (b.velocity.norm() < s.run.rest_speed) {
       ended_at_rest = true;
@@ -170,9 +178,12 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   }
   (void)ended_at_rest;
   r.flight_time = b.time - start.time;
+  r.end_position = b.position;
   const double horizontal = std::hypot(b.position.x(), b.position.y());
   if (r.mark_count > 0)
     r.fate = Fate::MarkedBoard;
+  else if (at_board)
+    r.fate = Fate::ReachedBoardUnmarked;
   else if (horizontal <= ctx.deck_radius && b.position.z() > -1.0)
     r.fate = last_contact_guard ? Fate::StoppedByGuard : Fate::Contained;
   else

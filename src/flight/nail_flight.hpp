@@ -1,15 +1,15 @@
 #pragma once
 // One thrown nail from the blade to its end: chords against the scene, and what each
 // surface does to it (DESIGN.md §4.3):
-//   target (operator zone or outside): the board model marks it (hit / puncture); a
-//       puncture stops the nail, anything else bounces off the board;
+//   target (operator zone or outside): the board model marks it (hit / puncture) or not;
+//       either way the board catches the nail (it drops at the board's foot);
 //   housing, deflector: bounce with restitution e(v) and Coulomb friction;
 //   guard (chain or belting): passes between the links with probability `openness`,
 //       keeping `pass_speed_factor` of its speed, or bounces;
 //   ground: bounce with restitution, friction and a random tilt of the local normal
 //       (roughness); once the rebound is too weak to leave the ground (< 0.5 m/s) it
 //       slides to rest under friction, still able to strike a wall on the way.
-// The nail ends punctured, at rest, after max_bounces or time_limit, or leaving the scene.
+// The nail ends at the board, at rest, after max_bounces or time_limit, or leaving the scene.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -21,8 +21,11 @@
 
 namespace j232::flight {
 
-enum class Fate : std::uint8_t { NotStruck, Contained, StoppedByGuard, MarkedBoard, Escaped };
-inline constexpr int kFates = 5;
+// Where a nail went: not struck by the blade; at rest under the mower (contained by the
+// housing, or last turned back by a guard); caught by the board without a mark; marked
+// the board; or escaped (over the board, or at rest outside the mower short of it).
+enum class Fate : std::uint8_t { NotStruck, Contained, StoppedByGuard, ReachedBoardUnmarked, MarkedBoard, Escaped };
+inline constexpr int kFates = 6;
 const char* fate_name(Fate f);
 
 struct MarkRecord {
@@ -41,6 +44,7 @@ struct FlightResult {
   int bounces = 0;
   int queries = 0;  // scene ray queries (for the benchmark)
   double flight_time = 0;
+  Vec3 end_position = Vec3::Zero();
 };
 
 // What the flight needs beyond the body: scene, the scenario's surfaces, and settings.

@@ -109,7 +109,6 @@ struct OperatorZoneSpec {
 struct BoardSpec {  // double-wall 350# corrugated board
   double puncture_energy_per_width = 110.0;  // J/m
   double hit_fraction = 0.3;                 // hit threshold / puncture threshold
-  double restitution = 0.1;                  // a nail that does not puncture bounces off
 };
 
 struct CriteriaSpec {  // report 445-1, Chapter 3 (SAE J232)
@@ -135,7 +134,7 @@ struct RunSpec {
   long long max_replicates = 100000;
   double chord_tolerance = 0.001;       // max sag of a flight chord, m
   double time_limit = 3.0;              // s of flight per nail
-  int max_bounces = 40;
+  int max_bounces = 100;
   double rest_speed = 0.3;              // m/s: slower after a bounce is at rest
 };
 

@@ -208,7 +208,6 @@ Scenario read_scenario(const std::string& file) {
     s.board.puncture_energy_per_width =
         b->quantity_or("puncture_energy_per_width", Kind::EnergyPerLength, s.board.puncture_energy_per_width, Range::Positive);
     s.board.hit_fraction = b->quantity_or("hit_fraction", Kind::Dimensionless, s.board.hit_fraction, Range::UnitInterval);
-    s.board.restitution = b->quantity_or("restitution", Kind::Dimensionless, s.board.restitution, Range::UnitInterval);
     b->refuse_unknown_keys();
   }
   if (auto c = root.table("criteria")) read_criteria(*c, s.criteria);
