@@ -91,6 +91,32 @@ void add_target_ring(Soup& soup, const scenario::Scenario& s, const OperatorZone
            [&](const Vec3& c) { return zone.contains(c) ? Surface::TargetZone : Surface::TargetOutside; });
 }
 
+// Splits triangles in four until no edge is longer than max_edge, so that a target
+// mesh's faces are small enough to carry the operator zone's outline.
+Soup subdivide(const Soup& in, double max_edge) {
+  Soup out;
+  std::vector<std::array<Vec3, 3>> work;
+  for (std::size_t t = 0; t < in.triangles.size(); ++t) {
+    work.clear();
+    work.push_back({in.points[in.triangles[t][0]], in.points[in.triangles[t][1]], in.points[in.triangles[t][2]]});
+    while (!work.empty()) {
+      const auto tri = work.back();
+      work.pop_back();
+      const double longest = std::max({(tri[1] - tri[0]).norm(), (tri[2] - tri[1]).norm(), (tri[0] - tri[2]).norm()});
+      if (longest <= max_edge) {
+        out.add_triangle(out.add_point(tri[0]), out.add_point(tri[1]), out.add_point(tri[2]), in.labels[t], in.guard_index[t]);
+        continue;
+      }
+      const Vec3 a = 0.5 * (tri[0] + tri[1]), b = 0.5 * (tri[1] + tri[2]), c = 0.5 * (tri[2] + tri[0]);
+      work.push_back({tri[0], a, c});
+      work.push_back({a, tri[1], b});
+      work.push_back({c, b, tri[2]});
+      work.push_back({a, b, c});
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 double target_radius(const scenario::Scenario& s) { return s.blade.tip_radius() + s.target.distance; }
@@ -117,7 +143,8 @@ Soup build_scene_soup(const scenario::Scenario& s) {
       } catch (const std::runtime_error& e) {
         throw scenario::InputError(s.file, std::nullopt, fmt::format("meshes[{}].path", i + 1), "", e.what());
       }
-      // Plain target meshes carry the scenario's operator zone.
+      // Plain target meshes carry the scenario's operator zone, face by (small) face.
+      if (label == Surface::TargetOutside) part = subdivide(part, 0.05);
       if (label == Surface::TargetOutside)
         for (std::size_t t = 0; t < part.triangles.size(); ++t) {
           const auto& tri = part.triangles[t];
