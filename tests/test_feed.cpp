@@ -1,0 +1,132 @@
+// The nail feed and strike detection: statistical tests of the samplers (Kolmogorov-
+// Smirnov) and cases whose answer is known.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "feed/feed.hpp"
+#include "stats_check.hpp"
+#include "units/quantity.hpp"
+
+using namespace j232;
+
+namespace {
+scenario::Scenario straight_scenario() {
+  scenario::Scenario s;
+  s.blade.omega = 1000 * units::rpm;
+  s.blade.hub.bar_mass = 10;
+  s.blade.hub.bar_length = 1.2192;  // centred: two edges, 24 in reach
+  s.feed.stations = {{0.55, 0.0}};
+  return s;
+}
+constexpr double kTwoPi = 2 * units::pi;
+}  // namespace
+
+TEST_CASE("feed: blade phase, outlet position and tilt follow their distributions (KS)", "[feed][statistics]") {
+  const auto s = straight_scenario();
+  std::vector<double> phase, outlet_r2, cos_tilt, speed;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    random::Stream rng(7, 0, static_cast<std::uint64_t>(i), random::Purpose::Feed);
+    const auto d = feed::sample_drop(s, i, rng);
+    phase.push_back(d.blade_phase);
+    const Eigen::Vector2d off = d.position - Eigen::Vector2d(0.55, 0.0);
+    outlet_r2.push_back(off.squaredNorm() / std::pow(0.5 * s.feed.outlet_diameter, 2));
+    cos_tilt.push_back(d.axis.z());
+    speed.push_back(d.fall_speed);
+  }
+  const double crit = test::ks_critical_001(n);
+  CHECK(test::ks_statistic(phase, [](double x) { return x / kTwoPi; }) < crit);
+  // Uniform over the outlet disc: (r / R)^2 is uniform on [0, 1].
+  CHECK(test::ks_statistic(outlet_r2, [](double x) { return x; }) < crit);
+  // Uniform over the spherical cap: cos(tilt) uniform on [cos(max), 1].
+  const double c0 = std::cos(s.feed.tilt_max);
+  CHECK(test::ks_statistic(cos_tilt, [&](double x) { return (x - c0) / (1 - c0); }) < crit);
+  // Fall speed: v^2 = v0^2 + 2 g h with v0 uniform on [0, vmax].
+  const double h = s.feed.drop_height, vmax = s.feed.outlet_speed_max, g = feed::kGravity;
+  CHECK(test::ks_statistic(speed, [&](double v) { return std::sqrt(std::max(0.0, v * v - 2 * g * h)) / vmax; }) < crit);
+}
+
+TEST_CASE("feed: a mis-sampled phase fails the KS test (the test has teeth)", "[feed][statistics]") {
+  std::vector<double> skewed;
+  for (int i = 0; i < 20000; ++i) {
+    random::Stream rng(7, 0, static_cast<std::uint64_t>(i), random::Purpose::Test);
+    skewed.push_back(kTwoPi * std::pow(rng.uniform(), 1.05));
+  }
+  CHECK(test::ks_statistic(skewed, [](double x) { return x / kTwoPi; }) > test::ks_critical_001(20000));
+}
+
+TEST_CASE("feed: strike probability and strike time match the blade's sweep", "[feed][statistics]") {
+  // Two edges 180 deg apart sweep a given azimuth every pi / omega. A nail spanning the
+  // slab for a window W is struck with probability W omega / pi, at a time uniform on [0, W].
+  auto s = straight_scenario();
+  s.feed.outlet_speed_max = 0;  // fixed fall speed: a fixed window
+  s.feed.tilt_max = 0;
+  s.nail.length_tolerance = 0;
+  const auto edges = feed::leading_edges(s.blade);
+  REQUIRE(edges.size() == 2);
+  std::vector<double> times;
+  const int n = 20000;
+  double window = 0;
+  for (int i = 0; i < n; ++i) {
+    random::Stream rng(11, 0, static_cast<std::uint64_t>(i), random::Purpose::Feed);
+    const auto d = feed::sample_drop(s, i, rng);
+    window = feed::slab_window(d, s.geometry);
+    if (auto strike = feed::find_strike(d, edges, s.blade.omega, s.geometry)) {
+      times.push_back(strike->time);
+      CHECK(strike->offset >= -0.5 * d.length - 1e-12);
+      CHECK(strike->offset <= 0.5 * d.length + 1e-12);
+    }
+  }
+  const double p = window * s.blade.omega / units::pi;
+  const double se = std::sqrt(p * (1 - p) / n);
+  CHECK(std::abs(static_cast<double>(times.size()) / n - p) < 4 * se);
+  CHECK(test::ks_statistic(times, [&](double t) { return t / window; }) < test::ks_critical_001(times.size()));
+}
+
+TEST_CASE("feed: nails outside the tip circle fall through; the contact is where the nail is", "[feed]") {
+  auto s = straight_scenario();
+  s.feed.stations = {{0.70, 0.5}};  // beyond the 0.6096 m reach
+  const auto edges = feed::leading_edges(s.blade);
+  int struck = 0;
+  for (int i = 0; i < 2000; ++i) {
+    random::Stream rng(3, 0, static_cast<std::uint64_t>(i), random::Purpose::Feed);
+    struck += feed::find_strike(feed::sample_drop(s, i, rng), edges, s.blade.omega, s.geometry).has_value();
+  }
+  CHECK(struck == 0);
+
+  // A nail at a known place and a known phase: struck by edge 0 after (azimuth - phase) / omega.
+  feed::NailDrop d;
+  d.length = 0.0508;
+  d.position = {0.5 * std::cos(0.3), 0.5 * std::sin(0.3)};
+  d.fall_speed = 0.5;  // slow: long window
+  d.blade_phase = 0.25;
+  s.geometry.thickness = 0.006;
+  const auto strike = feed::find_strike(d, edges, s.blade.omega, s.geometry);
+  REQUIRE(strike);
+  CHECK(strike->edge == 0);
+  CHECK(strike->time == Approx(0.05 / s.blade.omega).epsilon(1e-12));
+  CHECK(strike->radius == Approx(0.5));
+  CHECK(strike->azimuth == Approx(0.3));
+  // The blade's mid-plane lies (fall - thickness/2) above the tip, or the tip is struck.
+  const double t = strike->time, fall = 0.5 * t + 0.5 * feed::kGravity * t * t;
+  CHECK(strike->offset == Approx(std::max(0.0, fall - 0.003) - 0.0254).epsilon(1e-9));
+  d.blade_phase = 0.3 - 0.012 * s.blade.omega;  // struck 12 ms in: the nail has fallen past the mid-plane
+  const auto later = feed::find_strike(d, edges, s.blade.omega, s.geometry);
+  REQUIRE(later);
+  const double t2 = later->time, fall2 = 0.5 * t2 + 0.5 * feed::kGravity * t2 * t2;
+  CHECK(t2 == Approx(0.012).epsilon(1e-9));
+  CHECK(later->offset == Approx(fall2 - 0.003 - 0.0254).epsilon(1e-9));
+}
+
+TEST_CASE("random streams: keyed by (seed, replicate, nail, purpose), independent of order", "[random]") {
+  random::Stream a(1, 2, 3, random::Purpose::Feed), b(1, 2, 3, random::Purpose::Feed);
+  random::Stream c(1, 2, 4, random::Purpose::Feed), d(1, 2, 3, random::Purpose::Flight);
+  const auto a1 = a(), b1 = b();
+  CHECK(a1 == b1);
+  CHECK(c() != a1);
+  CHECK(d() != a1);
+  std::vector<double> u;
+  random::Stream e(5, 0, 0, random::Purpose::Test);
+  for (int i = 0; i < 50000; ++i) u.push_back(e.uniform());
+  CHECK(test::ks_statistic(u, [](double x) { return x; }) < test::ks_critical_001(u.size()));
+}

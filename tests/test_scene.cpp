@@ -1,0 +1,150 @@
+// The scene: ray queries against the generated J232 set-up, user meshes (and their
+// errors), export, and a geometry case with a known answer for the operator zone.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "flight/nail_flight.hpp"
+#include "scene/j232_setup.hpp"
+#include "scene/mesh_io.hpp"
+#include "scene/operator_zone.hpp"
+#include "scene/scene.hpp"
+#include "units/quantity.hpp"
+
+using namespace j232;
+using scene::Vec3;
+
+namespace {
+scenario::Scenario basic() {
+  scenario::Scenario s;
+  s.blade.omega = 100;
+  s.blade.hub.bar_mass = 10;
+  s.blade.hub.bar_length = 1.2;  // tip radius 0.6
+  s.housing.deck_radius = 0.65;
+  s.target.top = s.geometry.height + 0.61;
+  return s;
+}
+
+std::string write(const std::string& name, const std::string& text) {
+  std::ofstream(name) << text;
+  return name;
+}
+}  // namespace
+
+TEST_CASE("scene: rays meet the generated deck, skirt, ground and board where they are", "[scene]") {
+  const auto s = basic();
+  const scene::Scene sc(scene::build_scene_soup(s));
+  const Vec3 blade(0, 0, s.geometry.height);
+  const auto side = sc.first_hit(blade, Vec3(1, 0, 0), 10);
+  REQUIRE(side);
+  CHECK(side->surface == scene::Surface::Housing);
+  CHECK(side->distance == Approx(0.65).epsilon(1e-3));  // 96-gon skirt: within its sagitta
+  CHECK(side->normal.x() < -0.99);                      // faces back at the ray
+  const auto up = sc.first_hit(blade, Vec3(0, 0, 1), 10);
+  REQUIRE(up);
+  CHECK(up->point.z() == Approx(s.housing.skirt_bottom + s.housing.skirt_depth));
+  const auto down = sc.first_hit(blade, Vec3(0, 0, -1), 10);
+  REQUIRE(down);
+  CHECK(down->surface == scene::Surface::Ground);
+  CHECK(down->distance == Approx(s.geometry.height));
+  // Under the skirt, out to the board.
+  const auto low = sc.first_hit(Vec3(0, 0, 0.01), Vec3(1, 0, 0), 10);
+  REQUIRE(low);
+  CHECK(scene::is_target(low->surface));
+  CHECK(low->distance == Approx(0.6 + 0.61).epsilon(1e-3));
+  // Too short a ray meets nothing; a skipped face is passed through.
+  CHECK_FALSE(sc.first_hit(blade, Vec3(1, 0, 0), 0.5));
+  scene::Skip skip;
+  skip.add(side->face);
+  const auto next = sc.first_hit(blade, Vec3(1, 0, 0), 10, skip);
+  REQUIRE(next);
+  CHECK(next->distance > side->distance);
+}
+
+TEST_CASE("scene: user meshes are read, scaled and labelled; bad ones are refused", "[scene][mesh]") {
+  const auto obj = write("scene-test-quad.obj", "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nf 1 2 3 4\n");
+  const auto soup = scene::read_mesh(obj, scene::Surface::Housing, 0.1);
+  CHECK(soup.triangles.size() == 2);
+  CHECK(soup.points[2].x() == Approx(1.0));
+  CHECK(soup.labels[0] == scene::Surface::Housing);
+
+  const auto degenerate = write("scene-test-degenerate.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n2 0 0\n3 0 1 2\n3 0 1 3\n");
+  CHECK_THROWS_WITH(scene::read_mesh(degenerate, scene::Surface::Housing, 1.0),
+                    Catch::Contains("scene-test-degenerate.off: face 2 is degenerate"));
+  CHECK_THROWS_WITH(scene::read_mesh("no-such-mesh.stl", scene::Surface::Housing, 1.0), Catch::Contains("no such mesh file"));
+  const auto text = write("scene-test-mesh.txt", "hello\n");
+  CHECK_THROWS_WITH(scene::read_mesh(text, scene::Surface::Housing, 1.0), Catch::Contains("unknown mesh format"));
+  const auto broken = write("scene-test-broken.off", "OFF\n3 1 0\n0 0 0\n1 0\n");
+  CHECK_THROWS_WITH(scene::read_mesh(broken, scene::Surface::Housing, 1.0), Catch::Contains("scene-test-broken.off"));
+  for (const char* f : {"scene-test-quad.obj", "scene-test-degenerate.off", "scene-test-mesh.txt", "scene-test-broken.off"})
+    std::remove(f);
+}
+
+TEST_CASE("scene: export writes a labelled PLY and a grouped OBJ that read back", "[scene][export]") {
+  const auto s = basic();
+  const auto soup = scene::build_scene_soup(s);
+  scene::export_scene(soup, "scene-test-export.ply");
+  scene::export_scene(soup, "scene-test-export.obj");
+  CHECK(scene::read_mesh("scene-test-export.ply", scene::Surface::Housing, 1.0).triangles.size() == soup.triangles.size());
+  CHECK(scene::read_mesh("scene-test-export.obj", scene::Surface::Housing, 1.0).triangles.size() == soup.triangles.size());
+  std::ifstream obj("scene-test-export.obj");
+  const std::string text((std::istreambuf_iterator<char>(obj)), {});
+  CHECK(text.find("g operator_zone") != std::string::npos);
+  CHECK(text.find("g ground") != std::string::npos);
+  CHECK_THROWS(scene::export_scene(soup, "scene-test-export.xyz"));
+  std::remove("scene-test-export.ply");
+  std::remove("scene-test-export.obj");
+}
+
+TEST_CASE("scene: the operator-zone share converges to the sector's fraction of the ring", "[scene][zone][statistics]") {
+  // Nails thrown in the blade plane with uniformly random azimuth at a ring of board
+  // whose operator zone spans 80 deg: the zone's share of the marks is 80/360.
+  auto s = basic();
+  s.zone.kind = scenario::OperatorZoneSpec::Kind::Sector;
+  s.zone.azimuth_from = -0.5;
+  s.zone.azimuth_to = -0.5 + 80 * units::pi / 180;
+  s.zone.bottom = 0;
+  s.zone.top = 2;
+  scene::Soup soup = scene::build_scene_soup(s), ring;
+  // Keep only the board: nothing else in the way.
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (scene::is_target(soup.labels[t])) {
+      const auto& tri = soup.triangles[t];
+      ring.add_triangle(ring.add_point(soup.points[tri[0]]), ring.add_point(soup.points[tri[1]]),
+                        ring.add_point(soup.points[tri[2]]), soup.labels[t]);
+    }
+  const scene::Scene sc(ring);
+  std::vector<scenario::GuardSpec> guards(1);
+  const flight::FlightContext ctx{&sc, &s, 100.0, 0.65, &guards};
+  int zone = 0, marks = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    random::Stream rng(17, 0, static_cast<std::uint64_t>(i), random::Purpose::Test);
+    const double a = 2 * units::pi * rng.uniform();
+    flight::Body b;
+    b.position = {0, 0, s.geometry.height};
+    b.velocity = {100 * std::cos(a), 100 * std::sin(a), 0};
+    b.axis = Vec3::UnitZ();  // broadside to the board
+    const auto r = flight::fly(b, 0.0508, 0.00251, 0.002, {}, ctx, rng);
+    marks += r.mark_count;
+    zone += r.hits_zone + r.punctures_zone;
+  }
+  REQUIRE(marks == n);  // 10 J broadside against a 5.6 J puncture threshold: every nail marks
+  const double p = 80.0 / 360.0, share = static_cast<double>(zone) / marks;
+  CHECK(std::abs(share - p) < 4 * std::sqrt(p * (1 - p) / marks));
+}
+
+TEST_CASE("operator zone: derived from the reach envelope of a seated operator", "[scene][zone]") {
+  scenario::OperatorZoneSpec spec;  // seat 2 m ahead of the spindle, 0.9 m up
+  const scene::OperatorZone zone(spec, 0.076);
+  // A board point straight between the blade and the operator's shoulders is in the zone...
+  CHECK(zone.contains(Vec3(1.2, 0.0, 0.6)));
+  // ...one behind the mower, or low at the side facing away, is not.
+  CHECK_FALSE(zone.contains(Vec3(-1.2, 0.0, 0.3)));
+  CHECK_FALSE(zone.contains(Vec3(0.0, 1.2, 0.05)));
+  CHECK(scene::within_arc(0.1, -0.5, 0.5));
+  CHECK(scene::within_arc(3.1, 3.0, -3.0));  // wraps through pi
+  CHECK_FALSE(scene::within_arc(0.0, 3.0, -3.0));
+  CHECK(scene::within_arc(1.0, 0.0, 2 * units::pi));
+}
