@@ -1,0 +1,76 @@
+// j232_bench: how fast the assessment runs, and where the time goes.
+//
+//   build/j232_bench [SCENARIO] [--replicates N]
+//
+// Prints simulated nails per second on 1 and on 2 threads (median of 3 runs each), the
+// mean number of scene (AABB) queries per nail, the raw query rate on the same scene
+// with chords like the nails' (so the cost of everything beyond the queries is
+// visible), and the wall time of the full assessment.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "assess/runner.hpp"
+#include "random/stream.hpp"
+#include "scene/j232_setup.hpp"
+
+using namespace j232;
+using Clock = std::chrono::steady_clock;
+
+static double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+int main(int argc, char** argv) {
+  std::string path = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted.toml";
+  long long replicates = 10000;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--replicates") && i + 1 < argc) replicates = std::atoll(argv[++i]);
+    else path = argv[i];
+  }
+  auto s = scenario::read_scenario(path);
+  s.run.replicates = replicates;
+  s.run.target_half_width.reset();
+  const assess::Simulator sim(s);
+  std::printf("j232_bench: %s\n  %lld replicates x %d nails = %lld nails per run\n", s.title.c_str(), replicates,
+              s.feed.nails, replicates * s.feed.nails);
+
+  double queries_per_nail = 0;
+  for (int threads : {1, 2}) {
+    std::vector<double> rates, walls;
+    for (int rep = 0; rep < 3; ++rep) {
+      const auto a = assess::run_assessment(sim, threads);
+      rates.push_back(static_cast<double>(a.nails) / a.wall_seconds);
+      walls.push_back(a.wall_seconds);
+      queries_per_nail = static_cast<double>(a.queries) / static_cast<double>(a.nails);
+    }
+    std::printf("  %d thread%s: %10.0f nails/s (median of 3; %.2f s per full assessment)\n", threads,
+                threads == 1 ? " " : "s", median(rates), median(walls));
+  }
+  std::printf("  scene queries per nail: %.2f\n", queries_per_nail);
+
+  // Raw query rate: chords of 0.3 m from random points under the deck in random directions.
+  const auto& scene = sim.scene();
+  const int n = 2'000'000;
+  random::Stream rng(1, 0, 0, random::Purpose::Test);
+  std::vector<scene::Vec3> from(1024), dir(1024);
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const double r = 0.6 * std::sqrt(rng.uniform()), a = 6.283185307179586 * rng.uniform();
+    from[i] = {r * std::cos(a), r * std::sin(a), 0.02 + 0.15 * rng.uniform()};
+    scene::Vec3 d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    dir[i] = d.normalized();
+  }
+  const auto t0 = Clock::now();
+  long hits = 0;
+  for (int i = 0; i < n; ++i) hits += scene.first_hit(from[i & 1023], dir[i & 1023], 0.3).has_value();
+  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double rate = n / seconds;
+  std::printf("  raw AABB queries (0.3 m chords, 1 thread): %.0f queries/s (%.0f%% hit), %zu faces\n", rate,
+              100.0 * hits / n, scene.face_count());
+  std::printf("  so queries alone would allow %.0f nails/s on 1 thread\n", rate / queries_per_nail);
+  return 0;
+}
