@@ -41,9 +41,17 @@ Summary summarise(const Assessment& a, const scenario::CriteriaSpec& criteria) {
     cs.q95 = quantile_sorted(v, 0.95);
     cs.pass = wilson(criterion_passes[c], s.replicates);
   }
+  // The criterion least likely to pass; on a tie, the one whose mean share comes
+  // closest to its limit.
+  auto tighter = [&](int a, int b) {
+    const auto &x = s.criteria[a], &y = s.criteria[b];
+    if (x.pass.estimate != y.pass.estimate) return x.pass.estimate < y.pass.estimate;
+    const double rx = x.limit > 0 ? x.mean_share / x.limit : x.mean_share, ry = y.limit > 0 ? y.mean_share / y.limit : y.mean_share;
+    return rx > ry;
+  };
   s.deciding = 0;
   for (int c = 1; c < kCategories; ++c)
-    if (s.criteria[c].pass.estimate < s.criteria[s.deciding].pass.estimate) s.deciding = c;
+    if (tighter(c, s.deciding)) s.deciding = c;
   s.marks_per_nail = s.nails ? static_cast<double>(s.marks) / static_cast<double>(s.nails) : 0;
   s.queries_per_nail = s.nails ? static_cast<double>(a.queries) / static_cast<double>(s.nails) : 0;
   return s;

@@ -98,9 +98,9 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
   out += fmt::format("  {:<20} {:>8} {:>10} {:>17} {:>10}\n", "criterion", "limit", "mean", "5-95 % range", "P(pass)");
   for (int c = 0; c < assess::kCategories; ++c) {
     const auto& cs = sum.criteria[c];
-    out += fmt::format("  {:<20} {:>7.1f}% {:>9.2f}% {:>7.2f}-{:<7.2f}% {:>10.3f}{}\n", cs.name, 100 * cs.limit,
-                       100 * cs.mean_share, 100 * cs.q05, 100 * cs.q95, cs.pass.estimate,
-                       c == sum.deciding ? "  <- decides" : "");
+    out += fmt::format("  {:<20} {:>7.1f}% {:>9.2f}% {:>17} {:>10.3f}{}\n", cs.name, 100 * cs.limit,
+                       100 * cs.mean_share, fmt::format("{:.2f}-{:.2f} %", 100 * cs.q05, 100 * cs.q95),
+                       cs.pass.estimate, c == sum.deciding ? "  <- decides" : "");
   }
   out += fmt::format("  nails: {} fed, {} struck ({:.1f} %), {:.3f} marks per nail\n", sum.nails, sum.struck,
                      sum.nails ? 100.0 * sum.struck / sum.nails : 0.0, sum.marks_per_nail);
