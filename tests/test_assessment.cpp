@@ -1,10 +1,8 @@
 // Board classification, statistics, the replicate judgement, determinism across thread
 // counts and chunk order, and an allocation-free per-nail path.
 #include <catch2/catch.hpp>
-#include <atomic>
-#include <cstdlib>
-#include <new>
 
+#include "allocation_counter.hpp"
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
 #include "board/board.hpp"
@@ -12,19 +10,6 @@
 #include "scenario/scenario.hpp"
 
 using namespace j232;
-
-// Counts heap allocations made on this thread while `counting` is set.
-namespace {
-thread_local bool counting = false;
-thread_local long allocations = 0;
-}  // namespace
-void* operator new(std::size_t n) {
-  if (counting) ++allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 std::string scenario_path(const char* name) { return std::string(J232_SOURCE_DIR) + "/scenarios/" + name; }
@@ -121,11 +106,33 @@ TEST_CASE("performance: simulating a nail allocates nothing", "[assess][allocati
   const auto s = scenario::read_scenario(scenario_path("highway-pivoted-chains.toml"));
   const assess::Simulator sim(s);
   (void)sim.simulate(0, 0);  // warm up
-  counting = true;
-  allocations = 0;
+  test::allocations::start();
   int struck = 0;
   for (int n = 0; n < 300; ++n) struck += sim.simulate(1, n).flight.fate != flight::Fate::NotStruck;
-  counting = false;
+  const long allocations = test::allocations::stop();
   CHECK(struck > 100);
   CHECK(allocations == 0);
+  // The counter works: a vector allocates.
+  test::allocations::start();
+  std::vector<double> v(10);
+  CHECK(test::allocations::stop() == 1);
+}
+
+TEST_CASE("stop rule: batches run until the P(pass) interval is narrow enough", "[assess][stop]") {
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted-raised-skirt.toml"));
+  s.run.replicates = 16;
+  s.run.target_half_width = 0.02;
+  s.run.max_replicates = 400;
+  const assess::Simulator sim(s);
+  const auto a = assess::run_assessment(sim, 2);
+  const auto sum = assess::summarise(a, s.criteria);
+  CHECK(a.tallies.size() % 16 == 0);
+  CHECK(a.tallies.size() > 16);  // one batch of 16 cannot reach +/- 0.02
+  const bool narrow = 0.5 * (sum.pass.high - sum.pass.low) <= 0.02;
+  CHECK((narrow || a.tallies.size() == 400));
+  // ...and it stopped at the first batch that was narrow enough.
+  assess::Assessment shorter;
+  assess::run_replicates(sim, 0, a.tallies.size() - 16, shorter, nullptr);
+  const auto before = assess::summarise(shorter, s.criteria);
+  CHECK(0.5 * (before.pass.high - before.pass.low) > 0.02);
 }
