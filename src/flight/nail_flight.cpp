@@ -176,7 +176,6 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
       break;
     }
   }
-  (void)ended_at_rest;
   r.flight_time = b.time - start.time;
   r.end_position = b.position;
   const double horizontal = std::hypot(b.position.x(), b.position.y());
