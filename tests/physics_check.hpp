@@ -21,11 +21,7 @@ inline BladeRates rigid(const blade::Blade& b) {
   return r;
 }
 
-inline BladeRates after(const blade::Blade& b, const blade::ImpactSolution& s) {
-  BladeRates r{s.hub_rate_after, s.link_rates};
-  (void)b;
-  return r;
-}
+inline BladeRates after(const blade::ImpactSolution& s) { return {s.hub_rate_after, s.link_rates}; }
 
 // Tangential speed of link k's inner pin on arm a.
 inline double pin_speed(const blade::Blade& b, const BladeRates& r, std::size_t a, std::size_t k) {

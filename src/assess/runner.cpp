@@ -11,14 +11,20 @@ namespace {
 
 constexpr std::uint64_t kChunk = 8;  // replicates per chunk: fixed, so the merge order is too
 
-struct Chunk {
-  std::vector<ReplicateTally> tallies;
-  std::vector<MarkRow> marks;
-  Histogram exit_speed{0.5, 400}, mark_energy{0.05, 600}, contact_radius{0.005, 400};
-  std::uint64_t nails = 0, struck = 0, queries = 0, unlocated = 0;
-};
+// A chunk's results have the same shape as the whole assessment's; merged in order.
+void merge(Assessment& into, const Assessment& c) {
+  into.tallies.insert(into.tallies.end(), c.tallies.begin(), c.tallies.end());
+  into.marks.insert(into.marks.end(), c.marks.begin(), c.marks.end());
+  into.exit_speed.merge(c.exit_speed);
+  into.mark_energy.merge(c.mark_energy);
+  into.contact_radius.merge(c.contact_radius);
+  into.nails += c.nails;
+  into.struck += c.struck;
+  into.queries += c.queries;
+  into.unlocated_marks += c.unlocated_marks;
+}
 
-void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, Chunk& c) {
+void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& c) {
   const int nails = sim.scenario().feed.nails;
   c.tallies.resize(count);
   c.marks.reserve(count * static_cast<std::uint64_t>(nails) / 2);
@@ -35,7 +41,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       c.exit_speed.add(o.exit_speed);
       c.contact_radius.add(o.contact_radius);
       const int located = std::min(o.flight.mark_count, flight::FlightResult::kMaxMarks);
-      c.unlocated += static_cast<std::uint64_t>(o.flight.mark_count - located);
+      c.unlocated_marks += static_cast<std::uint64_t>(o.flight.mark_count - located);
       for (int m = 0; m < located; ++m) {
         c.marks.push_back({static_cast<std::uint32_t>(replicate), static_cast<std::uint32_t>(n), o.flight.marks[m]});
         c.mark_energy.add(o.flight.marks[m].normal_energy);
@@ -49,7 +55,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
 void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& into,
                     Progress* progress) {
   const std::uint64_t chunks = (count + kChunk - 1) / kChunk;
-  std::vector<Chunk> results(chunks);
+  std::vector<Assessment> results(chunks);
   tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunks, 1), [&](const tbb::blocked_range<std::uint64_t>& range) {
     for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
       const std::uint64_t start = first + c * kChunk;
@@ -58,17 +64,7 @@ void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t cou
       if (progress) progress->done += static_cast<long long>(n);
     }
   });
-  for (auto& c : results) {  // in chunk order: deterministic
-    into.tallies.insert(into.tallies.end(), c.tallies.begin(), c.tallies.end());
-    into.marks.insert(into.marks.end(), c.marks.begin(), c.marks.end());
-    into.exit_speed.merge(c.exit_speed);
-    into.mark_energy.merge(c.mark_energy);
-    into.contact_radius.merge(c.contact_radius);
-    into.nails += c.nails;
-    into.struck += c.struck;
-    into.queries += c.queries;
-    into.unlocated_marks += c.unlocated;
-  }
+  for (const auto& c : results) merge(into, c);  // in chunk order: deterministic
 }
 
 Assessment run_assessment(const Simulator& sim, int threads, Progress* progress) {

@@ -91,7 +91,7 @@ int run(const RunOptions& o) {
   std::filesystem::create_directories(o.out, ec);
   if (ec) throw scenario::InputError("", std::nullopt, "--out", o.out, "cannot create the output folder: " + ec.message());
   const report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), a.threads, a.wall_seconds};
-  report::write_atomically((std::filesystem::path(o.out) / "marks.csv").string(), report::marks_csv(s, a));
+  report::write_atomically((std::filesystem::path(o.out) / "marks.csv").string(), report::marks_csv(a));
   report::write_atomically((std::filesystem::path(o.out) / "result.json").string(),
                            report::result_json(s, a, sum, p).dump(2) + "\n");
   fmt::print("{}", report::summary_text(s, sum));

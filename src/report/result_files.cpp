@@ -73,10 +73,9 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
   };
 }
 
-std::string marks_csv(const scenario::Scenario& s, const assess::Assessment& a) {
+std::string marks_csv(const assess::Assessment& a) {
   std::string out = "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark\n";
   out.reserve(out.size() + a.marks.size() * 80);
-  (void)s;
   for (const auto& m : a.marks) {
     const auto& p = m.mark.point;
     double az = std::atan2(p.y(), p.x()) * 180.0 / units::pi;

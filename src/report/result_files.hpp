@@ -16,7 +16,7 @@ struct Provenance {
 
 nlohmann::ordered_json result_json(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
                                    const Provenance& provenance);
-std::string marks_csv(const scenario::Scenario& s, const assess::Assessment& a);
+std::string marks_csv(const assess::Assessment& a);
 
 // A few lines for the terminal: verdict, P(pass) and interval, the four shares.
 std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum);

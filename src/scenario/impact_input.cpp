@@ -41,7 +41,7 @@ blade::StruckObject read_object(const TableReader& t, std::string& name) {
   if (scalar) {
     // The report's convention: the object moves against the blade's motion.
     o.velocity = {0.0, -t.quantity("speed_toward_blade", Kind::Speed), 0.0};
-    (void)t.table("velocity");
+    (void)t.table("velocity");  // asked for, so an error's list of known keys names it
   } else {
     (void)t.quantity_or("speed_toward_blade", Kind::Speed, 0.0);
     const TableReader v = *t.table("velocity");
