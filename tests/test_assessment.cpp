@@ -6,7 +6,9 @@
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
 #include "board/board.hpp"
+#include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
+#include "scene/j232_setup.hpp"
 #include "scenario/scenario.hpp"
 
 using namespace j232;
@@ -82,11 +84,13 @@ TEST_CASE("determinism: the same result, bit for bit, on 1 and 2 threads and in 
   const assess::Simulator sim(s);
   const auto one = assess::run_assessment(sim, 1);
   const auto two = assess::run_assessment(sim, 2);
-  const report::Provenance p{"test", "test", "today", 0, 0};
-  const auto json_one = report::result_json(s, one, assess::summarise(one, s.criteria), p).dump();
-  const auto json_two = report::result_json(s, two, assess::summarise(two, s.criteria), p).dump();
-  CHECK(json_one == json_two);
+  const report::Provenance p{"test", "test", "today", "digest", 0, 0};
+  const auto sum_one = assess::summarise(one, s.criteria), sum_two = assess::summarise(two, s.criteria);
+  const auto json_one = report::result_json(s, one, sum_one, p), json_two = report::result_json(s, two, sum_two, p);
+  CHECK(json_one.dump() == json_two.dump());
   CHECK(report::marks_csv(one) == report::marks_csv(two));
+  const auto soup = scene::build_scene_soup(s);
+  CHECK(report::compliance_report_html(s, one, sum_one, json_one, soup) == report::compliance_report_html(s, two, sum_two, json_two, soup));
   // Replicates run in a different grouping and order give the same tallies.
   assess::Assessment parts;
   assess::run_replicates(sim, 24, 24, parts, nullptr);

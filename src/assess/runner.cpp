@@ -17,6 +17,8 @@ void merge(Assessment& into, const Assessment& c) {
   into.marks.insert(into.marks.end(), c.marks.begin(), c.marks.end());
   into.exit_speed.merge(c.exit_speed);
   into.mark_energy.merge(c.mark_energy);
+  into.board_energy.merge(c.board_energy);
+  into.board_energy_per_width.merge(c.board_energy_per_width);
   into.contact_radius.merge(c.contact_radius);
   into.nails += c.nails;
   into.struck += c.struck;
@@ -40,6 +42,10 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, A
       ++c.struck;
       c.exit_speed.add(o.exit_speed);
       c.contact_radius.add(o.contact_radius);
+      if (o.flight.board_energy >= 0) {
+        c.board_energy.add(o.flight.board_energy);
+        c.board_energy_per_width.add(o.flight.board_energy_per_width);
+      }
       const int located = std::min(o.flight.mark_count, flight::FlightResult::kMaxMarks);
       c.unlocated_marks += static_cast<std::uint64_t>(o.flight.mark_count - located);
       for (int m = 0; m < located; ++m) {

@@ -23,7 +23,9 @@ struct Assessment {
   std::vector<ReplicateTally> tallies;  // in replicate order
   std::vector<MarkRow> marks;           // in (replicate, nail) order; located marks only
   Histogram exit_speed{0.5, 400};       // m/s, 0.5 m/s bins to 200 m/s
-  Histogram mark_energy{0.05, 600};     // J, 0.05 J bins to 30 J
+  Histogram mark_energy{0.05, 600};     // J, 0.05 J bins to 30 J: marks only
+  Histogram board_energy{0.05, 600};    // J: every first arrival at the board, marked or not
+  Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
   Histogram contact_radius{0.005, 400}; // m
   std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0;
   double wall_seconds = 0;

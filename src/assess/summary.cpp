@@ -24,6 +24,7 @@ Summary summarise(const Assessment& a, const scenario::CriteriaSpec& criteria) {
     s.marks += t.marks;
     for (int f = 0; f < flight::kFates; ++f) s.fates[f] += t.fates[f];
   }
+  s.passed = passes;
   s.pass = wilson(passes, s.replicates);
   s.passes = s.pass.estimate >= s.required;
   s.settled = s.pass.low >= s.required || s.pass.high < s.required;

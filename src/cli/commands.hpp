@@ -10,5 +10,7 @@ using Runner = std::function<int()>;
 Runner add_impact_command(CLI::App& app);
 Runner add_run_command(CLI::App& app);
 Runner add_scene_command(CLI::App& app);
+Runner add_batch_command(CLI::App& app);
+Runner add_sweep_command(CLI::App& app);
 
 }  // namespace j232::cli

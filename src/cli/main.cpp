@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   const Runner impact = add_impact_command(app);
   const Runner run = add_run_command(app);
   const Runner scene = add_scene_command(app);
+  const Runner batch = add_batch_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("impact")) return impact();
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("scene")) return scene();
+    if (app.got_subcommand("batch")) return batch();
   } catch (const j232::scenario::InputError& e) {
     fmt::print(stderr, "j232: error: {}\n", e.what());
     return kBadInput;

@@ -77,6 +77,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
         const double energy = 0.5 * mass * vn * vn;
         const double width = board::presented_width(length, diameter, b.axis.dot(n));
         const board::Mark mark = board::classify(energy, width, s.board);
+        if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
         if (mark != board::Mark::None)
           record_mark(hit.point, energy, hit.surface == scene::Surface::TargetZone, mark == board::Mark::Puncture);
         // The board is the test's catcher: a nail that does not go through it drops at its foot.

@@ -41,6 +41,10 @@ struct FlightResult {
   std::array<MarkRecord, kMaxMarks> marks{};
   int mark_count = 0;
   int hits_zone = 0, punctures_zone = 0, hits_outside = 0, punctures_outside = 0;
+  // The first arrival at the board, marked or not: kinetic energy along the board's
+  // normal and that energy per presented width (what the board model compares).
+  double board_energy = -1;            // J; < 0: never reached the board
+  double board_energy_per_width = -1;  // J/m
   int bounces = 0;
   int queries = 0;  // scene ray queries (for the benchmark)
   double flight_time = 0;

@@ -9,7 +9,7 @@
 namespace j232::report {
 
 struct Provenance {
-  std::string version, git_revision, date;
+  std::string version, git_revision, date, inputs_digest;
   int threads = 0;
   double wall_seconds = 0;
 };

@@ -1,0 +1,207 @@
+#include "report/board_views.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <set>
+
+#include "report/svg_chart.hpp"
+#include "units/quantity.hpp"
+
+namespace j232::report {
+
+namespace {
+
+constexpr double kDeg = 180.0 / units::pi;
+const std::string kHitColour = "#0072B2", kPunctureColour = "#D55E00", kZoneColour = "#E69F00", kBoardColour = "#8a8a8a";
+
+// The board unrolled onto a grid of 1 deg x 1 cm cells; each cell says whether a target
+// triangle (and which label) covers its centre. Drawn as runs of cells: a few hundred
+// rectangles instead of thousands of triangles.
+struct BoardRaster {
+  static constexpr int kCols = 360;
+  static constexpr double kCell = 0.01;  // m
+  double z0 = 0;
+  int rows = 0;
+  std::vector<std::uint8_t> cell;  // 0 none, 1 board outside the zone, 2 operator zone
+
+  explicit BoardRaster(const scene::Soup& soup) {
+    double lo = 1e300, hi = -1e300;
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+      if (scene::is_target(soup.labels[t]))
+        for (auto v : soup.triangles[t]) lo = std::min(lo, soup.points[v].z()), hi = std::max(hi, soup.points[v].z());
+    if (!(hi > lo)) return;
+    z0 = lo;
+    rows = std::min(2000, static_cast<int>(std::ceil((hi - lo) / kCell)));
+    cell.assign(static_cast<std::size_t>(rows) * kCols, 0);
+    for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+      if (scene::is_target(soup.labels[t])) paint(soup, t, soup.labels[t] == scene::Surface::TargetZone ? 2 : 1);
+  }
+
+  void paint(const scene::Soup& soup, std::size_t t, std::uint8_t value) {
+    std::array<double, 3> a{}, z{};
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = soup.points[soup.triangles[t][k]];
+      a[k] = azimuth_deg(p.x(), p.y());
+      z[k] = p.z();
+      if (k > 0) a[k] = a[0] + std::remainder(a[k] - a[0], 360.0);  // unwrap across +/-180
+    }
+    const double area = (a[1] - a[0]) * (z[2] - z[0]) - (a[2] - a[0]) * (z[1] - z[0]);
+    if (std::abs(area) < 1e-12) return;  // seen edge-on
+    const int c0 = static_cast<int>(std::floor(*std::min_element(a.begin(), a.end()) + 180.0));
+    const int c1 = static_cast<int>(std::ceil(*std::max_element(a.begin(), a.end()) + 180.0));
+    const int r0 = std::max(0, static_cast<int>(std::floor((*std::min_element(z.begin(), z.end()) - z0) / kCell)));
+    const int r1 = std::min(rows, static_cast<int>(std::ceil((*std::max_element(z.begin(), z.end()) - z0) / kCell)));
+    for (int c = c0; c < c1; ++c)
+      for (int r = r0; r < r1; ++r) {
+        const double pa = c - 180.0 + 0.5, pz = z0 + (r + 0.5) * kCell;
+        // Barycentric sign test.
+        const auto side = [&](int i, int j) { return (a[j] - a[i]) * (pz - z[i]) - (z[j] - z[i]) * (pa - a[i]); };
+        const double s0 = side(0, 1), s1 = side(1, 2), s2 = side(2, 0);
+        if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) {
+          auto& v = cell[static_cast<std::size_t>(r) * kCols + static_cast<std::size_t>(((c % kCols) + kCols) % kCols)];
+          v = std::max(v, value);
+        }
+      }
+  }
+
+  void draw(Chart& chart) const {
+    bool labelled[3] = {false, false, false};
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < kCols;) {
+        const std::uint8_t v = cell[static_cast<std::size_t>(r) * kCols + c];
+        int e = c + 1;
+        while (e < kCols && cell[static_cast<std::size_t>(r) * kCols + e] == v) ++e;
+        if (v != 0) {
+          const bool zone = v == 2;
+          const std::string label = labelled[v] ? "" : (zone ? "operator zone" : "target board");
+          labelled[v] = true;
+          chart.rect(c - 180.0, z0 + r * kCell, e - 180.0, z0 + (r + 1) * kCell, zone ? kZoneColour : kBoardColour,
+                     zone ? 0.45 : 0.18, label);
+        }
+        c = e;
+      }
+  }
+};
+
+void draw_marks(Chart& chart, const MarkSample& m, bool plan) {
+  std::vector<double> hx, hy, px, py;
+  for (const auto* row : m.rows) {
+    const auto& p = row->mark.point;
+    const double x = plan ? p.x() : azimuth_deg(p.x(), p.y());
+    const double y = plan ? p.y() : p.z();
+    (row->mark.puncture ? px : hx).push_back(x);
+    (row->mark.puncture ? py : hy).push_back(y);
+  }
+  chart.points(hx, hy, kHitColour, fmt::format("hit ({})", hx.size()), 1.8);
+  chart.points(px, py, kPunctureColour, fmt::format("puncture ({})", px.size()), 2.6);
+}
+
+std::string sample_caption(const MarkSample& m) {
+  if (m.replicates_shown == m.replicates)
+    return fmt::format("All {} located marks of {} replicates.", m.marks, m.replicates);
+  return fmt::format("Marks of the first {} of {} replicates ({} of {} located marks): a fair sample, replicates are independent.",
+                     m.replicates_shown, m.replicates, m.rows.size(), m.marks);
+}
+
+}  // namespace
+
+double azimuth_deg(double x, double y) { return std::atan2(y, x) * kDeg; }
+
+MarkSample sample_marks(const assess::Assessment& a, std::size_t max_marks) {
+  MarkSample m;
+  m.replicates = a.tallies.size();
+  m.marks = a.marks.size();
+  std::size_t end = 0;
+  std::uint64_t shown = 0;
+  while (shown < m.replicates) {
+    std::size_t next = end;
+    while (next < a.marks.size() && a.marks[next].replicate == shown) ++next;
+    if (shown > 0 && next > max_marks) break;
+    end = next;
+    ++shown;
+  }
+  m.replicates_shown = shown;
+  for (std::size_t i = 0; i < end; ++i) m.rows.push_back(&a.marks[i]);
+  return m;
+}
+
+std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks) {
+  Chart chart("Hit map: the target board unrolled", "azimuth from straight ahead, counter-clockwise seen from above (deg)",
+              "height above ground (m)", 900, 380);
+  BoardRaster(soup).draw(chart);
+  draw_marks(chart, marks, false);
+  chart.hline(s.geometry.height, "#000", fmt::format("blade plane ({:.0f} mm)", 1000 * s.geometry.height));
+  for (std::size_t i = 0; i < s.feed.stations.size(); ++i)
+    chart.vline(s.feed.stations[i].azimuth * kDeg, "#009E73", s.feed.stations.size() > 1 ? fmt::format("feed {}", i + 1) : "feed station");
+  chart.x_range(-180, 180);
+  chart.x_ticks({-180, -135, -90, -45, 0, 45, 90, 135, 180});
+  chart.caption(sample_caption(marks));
+  return chart.svg();
+}
+
+std::string plan_view_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks) {
+  Chart chart("Plan view: mower, guards, targets and marks", "x, forward (m)", "y, left (m)", 620, 600);
+  chart.equal_aspect();
+  // Vertical faces project to segments (deduplicated to 1 mm); others to filled triangles.
+  struct Layer {
+    std::vector<double> x0, y0, x1, y1, tx, ty;
+    std::set<std::array<long long, 4>> seen;
+  };
+  std::array<Layer, scene::kSurfaceKinds> layers;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+    const auto kind = soup.labels[t];
+    if (kind == scene::Surface::Ground) continue;
+    Layer& layer = layers[static_cast<std::size_t>(kind)];
+    const auto& p0 = soup.points[soup.triangles[t][0]];
+    const auto& p1 = soup.points[soup.triangles[t][1]];
+    const auto& p2 = soup.points[soup.triangles[t][2]];
+    const double area = (p1.x() - p0.x()) * (p2.y() - p0.y()) - (p2.x() - p0.x()) * (p1.y() - p0.y());
+    const double size = std::max({(p1 - p0).head<2>().squaredNorm(), (p2 - p0).head<2>().squaredNorm(), (p2 - p1).head<2>().squaredNorm()});
+    if (std::abs(area) > 1e-3 * size) {
+      for (const auto* p : {&p0, &p1, &p2}) layer.tx.push_back(p->x()), layer.ty.push_back(p->y());
+      continue;
+    }
+    // The longest projected edge.
+    std::array<const scene::Vec3*, 3> v{&p0, &p1, &p2};
+    std::pair<int, int> best{0, 1};
+    double longest = -1;
+    for (auto [i, j] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{0, 2}}) {
+      const double d = (v[i]->head<2>() - v[j]->head<2>()).squaredNorm();
+      if (d > longest) longest = d, best = {i, j};
+    }
+    auto q = [](double c) { return std::llround(c * 1000); };
+    std::array<long long, 4> key{q(v[best.first]->x()), q(v[best.first]->y()), q(v[best.second]->x()), q(v[best.second]->y())};
+    if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) std::swap(key[0], key[2]), std::swap(key[1], key[3]);
+    if (!layer.seen.insert(key).second) continue;
+    layer.x0.push_back(v[best.first]->x()), layer.y0.push_back(v[best.first]->y());
+    layer.x1.push_back(v[best.second]->x()), layer.y1.push_back(v[best.second]->y());
+  }
+  struct Style {
+    scene::Surface kind;
+    const char* label;
+    std::string colour;
+    double width;
+  };
+  for (const Style& st : {Style{scene::Surface::Housing, "housing (deck, skirt)", "#555555", 1.2},
+                          Style{scene::Surface::Deflector, "deflector", "#009E73", 2.0},
+                          Style{scene::Surface::Guard, "guard (chain, belting)", "#CC79A7", 2.5},
+                          Style{scene::Surface::TargetOutside, "target board", kBoardColour, 2.0},
+                          Style{scene::Surface::TargetZone, "operator zone board", kZoneColour, 3.0}}) {
+    const Layer& layer = layers[static_cast<std::size_t>(st.kind)];
+    if (!layer.tx.empty()) chart.triangles(layer.tx, layer.ty, st.colour, 0.12, layer.x0.empty() ? st.label : "");
+    if (!layer.x0.empty()) chart.segments(layer.x0, layer.y0, layer.x1, layer.y1, st.colour, st.label, st.width);
+  }
+  chart.circle(0, 0, s.blade.tip_radius(), "#000", fmt::format("blade tip circle (r {:.3f} m)", s.blade.tip_radius()), true);
+  std::vector<double> fx, fy;
+  for (const auto& f : s.feed.stations) fx.push_back(f.radius * std::cos(f.azimuth)), fy.push_back(f.radius * std::sin(f.azimuth));
+  chart.points(fx, fy, "#009E73", "feed station", 4);
+  if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived)
+    chart.points({s.zone.seat_x}, {s.zone.seat_y}, "#000000", "operator seat", 4);
+  draw_marks(chart, marks, true);
+  chart.caption(sample_caption(marks));
+  return chart.svg();
+}
+
+}  // namespace j232::report

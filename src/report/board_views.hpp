@@ -1,0 +1,30 @@
+#pragma once
+// The two pictures of where nails marked the board: the board unrolled (azimuth x
+// height) with the operator zone shaded, and a plan view of mower, guards and targets.
+// Both draw the scene's own labelled triangles, so generated set-ups and user meshes
+// look the same way.
+#include <string>
+#include <vector>
+
+#include "assess/runner.hpp"
+#include "scenario/scenario.hpp"
+#include "scene/soup.hpp"
+
+namespace j232::report {
+
+// The marks of the first replicates, up to about `max_marks` (replicates are
+// independent, so this is a fair sample of the whole run; at least one replicate).
+struct MarkSample {
+  std::vector<const assess::MarkRow*> rows;
+  std::uint64_t replicates_shown = 0, replicates = 0;
+  std::size_t marks = 0;  // located marks in the whole run
+};
+MarkSample sample_marks(const assess::Assessment& a, std::size_t max_marks);
+
+// Azimuth in degrees, -180 to 180, counter-clockwise from straight ahead (+x).
+double azimuth_deg(double x, double y);
+
+std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks);
+std::string plan_view_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks);
+
+}  // namespace j232::report

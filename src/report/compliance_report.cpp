@@ -1,0 +1,208 @@
+#include "report/compliance_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "report/board_views.hpp"
+#include "report/html_page.hpp"
+#include "report/svg_chart.hpp"
+
+namespace j232::report {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// A histogram as bars of "% of nails per bin", cut at the 99.9 % quantile so a few
+// outliers do not squash the picture (the cut is stated in the caption).
+Chart histogram_chart(const assess::Histogram& h, const std::string& title, const std::string& x_title, const char* unit,
+                      const std::string& of_what, const std::string& colour) {
+  Chart chart(title, x_title, fmt::format("share of {} per {:g} {} bin (%)", of_what, h.bin_width, unit));
+  const double cut = std::max(h.quantile(0.999) + 2 * h.bin_width, 5 * h.bin_width);
+  std::vector<double> edges{0}, heights;
+  for (std::size_t i = 0; i < h.counts.size() && edges.back() < cut; ++i) {
+    heights.push_back(h.total ? 100.0 * static_cast<double>(h.counts[i]) / static_cast<double>(h.total) : 0.0);
+    edges.push_back(static_cast<double>(i + 1) * h.bin_width);
+  }
+  chart.bars(edges, heights, colour, "");
+  chart.x_range(0, edges.back());
+  chart.caption(fmt::format("{} values; mean {:.3g}, median {:.3g}, 95th percentile {:.3g}.", h.total, h.mean(),
+                            h.quantile(0.5), h.quantile(0.95)));
+  return chart;
+}
+
+std::string verdict_section(const assess::Summary& sum, const json& r) {
+  const auto& p = r["pass_probability"];
+  std::string o = fmt::format("<section class=\"verdict {}\" id=\"verdict\">\n", sum.passes ? "pass" : "fail");
+  o += fmt::format("<p class=\"verdict-line\"><span data-key=\"verdict\" data-value=\"{}\">{}</span> SAE J232 (as simulated): "
+                   "P(pass one test) = {} (95 % interval {} to {}); required ≥ {}.</p>\n",
+                   sum.passes ? "passes" : "fails", sum.passes ? "PASSES" : "FAILS",
+                   number("pass_probability.estimate", p["estimate"], "{:.3f}"), number("pass_probability.low", p["low"], "{:.3f}"),
+                   number("pass_probability.high", p["high"], "{:.3f}"),
+                   number("required_pass_probability", r["required_pass_probability"], "{:.2f}"));
+  o += fmt::format("<p>{} of {} simulated tests (replicates of 150-nail feeds) met all four criteria. {}</p>\n",
+                   number("replicates_passed", r["replicates_passed"], "{}"),
+                   number("replicates", r["replicates"], "{}"),
+                   sum.settled ? "The verdict is settled: the whole 95 % interval lies on one side of the required probability."
+                               : "<strong>Not settled:</strong> the 95 % interval straddles the required probability; run more "
+                                 "replicates (or set run.target_half_width) before filing.");
+  o += "</section>\n";
+  return o;
+}
+
+std::string criteria_section(const assess::Summary& sum, const json& r) {
+  std::string o = "<section id=\"criteria\">\n<h2>1. The four criteria</h2>\n";
+  o += fmt::format("<p>Each criterion limits one kind of mark as a share of {}; a simulated test passes when all four hold. "
+                   "Shares are over replicates; P(pass) is the share of replicates in which the criterion held, with its "
+                   "Wilson 95 % interval.</p>\n",
+                   r["denominator"] == "marks" ? "all marks (hits plus punctures)" : "the nails fed");
+  o += "<table class=\"numbers\"><thead><tr><th>criterion</th><th>limit</th><th>mean share</th><th>5–95 % of tests</th>"
+       "<th>P(criterion passes)</th><th></th></tr></thead><tbody>\n";
+  for (std::size_t c = 0; c < sum.criteria.size(); ++c) {
+    const auto& cj = r["criteria"][c];
+    const std::string k = fmt::format("criteria.{}.", c);
+    const bool deciding = static_cast<int>(c) == sum.deciding;
+    o += fmt::format("<tr{}><td>{}</td><td>{} %</td><td>{} %</td><td>{} – {} %</td><td>{} ({} – {})</td><td>{}</td></tr>\n",
+                     deciding ? " class=\"deciding\"" : "", escape(cj["name"].get<std::string>()),
+                     number(k + "limit", cj["limit"], "{:.1f}", 100), number(k + "mean_share", cj["mean_share"], "{:.3f}", 100),
+                     number(k + "share_q05", cj["share_q05"], "{:.2f}", 100), number(k + "share_q95", cj["share_q95"], "{:.2f}", 100),
+                     number(k + "pass_probability.estimate", cj["pass_probability"]["estimate"], "{:.3f}"),
+                     number(k + "pass_probability.low", cj["pass_probability"]["low"], "{:.3f}"),
+                     number(k + "pass_probability.high", cj["pass_probability"]["high"], "{:.3f}"),
+                     deciding ? "<strong>decides the verdict</strong>" : "");
+  }
+  o += "</tbody></table>\n";
+  o += fmt::format("<p>Marks: {} in all, {} per nail fed ({} could not be located: more than four marks from one nail).</p>\n",
+                   number("marks", r["marks"], "{}"), number("marks_per_nail", r["marks_per_nail"], "{:.4f}"),
+                   number("marks_not_located", r["marks_not_located"], "{}"));
+  o += "</section>\n";
+  return o;
+}
+
+std::string histogram_section(const scenario::Scenario& s, const assess::Assessment& a) {
+  std::string o = "<section id=\"energies\">\n<h2>3. Speeds and energies</h2>\n";
+  o += "<figure>" + histogram_chart(a.exit_speed, "Nail speed leaving the blade", "speed after impact (m/s)", "m/s", "struck nails", palette(0)).svg() +
+       "</figure>\n";
+  // Kinetic energy along the board's normal at the first arrival; the thresholds
+  // depend on how the nail presents itself, so both extremes are drawn.
+  Chart energy = histogram_chart(a.board_energy, "Kinetic energy at the board (normal to it)", "normal kinetic energy at the board (J)", "J",
+                                 "nails reaching the board", palette(2));
+  const double kp = s.board.puncture_energy_per_width, f = s.board.hit_fraction;
+  energy.vline(kp * s.nail.diameter, palette(1), fmt::format("puncture, point first {:.2f} J", kp * s.nail.diameter));
+  energy.vline(f * kp * s.nail.diameter, palette(4), fmt::format("hit {:.2f} J", f * kp * s.nail.diameter));
+  energy.vline(kp * s.nail.length, palette(1), fmt::format("puncture, broadside {:.1f} J", kp * s.nail.length), false);
+  energy.vline(f * kp * s.nail.length, palette(4), fmt::format("hit {:.1f} J", f * kp * s.nail.length), false);
+  o += "<figure>" + energy.svg() +
+       "<figcaption>Dashed: thresholds for a nail arriving point first (presenting its shank diameter); solid: broadside "
+       "(presenting its length). Between these the threshold follows the presented width.</figcaption></figure>\n";
+  Chart per_width = histogram_chart(a.board_energy_per_width, "Energy per presented width at the board",
+                                    "normal kinetic energy / presented width (J/m)", "J/m", "nails reaching the board", palette(2));
+  per_width.vline(kp, palette(1), fmt::format("puncture {:g} J/m", kp));
+  per_width.vline(f * kp, palette(4), fmt::format("hit {:g} J/m", f * kp));
+  o += "<figure>" + per_width.svg() +
+       "<figcaption>What the board model compares: right of the hit line a nail leaves a hit, right of the puncture line a "
+       "puncture.</figcaption></figure>\n";
+  o += "</section>\n";
+  return o;
+}
+
+std::string fates_section(const json& r) {
+  std::string o = "<section id=\"fates\">\n<h2>4. Where the nails went</h2>\n<table class=\"numbers\"><thead><tr><th>fate</th>"
+                  "<th>nails</th><th>share of nails fed</th><th></th></tr></thead><tbody>\n";
+  static const std::vector<std::pair<std::string, std::string>> names = {
+      {"not_struck", "not struck by the blade"},
+      {"contained_by_housing", "contained by the housing (at rest under the deck)"},
+      {"stopped_by_guard", "stopped by a guard"},
+      {"reached_board_unmarked", "reached the board without marking it"},
+      {"marked_board", "marked the board (hit or puncture)"},
+      {"escaped", "escaped (over the board or at rest short of it)"}};
+  for (const auto& [key, label] : names) {
+    const auto& f = r["fates"][key];
+    const double share = f["fraction"].get<double>();
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} %</td><td><span class=\"bar\" style=\"width:{:.1f}px\"></span></td></tr>\n",
+                     label, number("fates." + key + ".nails", f["nails"], "{}"),
+                     number("fates." + key + ".fraction", f["fraction"], "{:.2f}", 100), 240 * share);
+  }
+  o += fmt::format("</tbody></table>\n<p>{} nails fed in all, {} struck.</p>\n</section>\n", number("nails_fed", r["nails_fed"], "{}"),
+                   number("nails_struck", r["nails_struck"], "{}"));
+  return o;
+}
+
+// The scenario echo flattened to dotted keys: every value the run used.
+void flatten(const json& j, const std::string& prefix, std::vector<std::pair<std::string, std::string>>& rows) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) flatten(v, prefix.empty() ? k : prefix + "." + k, rows);
+  } else if (j.is_array() && !j.empty() && (j.front().is_object() || j.front().is_array())) {
+    for (std::size_t i = 0; i < j.size(); ++i) flatten(j[i], fmt::format("{}[{}]", prefix, i + 1), rows);
+  } else if (j.is_number_float()) {
+    rows.emplace_back(prefix, fmt::format("{:.6g}", j.get<double>()));
+  } else if (j.is_string()) {
+    rows.emplace_back(prefix, j.get<std::string>());
+  } else {
+    rows.emplace_back(prefix, j.dump());
+  }
+}
+
+std::string scenario_section(const json& r) {
+  std::vector<std::pair<std::string, std::string>> rows;
+  flatten(r["scenario"], "", rows);
+  std::string o = "<section id=\"scenario\">\n<h2>5. The scenario as run</h2>\n<p>Every value the run used, defaults filled in, "
+                  "SI units (the unit is in each key's name).</p>\n<table class=\"keys\"><tbody>\n";
+  for (const auto& [k, v] : rows) o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(k), escape(v));
+  o += "</tbody></table>\n</section>\n";
+  return o;
+}
+
+std::string assumptions_section(const json& r) {
+  std::string o = "<section id=\"assumptions\">\n<h2>6. Assumptions and their sources</h2>\n<table><thead><tr><th>assumption</th>"
+                  "<th>source</th></tr></thead><tbody>\n";
+  for (const auto& x : r["assumptions"])
+    o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(x["assumption"].get<std::string>()), escape(x["source"].get<std::string>()));
+  o += fmt::format("</tbody></table>\n<p>Denominator of the shares: <span data-key=\"denominator\" data-value=\"{0}\">{0}</span>.</p>\n</section>\n",
+                   r["denominator"].get<std::string>());
+  return o;
+}
+
+std::string provenance_section(const json& r) {
+  const auto& p = r["provenance"];
+  std::string o = "<section id=\"provenance\">\n<h2>7. Provenance</h2>\n<table class=\"keys\"><tbody>\n";
+  o += fmt::format("<tr><td>program</td><td>j232 {}</td></tr>\n", escape(p["version"].get<std::string>()));
+  o += fmt::format("<tr><td>git revision</td><td>{}</td></tr>\n", escape(p["git_revision"].get<std::string>()));
+  o += fmt::format("<tr><td>scenario file</td><td>{}</td></tr>\n", escape(r["scenario"]["file"].get<std::string>()));
+  o += fmt::format("<tr><td>seed</td><td>{}</td></tr>\n", number("provenance.seed", p["seed"], "{}"));
+  o += fmt::format("<tr><td>replicates</td><td>{}</td></tr>\n", number("replicates", r["replicates"], "{}"));
+  o += fmt::format("<tr><td>threads</td><td>{}</td></tr>\n", number("provenance.threads", p["threads"], "{}"));
+  o += fmt::format("<tr><td>wall time</td><td>{} s</td></tr>\n", number("provenance.wall_time_s", p["wall_time_s"], "{:.2f}"));
+  o += fmt::format("<tr><td>date (UTC)</td><td>{}</td></tr>\n", escape(p["date"].get<std::string>()));
+  o += "</tbody></table>\n<p>The same scenario, seed and replicates give the same results, bit for bit, on any number of "
+       "threads; only this section changes between runs.</p>\n</section>\n";
+  return o;
+}
+
+}  // namespace
+
+std::string compliance_report_html(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
+                                   const json& r, const scene::Soup& soup) {
+  std::string o = page_head("SAE J232 assessment: " + s.title);
+  o += fmt::format("<header><h1>SAE J232 thrown-object assessment (simulated)</h1>\n<p class=\"sub\">{} — <code>{}</code></p></header>\n",
+                   escape(s.title), escape(s.file));
+  o += verdict_section(sum, r);
+  o += criteria_section(sum, r);
+  const MarkSample marks = sample_marks(a, 3000);
+  o += "<section id=\"hit-map\">\n<h2>2. Where the marks are</h2>\n";
+  o += "<figure>" + hit_map_svg(s, soup, marks) +
+       "<figcaption>The target board unrolled around the spindle: azimuth 0 is straight ahead, 90 to the left. The blade plane "
+       "and the feed stations' azimuths are drawn for reference.</figcaption></figure>\n";
+  o += "<figure>" + plan_view_svg(s, soup, marks) + "<figcaption>Seen from above; the blade turns counter-clockwise.</figcaption></figure>\n";
+  o += "</section>\n";
+  o += histogram_section(s, a);
+  o += fates_section(r);
+  o += scenario_section(r);
+  o += assumptions_section(r);
+  o += provenance_section(r);
+  o += page_foot();
+  return o;
+}
+
+}  // namespace j232::report

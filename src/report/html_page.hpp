@@ -1,0 +1,16 @@
+#pragma once
+// The frame shared by every HTML page j232 writes (compliance report, batch summary):
+// one style sheet, inline, that reads well on screen and prints to A4.
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace j232::report {
+
+std::string page_head(const std::string& title);
+std::string page_foot();
+
+// A number shown as `format` of value x scale, tagged with the result.json key it came
+// from and its exact value, so tests can check the page against the file.
+std::string number(const std::string& key, const nlohmann::ordered_json& value, const char* format, double scale = 1.0);
+
+}  // namespace j232::report
