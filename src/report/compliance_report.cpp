@@ -35,9 +35,9 @@ Chart histogram_chart(const assess::Histogram& h, const std::string& title, cons
 std::string verdict_section(const assess::Summary& sum, const json& r) {
   const auto& p = r["pass_probability"];
   std::string o = fmt::format("<section class=\"verdict {}\" id=\"verdict\">\n", sum.passes ? "pass" : "fail");
-  o += fmt::format("<p class=\"verdict-line\"><span data-key=\"verdict\" data-value=\"{}\">{}</span> SAE J232 (as simulated): "
+  o += fmt::format("<p class=\"verdict-line\"><span class=\"caps\">{}</span> SAE J232 (as simulated): "
                    "P(pass one test) = {} (95 % interval {} to {}); required ≥ {}.</p>\n",
-                   sum.passes ? "passes" : "fails", sum.passes ? "PASSES" : "FAILS",
+                   number("verdict", r["verdict"], "{}"),
                    number("pass_probability.estimate", p["estimate"], "{:.3f}"), number("pass_probability.low", p["low"], "{:.3f}"),
                    number("pass_probability.high", p["high"], "{:.3f}"),
                    number("required_pass_probability", r["required_pass_probability"], "{:.2f}"));
@@ -159,8 +159,7 @@ std::string assumptions_section(const json& r) {
                   "<th>source</th></tr></thead><tbody>\n";
   for (const auto& x : r["assumptions"])
     o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(x["assumption"].get<std::string>()), escape(x["source"].get<std::string>()));
-  o += fmt::format("</tbody></table>\n<p>Denominator of the shares: <span data-key=\"denominator\" data-value=\"{0}\">{0}</span>.</p>\n</section>\n",
-                   r["denominator"].get<std::string>());
+  o += fmt::format("</tbody></table>\n<p>Denominator of the shares: {}.</p>\n</section>\n", number("denominator", r["denominator"], "{}"));
   return o;
 }
 

@@ -13,6 +13,7 @@ body { font-family: "DejaVu Sans", "Helvetica Neue", Arial, sans-serif; color: #
 h1 { font-size: 22px; margin-bottom: 2px; }
 h2 { font-size: 17px; border-bottom: 1px solid #ccc; padding-bottom: 3px; margin-top: 28px; }
 .sub { color: #555; margin-top: 0; }
+.caps { text-transform: uppercase; }
 .verdict { border-radius: 6px; padding: 10px 16px; margin: 16px 0; }
 .verdict.pass { background: #e6f4ea; border: 2px solid #2e7d32; }
 .verdict.fail { background: #fdecea; border: 2px solid #c62828; }
