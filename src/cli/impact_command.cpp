@@ -11,6 +11,7 @@
 #include "cli/exit_codes.hpp"
 #include "report/impact_report.hpp"
 #include "scenario/impact_input.hpp"
+#include "scenario/toml_override.hpp"
 #include "scenario/toml_reader.hpp"
 
 namespace j232::cli {
@@ -23,32 +24,6 @@ struct ImpactOptions {
   // Named shortcuts for the common keys.
   std::string speed, e, contact_radius, object_mass, object_speed, blade_mass, blade_length;
 };
-
-// Writes VALUE at the dotted KEY of the document; a value that reads as a TOML
-// number or boolean is stored as one, anything else as a string ("1000 rpm").
-void assign(toml::table& doc, const std::string& assignment) {
-  const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw scenario::InputError("", std::nullopt, "--set", assignment, "expected KEY=VALUE, for example blade.speed=\"1000 rpm\"");
-  const std::string key = assignment.substr(0, eq);
-  const std::string value = assignment.substr(eq + 1);
-  toml::table* table = &doc;
-  std::size_t start = 0;
-  for (std::size_t dot = key.find('.'); dot != std::string::npos; dot = key.find('.', start = dot + 1)) {
-    const std::string part = key.substr(start, dot - start);
-    auto [it, inserted] = table->insert(part, toml::table{});
-    table = it->second.as_table();
-    if (!table) throw scenario::InputError("", std::nullopt, key, value, "cannot set a key inside '" + part + "', which is not a table");
-    start = dot + 1;
-  }
-  const std::string leaf = key.substr(start);
-  try {
-    toml::table parsed = toml::parse("v = " + value);
-    table->insert_or_assign(leaf, std::move(*parsed.get("v")));
-  } catch (const toml::parse_error&) {
-    table->insert_or_assign(leaf, value);
-  }
-}
 
 int run_impact(const ImpactOptions& o) {
   toml::table doc;
@@ -73,7 +48,7 @@ int run_impact(const ImpactOptions& o) {
   shortcut(o.object_mass, "object.mass");
   shortcut(o.object_speed, "object.speed_toward_blade");
   sets.insert(sets.end(), o.assignments.begin(), o.assignments.end());
-  for (const auto& s : sets) assign(doc, s);
+  for (const auto& s : sets) scenario::assign(doc, s);
 
   const scenario::ImpactCase input = scenario::read_impact_case(doc, source);
   std::unique_ptr<blade::BladeModel> model;

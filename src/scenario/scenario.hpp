@@ -8,6 +8,7 @@
 // direction of travel), y to the left. The blade turns counter-clockwise seen from
 // above. Azimuth is measured from +x toward +y.
 #include <optional>
+#include <toml++/toml.h>
 #include <string>
 #include <vector>
 
@@ -159,5 +160,8 @@ struct Scenario {
 
 // Reads and checks a scenario file. Throws InputError naming file, line, key, value.
 Scenario read_scenario(const std::string& file);
+// The same from a parsed document (with keys set from outside, as sweeps do); `file`
+// names it in errors and anchors relative mesh paths.
+Scenario read_scenario(const toml::table& document, const std::string& file);
 
 }  // namespace j232::scenario

@@ -143,8 +143,9 @@ const std::vector<std::string> kMeshLabels = {"ground", "housing", "deflector", 
 
 }  // namespace
 
-Scenario read_scenario(const std::string& file) {
-  const toml::table document = parse_toml_file(file);
+Scenario read_scenario(const std::string& file) { return read_scenario(parse_toml_file(file), file); }
+
+Scenario read_scenario(const toml::table& document, const std::string& file) {
   TableReader root(document, file, "");
   Scenario s;
   s.file = file;

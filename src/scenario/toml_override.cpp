@@ -1,0 +1,49 @@
+#include "scenario/toml_override.hpp"
+
+#include "scenario/input_error.hpp"
+
+namespace j232::scenario {
+
+namespace {
+
+void put(toml::table& table, const std::string& leaf, const std::string& value) {
+  try {
+    toml::table parsed = toml::parse("v = " + value);
+    table.insert_or_assign(leaf, std::move(*parsed.get("v")));
+  } catch (const toml::parse_error&) {
+    table.insert_or_assign(leaf, value);
+  }
+}
+
+void set_in(toml::table& table, const std::string& key, std::size_t start, const std::string& full, const std::string& value,
+            const std::string& origin) {
+  const std::size_t dot = full.find('.', start);
+  const std::string part = full.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+  if (part.empty()) throw InputError("", std::nullopt, origin, full, "expected a dotted key such as blade.speed");
+  if (dot == std::string::npos) {
+    put(table, part, value);
+    return;
+  }
+  auto [it, inserted] = table.insert(part, toml::table{});
+  if (auto* sub = it->second.as_table()) return set_in(*sub, key, dot + 1, full, value, origin);
+  if (auto* array = it->second.as_array(); array && array->is_array_of_tables()) {
+    for (auto& element : *array) set_in(*element.as_table(), key, dot + 1, full, value, origin);
+    return;
+  }
+  throw InputError("", std::nullopt, origin, full + " = " + value, "cannot set a key inside '" + part + "', which is not a table");
+}
+
+}  // namespace
+
+void set_key(toml::table& document, const std::string& key, const std::string& value, const std::string& origin) {
+  set_in(document, key, 0, key, value, origin);
+}
+
+void assign(toml::table& document, const std::string& assignment, const std::string& origin) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("", std::nullopt, origin, assignment, "expected KEY=VALUE, for example blade.speed=\"1000 rpm\"");
+  set_key(document, assignment.substr(0, eq), assignment.substr(eq + 1), origin);
+}
+
+}  // namespace j232::scenario
