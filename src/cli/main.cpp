@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   const Runner run = add_run_command(app);
   const Runner scene = add_scene_command(app);
   const Runner batch = add_batch_command(app);
+  const Runner sweep = add_sweep_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) return run();
     if (app.got_subcommand("scene")) return scene();
     if (app.got_subcommand("batch")) return batch();
+    if (app.got_subcommand("sweep")) return sweep();
   } catch (const j232::scenario::InputError& e) {
     fmt::print(stderr, "j232: error: {}\n", e.what());
     return kBadInput;

@@ -1,0 +1,133 @@
+#include "study/parameters.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "scenario/input_error.hpp"
+#include "scenario/toml_override.hpp"
+
+namespace j232::study {
+
+using units::Kind;
+
+ParameterInfo parameter_info(const std::string& name) {
+  if (name == "blade_speed") return {Parameter::BladeSpeed, name, Kind::AngularSpeed, "blade speed (rpm)", units::rpm};
+  if (name == "blade_mass") return {Parameter::BladeMass, name, Kind::Mass, "blade mass (kg)", 1.0};
+  if (name == "restitution") return {Parameter::Restitution, name, Kind::Dimensionless, "coefficient of restitution e", 1.0};
+  if (name == "contact_radius") return {Parameter::ContactRadius, name, Kind::Length, "contact radius (m)", 1.0};
+  if (name == "pivot_position") return {Parameter::PivotPosition, name, Kind::Dimensionless, "pivot position S/L", 1.0};
+  if (name == "object_mass") return {Parameter::ObjectMass, name, Kind::Mass, "object mass (kg)", 1.0};
+  if (name == "object_speed") return {Parameter::ObjectSpeed, name, Kind::Speed, "object speed toward the blade (m/s)", 1.0};
+  return {Parameter::FileKey, name, Kind::Dimensionless, name, 1.0};
+}
+
+Setting make_setting(const ParameterInfo& info, const std::string& text, const std::string& file, std::optional<int> line,
+                     const std::string& key) {
+  Setting s{info, text, 0.0};
+  const auto refuse = [&](const std::string& expected) { return scenario::InputError(file, line, key, text, expected); };
+  if (info.parameter == Parameter::FileKey) {
+    // A number or quantity gives the chart a numeric axis; anything else is still set.
+    try {
+      s.si = std::stod(text);
+    } catch (const std::exception&) {
+      const auto space = text.find(' ');
+      try {
+        if (space != std::string::npos) s.si = std::stod(text) * units::parse_unit(text.substr(space + 1)).factor;
+      } catch (const std::exception&) {
+        s.si = 0;
+      }
+    }
+    return s;
+  }
+  try {
+    s.si = units::parse(text, info.kind);
+  } catch (const units::UnitError& e) {
+    throw refuse(fmt::format("{} ({}: expected {})", e.what(), info.name, units::describe(info.kind)));
+  }
+  switch (info.parameter) {
+    case Parameter::Restitution:
+      if (s.si < 0 || s.si > 1) throw refuse("expected a coefficient of restitution between 0 and 1");
+      break;
+    case Parameter::PivotPosition:
+      if (s.si <= 0 || s.si >= 1) throw refuse("expected S/L strictly between 0 and 1");
+      break;
+    default:
+      if (!(s.si > 0)) throw refuse(fmt::format("expected a positive {}", units::describe(info.kind)));
+  }
+  return s;
+}
+
+void apply_to_document(const Setting& s, toml::table& document, const std::string& origin) {
+  if (s.info.parameter == Parameter::FileKey) scenario::set_key(document, s.info.name, s.text, origin);
+}
+
+void scale_blade_mass(blade::Blade& b, double mass) {
+  const double old = b.mass();
+  if (!(old > 0)) throw std::invalid_argument("blade_mass: the base blade has no mass to scale");
+  const double f = mass / old;
+  b.hub.bar_mass *= f;
+  b.hub.extra_inertia *= f;
+  for (auto& arm : b.arms)
+    for (auto& link : arm.links) {
+      link.mass *= f;
+      if (link.inertia_about_centre) *link.inertia_about_centre *= f;
+    }
+}
+
+void set_pivot_position(blade::Blade& b, double s_over_l) {
+  for (const auto& arm : b.arms)
+    if (arm.links.size() != 1 || std::abs(arm.pivot_radius - b.hub.reach()) > 1e-9)
+      throw std::invalid_argument(
+          "pivot_position: expected a blade of one hub bar and one link per arm, pinned at the bar's end");
+  if (b.arms.empty()) throw std::invalid_argument("pivot_position: the base blade has no pivoted arm");
+  const double tip = b.tip_radius(), mass = b.mass();
+  const double bar_share = b.hub.bar_mount == blade::BarMount::End ? 1.0 : 2.0;  // bar lengths per unit reach
+  const double pivot = tip * (1.0 - s_over_l), link = tip * s_over_l;
+  // Uniform mass per length over the bar and the links.
+  const double length = bar_share * pivot + link * static_cast<double>(b.arms.size());
+  const double per_length = mass / length;
+  b.hub.bar_length = bar_share * pivot;
+  b.hub.bar_mass = per_length * b.hub.bar_length;
+  for (auto& arm : b.arms) {
+    arm.pivot_radius = pivot;
+    auto& l = arm.links.front();
+    l.length = link;
+    l.mass = per_length * link;
+    l.centre_of_mass.reset();
+    l.inertia_about_centre.reset();
+  }
+}
+
+void apply(const Setting& s, scenario::ImpactCase& c) {
+  switch (s.info.parameter) {
+    case Parameter::BladeSpeed: c.blade.omega = s.si; break;
+    case Parameter::BladeMass: scale_blade_mass(c.blade, s.si); break;
+    case Parameter::Restitution: c.restitution = blade::Restitution::constant(s.si); break;
+    case Parameter::ContactRadius: c.radius = s.si; break;
+    case Parameter::PivotPosition: set_pivot_position(c.blade, s.si); break;
+    case Parameter::ObjectMass:
+      if (c.object.rod) c.object.rod->transverse_inertia *= s.si / c.object.mass;
+      c.object.mass = s.si;
+      break;
+    case Parameter::ObjectSpeed: c.object.velocity = {0.0, -s.si, 0.0}; break;
+    case Parameter::FileKey: break;
+  }
+}
+
+void apply(const Setting& s, scenario::Scenario& sc) {
+  switch (s.info.parameter) {
+    case Parameter::BladeSpeed: sc.blade.omega = s.si; break;
+    case Parameter::BladeMass: scale_blade_mass(sc.blade, s.si); break;
+    case Parameter::Restitution: sc.restitution = blade::Restitution::constant(s.si); break;
+    case Parameter::ContactRadius:
+      for (auto& f : sc.feed.stations) f.radius = s.si;
+      break;
+    case Parameter::PivotPosition: set_pivot_position(sc.blade, s.si); break;
+    case Parameter::ObjectMass: sc.nail.mass = s.si; break;
+    case Parameter::ObjectSpeed:
+      throw std::invalid_argument("object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead");
+    case Parameter::FileKey: break;
+  }
+}
+
+}  // namespace j232::study
