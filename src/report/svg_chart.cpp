@@ -242,8 +242,10 @@ std::string Chart::svg() const {
   fmt::format_to(std::back_inserter(o), "<title>{}</title>\n", escape(title_));
   fmt::format_to(std::back_inserter(o), "<defs><clipPath id=\"{}\"><rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/></clipPath></defs>\n",
                  clip, kLeft, kTop, plot_w, plot_h);
-  fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{}</text>\n", kLeft,
-                 escape(title_));
+  // A long title is set smaller rather than cut off (about 0.58 em a character).
+  const double title_size = std::clamp((width_ - kLeft - 4) / (0.58 * static_cast<double>(std::max<std::size_t>(1, title_.size()))), 9.0, 14.0);
+  fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"20\" font-size=\"{:.1f}\" font-weight=\"bold\">{}</text>\n", kLeft,
+                 title_size, escape(title_));
   // Grid and ticks.
   const double x_step = xt.size() > 1 ? xt[1] - xt[0] : (xhi - xlo);
   const double y_step = yt.size() > 1 ? yt[1] - yt[0] : (yhi - ylo);

@@ -26,16 +26,14 @@ Setting make_setting(const ParameterInfo& info, const std::string& text, const s
   Setting s{info, text, 0.0};
   const auto refuse = [&](const std::string& expected) { return scenario::InputError(file, line, key, text, expected); };
   if (info.parameter == Parameter::FileKey) {
-    // A number or quantity gives the chart a numeric axis; anything else is still set.
+    // A number or quantity gives the chart a numeric axis (SI); anything else is still set.
     try {
-      s.si = std::stod(text);
+      std::size_t used = 0;
+      const double number = std::stod(text, &used);
+      const std::string unit = text.substr(used);
+      s.si = unit.find_first_not_of(' ') == std::string::npos ? number : number * units::parse_unit(unit.substr(unit.find_first_not_of(' '))).factor;
     } catch (const std::exception&) {
-      const auto space = text.find(' ');
-      try {
-        if (space != std::string::npos) s.si = std::stod(text) * units::parse_unit(text.substr(space + 1)).factor;
-      } catch (const std::exception&) {
-        s.si = 0;
-      }
+      s.si = 0;
     }
     return s;
   }

@@ -68,6 +68,7 @@ Axis read_axis(const toml::table& t, const std::string& file, const std::string&
     for (long long i = 0; i < steps; ++i) {
       const double si = a.si + (b.si - a.si) * static_cast<double>(i) / static_cast<double>(steps - 1);
       axis.values.push_back(make_setting(axis.info, fmt::format("{:.6g}{}", si / per_unit, unit), file, line_of(t), path + "from"));
+      axis.values.back().si = si;  // exact, not as rounded for the label
     }
   } else {
     throw InputError(file, line_of(t), path + "values", "", "missing; expected values = [...] or from, to and steps");

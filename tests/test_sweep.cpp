@@ -1,0 +1,174 @@
+// Parameter studies: the sweep files for report 445-1 Figs 2.8-2.16 reproduce the
+// report's first program point by point, show the trends the report describes where the
+// mechanics agree with it, and Monte Carlo sweeps give P(pass) with intervals.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <set>
+
+#include "scenario/input_error.hpp"
+#include "study/sweep.hpp"
+#include "units/quantity.hpp"
+
+using namespace j232;
+
+namespace {
+
+std::string sweep_file(int figure) {
+  return fmt::format("{}/sweeps/report-445-1/fig-2-{:02d}.toml", J232_SOURCE_DIR, figure);
+}
+
+// Report 445-1, Appendix A, first program, line for line (ft, lb, min; exact pi).
+double fortran_va2(double rpm, double blade_lb, double e, double objvel_ft_min, double r_ft, double w1_lb) {
+  const double d1 = 2.0;  // blade length, ft
+  const double cw1 = rpm * 2 * units::pi;
+  const double vi = blade_lb * d1 * d1 / 3.0;
+  const double vb1 = r_ft * cw1;
+  const double a = vi / r_ft + w1_lb * r_ft;
+  const double b = vi * ((e * (objvel_ft_min + vb1)) / r_ft);
+  return (b + vi * cw1 - w1_lb * objvel_ft_min * r_ft) / a;
+}
+
+struct Sweep {
+  study::SweepSpec spec;
+  study::SweepTable table;
+  double at(const study::SweepTable::Row& r, const char* col) const { return r.values[study::column(table, col)]; }
+};
+
+Sweep run(int figure) {
+  Sweep s{study::read_sweep_file(sweep_file(figure)), {}};
+  s.table = study::run_sweep(s.spec, 1, nullptr);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("sweep: Figs 2.8-2.15 equal the report's first program at every point", "[sweep][validation]") {
+  for (int figure = 8; figure <= 15; ++figure) {
+    INFO("Fig 2." << figure);
+    const Sweep s = run(figure);
+    std::size_t curves = 1;
+    for (const auto& a : s.spec.series) curves *= a.values.size();
+    REQUIRE(s.table.rows.size() == curves * 8);
+    for (const auto& r : s.table.rows) {
+      const double w1 = s.at(r, "object_mass_kg") / units::pound, w2 = s.at(r, "blade_mass_kg") / units::pound;
+      const double expected = fortran_va2(s.at(r, "blade_speed_rpm"), w2, s.at(r, "restitution"), 440.0,
+                                          s.at(r, "contact_radius_m") / units::foot, w1);
+      CHECK(s.at(r, "object_speed_after_ft_min") == Approx(expected).epsilon(1e-9));
+      // The report's dimensionless velocity Z = (VA2 - 440) / (4 pi rpm).
+      CHECK(s.at(r, "dimensionless_velocity") == Approx((expected - 440.0) / (4 * units::pi * s.at(r, "blade_speed_rpm"))).epsilon(1e-9));
+    }
+    // Object masses as the Fortran's W1(N) = 3.1071429 (N - 1) + 0.25 lb.
+    for (std::size_t n = 0; n < 8; ++n)
+      CHECK(s.at(s.table.rows[n], "object_mass_kg") / units::pound == Approx(3.1071429 * static_cast<double>(n) + 0.25).epsilon(1e-7));
+  }
+}
+
+TEST_CASE("sweep: the trends report 445-1 describes for Figs 2.8-2.15", "[sweep][validation]") {
+  SECTION("Fig 2.8: a harder object (higher e) is thrown faster") {
+    const Sweep s = run(8);
+    for (std::size_t n = 0; n < 8; ++n)
+      for (std::size_t c = 1; c < 4; ++c)
+        CHECK(s.at(s.table.rows[c * 8 + n], "object_speed_after_m_s") > s.at(s.table.rows[(c - 1) * 8 + n], "object_speed_after_m_s"));
+  }
+  SECTION("Fig 2.12: object speed nearly proportional to blade speed") {
+    const Sweep s = run(12);
+    for (std::size_t n = 0; n < 8; ++n) {
+      const double v700 = s.at(s.table.rows[n], "object_speed_after_m_s"), v1000 = s.at(s.table.rows[24 + n], "object_speed_after_m_s");
+      CHECK(v1000 / v700 == Approx(1000.0 / 700.0).epsilon(0.03));
+    }
+  }
+  SECTION("Figs 2.14, 2.15: blade mass matters only for heavy objects") {
+    for (int figure : {14, 15}) {
+      const Sweep s = run(figure);
+      auto spread = [&](std::size_t n) {
+        return s.at(s.table.rows[24 + n], "object_speed_after_m_s") / s.at(s.table.rows[n], "object_speed_after_m_s") - 1;
+      };
+      CHECK(spread(0) < 0.02);   // 0.25 lb: 22 lb vs 16 lb blade within 2 %
+      CHECK(spread(7) > 0.15);   // 22 lb object: more than 15 % apart
+    }
+  }
+  SECTION("Figs 2.9, 2.10: in the true dimensionless form the blade-mass curves collapse") {
+    // v'/(omega L) depends on the mass ratio (and e, R/L, v0/(omega L)) only. The report's
+    // curves separate because the Fortran plots every curve against W1 / IW2(4), the
+    // heaviest blade's mass (ZZ is overwritten inside the loop).
+    const Sweep s = run(9);
+    for (std::size_t n = 0; n < 8; ++n) {
+      // 16 lb, 1000 rpm (curve 3) and 22 lb, 1000 rpm (curve 7) at equal object mass:
+      const auto& light = s.table.rows[3 * 8 + n];
+      const auto& heavy = s.table.rows[7 * 8 + n];
+      CHECK(s.at(heavy, "object_speed_after_m_s") >= s.at(light, "object_speed_after_m_s"));  // the report's observation
+    }
+    // ... and at equal mass ratio they agree exactly: a 16 lb blade throwing objects 16/22
+    // as heavy as a 22 lb blade's.
+    study::SweepSpec scaled = s.spec;
+    scaled.series.clear();
+    scaled.fixed = {study::make_setting(study::parameter_info("blade_mass"), "16 lb", "", std::nullopt, "test")};
+    for (auto& x : scaled.x.values) x.si *= 16.0 / 22.0;
+    const auto t = study::run_sweep(scaled, 1, nullptr);
+    const std::size_t z = study::column(t, "dimensionless_velocity");
+    for (std::size_t n = 0; n < 8; ++n) CHECK(t.rows[n].values[z] == Approx(s.at(s.table.rows[7 * 8 + n], "dimensionless_velocity")).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("sweep: Fig 2.16 pivot position keeps the blade's mass and tip radius", "[sweep][validation]") {
+  const Sweep s = run(16);
+  REQUIRE(s.table.rows.size() == 4 * 18);
+  for (const auto& r : s.table.rows) CHECK(s.at(r, "blade_mass_kg") == Approx(20 * units::pound));
+  // A 2 g nail is too light for the blade to feel: the pivot makes no difference.
+  double lo = 1e9, hi = 0;
+  for (std::size_t i = 0; i < 18; ++i) lo = std::min(lo, s.at(s.table.rows[i], "dimensionless_velocity")), hi = std::max(hi, s.at(s.table.rows[i], "dimensionless_velocity"));
+  CHECK(hi / lo - 1 < 0.002);
+  // A heavy object is thrown slower by a blade pinned farther out than by one pinned near
+  // the spindle (the report's conclusion), with the slowest near S/L = 1/4.
+  const std::size_t heavy = 3 * 18;
+  const auto v = [&](std::size_t i) { return s.at(s.table.rows[heavy + i], "dimensionless_velocity"); };
+  CHECK(v(17) > v(8));  // S/L 0.95 vs 0.5
+  CHECK(v(8) > v(3));   // S/L 0.5 vs 0.25
+}
+
+TEST_CASE("sweep: pivot_position refuses a blade it cannot re-split", "[sweep]") {
+  blade::Blade b;
+  b.omega = 100;
+  b.hub.bar_mass = 10;
+  b.hub.bar_length = 1;
+  CHECK_THROWS_AS(study::set_pivot_position(b, 0.5), std::invalid_argument);
+  b.hub.bar_mount = blade::BarMount::Centre;
+  b.arms.push_back({0.0, 0.5, {blade::Link{0.5, 2.0, std::nullopt, std::nullopt, false}}});
+  b.arms.push_back({units::pi, 0.5, {blade::Link{0.5, 2.0, std::nullopt, std::nullopt, false}}});
+  const double mass = b.mass(), tip = b.tip_radius();
+  study::set_pivot_position(b, 0.25);
+  CHECK(b.mass() == Approx(mass));
+  CHECK(b.tip_radius() == Approx(tip));
+  CHECK(b.arms[0].pivot_radius == Approx(0.75 * tip));
+  CHECK(b.hub.bar_length == Approx(1.5 * tip));
+}
+
+TEST_CASE("sweep: over a J232 scenario, P(pass) with its interval at every point", "[sweep][assess]") {
+  study::SweepSpec spec;
+  spec.source = "test";
+  spec.base = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted-raised-skirt.toml";
+  spec.x = study::parse_axis("housing.skirt_bottom=6 in,1 in", "--x");  // a key of the file itself
+  spec.replicates = 40;
+  const auto t = study::run_sweep(spec, 2, nullptr);
+  REQUIRE(t.assessment);
+  REQUIRE(t.rows.size() == 2);
+  for (const auto& r : t.rows) {
+    const double p = r.values[study::column(t, "p_pass")];
+    CHECK(r.values[study::column(t, "p_pass_low")] <= p);
+    CHECK(p <= r.values[study::column(t, "p_pass_high")]);
+  }
+  // Raised skirt fails; lowered below the blade (1 in) it contains the nails and passes.
+  CHECK(t.rows[0].values[study::column(t, "p_pass")] < 0.1);
+  CHECK(t.rows[1].values[study::column(t, "p_pass")] > 0.9);
+  CHECK(t.rows[0].x == Approx(6 * units::inch));
+  const auto charts = study::sweep_charts(spec, t);
+  REQUIRE(charts.size() == 1);
+  CHECK(charts[0].first == "pass-probability");
+}
+
+TEST_CASE("sweep: bad sweep input names the key and value", "[sweep][input]") {
+  CHECK_THROWS_WITH(study::parse_axis("restitution=0.5,1.5", "--x"), Catch::Contains("1.5") && Catch::Contains("between 0 and 1"));
+  CHECK_THROWS_WITH(study::parse_axis("blade_speed=700 rmp", "--x"), Catch::Contains("rmp"));
+  CHECK_THROWS_WITH(study::parse_axis("blade_speed", "--series"), Catch::Contains("PARAMETER=V1,V2"));
+}
