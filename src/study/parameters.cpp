@@ -21,6 +21,20 @@ ParameterInfo parameter_info(const std::string& name) {
   return {Parameter::FileKey, name, Kind::Dimensionless, name, 1.0};
 }
 
+namespace {
+// The SI unit a file key's values were converted to, for the axis title.
+std::string si_unit(const units::Dimension& d) {
+  using D = units::Dimension;
+  if (d == D{0, 1, 0, 0}) return "m";
+  if (d == D{1, 0, 0, 0}) return "kg";
+  if (d == D{0, 0, 1, 0}) return "s";
+  if (d == D{0, 1, -1, 0}) return "m/s";
+  if (d == D{0, 0, -1, 1}) return "rad/s";
+  if (d == D{0, 0, 0, 1}) return "rad";
+  return "SI units";
+}
+}  // namespace
+
 Setting make_setting(const ParameterInfo& info, const std::string& text, const std::string& file, std::optional<int> line,
                      const std::string& key) {
   Setting s{info, text, 0.0};
@@ -31,7 +45,13 @@ Setting make_setting(const ParameterInfo& info, const std::string& text, const s
       std::size_t used = 0;
       const double number = std::stod(text, &used);
       const std::string unit = text.substr(used);
-      s.si = unit.find_first_not_of(' ') == std::string::npos ? number : number * units::parse_unit(unit.substr(unit.find_first_not_of(' '))).factor;
+      if (unit.find_first_not_of(' ') == std::string::npos) {
+        s.si = number;
+      } else {
+        const auto u = units::parse_unit(unit.substr(unit.find_first_not_of(' ')));
+        s.si = number * u.factor;
+        s.info.axis_title = fmt::format("{} ({})", info.name, si_unit(u.dimension));
+      }
     } catch (const std::exception&) {
       s.si = 0;
     }

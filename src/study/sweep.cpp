@@ -74,6 +74,7 @@ Axis read_axis(const toml::table& t, const std::string& file, const std::string&
     throw InputError(file, line_of(t), path + "values", "", "missing; expected values = [...] or from, to and steps");
   }
   if (axis.values.empty()) throw InputError(file, line_of(t), path + "values", "[]", "expected at least one value");
+  axis.info = axis.values.front().info;  // a file key's axis title names the unit its values were given in
   return axis;
 }
 
@@ -239,6 +240,7 @@ Axis parse_axis(const std::string& text, const std::string& option) {
     start = comma + 1;
   }
   if (axis.values.empty()) throw InputError("", std::nullopt, option, text, "expected at least one value");
+  axis.info = axis.values.front().info;
   return axis;
 }
 
