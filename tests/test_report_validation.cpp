@@ -7,6 +7,7 @@
 
 #include "blade/blade_model.hpp"
 #include "blade/impact.hpp"
+#include "report_fortran.hpp"
 #include "report_tables.hpp"
 #include "units/quantity.hpp"
 
@@ -127,15 +128,9 @@ TEST_CASE("report 445-1 Appendix C.2: its printed 3x3 systems give Table 3.2, so
 }
 
 TEST_CASE("report 445-1 Appendix A: the Fortran straight-blade formula gives the same answer", "[validation][report]") {
-  // Transliteration of the second program (STRAIGHT BLADE branch), in its units: RPM,
-  // blade length D1 in ft, masses in lb, speeds in ft/min, radius R in ft, pi = 3.1416.
-  auto fortran = [](double RPM, double D1, double W2, double E, double VA1, double R, double W1) {
-    const double CW1 = RPM * 2 * 3.1416;
-    const double VI = W2 * D1 * D1 / 3.0;
-    const double VB1 = R * CW1;
-    const double AX = VI / R + W1 * R;
-    const double BX = VI * ((E * (VA1 + VB1)) / R);
-    return (BX + VI * CW1 - W1 * VA1 * R) / AX;
+  // The second program's STRAIGHT BLADE branch (report_fortran.hpp), with its pi = 3.1416.
+  const auto fortran = [](double rpm, double d1, double w2, double e, double va1, double r, double w1) {
+    return test::fortran_straight_va2(rpm, d1, w2, e, va1, r, w1);
   };
   struct Case {
     double rpm, length_ft, blade_lb, e, v_ftmin, r_ft, object_lb;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <set>
 
+#include "report_fortran.hpp"
 #include "scenario/input_error.hpp"
 #include "study/sweep.hpp"
 #include "units/quantity.hpp"
@@ -18,15 +19,9 @@ std::string sweep_file(int figure) {
   return fmt::format("{}/sweeps/report-445-1/fig-2-{:02d}.toml", J232_SOURCE_DIR, figure);
 }
 
-// Report 445-1, Appendix A, first program, line for line (ft, lb, min; exact pi).
+// Report 445-1, Appendix A, first program (report_fortran.hpp), blade length 2 ft, exact pi.
 double fortran_va2(double rpm, double blade_lb, double e, double objvel_ft_min, double r_ft, double w1_lb) {
-  const double d1 = 2.0;  // blade length, ft
-  const double cw1 = rpm * 2 * units::pi;
-  const double vi = blade_lb * d1 * d1 / 3.0;
-  const double vb1 = r_ft * cw1;
-  const double a = vi / r_ft + w1_lb * r_ft;
-  const double b = vi * ((e * (objvel_ft_min + vb1)) / r_ft);
-  return (b + vi * cw1 - w1_lb * objvel_ft_min * r_ft) / a;
+  return test::fortran_straight_va2(rpm, 2.0, blade_lb, e, objvel_ft_min, r_ft, w1_lb, units::pi);
 }
 
 struct Sweep {

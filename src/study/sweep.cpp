@@ -122,15 +122,23 @@ InputError point_error(const SweepSpec& spec, const Point& p, const std::string&
   return InputError(spec.source, std::nullopt, "sweep point", at, what);
 }
 
-std::vector<double> impact_point(const SweepSpec& spec, const Point& p, const toml::table& base) {
+// The base with a point's settings: file keys into the document, which is then read
+// (with all the reader's checks), then the named parameters onto what was read.
+template <class Input, class Read>
+Input prepare(const SweepSpec& spec, const Point& p, const toml::table& base, Read read) {
   toml::table doc = base;
   for (const auto* s : p.settings) apply_to_document(*s, doc, spec.source);
-  scenario::ImpactCase c = scenario::read_impact_case(doc, spec.base);
+  Input input = read(doc, spec.base);
   try {
-    for (const auto* s : p.settings) apply(*s, c);
+    for (const auto* s : p.settings) apply(*s, input);
   } catch (const std::invalid_argument& e) {
     throw point_error(spec, p, e.what());
   }
+  return input;
+}
+
+std::vector<double> impact_point(const SweepSpec& spec, const Point& p, const toml::table& base) {
+  const auto c = prepare<scenario::ImpactCase>(spec, p, base, scenario::read_impact_case);
   const auto where = blade::locate(c.blade, c.arm, c.radius);
   if (!where)
     throw point_error(spec, p, fmt::format("the contact radius {:.4g} m is off the blade (tip radius {:.4g} m)", c.radius, c.blade.tip_radius()));
@@ -160,14 +168,7 @@ std::vector<double> impact_point(const SweepSpec& spec, const Point& p, const to
 }
 
 std::vector<double> assessment_point(const SweepSpec& spec, const Point& p, const toml::table& base, int threads, double& required) {
-  toml::table doc = base;
-  for (const auto* s : p.settings) apply_to_document(*s, doc, spec.source);
-  scenario::Scenario sc = scenario::read_scenario(doc, spec.base);
-  try {
-    for (const auto* s : p.settings) apply(*s, sc);
-  } catch (const std::invalid_argument& e) {
-    throw point_error(spec, p, e.what());
-  }
+  auto sc = prepare<scenario::Scenario>(spec, p, base, [](const toml::table& d, const std::string& f) { return scenario::read_scenario(d, f); });
   if (spec.replicates > 0) sc.run.replicates = spec.replicates;
   if (spec.seed) sc.run.seed = *spec.seed;
   const assess::Simulator sim(sc);
