@@ -21,7 +21,7 @@ h2 { font-size: 17px; border-bottom: 1px solid #ccc; padding-bottom: 3px; margin
 table { border-collapse: collapse; margin: 8px 0; font-size: 13px; }
 th, td { border-bottom: 1px solid #e3e3e3; padding: 4px 10px; text-align: left; vertical-align: top; }
 th { background: #f3f3f3; }
-table.numbers td:not(:first-child) { text-align: right; font-variant-numeric: tabular-nums; }
+table.numbers td:not(:first-child) { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 table.keys td:first-child { font-family: monospace; color: #444; }
 tr.deciding { background: #fff4d6; }
 tr.fails td.verdict-cell { color: #c62828; font-weight: bold; }
