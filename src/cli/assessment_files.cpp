@@ -30,7 +30,7 @@ namespace {
 // A progress bar on stderr, redrawn from its own thread, only on a terminal.
 class ProgressBar {
  public:
-  ProgressBar(assess::Progress& p, bool wanted) : progress_(p), on_(wanted && isatty(fileno(stderr)) != 0) {
+  explicit ProgressBar(assess::Progress& p) : progress_(p), on_(isatty(fileno(stderr)) != 0) {
     if (on_) thread_ = std::thread([this] { loop(); });
   }
   ~ProgressBar() {
@@ -84,22 +84,26 @@ std::string file_bytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-}  // namespace
-
-std::string inputs_digest(const std::string& scenario_file, const RunOverrides& o) {
+std::string digest(const std::string& scenario_file, const std::vector<scenario::MeshFile>& meshes, const RunOverrides& o) {
   Fnv f;
   f.add(file_bytes(scenario_file));
-  try {
-    for (const auto& m : scenario::read_scenario(scenario_file).meshes) f.add(file_bytes(m.path));
-  } catch (const scenario::InputError&) {
-    f.add("unreadable");  // a bad scenario is never current
-  }
+  for (const auto& m : meshes) f.add(file_bytes(m.path));
   // Not the thread count: results do not depend on it.
   f.add(fmt::format("{} {} {} {}", o.replicates, o.seed, J232_VERSION, J232_GIT_REVISION));
   return fmt::format("{:016x}", f.h);
 }
 
-RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides& o, const std::string& out, bool progress_bar) {
+}  // namespace
+
+std::string inputs_digest(const std::string& scenario_file, const RunOverrides& o) {
+  try {
+    return digest(scenario_file, scenario::read_scenario(scenario_file).meshes, o);
+  } catch (const scenario::InputError&) {
+    return "unreadable";  // a bad scenario is never current
+  }
+}
+
+RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides& o, const std::string& out) {
   scenario::Scenario s = scenario::read_scenario(scenario_file);
   if (o.replicates > 0) s.run.replicates = o.replicates;
   if (o.seed >= 0) s.run.seed = static_cast<unsigned long long>(o.seed);
@@ -109,7 +113,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   assess::Progress progress;
   assess::Assessment a;
   {
-    ProgressBar bar(progress, progress_bar);
+    ProgressBar bar(progress);
     a = assess::run_assessment(simulator, s.run.threads, &progress);
   }
   const assess::Summary sum = assess::summarise(a, s.criteria);
@@ -117,7 +121,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) throw scenario::InputError("", std::nullopt, "--out", out, "cannot create the output folder: " + ec.message());
-  const report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), inputs_digest(scenario_file, o), a.threads, a.wall_seconds};
+  const report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds};
   RunOutcome outcome{report::result_json(s, a, sum, p), report::summary_text(s, sum)};
   const std::filesystem::path dir(out);
   report::write_atomically((dir / "marks.csv").string(), report::marks_csv(a));

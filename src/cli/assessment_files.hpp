@@ -22,8 +22,7 @@ struct RunOutcome {
 // files' bytes, the overrides and the program's version and revision.
 std::string inputs_digest(const std::string& scenario_file, const RunOverrides& overrides);
 
-// Throws scenario::InputError for bad input. `progress_bar`: draw one on a terminal.
-RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides& overrides, const std::string& out,
-                            bool progress_bar);
+// Throws scenario::InputError for bad input. Draws a progress bar when stderr is a terminal.
+RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides& overrides, const std::string& out);
 
 }  // namespace j232::cli

@@ -66,7 +66,7 @@ int batch(const BatchOptions& o) {
         row.result = current_result(folder, inputs_digest(file, o.overrides));
         row.resumed = row.result.has_value();
       }
-      if (!row.result) row.result = assess_to_folder(file, o.overrides, folder.string(), true).result;
+      if (!row.result) row.result = assess_to_folder(file, o.overrides, folder.string()).result;
       const json& r = *row.result;
       fmt::print("{} (P(pass) {:.3f}, 95 % {:.3f} to {:.3f}){}\n", r["verdict"] == "passes" ? "PASSES" : "FAILS",
                  r["pass_probability"]["estimate"].get<double>(), r["pass_probability"]["low"].get<double>(),

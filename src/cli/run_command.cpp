@@ -16,7 +16,7 @@ struct RunOptions {
 };
 
 int run(const RunOptions& o) {
-  const RunOutcome outcome = assess_to_folder(o.scenario, o.overrides, o.out, true);
+  const RunOutcome outcome = assess_to_folder(o.scenario, o.overrides, o.out);
   const auto& p = outcome.result["provenance"];
   fmt::print("{}", outcome.summary_text);
   fmt::print("  {:.2f} s on {} thread(s): {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv\n",

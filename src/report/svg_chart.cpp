@@ -119,14 +119,6 @@ void Chart::points(const std::vector<double>& x, const std::vector<double>& y, c
   add_legend(label, colour, "dot");
 }
 
-void Chart::polygon(const std::vector<double>& x, const std::vector<double>& y, const std::string& fill,
-                    const std::string& stroke, double opacity) {
-  Item it{Item::Kind::Polygon, x, y, {}, stroke, fill, {}};
-  it.opacity = opacity;
-  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) extend(x[i], y[i]);
-  items_.push_back(std::move(it));
-}
-
 void Chart::segments(const std::vector<double>& x0, const std::vector<double>& y0, const std::vector<double>& x1,
                      const std::vector<double>& y1, const std::string& colour, const std::string& label, double width) {
   // Stored as x = x0 followed by x1, y = y0, y2 = y1.
@@ -176,11 +168,6 @@ void Chart::circle(double cx, double cy, double r, const std::string& stroke, co
   extend(cx - r, cy - r), extend(cx + r, cy + r);
   items_.push_back(std::move(it));
   add_legend(label, stroke, dashed ? "dash" : "line");
-}
-
-void Chart::text(double x, double y, const std::string& text, const std::string& colour, const std::string& anchor) {
-  Item it{Item::Kind::Text, {x}, {y}, {}, colour, anchor, text};
-  items_.push_back(std::move(it));
 }
 
 std::string Chart::svg() const {
@@ -343,14 +330,6 @@ std::string Chart::svg() const {
         }
         break;
       }
-      case Item::Kind::Polygon: {
-        std::string pts;
-        for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
-          fmt::format_to(std::back_inserter(pts), "{}{:.1f},{:.1f}", i ? " " : "", sx(it.x[i]), sy(it.y[i]));
-        fmt::format_to(std::back_inserter(o), "<polygon points=\"{}\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"{}\"/>\n", pts,
-                       it.fill.empty() ? "none" : it.fill, it.opacity, it.colour.empty() ? "none" : it.colour);
-        break;
-      }
       case Item::Kind::Rect: {
         const double x0 = std::min(sx(it.x[0]), sx(it.x[1])), x1 = std::max(sx(it.x[0]), sx(it.x[1]));
         const double y0 = std::min(sy(it.y[0]), sy(it.y[1])), y1 = std::max(sy(it.y[0]), sy(it.y[1]));
@@ -378,10 +357,6 @@ std::string Chart::svg() const {
         fmt::format_to(std::back_inserter(o), "<ellipse cx=\"{:.1f}\" cy=\"{:.1f}\" rx=\"{:.1f}\" ry=\"{:.1f}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{}/>\n",
                        sx(it.x[0]), sy(it.y[0]), std::abs(sx(it.x[0] + it.radius) - sx(it.x[0])),
                        std::abs(sy(it.y[0] + it.radius) - sy(it.y[0])), it.colour, dash);
-        break;
-      case Item::Kind::Text:
-        fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" text-anchor=\"{}\" font-size=\"11\">{}</text>\n",
-                       sx(it.x[0]), sy(it.y[0]), it.colour, it.fill, escape(it.text));
         break;
     }
   }

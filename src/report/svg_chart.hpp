@@ -40,8 +40,6 @@ class Chart {
                   const std::string& colour);
   void points(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour,
               const std::string& label, double radius = 2.5, bool filled = true);
-  void polygon(const std::vector<double>& x, const std::vector<double>& y, const std::string& fill,
-               const std::string& stroke, double opacity);
   // Many straight segments (x0[i],y0[i])-(x1[i],y1[i]) as one path; many triangles as one
   // filled path (painted once, so overlaps do not darken).
   void segments(const std::vector<double>& x0, const std::vector<double>& y0, const std::vector<double>& x1,
@@ -52,7 +50,6 @@ class Chart {
   void vline(double x, const std::string& colour, const std::string& label, bool dashed = true);
   void hline(double y, const std::string& colour, const std::string& label, bool dashed = true);
   void circle(double cx, double cy, double r, const std::string& stroke, const std::string& label, bool dashed = false);
-  void text(double x, double y, const std::string& text, const std::string& colour, const std::string& anchor = "start");
   void caption(std::string text) { caption_ = std::move(text); }
 
   std::string svg() const;
@@ -60,7 +57,7 @@ class Chart {
  private:
   // One drawn thing, kept in data units until the axes are known.
   struct Item {
-    enum class Kind { Segments, Triangles, Bars, Line, Band, ErrorBars, Points, Polygon, Rect, VLine, HLine, Circle, Text } kind;
+    enum class Kind { Segments, Triangles, Bars, Line, Band, ErrorBars, Points, Rect, VLine, HLine, Circle } kind;
     std::vector<double> x, y, y2;
     std::string colour, fill, text;
     bool markers = false, dashed = false, filled = true;
