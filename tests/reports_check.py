@@ -18,7 +18,7 @@ def files(root):
     out = set()
     for d, _, names in os.walk(root):
         for n in names:
-            if n.endswith((".partial", ".log")) or n == "marks.csv" or n == "README.md":
+            if n.endswith((".partial", ".log")) or n in ("marks.csv", "README.md", ".j232.lock"):
                 continue
             out.add(os.path.relpath(os.path.join(d, n), root))
     return out

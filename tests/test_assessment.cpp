@@ -1,6 +1,8 @@
 // Board classification, statistics, the replicate judgement, determinism across thread
 // counts and chunk order, and an allocation-free per-nail path.
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "allocation_counter.hpp"
 #include "assess/runner.hpp"
@@ -9,6 +11,7 @@
 #include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
 #include "scene/j232_setup.hpp"
+#include "random/stream.hpp"
 #include "scenario/scenario.hpp"
 
 using namespace j232;
@@ -78,32 +81,75 @@ TEST_CASE("judgement: shares of nails fed or of marks against the four limits", 
   CHECK_FALSE(j.pass);
 }
 
-TEST_CASE("determinism: the same result, bit for bit, on 1 and 2 threads and in any chunk order", "[assess][determinism]") {
+namespace {
+// A run with its marks.csv collected through the runner's sink, as `j232 run` writes it.
+struct Collected {
+  assess::Assessment a;
+  std::string marks = report::marks_csv_header();
+};
+Collected run_collecting(const assess::Simulator& sim, int threads) {
+  Collected c;
+  c.a = assess::run_assessment(sim, threads, nullptr, [&](const assess::MarkRow& row) { report::append_marks_csv_row(c.marks, row); });
+  return c;
+}
+}  // namespace
+
+TEST_CASE("determinism: the same result, bit for bit, on 1 and 2 threads and in any grouping", "[assess][determinism]") {
   auto s = scenario::read_scenario(scenario_path("highway-pivoted-chains.toml"));
   s.run.replicates = 48;
   const assess::Simulator sim(s);
-  const auto one = assess::run_assessment(sim, 1);
-  const auto two = assess::run_assessment(sim, 2);
-  const report::Provenance p{"test", "test", "today", "digest", 0, 0};
-  const auto sum_one = assess::summarise(one, s.criteria), sum_two = assess::summarise(two, s.criteria);
-  const auto json_one = report::result_json(s, one, sum_one, p), json_two = report::result_json(s, two, sum_two, p);
+  const auto one = run_collecting(sim, 1);
+  const auto two = run_collecting(sim, 2);
+  const report::Provenance p{"test", "test", "today", "digest", 0, 0, {}};
+  const auto sum_one = assess::summarise(one.a, s), sum_two = assess::summarise(two.a, s);
+  const auto json_one = report::result_json(s, one.a, sum_one, p), json_two = report::result_json(s, two.a, sum_two, p);
   CHECK(json_one.dump() == json_two.dump());
-  CHECK(report::marks_csv(one) == report::marks_csv(two));
+  CHECK(one.marks == two.marks);
+  CHECK(one.marks.size() > 1000);
   const auto soup = scene::build_scene_soup(s);
-  CHECK(report::compliance_report_html(s, one, sum_one, json_one, soup) == report::compliance_report_html(s, two, sum_two, json_two, soup));
-  // Replicates run in a different grouping and order give the same tallies.
+  CHECK(report::compliance_report_html(s, one.a, sum_one, json_one, soup) ==
+        report::compliance_report_html(s, two.a, sum_two, json_two, soup));
+  // Replicates run in two pieces merge to the same result as one run.
   assess::Assessment parts;
-  assess::run_replicates(sim, 24, 24, parts, nullptr);
-  assess::run_replicates(sim, 0, 24, parts, nullptr);
-  for (std::size_t r = 0; r < 24; ++r) {
-    CHECK(parts.tallies[24 + r].counts == one.tallies[r].counts);
-    CHECK(parts.tallies[r].counts == one.tallies[24 + r].counts);
-  }
+  std::string part_marks = report::marks_csv_header();
+  const assess::MarkSink sink = [&](const assess::MarkRow& row) { report::append_marks_csv_row(part_marks, row); };
+  assess::run_replicates(sim, 0, 24, parts, nullptr, sink);
+  assess::run_replicates(sim, 24, 24, parts, nullptr, sink);
+  CHECK(report::result_json(s, parts, assess::summarise(parts, s), p).dump() == json_one.dump());
+  CHECK(part_marks == one.marks);
   // Another seed gives another result.
   s.run.seed += 1;
   const assess::Simulator other(s);
-  const auto three = assess::run_assessment(other, 2);
-  CHECK(report::marks_csv(three) != report::marks_csv(one));
+  CHECK(run_collecting(other, 2).marks != one.marks);
+}
+
+TEST_CASE("memory: nothing is kept per replicate; share quantiles are exact from their counts", "[assess][memory]") {
+  // The share distribution gives the same quantiles as sorting every replicate's share.
+  std::vector<double> all;
+  assess::ShareDistribution d;
+  random::Stream rng(7, 0, 0, random::Purpose::Feed);
+  for (int r = 0; r < 1001; ++r) {
+    const double share = std::floor(rng.uniform() * 12) / 150.0;
+    all.push_back(share);
+    d.add(share);
+  }
+  std::sort(all.begin(), all.end());
+  for (double p : {0.0, 0.05, 0.33, 0.5, 0.95, 1.0}) CHECK(d.quantile(p) == assess::quantile_sorted(all, p));
+  CHECK(d.counts.size() <= 12);
+
+  // A run many times longer keeps the same amount: the mark sample stays bounded.
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted-raised-skirt.toml"));
+  s.feed.nails = 30;
+  s.run.replicates = 3000;
+  const assess::Simulator sim(s);
+  std::uint64_t streamed = 0;
+  const auto a = assess::run_assessment(sim, 2, nullptr, [&](const assess::MarkRow&) { ++streamed; });
+  CHECK(a.replicates == 3000);
+  CHECK(streamed == a.marks - a.unlocated_marks);
+  CHECK(streamed > assess::kMarkSample);
+  CHECK(a.mark_sample.size() <= assess::kMarkSample);
+  CHECK(a.mark_sample_replicates < 3000);
+  CHECK(a.shares[0].counts.size() <= 31);
 }
 
 TEST_CASE("performance: simulating a nail allocates nothing", "[assess][allocation]") {
@@ -129,14 +175,14 @@ TEST_CASE("stop rule: batches run until the P(pass) interval is narrow enough", 
   s.run.max_replicates = 400;
   const assess::Simulator sim(s);
   const auto a = assess::run_assessment(sim, 2);
-  const auto sum = assess::summarise(a, s.criteria);
-  CHECK(a.tallies.size() % 16 == 0);
-  CHECK(a.tallies.size() > 16);  // one batch of 16 cannot reach +/- 0.02
+  const auto sum = assess::summarise(a, s);
+  CHECK(a.replicates % 16 == 0);
+  CHECK(a.replicates > 16);  // one batch of 16 cannot reach +/- 0.02
   const bool narrow = 0.5 * (sum.pass.high - sum.pass.low) <= 0.02;
-  CHECK((narrow || a.tallies.size() == 400));
+  CHECK((narrow || a.replicates == 400));
   // ...and it stopped at the first batch that was narrow enough.
   assess::Assessment shorter;
-  assess::run_replicates(sim, 0, a.tallies.size() - 16, shorter, nullptr);
-  const auto before = assess::summarise(shorter, s.criteria);
+  assess::run_replicates(sim, 0, a.replicates - 16, shorter, nullptr);
+  const auto before = assess::summarise(shorter, s);
   CHECK(0.5 * (before.pass.high - before.pass.low) > 0.02);
 }

@@ -106,9 +106,9 @@ TEST_CASE("impact input: bad input is refused with file, line, key, value and ex
   };
   const Bad cases[] = {
       {"bar_mass = \"4.98951607 kg\"", "bar_mass = \"-3 kg\"",
-       "case.toml:6: blade.hub.bar_mass = \"-3 kg\": expected non-negative a mass"},
-      {"\nmass = \"4.98951607 kg\"", "\nmass = \"-1 kg\"", "case.toml:14: blade.arms[1].links[1].mass = \"-1 kg\": expected positive"},
-      {"e = 0.9", "e = 1.2", "case.toml:24: restitution.e = 1.2: expected a plain number such as 0.9 between 0 and 1"},
+       "case.toml:6: blade.hub.bar_mass = \"-3 kg\": expected a mass such as \"22 lb\" or \"170 g\", from 0 kg to 500 kg"},
+      {"\nmass = \"4.98951607 kg\"", "\nmass = \"-1 kg\"", "case.toml:14: blade.arms[1].links[1].mass = \"-1 kg\": expected a mass such as \"22 lb\" or \"170 g\", above 0 kg and at most 500 kg"},
+      {"e = 0.9", "e = 1.2", "case.toml:24: restitution.e = 1.2: expected a plain number such as 0.9, from 0 to 1"},
       {"e = 0.9", "e = -0.1", "restitution.e = -0.1"},
       {"radius = \"0.5588 m\"", "radius = \"0.7 m\"", "case.toml:16: contact.radius = \"0.7 m\": expected a radius on the blade: at most 0.6096 m"},
       {"speed = \"104.71975511965977 rad/s\"", "speed = \"1000 rpms\"", "blade.speed = \"1000 rpms\": unknown unit \"rpms\""},
@@ -129,7 +129,7 @@ TEST_CASE("impact input: bad input is refused with file, line, key, value and ex
   CHECK_THROWS_WITH(read("[blade]\nspeed = \"1 rpm\"\n"), Contains("blade.hub: the blade has no inertia"));
   CHECK_THROWS_WITH(read("x = 1\n"), Contains("blade: missing"));
   CHECK_THROWS_WITH(scenario::parse_toml_file("/nonexistent/impact.toml"),
-                    Contains("/nonexistent/impact.toml: cannot open"));
+                    Contains("/nonexistent/impact.toml: no such file"));
 }
 
 TEST_CASE("impact input: malformed TOML is refused with its file and line", "[input][errors]") {

@@ -41,3 +41,13 @@ TEST_CASE("units: wrong or unknown units are refused with a useful message", "[u
   CHECK_THROWS(parse("nan m", Kind::Length));
   CHECK_THROWS(parse("inf m", Kind::Length));
 }
+
+TEST_CASE("units: exponents are bounded, so no unit overflows (audit finding 6)", "[units][robust]") {
+  CHECK_THROWS_WITH(parse("1 J^2147483647", Kind::Energy), Catch::Contains("bad exponent"));
+  CHECK_THROWS_WITH(parse("1 m/s^-2147483648", Kind::Speed), Catch::Contains("bad exponent"));
+  CHECK_THROWS_WITH(parse("1 m^2147483647 m^2147483647 m^3", Kind::Length), Catch::Contains("bad exponent"));
+  CHECK_THROWS_WITH(parse("1 m^12 m^12 m^12 m^12 m^12", Kind::Length), Catch::Contains("out of any physical range"));
+  CHECK_THROWS(parse("1e300 mi^12", Kind::Length));
+  CHECK_THROWS(parse("1e300 mi^3 / mm^2", Kind::Length));  // overflows to infinity in SI
+  CHECK(parse("2 m^12 / m^11", Kind::Length) == Approx(2.0));
+}

@@ -1,35 +1,58 @@
 #include "assess/runner.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
 namespace j232::assess {
 
-namespace {
-
-constexpr std::uint64_t kChunk = 8;  // replicates per chunk: fixed, so the merge order is too
-
-// A chunk's results have the same shape as the whole assessment's; merged in order.
-void merge(Assessment& into, const Assessment& c) {
-  into.tallies.insert(into.tallies.end(), c.tallies.begin(), c.tallies.end());
-  into.marks.insert(into.marks.end(), c.marks.begin(), c.marks.end());
-  into.exit_speed.merge(c.exit_speed);
-  into.mark_energy.merge(c.mark_energy);
-  into.board_energy.merge(c.board_energy);
-  into.board_energy_per_width.merge(c.board_energy_per_width);
-  into.contact_radius.merge(c.contact_radius);
-  into.nails += c.nails;
-  into.struck += c.struck;
-  into.queries += c.queries;
-  into.unlocated_marks += c.unlocated_marks;
+void ShareDistribution::add(double share) {
+  ++counts[share];
+  ++total;
+  sum += share;
 }
 
-void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& c) {
+double ShareDistribution::quantile(double p) const {
+  if (total == 0) return 0.0;
+  // The values at sorted positions lo and lo + 1, found by walking the counts.
+  const double h = static_cast<double>(total - 1) * p;
+  const auto lo = static_cast<std::uint64_t>(std::floor(h));
+  const std::uint64_t hi = std::min(lo + 1, total - 1);
+  double at_lo = 0, at_hi = 0;
+  std::uint64_t seen = 0;
+  bool have_lo = false;
+  for (const auto& [value, n] : counts) {
+    seen += n;
+    if (!have_lo && lo < seen) at_lo = value, have_lo = true;
+    if (hi < seen) {
+      at_hi = value;
+      break;
+    }
+  }
+  return at_lo + (h - static_cast<double>(lo)) * (at_hi - at_lo);
+}
+
+namespace {
+
+constexpr std::uint64_t kChunk = 8;   // replicates per chunk: fixed, so the merge order is too
+constexpr std::uint64_t kWave = 128;  // chunks in flight at once: bounds memory, keeps both cores busy
+
+// What one chunk of replicates produced, before it is merged.
+struct ChunkResult {
+  std::vector<ReplicateTally> tallies;
+  std::vector<MarkRow> marks;
+  Histogram exit_speed{0.5, 400}, mark_energy{0.05, 600}, board_energy{0.05, 600}, board_energy_per_width{5, 400},
+      contact_radius{0.005, 400};
+  std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
+
+  void clear() { *this = ChunkResult(); }
+};
+
+void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, ChunkResult& c) {
   const int nails = sim.scenario().feed.nails;
   c.tallies.resize(count);
-  c.marks.reserve(count * static_cast<std::uint64_t>(nails) / 2);
   for (std::uint64_t r = 0; r < count; ++r) {
     const std::uint64_t replicate = first + r;
     ReplicateTally& tally = c.tallies[r];
@@ -38,8 +61,10 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, A
       tally.add(o.flight);
       ++c.nails;
       c.queries += static_cast<std::uint64_t>(o.flight.queries);
+      if (o.flight.non_finite) ++c.non_finite;
       if (o.flight.fate == flight::Fate::NotStruck) continue;
       ++c.struck;
+      if (o.flight.non_finite) continue;  // nothing of it is a number worth recording
       c.exit_speed.add(o.exit_speed);
       c.contact_radius.add(o.contact_radius);
       if (o.flight.board_energy >= 0) {
@@ -56,24 +81,67 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, A
   }
 }
 
+// Chunks are merged in index order: the replicates' judgements, then their marks.
+void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec& criteria, const MarkSink& sink) {
+  std::size_t next_mark = 0;
+  for (const ReplicateTally& t : c.tallies) {
+    const std::uint64_t replicate = into.replicates++;
+    const Judgement j = judge(t, criteria);
+    into.passed += j.pass ? 1 : 0;
+    for (int k = 0; k < kCategories; ++k) {
+      into.criterion_passed[k] += j.passes[k] ? 1 : 0;
+      into.shares[k].add(j.shares[k]);
+    }
+    into.marks += t.marks;
+    for (int f = 0; f < flight::kFates; ++f) into.fates[f] += t.fates[f];
+    // This replicate's located marks, in nail order.
+    const std::size_t begin = next_mark;
+    while (next_mark < c.marks.size() && c.marks[next_mark].replicate == replicate) ++next_mark;
+    if (sink)
+      for (std::size_t m = begin; m < next_mark; ++m) sink(c.marks[m]);
+    const std::size_t n = next_mark - begin;
+    if (!into.mark_sample_closed && (replicate == 0 || into.mark_sample.size() + n <= kMarkSample)) {
+      into.mark_sample.insert(into.mark_sample.end(), c.marks.begin() + static_cast<std::ptrdiff_t>(begin),
+                              c.marks.begin() + static_cast<std::ptrdiff_t>(next_mark));
+      into.mark_sample_replicates = replicate + 1;
+    } else {
+      into.mark_sample_closed = true;
+    }
+  }
+  into.exit_speed.merge(c.exit_speed);
+  into.mark_energy.merge(c.mark_energy);
+  into.board_energy.merge(c.board_energy);
+  into.board_energy_per_width.merge(c.board_energy_per_width);
+  into.contact_radius.merge(c.contact_radius);
+  into.nails += c.nails;
+  into.struck += c.struck;
+  into.queries += c.queries;
+  into.unlocated_marks += c.unlocated_marks;
+  into.non_finite += c.non_finite;
+}
+
 }  // namespace
 
 void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& into,
-                    Progress* progress) {
+                    Progress* progress, const MarkSink& sink) {
   const std::uint64_t chunks = (count + kChunk - 1) / kChunk;
-  std::vector<Assessment> results(chunks);
-  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunks, 1), [&](const tbb::blocked_range<std::uint64_t>& range) {
-    for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
-      const std::uint64_t start = first + c * kChunk;
-      const std::uint64_t n = std::min(kChunk, first + count - start);
-      run_chunk(sim, start, n, results[c]);
-      if (progress) progress->done += static_cast<long long>(n);
-    }
-  });
-  for (const auto& c : results) merge(into, c);  // in chunk order: deterministic
+  std::vector<ChunkResult> wave(static_cast<std::size_t>(std::min(chunks, kWave)));
+  for (std::uint64_t w0 = 0; w0 < chunks; w0 += kWave) {
+    const std::uint64_t in_wave = std::min(kWave, chunks - w0);
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, in_wave, 1), [&](const tbb::blocked_range<std::uint64_t>& range) {
+      for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
+        const std::uint64_t start = first + (w0 + c) * kChunk;
+        const std::uint64_t n = std::min(kChunk, first + count - start);
+        wave[c].clear();
+        run_chunk(sim, start, n, wave[c]);
+        if (progress) progress->done += static_cast<long long>(n);
+      }
+    });
+    for (std::uint64_t c = 0; c < in_wave; ++c) merge(into, wave[c], sim.scenario().criteria, sink);  // deterministic
+  }
 }
 
-Assessment run_assessment(const Simulator& sim, int threads, Progress* progress) {
+Assessment run_assessment(const Simulator& sim, int threads, Progress* progress, const MarkSink& sink) {
   const auto& run = sim.scenario().run;
   const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
   const int used = threads > 0 ? threads : available;
@@ -83,16 +151,14 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress)
   const auto start = std::chrono::steady_clock::now();
   const auto first_batch = static_cast<std::uint64_t>(run.replicates);
   if (progress) progress->total = run.target_half_width ? run.max_replicates : run.replicates;
-  run_replicates(sim, 0, first_batch, a, progress);
+  run_replicates(sim, 0, first_batch, a, progress, sink);
   if (run.target_half_width) {
     // Batches of the first batch's size until the interval is narrow enough.
     for (;;) {
-      std::uint64_t passes = 0;
-      for (const auto& t : a.tallies) passes += judge(t, sim.scenario().criteria).pass ? 1 : 0;
-      const Interval i = wilson(passes, a.tallies.size());
-      const auto done = static_cast<std::uint64_t>(a.tallies.size());
-      if (0.5 * (i.high - i.low) <= *run.target_half_width || done >= static_cast<std::uint64_t>(run.max_replicates)) break;
-      run_replicates(sim, done, std::min(first_batch, static_cast<std::uint64_t>(run.max_replicates) - done), a, progress);
+      const Interval i = wilson(a.passed, a.replicates);
+      if (0.5 * (i.high - i.low) <= *run.target_half_width || a.replicates >= static_cast<std::uint64_t>(run.max_replicates)) break;
+      run_replicates(sim, a.replicates, std::min(first_batch, static_cast<std::uint64_t>(run.max_replicates) - a.replicates), a,
+                     progress, sink);
     }
   }
   a.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

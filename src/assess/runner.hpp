@@ -1,10 +1,14 @@
 #pragma once
-// Replicates of the whole test, in parallel on oneTBB (DESIGN.md §4.6). Work is cut
-// into fixed chunks of replicates; each chunk fills its own tallies; chunks are merged
-// in index order. Nothing depends on which thread ran what, so the result is
-// bit-identical for any thread count.
+// Replicates of the whole test, in parallel on oneTBB (see docs/model.md, "Randomness
+// and parallelism"). Work is cut into fixed chunks of replicates; chunks run in waves of
+// a bounded number, each chunk filling its own tallies, and each wave is merged in chunk
+// order before the next starts. Nothing depends on which thread ran what, so the result
+// is bit-identical for any thread count; and nothing is kept per replicate, so memory
+// does not grow with the number of replicates (marks are handed to a sink in order).
 #include <atomic>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <vector>
 
 #include "assess/simulator.hpp"
@@ -19,15 +23,43 @@ struct MarkRow {
   flight::MarkRecord mark;
 };
 
+// Receives every located mark, in (replicate, nail) order, as the merge reaches it.
+using MarkSink = std::function<void(const MarkRow&)>;
+
+// One criterion's share over replicates, exactly and in bounded memory: a share is a
+// ratio of small counts, so it takes few distinct values however many replicates run.
+struct ShareDistribution {
+  std::map<double, std::uint64_t> counts;  // share -> replicates with it
+  std::uint64_t total = 0;
+  double sum = 0;  // summed in replicate order: deterministic
+
+  void add(double share);
+  double mean() const { return total ? sum / static_cast<double>(total) : 0.0; }
+  // Hyndman & Fan type 7, as quantile_sorted() over every replicate's share.
+  double quantile(double p) const;
+};
+
+// The marks of the first replicates, for pictures: whole replicates (a fair sample, as
+// replicates are independent), as many as fit in kMarkSample marks (at least one).
+inline constexpr std::size_t kMarkSample = 3000;
+
 struct Assessment {
-  std::vector<ReplicateTally> tallies;  // in replicate order
-  std::vector<MarkRow> marks;           // in (replicate, nail) order; located marks only
+  std::uint64_t replicates = 0, passed = 0;
+  std::array<std::uint64_t, kCategories> criterion_passed{};
+  std::array<ShareDistribution, kCategories> shares;
+  std::uint64_t marks = 0;  // all marks, located or not
+  std::array<std::uint64_t, flight::kFates> fates{};
+
+  std::vector<MarkRow> mark_sample;          // in (replicate, nail) order
+  std::uint64_t mark_sample_replicates = 0;  // replicates 0 .. this-1 are in the sample
+  bool mark_sample_closed = false;           // a replicate did not fit: no later one is added
+
   Histogram exit_speed{0.5, 400};       // m/s, 0.5 m/s bins to 200 m/s
   Histogram mark_energy{0.05, 600};     // J, 0.05 J bins to 30 J: marks only
   Histogram board_energy{0.05, 600};    // J: every first arrival at the board, marked or not
   Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
   Histogram contact_radius{0.005, 400}; // m
-  std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0;
+  std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
   double wall_seconds = 0;
   int threads = 0;
 };
@@ -39,10 +71,12 @@ struct Progress {
 
 // Runs the scenario's replicates (or, with a target half-width, batches until the
 // P(pass) interval is that narrow or max_replicates is reached).
-Assessment run_assessment(const Simulator& simulator, int threads, Progress* progress = nullptr);
+Assessment run_assessment(const Simulator& simulator, int threads, Progress* progress = nullptr,
+                          const MarkSink& marks = {});
 
-// Replicates [first, first + count) appended to `into` (used by run_assessment and tests).
+// Replicates [first, first + count) merged into `into`, which must hold replicates
+// [0, first) already (used by run_assessment and tests).
 void run_replicates(const Simulator& simulator, std::uint64_t first, std::uint64_t count, Assessment& into,
-                    Progress* progress);
+                    Progress* progress, const MarkSink& marks = {});
 
 }  // namespace j232::assess

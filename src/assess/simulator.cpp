@@ -73,6 +73,11 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
   nail_body.rod = rod;
   const blade::ContactOutcome contact = blade::resolve_contact(at, nail_body, s.restitution);
   if (!contact.approaching) return out;
+  if (!contact.velocity_after.allFinite() || !contact.spin_after.allFinite()) {
+    out.flight.fate = flight::Fate::CutOff;
+    out.flight.non_finite = true;
+    return out;
+  }
 
   flight::Body body;
   body.position = strike->contact_point - strike->offset * drop.axis;

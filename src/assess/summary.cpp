@@ -1,46 +1,61 @@
 #include "assess/summary.hpp"
 
-#include <algorithm>
+#include <fmt/format.h>
 
 namespace j232::assess {
 
-Summary summarise(const Assessment& a, const scenario::CriteriaSpec& criteria) {
+namespace {
+
+Validity check_validity(const Assessment& a, const scenario::Scenario& s) {
+  Validity v;
+  auto refuse = [&](std::string why) {
+    v.valid = false;
+    v.reasons.push_back(std::move(why));
+  };
+  if (a.replicates == 0) refuse("no replicate was run");
+  if (a.struck == 0)
+    refuse(fmt::format("the blade struck none of the {} nails fed, so no test happened: check that the feed stations lie "
+                       "within the blade's tip circle ({:.3f} m) and the blade's speed and height",
+                       a.nails, s.blade.tip_radius()));
+  const std::uint64_t cut = a.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
+  if (a.struck > 0 && static_cast<double>(cut) > kMaxCutOffShare * static_cast<double>(a.struck))
+    refuse(fmt::format("{} of {} struck nails ({:.1f} %) were cut off still moving by [run] time_limit ({:g} s), "
+                       "max_bounces ({}) or the step limit, more than the {:g} % allowed: where they would have ended "
+                       "is unknown; raise the limits",
+                       cut, a.struck, 100.0 * static_cast<double>(cut) / static_cast<double>(a.struck), s.run.time_limit,
+                       s.run.max_bounces, 100 * kMaxCutOffShare));
+  if (a.non_finite > 0)
+    refuse(fmt::format("{} nails reached a non-finite state (infinite or not-a-number speed or position): the inputs "
+                       "are outside what the model can handle",
+                       a.non_finite));
+  return v;
+}
+
+}  // namespace
+
+Summary summarise(const Assessment& a, const scenario::Scenario& scenario) {
+  const scenario::CriteriaSpec& criteria = scenario.criteria;
   Summary s;
-  s.replicates = a.tallies.size();
+  s.replicates = a.replicates;
   s.nails = a.nails;
   s.struck = a.struck;
   s.required = criteria.required_pass_probability;
-  std::uint64_t passes = 0;
-  std::array<std::uint64_t, kCategories> criterion_passes{};
-  std::array<std::vector<double>, kCategories> shares;
-  for (auto& v : shares) v.reserve(a.tallies.size());
-  for (const auto& t : a.tallies) {
-    const Judgement j = judge(t, criteria);
-    passes += j.pass ? 1 : 0;
-    for (int c = 0; c < kCategories; ++c) {
-      criterion_passes[c] += j.passes[c] ? 1 : 0;
-      shares[c].push_back(j.shares[c]);
-    }
-    s.marks += t.marks;
-    for (int f = 0; f < flight::kFates; ++f) s.fates[f] += t.fates[f];
-  }
-  s.passed = passes;
-  s.pass = wilson(passes, s.replicates);
+  s.marks = a.marks;
+  s.fates = a.fates;
+  s.passed = a.passed;
+  s.pass = wilson(a.passed, s.replicates);
   s.passes = s.pass.estimate >= s.required;
   s.settled = s.pass.low >= s.required || s.pass.high < s.required;
   for (int c = 0; c < kCategories; ++c) {
-    auto& v = shares[c];
+    const ShareDistribution& d = a.shares[c];
     CriterionSummary& cs = s.criteria[c];
     cs.name = category_name(c);
     cs.limit = category_limit(criteria, c);
-    double sum = 0;
-    for (double x : v) sum += x;  // in replicate order: deterministic
-    cs.mean_share = v.empty() ? 0 : sum / static_cast<double>(v.size());
-    std::sort(v.begin(), v.end());
-    cs.q05 = quantile_sorted(v, 0.05);
-    cs.q50 = quantile_sorted(v, 0.50);
-    cs.q95 = quantile_sorted(v, 0.95);
-    cs.pass = wilson(criterion_passes[c], s.replicates);
+    cs.mean_share = d.mean();
+    cs.q05 = d.quantile(0.05);
+    cs.q50 = d.quantile(0.50);
+    cs.q95 = d.quantile(0.95);
+    cs.pass = wilson(a.criterion_passed[c], s.replicates);
   }
   // The criterion least likely to pass; on a tie, the one whose mean share comes
   // closest to its limit.
@@ -55,6 +70,7 @@ Summary summarise(const Assessment& a, const scenario::CriteriaSpec& criteria) {
     if (tighter(c, s.deciding)) s.deciding = c;
   s.marks_per_nail = s.nails ? static_cast<double>(s.marks) / static_cast<double>(s.nails) : 0;
   s.queries_per_nail = s.nails ? static_cast<double>(a.queries) / static_cast<double>(s.nails) : 0;
+  s.validity = check_validity(a, scenario);
   return s;
 }
 

@@ -3,6 +3,7 @@
 // pass probability, the verdict and the criterion that decides it (DESIGN.md §4.5).
 #include <array>
 #include <string>
+#include <vector>
 
 #include "assess/runner.hpp"
 
@@ -13,6 +14,15 @@ struct CriterionSummary {
   double limit = 0;
   double mean_share = 0, q05 = 0, q50 = 0, q95 = 0;
   Interval pass;
+};
+
+// Whether the simulated test really happened. A run that is not valid gets no verdict:
+// no nail struck, too many nails cut off by the run's limits (their end is unknown), or
+// any non-finite number.
+inline constexpr double kMaxCutOffShare = 0.01;  // of the nails struck
+struct Validity {
+  bool valid = true;
+  std::vector<std::string> reasons;  // one sentence each, for the terminal, report and result.json
 };
 
 struct Summary {
@@ -26,8 +36,10 @@ struct Summary {
   double marks_per_nail = 0;
   std::array<std::uint64_t, flight::kFates> fates{};
   double queries_per_nail = 0;
+  Validity validity;
 };
 
-Summary summarise(const Assessment& a, const scenario::CriteriaSpec& criteria);
+// Judges the run against the scenario's criteria and checks that the test really happened.
+Summary summarise(const Assessment& a, const scenario::Scenario& scenario);
 
 }  // namespace j232::assess

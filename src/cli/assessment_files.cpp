@@ -13,12 +13,13 @@
 
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
+#include "cli/output_folder.hpp"
 #include "report/atomic_file.hpp"
 #include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
-#include "scene/j232_setup.hpp"
+#include "scenario/toml_reader.hpp"
 
 #ifndef J232_GIT_REVISION
 #define J232_GIT_REVISION "unknown"
@@ -69,16 +70,6 @@ std::string utc_now() {
   return buf;
 }
 
-// FNV-1a, 64 bit: a change detector for --resume, not a security hash.
-struct Fnv {
-  std::uint64_t h = 1469598103934665603ULL;
-  void add(std::string_view bytes) {
-    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ULL;
-    add_separator();
-  }
-  void add_separator() { h = (h ^ 0xffu) * 1099511628211ULL; }
-};
-
 std::string file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -86,11 +77,14 @@ std::string file_bytes(const std::string& path) {
 
 std::string digest(const std::string& scenario_file, const std::vector<scenario::MeshFile>& meshes, const RunOverrides& o) {
   Fnv f;
+  const auto separator = [&] { f.add("\xff"); };
   f.add(file_bytes(scenario_file));
-  for (const auto& m : meshes) f.add(file_bytes(m.path));
+  separator();
+  for (const auto& m : meshes) f.add(file_bytes(m.path)), separator();
   // Not the thread count: results do not depend on it.
-  f.add(fmt::format("{} {} {} {}", o.replicates, o.seed, J232_VERSION, J232_GIT_REVISION));
-  return fmt::format("{:016x}", f.h);
+  f.add(fmt::format("{} {} {} {}", o.replicates, o.seed ? std::to_string(*o.seed) : "-1", J232_VERSION, J232_GIT_REVISION));
+  separator();
+  return f.hex();
 }
 
 }  // namespace
@@ -106,29 +100,56 @@ std::string inputs_digest(const std::string& scenario_file, const RunOverrides& 
 RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides& o, const std::string& out) {
   scenario::Scenario s = scenario::read_scenario(scenario_file);
   if (o.replicates > 0) s.run.replicates = o.replicates;
-  if (o.seed >= 0) s.run.seed = static_cast<unsigned long long>(o.seed);
+  if (o.seed) s.run.seed = *o.seed;
   if (o.threads >= 0) s.run.threads = o.threads;
-
   const assess::Simulator simulator(s);
+
+  // The folder is locked and checked before the simulation, so a bad --out costs nothing.
+  OutputFolder folder(out, {"marks.csv", "report.html", "result.json"});
+  StreamedFile marks(folder.staged("marks.csv"));
+  marks.write(report::marks_csv_header());
+  std::string buffer;
+  const assess::MarkSink sink = [&](const assess::MarkRow& row) {
+    report::append_marks_csv_row(buffer, row);
+    if (buffer.size() > (1u << 20)) marks.write(buffer), buffer.clear();
+  };
   assess::Progress progress;
   assess::Assessment a;
   {
     ProgressBar bar(progress);
-    a = assess::run_assessment(simulator, s.run.threads, &progress);
+    a = assess::run_assessment(simulator, s.run.threads, &progress, sink);
   }
-  const assess::Summary sum = assess::summarise(a, s.criteria);
+  marks.write(buffer);
+  marks.close();
+  const assess::Summary sum = assess::summarise(a, s);
 
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) throw scenario::InputError("", std::nullopt, "--out", out, "cannot create the output folder: " + ec.message());
-  const report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds};
+  report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds};
+  p.files.push_back({"marks.csv", marks.bytes(), marks.digest()});
+  // The report shows result.json's numbers; its own size and digest go into result.json.
   RunOutcome outcome{report::result_json(s, a, sum, p), report::summary_text(s, sum)};
-  const std::filesystem::path dir(out);
-  report::write_atomically((dir / "marks.csv").string(), report::marks_csv(a));
-  report::write_atomically((dir / "report.html").string(),
-                           report::compliance_report_html(s, a, sum, outcome.result, scene::build_scene_soup(s)));
-  report::write_atomically((dir / "result.json").string(), outcome.result.dump(2) + "\n");  // last: marks completeness
+  const std::string html = report::compliance_report_html(s, a, sum, outcome.result, simulator.scene().soup());
+  Fnv html_digest;
+  html_digest.add(html);
+  outcome.result["provenance"]["files"].push_back({{"name", "report.html"}, {"bytes", html.size()}, {"fnv1a64", html_digest.hex()}});
+  report::write_atomically(folder.staged("report.html"), html);
+  report::write_atomically(folder.staged("result.json"), outcome.result.dump(2) + "\n");
+  folder.commit();
   return outcome;
+}
+
+void add_run_overrides(CLI::App& cmd, RunOverrides& o, const std::string& whose) {
+  cmd.add_option("--replicates", o.replicates, fmt::format("Replicates of the whole test (overrides {} [run] replicates)", whose))
+      ->check(CLI::Range(1LL, 100'000'000LL));
+  cmd.add_option_function<std::string>(
+         "--seed",
+         [&o](const std::string& text) {
+           const auto seed = scenario::parse_unsigned64(text);
+           if (!seed) throw CLI::ValidationError("--seed", "expected a whole number from 0 to 18446744073709551615, got " + text);
+           o.seed = *seed;
+         },
+         fmt::format("Random seed, 0 to 2^64-1 (overrides {} [run] seed)", whose))
+      ->type_name("UINT64");
+  cmd.add_option("--threads", o.threads, "Worker threads, 0 = all cores (overrides [run] threads)")->check(CLI::Range(0, 1024));
 }
 
 }  // namespace j232::cli

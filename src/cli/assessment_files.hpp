@@ -1,17 +1,23 @@
 #pragma once
 // One assessment from scenario file to result folder: result.json, marks.csv and
-// report.html, each written whole or not at all (result.json last, so its presence
-// means the folder is complete). Shared by `j232 run` and `j232 batch`.
+// report.html, written as a set (cli/output_folder.hpp: result.json's presence means the
+// folder is complete). Shared by `j232 run` and `j232 batch`.
+#include <CLI/CLI.hpp>
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 namespace j232::cli {
 
 struct RunOverrides {
-  long long replicates = 0;  // 0: the scenario's
-  long long seed = -1;       // < 0: the scenario's
-  int threads = -1;          // < 0: the scenario's
+  long long replicates = 0;            // 0: the scenario's
+  std::optional<std::uint64_t> seed;   // none: the scenario's
+  int threads = -1;                    // < 0: the scenario's
 };
+
+// --replicates, --seed (any unsigned 64-bit value, or refused) and --threads on `cmd`.
+void add_run_overrides(CLI::App& cmd, RunOverrides& overrides, const std::string& whose);
 
 struct RunOutcome {
   nlohmann::ordered_json result;  // what result.json holds
@@ -22,7 +28,8 @@ struct RunOutcome {
 // files' bytes, the overrides and the program's version and revision.
 std::string inputs_digest(const std::string& scenario_file, const RunOverrides& overrides);
 
-// Throws scenario::InputError for bad input. Draws a progress bar when stderr is a terminal.
+// Throws scenario::InputError for bad input and report::FileError when the folder cannot
+// be written (checked before simulating). Draws a progress bar when stderr is a terminal.
 RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides& overrides, const std::string& out);
 
 }  // namespace j232::cli

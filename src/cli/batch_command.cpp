@@ -3,14 +3,17 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
-#include <map>
+#include <iterator>
+#include <set>
 #include <memory>
 
 #include "cli/assessment_files.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/output_folder.hpp"
 #include "report/atomic_file.hpp"
 #include "report/batch_summary.hpp"
+#include "report/text_safety.hpp"
 #include "scenario/input_error.hpp"
 
 namespace j232::cli {
@@ -26,32 +29,47 @@ struct BatchOptions {
   RunOverrides overrides;
 };
 
-// One folder per scenario, named after its file; a repeated name gets -2, -3, ...
+// One folder per scenario, named after its file (made safe: letters, digits, - _ . and
+// no leading dot); a repeated name gets -2, -3, ...
 std::vector<std::string> folder_names(const std::vector<std::string>& files) {
-  std::map<std::string, int> seen;
+  std::set<std::string> used{"summary.csv", "summary.html", "summary.json"};
   std::vector<std::string> names;
   for (const auto& f : files) {
-    const std::string stem = fs::path(f).stem().string();
-    const int n = ++seen[stem];
-    names.push_back(n == 1 ? stem : fmt::format("{}-{}", stem, n));
+    const std::string stem = report::safe_folder_name(fs::path(f).stem().string());
+    std::string name = stem;
+    for (int n = 2; used.count(name); ++n) name = fmt::format("{}-{}", stem, n);
+    used.insert(name);
+    names.push_back(name);
   }
   return names;
 }
 
-// The folder's results, if they are complete and were made from these very inputs.
+// The bytes of a file and their digest match what result.json recorded.
+bool matches(const fs::path& file, const json& recorded) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  Fnv f;
+  f.add(bytes);
+  return in.good() || in.eof() ? recorded.value("bytes", std::uint64_t{0}) == bytes.size() && recorded.value("fnv1a64", "") == f.hex()
+                               : false;
+}
+
+// The folder's results, if they are a complete set made from these very inputs.
 std::optional<json> current_result(const fs::path& folder, const std::string& digest) {
-  for (const char* f : {"result.json", "report.html", "marks.csv"})
-    if (!fs::exists(folder / f)) return std::nullopt;
   std::ifstream in(folder / "result.json");
+  if (!in) return std::nullopt;
   const json r = json::parse(in, nullptr, false);
   if (r.is_discarded() || !r.contains("provenance") || r["provenance"].value("inputs_digest", "") != digest) return std::nullopt;
+  const json& files = r["provenance"].value("files", json::array());
+  if (files.size() != 2) return std::nullopt;
+  for (const auto& f : files)
+    if (!f.is_object() || !matches(folder / f.value("name", "?"), f)) return std::nullopt;
   return r;
 }
 
 int batch(const BatchOptions& o) {
-  std::error_code ec;
-  fs::create_directories(o.out, ec);
-  if (ec) throw scenario::InputError("", std::nullopt, "--out", o.out, "cannot create the output folder: " + ec.message());
+  // Locked and checked before the first scenario runs.
+  OutputFolder out(o.out, {"summary.csv", "summary.html", "summary.json"});
   const auto names = folder_names(o.scenarios);
   std::vector<report::BatchRow> rows;
   bool internal_error = false;
@@ -59,7 +77,7 @@ int batch(const BatchOptions& o) {
     const std::string& file = o.scenarios[i];
     report::BatchRow row{file, names[i], std::nullopt, {}, false};
     const fs::path folder = fs::path(o.out) / names[i];
-    fmt::print("[{}/{}] {}: ", i + 1, o.scenarios.size(), file);
+    fmt::print("[{}/{}] {}: ", i + 1, o.scenarios.size(), report::terminal_safe(file));
     std::fflush(stdout);
     try {
       if (o.resume) {
@@ -68,31 +86,34 @@ int batch(const BatchOptions& o) {
       }
       if (!row.result) row.result = assess_to_folder(file, o.overrides, folder.string()).result;
       const json& r = *row.result;
-      fmt::print("{} (P(pass) {:.3f}, 95 % {:.3f} to {:.3f}){}\n", r["verdict"] == "passes" ? "PASSES" : "FAILS",
+      const std::string verdict = r["verdict"].get<std::string>();
+      fmt::print("{} (P(pass) {:.3f}, 95 % {:.3f} to {:.3f}){}\n",
+                 verdict == "passes" ? "PASSES" : verdict == "invalid" ? "INVALID (no verdict)" : "FAILS",
                  r["pass_probability"]["estimate"].get<double>(), r["pass_probability"]["low"].get<double>(),
                  r["pass_probability"]["high"].get<double>(), row.resumed ? "  [current results kept]" : "");
     } catch (const scenario::InputError& e) {
       row.result.reset();
       row.error = e.what();
-      fmt::print("REFUSED\n  {}\n", e.what());
+      fmt::print("REFUSED\n  {}\n", report::terminal_safe(e.what()));
     } catch (const std::exception& e) {
       row.result.reset();
       row.error = fmt::format("internal error: {}", e.what());
       internal_error = true;
-      fmt::print("INTERNAL ERROR\n  {}\n", e.what());
+      fmt::print("INTERNAL ERROR\n  {}\n", report::terminal_safe(e.what()));
     }
     rows.push_back(std::move(row));
   }
-  const fs::path dir(o.out);
   const json summary = report::batch_summary_json(rows);
-  report::write_atomically((dir / "summary.csv").string(), report::batch_summary_csv(rows));
-  report::write_atomically((dir / "summary.html").string(), report::batch_summary_html(rows));
-  report::write_atomically((dir / "summary.json").string(), summary.dump(2) + "\n");
-  fmt::print("{} of {} scenarios pass, {} fail, {} refused. Wrote {}/summary.html, summary.json and summary.csv\n",
+  report::write_atomically(out.staged("summary.csv"), report::batch_summary_csv(rows));
+  report::write_atomically(out.staged("summary.html"), report::batch_summary_html(rows));
+  report::write_atomically(out.staged("summary.json"), summary.dump(2) + "\n");
+  out.commit();
+  fmt::print("{} of {} scenarios pass, {} fail, {} invalid, {} refused. Wrote {}/summary.html, summary.json and summary.csv\n",
              summary["passed"].get<std::size_t>(), rows.size(), summary["failed"].get<std::size_t>(),
-             summary["refused"].get<std::size_t>(), o.out);
+             summary["invalid"].get<std::size_t>(), summary["refused"].get<std::size_t>(), report::terminal_safe(o.out));
   if (internal_error) return kInternal;
   if (summary["refused"].get<std::size_t>() > 0) return kBadInput;
+  if (summary["invalid"].get<std::size_t>() > 0) return kInvalid;
   return summary["all_passed"].get<bool>() ? kOk : kFails;
 }
 
@@ -101,13 +122,11 @@ int batch(const BatchOptions& o) {
 Runner add_batch_command(CLI::App& app) {
   auto o = std::make_shared<BatchOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "batch", "Assess many scenarios and summarise them (exit 0 all pass, 1 some fail, 2 some refused as bad input)");
+      "batch", "Assess many scenarios and summarise them (exit 0 all pass, 1 some fail, 2 some refused as bad input, 4 some invalid)");
   cmd->add_option("scenarios", o->scenarios, "Scenario files (TOML); shell globs welcome: scenarios/*.toml")->required();
   cmd->add_option("--out", o->out, "Output folder: one subfolder per scenario, plus summary.html/.json/.csv")->capture_default_str();
   cmd->add_flag("--resume", o->resume, "Keep results that are complete and were made from the same inputs and program");
-  cmd->add_option("--replicates", o->overrides.replicates, "Replicates of each test (overrides each scenario's)")->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", o->overrides.seed, "Random seed (overrides each scenario's)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--threads", o->overrides.threads, "Worker threads, 0 = all cores")->check(CLI::NonNegativeNumber);
+  add_run_overrides(*cmd, o->overrides, "each scenario's");
   return [o] { return batch(*o); };
 }
 

@@ -6,10 +6,13 @@
 
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "report/atomic_file.hpp"
+#include "report/text_safety.hpp"
 #include "scenario/input_error.hpp"
 
 int main(int argc, char** argv) {
   using namespace j232::cli;
+  using j232::report::terminal_safe;
   CLI::App app{"j232 " J232_VERSION " — simulates the SAE J232 thrown-object test of rotary mowers"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "j232 " J232_VERSION);
@@ -31,10 +34,16 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("batch")) return batch();
     if (app.got_subcommand("sweep")) return sweep();
   } catch (const j232::scenario::InputError& e) {
-    fmt::print(stderr, "j232: error: {}\n", e.what());
+    fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
+    return kBadInput;
+  } catch (const j232::report::FileError& e) {
+    fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
+    return kBadInput;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "j232: error: out of memory; reduce the scene (mesh sizes) or the replicates\n");
     return kBadInput;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "j232: internal error: {}\n(please report this with the input that caused it)\n", e.what());
+    fmt::print(stderr, "j232: internal error: {}\n(please report this with the input that caused it)\n", terminal_safe(e.what()));
     return kInternal;
   }
   return kInternal;

@@ -5,9 +5,12 @@
 #include "cli/assessment_files.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "report/text_safety.hpp"
 
 namespace j232::cli {
 namespace {
+
+using report::terminal_safe;
 
 struct RunOptions {
   std::string scenario;
@@ -18,23 +21,21 @@ struct RunOptions {
 int run(const RunOptions& o) {
   const RunOutcome outcome = assess_to_folder(o.scenario, o.overrides, o.out);
   const auto& p = outcome.result["provenance"];
-  fmt::print("{}", outcome.summary_text);
+  fmt::print("{}", terminal_safe(outcome.summary_text));
   fmt::print("  {:.2f} s on {} thread(s): {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv\n",
-             p["wall_time_s"].get<double>(), p["threads"].get<int>(), p["nails_per_second"].get<double>(), o.out, o.out, o.out);
-  return outcome.result["verdict"] == "passes" ? kOk : kFails;
+             p["wall_time_s"].get<double>(), p["threads"].get<int>(), p["nails_per_second"].get<double>(),
+             terminal_safe(o.out), terminal_safe(o.out), terminal_safe(o.out));
+  const auto& verdict = outcome.result["verdict"];
+  return verdict == "passes" ? kOk : verdict == "invalid" ? kInvalid : kFails;
 }
 
 }  // namespace
 
 Runner add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
-  CLI::App* cmd = app.add_subcommand("run", "Simulate the SAE J232 test of a scenario and judge it (exit 0 passes, 1 fails)");
+  CLI::App* cmd = app.add_subcommand("run", "Simulate the SAE J232 test of a scenario and judge it (exit 0 passes, 1 fails, 4 invalid: no verdict)");
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML); see scenarios/")->required();
-  cmd->add_option("--replicates", o->overrides.replicates, "Replicates of the whole test (overrides [run] replicates)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", o->overrides.seed, "Random seed (overrides [run] seed)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--threads", o->overrides.threads, "Worker threads, 0 = all cores (overrides [run] threads)")
-      ->check(CLI::NonNegativeNumber);
+  add_run_overrides(*cmd, o->overrides, "the scenario's");
   cmd->add_option("--out", o->out, "Output folder for report.html, result.json and marks.csv")->capture_default_str();
   return [o] { return run(*o); };
 }

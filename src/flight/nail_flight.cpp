@@ -15,6 +15,7 @@ const char* fate_name(Fate f) {
     case Fate::ReachedBoardUnmarked: return "reached_board_unmarked";
     case Fate::MarkedBoard: return "marked_board";
     case Fate::Escaped: return "escaped";
+    case Fate::CutOff: return "cut_off";
   }
   return "unknown";
 }
@@ -59,6 +60,8 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   bool last_contact_guard = false;
   bool ended_at_rest = false;
   bool at_board = false;
+  bool cut_off = false;
+  int steps = 0;
   const double t_end = start.time + s.run.time_limit;
 
   auto record_mark = [&](const Vec3& point, double energy, bool zone, bool puncture) {
@@ -112,7 +115,14 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   };
 
   for (;;) {
-    if (b.time >= t_end || r.bounces > s.run.max_bounces) break;
+    if (!b.position.allFinite() || !b.velocity.allFinite() || !std::isfinite(b.time)) {
+      r.non_finite = true;
+      break;
+    }
+    if (b.time >= t_end || r.bounces > s.run.max_bounces || ++steps > kMaxFlightSteps) {
+      cut_off = true;
+      break;
+    }
     const double horizontal = std::hypot(b.position.x(), b.position.y());
     if (horizontal > ctx.escape_radius || b.position.z() < -1.0) break;
 
@@ -145,7 +155,11 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
       while (!stopped) {
         Vec3 slide = b.velocity - b.velocity.dot(up) * up;
         const double speed = slide.norm();
-        if (speed < s.run.rest_speed || decel <= 0 || r.bounces > s.run.max_bounces) {
+        if (r.bounces > s.run.max_bounces || !std::isfinite(speed)) {
+          cut_off = true;
+          break;
+        }
+        if (speed < s.run.rest_speed || decel <= 0) {
           ended_at_rest = true;
           break;
         }
@@ -170,7 +184,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
         stopped = !respond(*wall);
         if (wall->surface == scene::Surface::Ground) break;  // slid onto another ground face: fly on from there
       }
-      if (stopped || ended_at_rest) break;
+      if (stopped || ended_at_rest || cut_off) break;
     }
     if (b.velocity.norm() < s.run.rest_speed) {
       ended_at_rest = true;
@@ -182,6 +196,8 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   const double horizontal = std::hypot(b.position.x(), b.position.y());
   if (r.mark_count > 0)
     r.fate = Fate::MarkedBoard;
+  else if (r.non_finite || (cut_off && !at_board))
+    r.fate = Fate::CutOff;
   else if (at_board)
     r.fate = Fate::ReachedBoardUnmarked;
   else if (horizontal <= ctx.deck_radius && b.position.z() > -1.0)

@@ -23,9 +23,13 @@ namespace j232::flight {
 
 // Where a nail went: not struck by the blade; at rest under the mower (contained by the
 // housing, or last turned back by a guard); caught by the board without a mark; marked
-// the board; or escaped (over the board, or at rest outside the mower short of it).
-enum class Fate : std::uint8_t { NotStruck, Contained, StoppedByGuard, ReachedBoardUnmarked, MarkedBoard, Escaped };
-inline constexpr int kFates = 6;
+// the board; escaped (over the board, or at rest outside the mower short of it); or cut
+// off still moving by the run's limits (time, bounces, steps) or a non-finite state. A
+// cut-off nail's end is unknown, so too many of them make a run invalid.
+enum class Fate : std::uint8_t { NotStruck, Contained, StoppedByGuard, ReachedBoardUnmarked, MarkedBoard, Escaped, CutOff };
+inline constexpr int kFates = 7;
+// Chords per flight before the nail is cut off: a nail at rest takes a few hundred at most.
+inline constexpr int kMaxFlightSteps = 200000;
 const char* fate_name(Fate f);
 
 struct MarkRecord {
@@ -46,6 +50,7 @@ struct FlightResult {
   double board_energy = -1;            // J; < 0: never reached the board
   double board_energy_per_width = -1;  // J/m
   int bounces = 0;
+  bool non_finite = false;  // the state stopped being a finite number (a bug or absurd input)
   int queries = 0;  // scene ray queries (for the benchmark)
   double flight_time = 0;
   Vec3 end_position = Vec3::Zero();

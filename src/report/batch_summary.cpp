@@ -4,6 +4,7 @@
 
 #include "report/html_page.hpp"
 #include "report/svg_chart.hpp"
+#include "report/text_safety.hpp"
 
 namespace j232::report {
 
@@ -12,24 +13,20 @@ using json = nlohmann::ordered_json;
 
 const char* kCriteria[] = {"hits_zone", "punctures_zone", "hits_outside", "punctures_outside"};
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
+std::string csv_field(const std::string& s) { return csv_text_cell(s); }
 
 std::string verdict_of(const BatchRow& r) { return r.result ? (*r.result)["verdict"].get<std::string>() : "error"; }
 }  // namespace
 
 json batch_summary_json(const std::vector<BatchRow>& rows) {
   json list = json::array();
-  std::size_t passed = 0, failed = 0, errors = 0;
+  std::size_t passed = 0, failed = 0, invalid = 0, errors = 0;
   for (const auto& r : rows) {
     json row = {{"scenario", r.scenario}, {"verdict", verdict_of(r)}};
     if (r.result) {
       const json& x = *r.result;
-      (x["verdict"] == "passes" ? passed : failed) += 1;
+      (x["verdict"] == "passes" ? passed : x["verdict"] == "invalid" ? invalid : failed) += 1;
+      if (x["verdict"] == "invalid") row["invalid_because"] = x["invalid_because"];
       row["title"] = x["scenario"]["title"];
       row["verdict_settled"] = x["verdict_settled"];
       row["pass_probability"] = x["pass_probability"];
@@ -39,8 +36,8 @@ json batch_summary_json(const std::vector<BatchRow>& rows) {
       for (std::size_t c = 0; c < 4; ++c) shares[kCriteria[c]] = x["criteria"][c]["mean_share"];
       row["mean_shares"] = shares;
       row["replicates"] = x["replicates"];
-      row["report"] = r.folder + "/report.html";
-      row["result"] = r.folder + "/result.json";
+      row["report"] = relative_url(r.folder + "/report.html");
+      row["result"] = relative_url(r.folder + "/result.json");
       row["resumed"] = r.resumed;
     } else {
       ++errors;
@@ -52,6 +49,7 @@ json batch_summary_json(const std::vector<BatchRow>& rows) {
           {"scenarios", rows.size()},
           {"passed", passed},
           {"failed", failed},
+          {"invalid", invalid},
           {"refused", errors},
           {"all_passed", passed == rows.size()},
           {"rows", list}};
@@ -71,8 +69,9 @@ std::string batch_summary_csv(const std::vector<BatchRow>& rows) {
                      verdict_of(r), x["verdict_settled"].get<bool>(), p["estimate"].get<double>(), p["low"].get<double>(),
                      p["high"].get<double>(), x["required_pass_probability"].get<double>());
     for (std::size_t c = 0; c < 4; ++c) o += fmt::format(",{:.6g}", x["criteria"][c]["mean_share"].get<double>());
-    o += fmt::format(",{},{},{},\n", x["deciding_criterion"].get<std::string>(), x["replicates"].get<long long>(),
-                     csv_field(r.folder + "/report.html"));
+    o += fmt::format(",{},{},{},{}\n", x["deciding_criterion"].get<std::string>(), x["replicates"].get<long long>(),
+                     csv_field(relative_url(r.folder + "/report.html")),
+                     x["verdict"] == "invalid" ? csv_field("invalid: " + x["invalid_because"][0].get<std::string>()) : "");
   }
   return o;
 }
@@ -82,9 +81,11 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows) {
   std::string o = page_head("SAE J232 batch summary");
   o += "<header><h1>SAE J232 batch summary (simulated)</h1></header>\n";
   const bool all = summary["all_passed"].get<bool>();
-  o += fmt::format("<section class=\"verdict {}\"><p class=\"verdict-line\">{} of {} scenarios pass; {} fail; {} refused as bad input.</p></section>\n",
+  o += fmt::format("<section class=\"verdict {}\"><p class=\"verdict-line\">{} of {} scenarios pass; {} fail; {} invalid (no "
+                   "verdict); {} refused as bad input.</p></section>\n",
                    all ? "pass" : "fail", number("passed", summary["passed"], "{}"), number("scenarios", summary["scenarios"], "{}"),
-                   number("failed", summary["failed"], "{}"), number("refused", summary["refused"], "{}"));
+                   number("failed", summary["failed"], "{}"), number("invalid", summary["invalid"], "{}"),
+                   number("refused", summary["refused"], "{}"));
   o += "<table class=\"numbers\"><thead><tr><th>scenario</th><th>verdict</th><th>P(pass)</th><th>95 % interval</th><th>required</th>"
        "<th>hits, zone</th><th>punctures, zone</th><th>hits, outside</th><th>punctures, outside</th><th>replicates</th><th>report</th>"
        "</tr></thead><tbody>\n";
@@ -99,7 +100,7 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows) {
     const std::string k = fmt::format("rows.{}.", i);
     o += fmt::format("<tr class=\"{}\"><td>{}<br><small>{}</small></td><td class=\"verdict-cell\">{}{}</td><td>{}</td><td>{} – {}</td><td>{}</td>",
                      verdict_of(r), escape(x["scenario"]["title"].get<std::string>()), escape(r.scenario),
-                     verdict_of(r) == "passes" ? "passes" : "fails", x["verdict_settled"].get<bool>() ? "" : " (not settled)",
+                     verdict_of(r), verdict_of(r) != "invalid" && !x["verdict_settled"].get<bool>() ? " (not settled)" : "",
                      number(k + "pass_probability.estimate", x["pass_probability"]["estimate"], "{:.3f}"),
                      number(k + "pass_probability.low", x["pass_probability"]["low"], "{:.3f}"),
                      number(k + "pass_probability.high", x["pass_probability"]["high"], "{:.3f}"),
@@ -107,7 +108,7 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows) {
     for (std::size_t c = 0; c < 4; ++c)
       o += fmt::format("<td>{} %</td>", number(k + "mean_shares." + kCriteria[c], x["criteria"][c]["mean_share"], "{:.2f}", 100));
     o += fmt::format("<td>{}</td><td><a href=\"{}\">report</a></td></tr>\n", number(k + "replicates", x["replicates"], "{}"),
-                     escape(r.folder + "/report.html"));
+                     escape(relative_url(r.folder + "/report.html")));
   }
   o += "</tbody></table>\n<p>Shares are the mean over replicates of each kind of mark as a share of the denominator the scenario "
        "sets; each report gives their spread and the criterion that decides its verdict.</p>\n";

@@ -33,7 +33,7 @@ struct BoardRaster {
         for (auto v : soup.triangles[t]) lo = std::min(lo, soup.points[v].z()), hi = std::max(hi, soup.points[v].z());
     if (!(hi > lo)) return;
     z0 = lo;
-    rows = std::min(2000, static_cast<int>(std::ceil((hi - lo) / kCell)));
+    rows = static_cast<int>(std::min(2000.0, std::ceil((hi - lo) / kCell)));  // clamped before the cast: no overflow
     cell.assign(static_cast<std::size_t>(rows) * kCols, 0);
     for (std::size_t t = 0; t < soup.triangles.size(); ++t)
       if (scene::is_target(soup.labels[t])) paint(soup, t, soup.labels[t] == scene::Surface::TargetZone ? 2 : 1);
@@ -51,8 +51,10 @@ struct BoardRaster {
     if (std::abs(area) < 1e-12) return;  // seen edge-on
     const int c0 = static_cast<int>(std::floor(*std::min_element(a.begin(), a.end()) + 180.0));
     const int c1 = static_cast<int>(std::ceil(*std::max_element(a.begin(), a.end()) + 180.0));
-    const int r0 = std::max(0, static_cast<int>(std::floor((*std::min_element(z.begin(), z.end()) - z0) / kCell)));
-    const int r1 = std::min(rows, static_cast<int>(std::ceil((*std::max_element(z.begin(), z.end()) - z0) / kCell)));
+    // Rows are clamped in floating point before the cast, so a huge mesh cannot overflow an int.
+    const auto row = [&](double v) { return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(rows))); };
+    const int r0 = row(std::floor((*std::min_element(z.begin(), z.end()) - z0) / kCell));
+    const int r1 = row(std::ceil((*std::max_element(z.begin(), z.end()) - z0) / kCell));
     for (int c = c0; c < c1; ++c)
       for (int r = r0; r < r1; ++r) {
         const double pa = c - 180.0 + 0.5, pz = z0 + (r + 0.5) * kCell;
@@ -111,19 +113,22 @@ double azimuth_deg(double x, double y) { return std::atan2(y, x) * kDeg; }
 
 MarkSample sample_marks(const assess::Assessment& a, std::size_t max_marks) {
   MarkSample m;
-  m.replicates = a.tallies.size();
-  m.marks = a.marks.size();
+  m.replicates = a.replicates;
+  m.marks = static_cast<std::size_t>(a.marks - a.unlocated_marks);
+  // The runner kept the marks of its first replicates; take as many whole replicates of
+  // those as fit in max_marks.
+  const auto& kept = a.mark_sample;
   std::size_t end = 0;
   std::uint64_t shown = 0;
-  while (shown < m.replicates) {
+  while (shown < a.mark_sample_replicates) {
     std::size_t next = end;
-    while (next < a.marks.size() && a.marks[next].replicate == shown) ++next;
+    while (next < kept.size() && kept[next].replicate == shown) ++next;
     if (shown > 0 && next > max_marks) break;
     end = next;
     ++shown;
   }
   m.replicates_shown = shown;
-  for (std::size_t i = 0; i < end; ++i) m.rows.push_back(&a.marks[i]);
+  for (std::size_t i = 0; i < end; ++i) m.rows.push_back(&kept[i]);
   return m;
 }
 

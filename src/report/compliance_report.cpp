@@ -32,8 +32,18 @@ Chart histogram_chart(const assess::Histogram& h, const std::string& title, cons
   return chart;
 }
 
-std::string verdict_section(const assess::Summary& sum, const json& r) {
+std::string verdict_section(const assess::Summary& sum, const json& r, int nails_per_test) {
   const auto& p = r["pass_probability"];
+  if (!sum.validity.valid) {
+    // No verdict for a test that did not really happen: say why, and nothing else.
+    std::string o = "<section class=\"verdict fail\" id=\"verdict\">\n";
+    o += fmt::format("<p class=\"verdict-line\"><span class=\"caps\">{}</span>: no SAE J232 verdict. The simulated test did not "
+                     "really happen, so its numbers below describe a broken run, not the mower.</p>\n<ul>\n",
+                     number("verdict", r["verdict"], "{}"));
+    for (std::size_t i = 0; i < sum.validity.reasons.size(); ++i)
+      o += fmt::format("<li>{}</li>\n", escape(sum.validity.reasons[i]));
+    return o + "</ul>\n</section>\n";
+  }
   std::string o = fmt::format("<section class=\"verdict {}\" id=\"verdict\">\n", sum.passes ? "pass" : "fail");
   o += fmt::format("<p class=\"verdict-line\"><span class=\"caps\">{}</span> SAE J232 (as simulated): "
                    "P(pass one test) = {} (95 % interval {} to {}); required ≥ {}.</p>\n",
@@ -41,9 +51,9 @@ std::string verdict_section(const assess::Summary& sum, const json& r) {
                    number("pass_probability.estimate", p["estimate"], "{:.3f}"), number("pass_probability.low", p["low"], "{:.3f}"),
                    number("pass_probability.high", p["high"], "{:.3f}"),
                    number("required_pass_probability", r["required_pass_probability"], "{:.2f}"));
-  o += fmt::format("<p>{} of {} simulated tests (replicates of 150-nail feeds) met all four criteria. {}</p>\n",
+  o += fmt::format("<p>{} of {} simulated tests (replicates of {}-nail feeds) met all four criteria. {}</p>\n",
                    number("replicates_passed", r["replicates_passed"], "{}"),
-                   number("replicates", r["replicates"], "{}"),
+                   number("replicates", r["replicates"], "{}"), nails_per_test,
                    sum.settled ? "The verdict is settled: the whole 95 % interval lies on one side of the required probability."
                                : "<strong>Not settled:</strong> the 95 % interval straddles the required probability; run more "
                                  "replicates (or set run.target_half_width) before filing.");
@@ -116,7 +126,8 @@ std::string fates_section(const json& r) {
       {"stopped_by_guard", "stopped by a guard"},
       {"reached_board_unmarked", "reached the board without marking it"},
       {"marked_board", "marked the board (hit or puncture)"},
-      {"escaped", "escaped (over the board or at rest short of it)"}};
+      {"escaped", "escaped (over the board or at rest short of it)"},
+      {"cut_off", "cut off still moving by the run's time, bounce or step limit"}};
   for (const auto& [key, label] : names) {
     const auto& f = r["fates"][key];
     const double share = f["fraction"].get<double>();
@@ -186,7 +197,7 @@ std::string compliance_report_html(const scenario::Scenario& s, const assess::As
   std::string o = page_head("SAE J232 assessment: " + s.title);
   o += fmt::format("<header><h1>SAE J232 thrown-object assessment (simulated)</h1>\n<p class=\"sub\">{} — <code>{}</code></p></header>\n",
                    escape(s.title), escape(s.file));
-  o += verdict_section(sum, r);
+  o += verdict_section(sum, r, s.feed.nails);
   o += criteria_section(sum, r);
   const MarkSample marks = sample_marks(a, 3000);
   o += "<section id=\"hit-map\">\n<h2>2. Where the marks are</h2>\n";

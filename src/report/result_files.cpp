@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <stdexcept>
 
 #include "report/scenario_json.hpp"
+#include "report/text_safety.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::report {
@@ -39,10 +41,11 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
         {"nails", sum.fates[f]}, {"fraction", sum.nails ? static_cast<double>(sum.fates[f]) / sum.nails : 0.0}};
   json assumed = json::array();
   for (const auto& x : assumptions(s)) assumed.push_back({{"assumption", x.what}, {"source", x.source}});
-  return {
+  json result = {
       {"program", "j232 run"},
-      {"verdict", sum.passes ? "passes" : "fails"},
-      {"verdict_settled", sum.settled},
+      {"verdict", verdict_word(sum)},
+      {"verdict_settled", sum.validity.valid && sum.settled},
+      {"invalid_because", sum.validity.reasons},
       {"pass_probability", interval_json(sum.pass)},
       {"required_pass_probability", sum.required},
       {"deciding_criterion", sum.criteria[sum.deciding].name},
@@ -75,27 +78,50 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
         {"wall_time_s", p.wall_seconds},
         {"nails_per_second", p.wall_seconds > 0 ? static_cast<double>(sum.nails) / p.wall_seconds : 0.0}}},
   };
+  json files = json::array();
+  for (const auto& f : p.files) files.push_back({{"name", f.name}, {"bytes", f.bytes}, {"fnv1a64", f.fnv1a64}});
+  result["provenance"]["files"] = files;
+  require_finite(result);
+  return result;
 }
 
-std::string marks_csv(const assess::Assessment& a) {
-  std::string out = "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark\n";
-  out.reserve(out.size() + a.marks.size() * 80);
-  for (const auto& m : a.marks) {
-    const auto& p = m.mark.point;
-    double az = std::atan2(p.y(), p.x()) * 180.0 / units::pi;
-    if (az < 0) az += 360.0;
-    fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{}\n", m.replicate,
-                   m.nail, p.x(), p.y(), p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside",
-                   m.mark.normal_energy, m.mark.puncture ? "puncture" : "hit");
-  }
-  return out;
+std::string marks_csv_header() {
+  return "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark\n";
+}
+
+void append_marks_csv_row(std::string& out, const assess::MarkRow& m) {
+  const auto& p = m.mark.point;
+  double az = std::atan2(p.y(), p.x()) * 180.0 / units::pi;
+  if (az < 0) az += 360.0;
+  fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{}\n", m.replicate, m.nail,
+                 p.x(), p.y(), p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside", m.mark.normal_energy,
+                 m.mark.puncture ? "puncture" : "hit");
+}
+
+const char* verdict_word(const assess::Summary& sum) {
+  if (!sum.validity.valid) return "invalid";
+  return sum.passes ? "passes" : "fails";
+}
+
+void require_finite(const json& j, const std::string& where) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>()))
+    throw std::logic_error(fmt::format("result.json: {} is not a finite number", where.empty() ? "a value" : where));
+  if (j.is_object())
+    for (const auto& [k, v] : j.items()) require_finite(v, where.empty() ? k : where + "." + k);
+  if (j.is_array())
+    for (std::size_t i = 0; i < j.size(); ++i) require_finite(j[i], fmt::format("{}[{}]", where, i));
 }
 
 std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum) {
   std::string out;
-  out += fmt::format("{}\n", s.title);
-  out += fmt::format("VERDICT: {} SAE J232 (as simulated){}\n", sum.passes ? "PASSES" : "FAILS",
-                     sum.settled ? "" : " — not settled: the 95 % interval straddles the required probability");
+  out += fmt::format("{}\n", terminal_safe(s.title));
+  if (!sum.validity.valid) {
+    out += "NO VERDICT: the simulated test is INVALID\n";
+    for (const auto& why : sum.validity.reasons) out += fmt::format("  - {}\n", why);
+  } else {
+    out += fmt::format("VERDICT: {} SAE J232 (as simulated){}\n", sum.passes ? "PASSES" : "FAILS",
+                       sum.settled ? "" : " — not settled: the 95 % interval straddles the required probability");
+  }
   out += fmt::format("  P(pass one test) = {:.3f}  (95 % interval {:.3f} to {:.3f}; required {:.2f}; {} replicates)\n",
                      sum.pass.estimate, sum.pass.low, sum.pass.high, sum.required, sum.replicates);
   out += fmt::format("  {:<20} {:>8} {:>10} {:>17} {:>10}\n", "criterion", "limit", "mean", "5-95 % range", "P(pass)");

@@ -12,11 +12,26 @@ struct Provenance {
   std::string version, git_revision, date, inputs_digest;
   int threads = 0;
   double wall_seconds = 0;
+  struct File {
+    std::string name;
+    std::uint64_t bytes = 0;
+    std::string fnv1a64;
+  };
+  std::vector<File> files;  // the run's other output files: a reader can check the set is whole
 };
 
 nlohmann::ordered_json result_json(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
                                    const Provenance& provenance);
-std::string marks_csv(const assess::Assessment& a);
+// marks.csv is written as the run goes (its rows arrive in order from the runner's sink).
+std::string marks_csv_header();
+void append_marks_csv_row(std::string& out, const assess::MarkRow& row);
+
+// The verdict word of a run: "passes", "fails", or "invalid" (the test did not happen).
+const char* verdict_word(const assess::Summary& sum);
+
+// Throws std::logic_error naming the first non-finite number in `j` (a bug: every
+// number a result holds must be finite).
+void require_finite(const nlohmann::ordered_json& j, const std::string& where = "");
 
 // A few lines for the terminal: verdict, P(pass) and interval, the four shares.
 std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum);

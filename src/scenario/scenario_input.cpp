@@ -17,12 +17,15 @@ using units::Kind;
 namespace {
 
 constexpr double kDegree = units::pi / 180.0;
+// Azimuths may be written beyond one turn ("-90 deg", "450 deg"), but not absurdly so.
+constexpr Range kAnyAzimuth = Range::between(-4 * units::pi, 4 * units::pi);
 
 void read_nail(const TableReader& t, NailSpec& n) {
-  n.length = t.quantity_or("length", Kind::Length, n.length, Range::Positive);
-  n.diameter = t.quantity_or("diameter", Kind::Length, n.diameter, Range::Positive);
-  n.head_diameter = t.quantity_or("head_diameter", Kind::Length, n.head_diameter, Range::Positive);
-  n.mass = t.quantity_or("mass", Kind::Mass, n.mass, Range::Positive);
+  // Plausible for any nail or similar small object a J232-like test could drop.
+  n.length = t.quantity_or("length", Kind::Length, n.length, Range::between(0.005, 0.3));
+  n.diameter = t.quantity_or("diameter", Kind::Length, n.diameter, Range::between(0.0003, 0.03));
+  n.head_diameter = t.quantity_or("head_diameter", Kind::Length, n.head_diameter, Range::between(0.0003, 0.05));
+  n.mass = t.quantity_or("mass", Kind::Mass, n.mass, Range::between(1e-5, 1.0));
   n.length_tolerance = t.quantity_or("length_tolerance", Kind::Length, n.length_tolerance, Range::NonNegative);
   n.mass_tolerance = t.quantity_or("mass_tolerance", Kind::Mass, n.mass_tolerance, Range::NonNegative);
   if (n.length_tolerance >= n.length) throw t.error("length_tolerance", "expected a tolerance smaller than the length");
@@ -31,18 +34,19 @@ void read_nail(const TableReader& t, NailSpec& n) {
   t.refuse_unknown_keys();
 }
 
-void read_feed(const TableReader& t, FeedSpec& f) {
+void read_feed(const TableReader& t, FeedSpec& f, double tip_radius) {
   f.nails = static_cast<int>(t.integer_or("nails", f.nails, 1, 100000));
-  f.drop_height = t.quantity_or("drop_height", Kind::Length, f.drop_height, Range::NonNegative);
-  f.outlet_diameter = t.quantity_or("outlet_diameter", Kind::Length, f.outlet_diameter, Range::NonNegative);
-  f.outlet_speed_max = t.quantity_or("outlet_speed_max", Kind::Speed, f.outlet_speed_max, Range::NonNegative);
+  f.drop_height = t.quantity_or("drop_height", Kind::Length, f.drop_height, Range::between(0, 3));
+  f.outlet_diameter = t.quantity_or("outlet_diameter", Kind::Length, f.outlet_diameter, Range::between(0, 0.3));
+  f.outlet_speed_max = t.quantity_or("outlet_speed_max", Kind::Speed, f.outlet_speed_max, Range::between(0, 10));
   f.tilt_max = t.quantity_or("tilt_max", Kind::Angle, f.tilt_max, Range::NonNegative);
   if (f.tilt_max > 60 * kDegree) throw t.error("tilt_max", "expected at most 60 deg: the nail drops through a tube");
-  f.ground_speed = t.quantity_or("ground_speed", Kind::Speed, f.ground_speed, Range::NonNegative);
-  for (const auto& s : t.array_of_tables("stations")) {
+  f.ground_speed = t.quantity_or("ground_speed", Kind::Speed, f.ground_speed, Range::between(0, 15));
+  for (const auto& s : t.array_of_tables("stations", 360)) {
     FeedStation st;
-    st.radius = s.quantity("radius", Kind::Length, Range::NonNegative);
-    st.azimuth = s.quantity_or("azimuth", Kind::Angle, 0.0);
+    // A station outside the tip circle feeds nails the blade can never strike.
+    st.radius = s.quantity("radius", Kind::Length, Range::between(0, tip_radius));
+    st.azimuth = s.quantity_or("azimuth", Kind::Angle, 0.0, kAnyAzimuth);
     s.refuse_unknown_keys();
     f.stations.push_back(st);
   }
@@ -52,21 +56,21 @@ void read_feed(const TableReader& t, FeedSpec& f) {
 void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry) {
   g.name = t.string_or("name", g.name, {});
   if (with_geometry) {
-    g.azimuth_from = t.quantity("azimuth_from", Kind::Angle);
-    g.azimuth_to = t.quantity("azimuth_to", Kind::Angle);
-    g.bottom = t.quantity_or("bottom", Kind::Length, g.bottom, Range::NonNegative);
+    g.azimuth_from = t.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
+    g.azimuth_to = t.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+    g.bottom = t.quantity_or("bottom", Kind::Length, g.bottom, Range::between(0, 1));
   }
   g.openness = t.quantity_or("openness", Kind::Dimensionless, g.openness, Range::UnitInterval);
   g.pass_speed_factor = t.quantity_or("pass_speed_factor", Kind::Dimensionless, g.pass_speed_factor, Range::UnitInterval);
   g.restitution = t.quantity_or("restitution", Kind::Dimensionless, g.restitution, Range::UnitInterval);
-  g.friction = t.quantity_or("friction", Kind::Dimensionless, g.friction, Range::NonNegative);
+  g.friction = t.quantity_or("friction", Kind::Dimensionless, g.friction, Range::between(0, 2));
 }
 
 void read_housing(const TableReader& t, HousingSpec& h) {
-  h.deck_radius = t.quantity_or("deck_radius", Kind::Length, h.deck_radius, Range::Positive);
-  h.skirt_bottom = t.quantity_or("skirt_bottom", Kind::Length, h.skirt_bottom, Range::NonNegative);
-  h.skirt_depth = t.quantity_or("skirt_depth", Kind::Length, h.skirt_depth, Range::Positive);
-  h.friction = t.quantity_or("friction", Kind::Dimensionless, h.friction, Range::NonNegative);
+  h.deck_radius = t.quantity_or("deck_radius", Kind::Length, h.deck_radius, Range::positive_up_to(10));
+  h.skirt_bottom = t.quantity_or("skirt_bottom", Kind::Length, h.skirt_bottom, Range::between(0, 1));
+  h.skirt_depth = t.quantity_or("skirt_depth", Kind::Length, h.skirt_depth, Range::between(0.001, 1));
+  h.friction = t.quantity_or("friction", Kind::Dimensionless, h.friction, Range::between(0, 2));
   if (auto r = t.table("restitution")) h.restitution = read_restitution(*r);
   for (const auto& g : t.array_of_tables("guards")) {
     GuardSpec guard;
@@ -79,11 +83,11 @@ void read_housing(const TableReader& t, HousingSpec& h) {
   for (const auto& d : t.array_of_tables("deflectors")) {
     DeflectorSpec def;
     def.name = d.string_or("name", def.name, {});
-    def.azimuth_from = d.quantity("azimuth_from", Kind::Angle);
-    def.azimuth_to = d.quantity("azimuth_to", Kind::Angle);
-    def.radius = d.quantity("radius", Kind::Length, Range::Positive);
-    def.bottom = d.quantity("bottom", Kind::Length, Range::NonNegative);
-    def.top = d.quantity("top", Kind::Length, Range::Positive);
+    def.azimuth_from = d.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
+    def.azimuth_to = d.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+    def.radius = d.quantity("radius", Kind::Length, Range::positive_up_to(10));
+    def.bottom = d.quantity("bottom", Kind::Length, Range::between(0, 5));
+    def.top = d.quantity("top", Kind::Length, Range::positive_up_to(5));
     if (def.top <= def.bottom) throw d.error("top", "expected the top above the bottom");
     d.refuse_unknown_keys();
     h.deflectors.push_back(def);
@@ -95,20 +99,20 @@ void read_zone(const TableReader& t, OperatorZoneSpec& z) {
   const std::string kind = t.string_or("kind", "derived", {"derived", "sector"});
   if (kind == "sector") {
     z.kind = OperatorZoneSpec::Kind::Sector;
-    z.azimuth_from = t.quantity("azimuth_from", Kind::Angle);
-    z.azimuth_to = t.quantity("azimuth_to", Kind::Angle);
-    z.bottom = t.quantity_or("bottom", Kind::Length, 0.0, Range::NonNegative);
-    z.top = t.quantity("top", Kind::Length, Range::Positive);
+    z.azimuth_from = t.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
+    z.azimuth_to = t.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+    z.bottom = t.quantity_or("bottom", Kind::Length, 0.0, Range::between(0, 10));
+    z.top = t.quantity("top", Kind::Length, Range::positive_up_to(10));
     if (z.top <= z.bottom) throw t.error("top", "expected the top above the bottom");
   } else {
     z.kind = OperatorZoneSpec::Kind::Derived;
-    z.seat_x = t.quantity_or("seat_x", Kind::Length, z.seat_x);
-    z.seat_y = t.quantity_or("seat_y", Kind::Length, z.seat_y);
-    z.seat_z = t.quantity_or("seat_z", Kind::Length, z.seat_z, Range::NonNegative);
-    z.shoulder_height = t.quantity_or("shoulder_height", Kind::Length, z.shoulder_height, Range::Positive);
-    z.shoulder_half_width = t.quantity_or("shoulder_half_width", Kind::Length, z.shoulder_half_width, Range::NonNegative);
-    z.reach = t.quantity_or("reach", Kind::Length, z.reach, Range::Positive);
-    z.knee_height = t.quantity_or("knee_height", Kind::Length, z.knee_height, Range::Positive);
+    z.seat_x = t.quantity_or("seat_x", Kind::Length, z.seat_x, Range::between(-20, 20));
+    z.seat_y = t.quantity_or("seat_y", Kind::Length, z.seat_y, Range::between(-20, 20));
+    z.seat_z = t.quantity_or("seat_z", Kind::Length, z.seat_z, Range::between(0, 5));
+    z.shoulder_height = t.quantity_or("shoulder_height", Kind::Length, z.shoulder_height, Range::positive_up_to(2));
+    z.shoulder_half_width = t.quantity_or("shoulder_half_width", Kind::Length, z.shoulder_half_width, Range::between(0, 1));
+    z.reach = t.quantity_or("reach", Kind::Length, z.reach, Range::positive_up_to(3));
+    z.knee_height = t.quantity_or("knee_height", Kind::Length, z.knee_height, Range::positive_up_to(2));
   }
   t.refuse_unknown_keys();
 }
@@ -128,14 +132,18 @@ void read_criteria(const TableReader& t, CriteriaSpec& c) {
 
 void read_run(const TableReader& t, RunSpec& r) {
   r.replicates = t.integer_or("replicates", r.replicates, 1, 100'000'000);
-  r.seed = static_cast<unsigned long long>(t.integer_or("seed", static_cast<long long>(r.seed), 0, INT64_MAX));
+  r.seed = t.unsigned64_or("seed", r.seed);
   r.threads = static_cast<int>(t.integer_or("threads", r.threads, 0, 1024));
-  r.target_half_width = t.optional_quantity("target_half_width", Kind::Dimensionless, Range::UnitInterval);
+  // Narrower than 0.001 needs millions of replicates; 0 would never be met.
+  r.target_half_width = t.optional_quantity("target_half_width", Kind::Dimensionless, Range::between(0.001, 0.5));
   r.max_replicates = t.integer_or("max_replicates", r.max_replicates, 1, 100'000'000);
-  r.chord_tolerance = t.quantity_or("chord_tolerance", Kind::Length, r.chord_tolerance, Range::Positive);
-  r.time_limit = t.quantity_or("time_limit", Kind::Time, r.time_limit, Range::Positive);
-  r.max_bounces = static_cast<int>(t.integer_or("max_bounces", r.max_bounces, 0, 10000));
-  r.rest_speed = t.quantity_or("rest_speed", Kind::Speed, r.rest_speed, Range::Positive);
+  // Below 10 um the chord count (and run time) explodes for no gain in accuracy.
+  r.chord_tolerance = t.quantity_or("chord_tolerance", Kind::Length, r.chord_tolerance, Range::between(1e-5, 0.1));
+  // A nail thrown at blade speed reaches the board in well under 0.1 s; shorter limits cut
+  // the test off before it happens.
+  r.time_limit = t.quantity_or("time_limit", Kind::Time, r.time_limit, Range::between(0.1, 60));
+  r.max_bounces = static_cast<int>(t.integer_or("max_bounces", r.max_bounces, 1, 10000));
+  r.rest_speed = t.quantity_or("rest_speed", Kind::Speed, r.rest_speed, Range::between(0.01, 5));
   t.refuse_unknown_keys();
 }
 
@@ -154,8 +162,8 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   auto blade_table = root.table("blade");
   if (!blade_table) throw root.error("blade", "missing; expected a [blade] table");
   s.blade = read_blade(*blade_table);
-  s.geometry.height = blade_table->quantity_or("height", Kind::Length, s.geometry.height, Range::Positive);
-  s.geometry.thickness = blade_table->quantity_or("thickness", Kind::Length, s.geometry.thickness, Range::Positive);
+  s.geometry.height = blade_table->quantity_or("height", Kind::Length, s.geometry.height, Range::between(0.005, 1));
+  s.geometry.thickness = blade_table->quantity_or("thickness", Kind::Length, s.geometry.thickness, Range::between(0.0005, 0.05));
   s.geometry.lift_angle = blade_table->quantity_or("lift_angle", Kind::Angle, s.geometry.lift_angle);
   if (std::abs(s.geometry.lift_angle) > 45 * kDegree) throw blade_table->error("lift_angle", "expected within +/-45 deg");
   blade_table->refuse_unknown_keys();
@@ -163,7 +171,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
 
   if (auto r = root.table("restitution")) s.restitution = read_restitution(*r);
   if (auto n = root.table("nail")) read_nail(*n, s.nail);
-  if (auto f = root.table("feed")) read_feed(*f, s.feed);
+  if (auto f = root.table("feed")) read_feed(*f, s.feed, tip);
   if (s.feed.stations.empty()) s.feed.stations.push_back({std::max(0.0, tip - 0.0508), 0.0});
 
   s.housing.deck_radius = tip + 0.050;
@@ -173,17 +181,17 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
 
   if (auto g = root.table("ground")) {
     s.ground.restitution = g->quantity_or("restitution", Kind::Dimensionless, s.ground.restitution, Range::UnitInterval);
-    s.ground.friction = g->quantity_or("friction", Kind::Dimensionless, s.ground.friction, Range::NonNegative);
-    s.ground.roughness = g->quantity_or("roughness", Kind::Angle, s.ground.roughness, Range::NonNegative);
+    s.ground.friction = g->quantity_or("friction", Kind::Dimensionless, s.ground.friction, Range::between(0, 2));
+    s.ground.roughness = g->quantity_or("roughness", Kind::Angle, s.ground.roughness, Range::between(0, 45 * kDegree));
     g->refuse_unknown_keys();
   }
 
   s.target.top = s.geometry.height + 0.610;
   if (auto t = root.table("target")) {
-    s.target.distance = t->quantity_or("distance", Kind::Length, s.target.distance, Range::Positive);
-    s.target.bottom = t->quantity_or("bottom", Kind::Length, s.target.bottom, Range::NonNegative);
-    s.target.top = t->quantity_or("top", Kind::Length, s.target.top, Range::Positive);
-    s.target.segments = static_cast<int>(t->integer_or("segments", s.target.segments, 16, 100000));
+    s.target.distance = t->quantity_or("distance", Kind::Length, s.target.distance, Range::between(0.05, 10));
+    s.target.bottom = t->quantity_or("bottom", Kind::Length, s.target.bottom, Range::between(0, 5));
+    s.target.top = t->quantity_or("top", Kind::Length, s.target.top, Range::positive_up_to(10));
+    s.target.segments = static_cast<int>(t->integer_or("segments", s.target.segments, 16, 3600));
     if (s.target.top <= s.target.bottom) throw t->error("top", "expected the board's top above its bottom");
     if (tip + s.target.distance <= s.housing.deck_radius)
       throw t->error("distance", "expected the board outside the mower deck");
@@ -191,14 +199,14 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   }
 
   const auto base = std::filesystem::path(file).parent_path();
-  for (const auto& m : root.array_of_tables("meshes")) {
+  for (const auto& m : root.array_of_tables("meshes", 32)) {
     MeshFile mesh;
     const std::string path = m.string_or("path", "", {});
     if (path.empty()) throw m.error("path", "missing; expected the mesh file's path (OBJ, OFF, PLY or STL)");
     mesh.path = (base / path).string();
     mesh.label = m.string_or("label", "", kMeshLabels);
     if (mesh.label.empty()) throw m.error("label", "missing; expected one of ground, housing, deflector, guard, target, operator_zone");
-    mesh.scale = m.quantity_or("scale", Kind::Dimensionless, 1.0, Range::Positive);
+    mesh.scale = m.quantity_or("scale", Kind::Dimensionless, 1.0, Range::between(1e-6, 1e3));
     if (mesh.label == "guard") read_guard(m, mesh.guard, false);
     m.refuse_unknown_keys();
     s.meshes.push_back(mesh);
@@ -207,16 +215,17 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto z = root.table("operator_zone")) read_zone(*z, s.zone);
   if (auto b = root.table("board")) {
     s.board.puncture_energy_per_width =
-        b->quantity_or("puncture_energy_per_width", Kind::EnergyPerLength, s.board.puncture_energy_per_width, Range::Positive);
+        b->quantity_or("puncture_energy_per_width", Kind::EnergyPerLength, s.board.puncture_energy_per_width, Range::between(1, 1e4));
     s.board.hit_fraction = b->quantity_or("hit_fraction", Kind::Dimensionless, s.board.hit_fraction, Range::UnitInterval);
     b->refuse_unknown_keys();
   }
   if (auto c = root.table("criteria")) read_criteria(*c, s.criteria);
   if (auto a = root.table("air")) {
     s.air.drag = a->boolean_or("drag", s.air.drag);
-    s.air.density = a->quantity_or("density", Kind::Density, s.air.density, Range::NonNegative);
-    s.air.cd_normal = a->quantity_or("cd_normal", Kind::Dimensionless, s.air.cd_normal, Range::NonNegative);
-    s.air.cd_axial = a->quantity_or("cd_axial", Kind::Dimensionless, s.air.cd_axial, Range::NonNegative);
+    // Air at any altitude or temperature a mower meets is 0.9-1.4 kg/m^3; water is 1000.
+    s.air.density = a->quantity_or("density", Kind::Density, s.air.density, Range::between(0, 5));
+    s.air.cd_normal = a->quantity_or("cd_normal", Kind::Dimensionless, s.air.cd_normal, Range::between(0, 3));
+    s.air.cd_axial = a->quantity_or("cd_axial", Kind::Dimensionless, s.air.cd_axial, Range::between(0, 3));
     a->refuse_unknown_keys();
   }
   if (auto r = root.table("run")) read_run(*r, s.run);

@@ -1,6 +1,8 @@
 #include "scenario/toml_reader.hpp"
 
+#include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
 #include <sstream>
@@ -50,31 +52,42 @@ std::string TableReader::shown(const toml::node& n) const {
 }
 
 namespace {
-const char* range_words(Range range) {
-  switch (range) {
-    case Range::Positive: return "positive ";
-    case Range::NonNegative: return "non-negative ";
-    case Range::UnitInterval: return "";
-    case Range::Any: return "";
+// An SI bound in words, in the unit a user of that kind of quantity reads most easily.
+std::string bound(units::Kind kind, double v) {
+  using units::Kind;
+  switch (kind) {
+    case Kind::Angle: return fmt::format("{:g} deg", v * 180.0 / units::pi);
+    case Kind::AngularSpeed: return fmt::format("{:g} rpm", v / units::rpm);
+    case Kind::Length: return fmt::format("{:g} m", v);
+    case Kind::Mass: return fmt::format("{:g} kg", v);
+    case Kind::Time: return fmt::format("{:g} s", v);
+    case Kind::Speed: return fmt::format("{:g} m/s", v);
+    case Kind::Inertia: return fmt::format("{:g} kg m^2", v);
+    case Kind::Energy: return fmt::format("{:g} J", v);
+    case Kind::EnergyPerLength: return fmt::format("{:g} J/m", v);
+    case Kind::Acceleration: return fmt::format("{:g} m/s^2", v);
+    case Kind::Density: return fmt::format("{:g} kg/m^3", v);
+    case Kind::Dimensionless: return fmt::format("{:g}", v);
   }
-  return "";
-}
-bool in_range(double v, Range range) {
-  switch (range) {
-    case Range::Positive: return v > 0.0;
-    case Range::NonNegative: return v >= 0.0;
-    case Range::UnitInterval: return v >= 0.0 && v <= 1.0;
-    case Range::Any: return true;
-  }
-  return true;
+  return fmt::format("{:g}", v);
 }
 }  // namespace
+
+std::string expected_words(units::Kind kind, const Range& r) {
+  std::string what = fmt::format("expected {}", units::describe(kind));
+  const bool low = std::isfinite(r.low), high = std::isfinite(r.high);
+  if (low && high && r.low_open) return what + fmt::format(", above {} and at most {}", bound(kind, r.low), bound(kind, r.high));
+  if (low && high) return what + fmt::format(", from {} to {}", bound(kind, r.low), bound(kind, r.high));
+  if (low && r.low == 0.0) return what + (r.low_open ? ", greater than zero" : ", zero or more");
+  if (low) return what + fmt::format(", {} {}", r.low_open ? "above" : "at least", bound(kind, r.low));
+  if (high) return what + fmt::format(", at most {}", bound(kind, r.high));
+  return what;
+}
 
 std::optional<double> TableReader::optional_quantity(std::string_view key, units::Kind kind, Range range) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
-  const std::string expected = fmt::format("expected {}{}{}", range_words(range), units::describe(kind),
-                                           range == Range::UnitInterval ? " between 0 and 1" : "");
+  const std::string expected = expected_words(kind, range);
   double value = 0.0;
   if (auto s = n->value<std::string>()) {
     try {
@@ -89,13 +102,13 @@ std::optional<double> TableReader::optional_quantity(std::string_view key, units
   } else {
     throw error(key, expected);
   }
-  if (!std::isfinite(value) || !in_range(value, range)) throw error(key, expected);
+  if (!std::isfinite(value) || !range.contains(value)) throw error(key, expected);
   return value;
 }
 
 double TableReader::quantity(std::string_view key, units::Kind kind, Range range) const {
   if (auto v = optional_quantity(key, kind, range)) return *v;
-  throw error(key, fmt::format("missing; expected {}{}", range_words(range), units::describe(kind)));
+  throw error(key, "missing; " + expected_words(kind, range));
 }
 
 double TableReader::quantity_or(std::string_view key, units::Kind kind, double fallback, Range range) const {
@@ -132,6 +145,28 @@ long long TableReader::integer_or(std::string_view key, long long fallback, long
   return v;
 }
 
+std::optional<std::uint64_t> parse_unsigned64(std::string_view text) {
+  std::uint64_t v = 0;
+  const char* last = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), last, v);
+  if (text.empty() || ec != std::errc() || ptr != last) return std::nullopt;
+  return v;
+}
+
+std::uint64_t TableReader::unsigned64_or(std::string_view key, std::uint64_t fallback) const {
+  const toml::node* n = node(key);
+  if (!n) return fallback;
+  const std::string expected = "expected a whole number from 0 to 18446744073709551615 (larger than 2^63: as a string)";
+  if (n->is_integer()) {
+    const long long v = *n->value<long long>();
+    if (v < 0) throw error(key, expected);
+    return static_cast<std::uint64_t>(v);
+  }
+  if (auto s = n->value_exact<std::string>())
+    if (auto v = parse_unsigned64(*s)) return *v;
+  throw error(key, expected);
+}
+
 std::optional<TableReader> TableReader::table(std::string_view key) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
@@ -139,12 +174,14 @@ std::optional<TableReader> TableReader::table(std::string_view key) const {
   return TableReader(*n->as_table(), file_, full(key));
 }
 
-std::vector<TableReader> TableReader::array_of_tables(std::string_view key) const {
+std::vector<TableReader> TableReader::array_of_tables(std::string_view key, std::size_t max) const {
   const toml::node* n = node(key);
   std::vector<TableReader> out;
   if (!n) return out;
   const toml::array* array = n->as_array();
   if (!array) throw error(key, "expected an array of tables ([[" + full(key) + "]])");
+  if (array->size() > max)
+    throw error(key, fmt::format("{} tables; expected at most {} [[{}]] tables", array->size(), max, full(key)));
   for (std::size_t i = 0; i < array->size(); ++i) {
     const toml::table* t = (*array)[i].as_table();
     if (!t) throw error(key, "expected an array of tables ([[" + full(key) + "]])");
@@ -158,13 +195,26 @@ void TableReader::refuse_unknown_keys() const {
     if (used_->count(k.str())) continue;
     std::string known;
     for (const auto& u : *used_) known += (known.empty() ? "" : ", ") + u;
-    throw InputError(file_, static_cast<int>(v.source().begin.line), full(k.str()), "",
+    // A key set from the command line (--set) has no place in the file: blame the option.
+    const bool from_command_line = !v.source().path;
+    throw InputError(from_command_line ? std::string() : file_,
+                     from_command_line ? std::nullopt : std::optional<int>(static_cast<int>(v.source().begin.line)),
+                     from_command_line ? fmt::format("option for {}", full(k.str())) : full(k.str()), "",
                      known.empty() ? std::string("unknown key (this table takes no keys)")
                                    : fmt::format("unknown key; this table takes: {}", known));
   }
 }
 
 toml::table parse_toml_file(const std::string& file) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (ec || !std::filesystem::exists(status)) throw InputError::file_problem(file, std::nullopt, "no such file");
+  if (std::filesystem::is_directory(status))
+    throw InputError::file_problem(file, std::nullopt, "is a folder; expected a scenario file (TOML)");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError::file_problem(file, std::nullopt, "not a regular file; expected a scenario file (TOML)");
+  if (std::filesystem::file_size(file, ec) > (4u << 20))
+    throw InputError::file_problem(file, std::nullopt, "larger than 4 MB; a scenario file is a page of settings");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError::file_problem(file, std::nullopt, "cannot open the file for reading");
   std::stringstream buffer;

@@ -93,7 +93,18 @@ void add_target_ring(Soup& soup, const scenario::Scenario& s, const OperatorZone
 
 // Splits triangles in four until no edge is longer than max_edge, so that a target
 // mesh's faces are small enough to carry the operator zone's outline.
-Soup subdivide(const Soup& in, double max_edge) {
+Soup subdivide(const Soup& in, double max_edge, std::size_t max_triangles) {
+  // Count first: each halving of the longest edge makes four triangles of one.
+  double count = 0;
+  for (const auto& tri : in.triangles) {
+    const Vec3 &p0 = in.points[tri[0]], &p1 = in.points[tri[1]], &p2 = in.points[tri[2]];
+    const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+    count += longest <= max_edge ? 1.0 : std::pow(4.0, std::ceil(std::log2(longest / max_edge)));
+  }
+  if (count > static_cast<double>(max_triangles))
+    throw std::runtime_error(fmt::format("subdividing this target mesh to {:g} m faces (to carry the operator zone) would "
+                                         "make {:.3g} triangles, more than {}: is `scale` right for the file's units?",
+                                         max_edge, count, max_triangles));
   Soup out;
   std::vector<std::array<Vec3, 3>> work;
   for (std::size_t t = 0; t < in.triangles.size(); ++t) {
@@ -140,11 +151,13 @@ Soup build_scene_soup(const scenario::Scenario& s) {
       Soup part;
       try {
         part = read_mesh(m.path, label, m.scale, label == Surface::Guard ? guard++ : 0);
+        // Plain target meshes carry the scenario's operator zone, face by (small) face.
+        if (label == Surface::TargetOutside) part = subdivide(part, 0.05, kMaxSceneTriangles - soup.triangles.size());
+        if (soup.triangles.size() + part.triangles.size() > kMaxSceneTriangles)
+          throw std::runtime_error(fmt::format("{}: the scene would hold more than {} triangles", m.path, kMaxSceneTriangles));
       } catch (const std::runtime_error& e) {
         throw scenario::InputError(s.file, std::nullopt, fmt::format("meshes[{}].path", i + 1), "", e.what());
       }
-      // Plain target meshes carry the scenario's operator zone, face by (small) face.
-      if (label == Surface::TargetOutside) part = subdivide(part, 0.05);
       if (label == Surface::TargetOutside)
         for (std::size_t t = 0; t < part.triangles.size(); ++t) {
           const auto& tri = part.triangles[t];

@@ -173,7 +173,9 @@ std::vector<double> assessment_point(const SweepSpec& spec, const Point& p, cons
   if (spec.seed) sc.run.seed = *spec.seed;
   const assess::Simulator sim(sc);
   const assess::Assessment a = assess::run_assessment(sim, threads);
-  const assess::Summary sum = assess::summarise(a, sc.criteria);
+  const assess::Summary sum = assess::summarise(a, sc);
+  // A point where the test did not really happen has no P(pass) to plot.
+  if (!sum.validity.valid) throw point_error(spec, p, "the simulated test is invalid here: " + sum.validity.reasons.front());
   required = sum.required;
   return {static_cast<double>(sum.replicates), sum.pass.estimate, sum.pass.low, sum.pass.high,
           sum.criteria[0].mean_share, sum.criteria[1].mean_share, sum.criteria[2].mean_share, sum.criteria[3].mean_share,

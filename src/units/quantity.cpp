@@ -44,11 +44,20 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+// Exponents are small whole numbers in any real unit ("kg m^2", "m/s^2"); bounding
+// them keeps the dimension arithmetic far from integer overflow and the factor finite.
+constexpr int kMaxExponent = 12;
+
 Dimension scaled(Dimension d, int power) {
   return {d.mass * power, d.length * power, d.time * power, d.angle * power};
 }
 Dimension plus(Dimension a, Dimension b) {
   return {a.mass + b.mass, a.length + b.length, a.time + b.time, a.angle + b.angle};
+}
+bool bounded(Dimension d) {
+  for (int e : {d.mass, d.length, d.time, d.angle})
+    if (e < -kMaxExponent * 4 || e > kMaxExponent * 4) return false;
+  return true;
 }
 
 UnitValue named(std::string_view name, std::string_view whole) {
@@ -125,13 +134,16 @@ UnitValue parse_unit(std::string_view expression) {
       const char* first = expression.data() + j;
       const char* last = expression.data() + expression.size();
       auto [ptr, ec] = std::from_chars(first, last, power);
-      if (ec != std::errc() || power == 0)
-        throw UnitError(fmt::format("bad exponent in unit \"{}\" (expected a non-zero whole number after '^')", whole));
+      if (ec != std::errc() || power == 0 || power < -kMaxExponent || power > kMaxExponent)
+        throw UnitError(fmt::format("bad exponent in unit \"{}\" (expected a non-zero whole number from -{} to {} after '^')",
+                                    whole, kMaxExponent, kMaxExponent));
       j = static_cast<std::size_t>(ptr - expression.data());
     }
     if (divide) power = -power;
     result.factor *= std::pow(u.factor, power);
     result.dimension = plus(result.dimension, scaled(u.dimension, power));
+    if (!bounded(result.dimension) || !std::isfinite(result.factor) || result.factor == 0.0)
+      throw UnitError(fmt::format("unit \"{}\" is out of any physical range", whole));
     divide = false;  // '/' binds to the next factor only: "kg/m s" is kg s / m
     expect_factor = false;
     i = j;
@@ -158,7 +170,9 @@ double parse(std::string_view text, Kind kind) {
   const UnitValue u = parse_unit(unit);
   if (!(u.dimension == dimension_of(kind)))
     throw UnitError(fmt::format("\"{}\" has the wrong kind of unit; expected {}", text, describe(kind)));
-  return number * u.factor;
+  const double value = number * u.factor;
+  if (!std::isfinite(value)) throw UnitError(fmt::format("\"{}\" is not a finite number in SI units", text));
+  return value;
 }
 
 }  // namespace j232::units
