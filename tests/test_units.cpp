@@ -51,3 +51,17 @@ TEST_CASE("units: exponents are bounded, so no unit overflows (audit finding 6)"
   CHECK_THROWS(parse("1e300 mi^3 / mm^2", Kind::Length));  // overflows to infinity in SI
   CHECK(parse("2 m^12 / m^11", Kind::Length) == Approx(2.0));
 }
+
+#include "report/text_safety.hpp"
+
+TEST_CASE("text safety: terminal, CSV, links and folder names (audit finding 8)", "[robust]") {
+  using namespace j232::report;
+  CHECK(terminal_safe("a\x1b[31mb\x07") == "a?[31mb?");
+  CHECK(csv_text_cell("=HYPERLINK(\"x\")") == "\"'=HYPERLINK(\"\"x\"\")\"");
+  CHECK(csv_text_cell("-2+3") == "'-2+3");
+  CHECK(csv_text_cell("plain") == "plain");
+  CHECK(relative_url("javascript:alert(3)/report.html") == "./javascript%3Aalert%283%29/report.html");
+  CHECK(safe_folder_name("..") == "__");
+  CHECK(safe_folder_name("") == "scenario");
+  CHECK(safe_folder_name("a b/c") == "a_b_c");
+}

@@ -122,6 +122,11 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
     out += fmt::format("VERDICT: {} SAE J232 (as simulated){}\n", sum.passes ? "PASSES" : "FAILS",
                        sum.settled ? "" : " — not settled: the 95 % interval straddles the required probability");
   }
+  if (!sum.validity.valid) {
+    out += fmt::format("  nails: {} fed, {} struck; {} cut off. The numbers in the report describe this broken run.\n", sum.nails,
+                       sum.struck, sum.fates[static_cast<std::size_t>(flight::Fate::CutOff)]);
+    return out;
+  }
   out += fmt::format("  P(pass one test) = {:.3f}  (95 % interval {:.3f} to {:.3f}; required {:.2f}; {} replicates)\n",
                      sum.pass.estimate, sum.pass.low, sum.pass.high, sum.required, sum.replicates);
   out += fmt::format("  {:<20} {:>8} {:>10} {:>17} {:>10}\n", "criterion", "limit", "mean", "5-95 % range", "P(pass)");

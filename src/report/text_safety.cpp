@@ -16,7 +16,7 @@ std::string terminal_safe(std::string_view text) {
 }
 
 std::string csv_text_cell(std::string_view text) {
-  std::string cell(text);
+  std::string cell = terminal_safe(text);
   if (!cell.empty() && (cell[0] == '=' || cell[0] == '+' || cell[0] == '-' || cell[0] == '@' || cell[0] == '\t' ||
                         cell[0] == '\r'))
     cell = "'" + cell;
@@ -44,7 +44,10 @@ std::string safe_folder_name(std::string_view stem) {
     const auto u = static_cast<unsigned char>(c);
     out += std::isalnum(u) || c == '-' || c == '_' || c == '.' ? c : '_';
   }
-  while (!out.empty() && out.front() == '.') out.front() = '_';
+  for (char& c : out) {
+    if (c != '.') break;
+    c = '_';
+  }
   if (out.size() > 100) out.resize(100);
   return out.empty() ? std::string("scenario") : out;
 }
