@@ -123,7 +123,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   marks.close();
   const assess::Summary sum = assess::summarise(a, s);
 
-  report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds};
+  report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds, {}};
   p.files.push_back({"marks.csv", marks.bytes(), marks.digest()});
   // The report shows result.json's numbers; its own size and digest go into result.json.
   RunOutcome outcome{report::result_json(s, a, sum, p), report::summary_text(s, sum)};
