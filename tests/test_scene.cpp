@@ -116,7 +116,7 @@ TEST_CASE("scene: the operator-zone share converges to the sector's fraction of 
     }
   const scene::Scene sc(ring);
   std::vector<scenario::GuardSpec> guards(1);
-  const flight::FlightContext ctx{&sc, &s, 100.0, 0.65, &guards};
+  const flight::FlightContext ctx{&sc, &s, 100.0, 0.65, 0.0, &guards};
   int zone = 0, marks = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i) {
@@ -133,6 +133,29 @@ TEST_CASE("scene: the operator-zone share converges to the sector's fraction of 
   REQUIRE(marks == n);  // 10 J broadside against a 5.6 J puncture threshold: every nail marks
   const double p = 80.0 / 360.0, share = static_cast<double>(zone) / marks;
   CHECK(std::abs(share - p) < 4 * std::sqrt(p * (1 - p) / marks));
+}
+
+TEST_CASE("counted height: J232 counts only marks above the blade plane", "[scene][board]") {
+  // Nails thrown level at the board from the blade plane, 5 cm above and 5 cm below the
+  // counted height: the marks are located either way, but only the upper ones count.
+  const auto s = basic();
+  const scene::Scene sc(scene::build_scene_soup(s));
+  std::vector<scenario::GuardSpec> guards(1);
+  const double counted = s.geometry.height;
+  const flight::FlightContext ctx{&sc, &s, 100.0, 0.65, counted, &guards};
+  for (const double dz : {0.05, -0.05}) {
+    random::Stream rng(3, 0, 0, random::Purpose::Test);
+    flight::Body b;
+    b.position = {0.9, 0, counted + dz};  // outside the deck, inside the board
+    b.velocity = {100, 0, 0};
+    b.axis = Vec3::UnitZ();
+    const auto r = flight::fly(b, 0.0508, 0.00251, 0.002, {}, ctx, rng);
+    REQUIRE(r.mark_count == 1);
+    CHECK(r.marks[0].counted == (dz > 0));
+    CHECK(r.uncounted_marks == (dz > 0 ? 0 : 1));
+    CHECK(r.hits_zone + r.punctures_zone + r.hits_outside + r.punctures_outside == (dz > 0 ? 1 : 0));
+    CHECK(r.fate == (dz > 0 ? flight::Fate::MarkedBoard : flight::Fate::MarkedBelowCountedHeight));
+  }
 }
 
 TEST_CASE("operator zone: derived from the reach envelope of a seated operator", "[scene][zone]") {

@@ -93,6 +93,7 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
       into.shares[k].add(j.shares[k]);
     }
     into.marks += t.marks;
+    into.uncounted_marks += t.uncounted_marks;
     for (int f = 0; f < flight::kFates; ++f) into.fates[f] += t.fates[f];
     // This replicate's located marks, in nail order.
     const std::size_t begin = next_mark;

@@ -47,7 +47,8 @@ struct Assessment {
   std::uint64_t replicates = 0, passed = 0;
   std::array<std::uint64_t, kCategories> criterion_passed{};
   std::array<ShareDistribution, kCategories> shares;
-  std::uint64_t marks = 0;  // all marks, located or not
+  std::uint64_t marks = 0;            // counted marks, located or not
+  std::uint64_t uncounted_marks = 0;  // marks below the counted height
   std::array<std::uint64_t, flight::kFates> fates{};
 
   std::vector<MarkRow> mark_sample;          // in (replicate, nail) order

@@ -27,17 +27,16 @@ Simulator::Simulator(const scenario::Scenario& s)
   } catch (const std::invalid_argument& e) {
     throw scenario::InputError(s.file, std::nullopt, s.meshes.empty() ? "housing" : "meshes", "", e.what());
   }
-  if (s.meshes.empty()) {
-    guards_ = s.housing.guards;
-  } else {
-    for (const auto& m : s.meshes)
-      if (m.label == "guard") guards_.push_back(m.guard);
-  }
+  // Numbered as the scene numbers them: mesh guards first, then the generated ones.
+  for (const auto& m : s.meshes)
+    if (m.label == "guard") guards_.push_back(m.guard);
+  if (!scene::mesh_roles(s).housing) guards_.insert(guards_.end(), s.housing.guards.begin(), s.housing.guards.end());
   if (guards_.empty()) guards_.emplace_back();
   context_.scene = scene_.get();
   context_.scenario = &scenario_;
-  context_.deck_radius = s.meshes.empty() ? s.housing.deck_radius : s.blade.tip_radius() + 0.05;
-  context_.escape_radius = scene::target_radius(s) + 1.0;
+  context_.deck_radius = scene::mesh_roles(s).housing ? s.blade.tip_radius() + 0.05 : s.housing.deck_radius;
+  context_.counted_height = s.counted_height();
+  context_.escape_radius = scene::escape_radius(s, scene_->soup());
   context_.guards = &guards_;
 }
 

@@ -41,6 +41,7 @@ Summary summarise(const Assessment& a, const scenario::Scenario& scenario) {
   s.struck = a.struck;
   s.required = criteria.required_pass_probability;
   s.marks = a.marks;
+  s.uncounted_marks = a.uncounted_marks;
   s.fates = a.fates;
   s.passed = a.passed;
   s.pass = wilson(a.passed, s.replicates);

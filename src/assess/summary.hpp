@@ -26,7 +26,7 @@ struct Validity {
 };
 
 struct Summary {
-  std::uint64_t replicates = 0, passed = 0, nails = 0, struck = 0, marks = 0;
+  std::uint64_t replicates = 0, passed = 0, nails = 0, struck = 0, marks = 0, uncounted_marks = 0;
   Interval pass;
   double required = 0;
   bool passes = false;

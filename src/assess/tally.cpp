@@ -22,7 +22,8 @@ void ReplicateTally::add(const flight::FlightResult& nail) {
   counts[PuncturesZone] += static_cast<std::uint32_t>(nail.punctures_zone);
   counts[HitsOutside] += static_cast<std::uint32_t>(nail.hits_outside);
   counts[PuncturesOutside] += static_cast<std::uint32_t>(nail.punctures_outside);
-  marks += static_cast<std::uint32_t>(nail.mark_count);
+  marks += static_cast<std::uint32_t>(nail.mark_count - nail.uncounted_marks);
+  uncounted_marks += static_cast<std::uint32_t>(nail.uncounted_marks);
   ++fates[static_cast<std::size_t>(nail.fate)];
 }
 

@@ -17,7 +17,8 @@ double category_limit(const scenario::CriteriaSpec& c, int category);
 struct ReplicateTally {
   std::array<std::uint32_t, kCategories> counts{};
   std::uint32_t nails = 0;
-  std::uint32_t marks = 0;
+  std::uint32_t marks = 0;            // counted marks
+  std::uint32_t uncounted_marks = 0;  // below the counted height
   std::array<std::uint32_t, flight::kFates> fates{};
 
   void add(const flight::FlightResult& nail);

@@ -14,6 +14,7 @@ const char* fate_name(Fate f) {
     case Fate::StoppedByGuard: return "stopped_by_guard";
     case Fate::ReachedBoardUnmarked: return "reached_board_unmarked";
     case Fate::MarkedBoard: return "marked_board";
+    case Fate::MarkedBelowCountedHeight: return "marked_below_counted_height";
     case Fate::Escaped: return "escaped";
     case Fate::CutOff: return "cut_off";
   }
@@ -65,9 +66,14 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   const double t_end = start.time + s.run.time_limit;
 
   auto record_mark = [&](const Vec3& point, double energy, bool zone, bool puncture) {
-    if (r.mark_count < FlightResult::kMaxMarks) r.marks[static_cast<std::size_t>(r.mark_count)] = {point, energy, zone, puncture};
+    const bool counted = point.z() >= ctx.counted_height;
+    if (r.mark_count < FlightResult::kMaxMarks)
+      r.marks[static_cast<std::size_t>(r.mark_count)] = {point, energy, zone, puncture, counted};
     ++r.mark_count;
-    (zone ? (puncture ? r.punctures_zone : r.hits_zone) : (puncture ? r.punctures_outside : r.hits_outside)) += 1;
+    if (!counted)
+      ++r.uncounted_marks;
+    else
+      (zone ? (puncture ? r.punctures_zone : r.hits_zone) : (puncture ? r.punctures_outside : r.hits_outside)) += 1;
   };
 
   // What the surface at `hit` does to the nail arriving as `b`. Returns false when the nail stops.
@@ -194,8 +200,10 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   r.flight_time = b.time - start.time;
   r.end_position = b.position;
   const double horizontal = std::hypot(b.position.x(), b.position.y());
-  if (r.mark_count > 0)
+  if (r.mark_count > r.uncounted_marks)
     r.fate = Fate::MarkedBoard;
+  else if (r.mark_count > 0)
+    r.fate = Fate::MarkedBelowCountedHeight;
   else if (r.non_finite || (cut_off && !at_board))
     r.fate = Fate::CutOff;
   else if (at_board)

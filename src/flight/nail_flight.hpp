@@ -23,11 +23,14 @@ namespace j232::flight {
 
 // Where a nail went: not struck by the blade; at rest under the mower (contained by the
 // housing, or last turned back by a guard); caught by the board without a mark; marked
-// the board; escaped (over the board, or at rest outside the mower short of it); or cut
+// the board where J232 counts it; marked it only below the counted height (J232 does not
+// count marks below the blade plane); escaped (over the board, or at rest outside the mower short of it); or cut
 // off still moving by the run's limits (time, bounces, steps) or a non-finite state. A
 // cut-off nail's end is unknown, so too many of them make a run invalid.
-enum class Fate : std::uint8_t { NotStruck, Contained, StoppedByGuard, ReachedBoardUnmarked, MarkedBoard, Escaped, CutOff };
-inline constexpr int kFates = 7;
+enum class Fate : std::uint8_t {
+  NotStruck, Contained, StoppedByGuard, ReachedBoardUnmarked, MarkedBoard, MarkedBelowCountedHeight, Escaped, CutOff
+};
+inline constexpr int kFates = 8;
 // Chords per flight before the nail is cut off: a nail at rest takes a few hundred at most.
 inline constexpr int kMaxFlightSteps = 200000;
 const char* fate_name(Fate f);
@@ -37,14 +40,17 @@ struct MarkRecord {
   double normal_energy = 0;     // J
   bool in_zone = false;
   bool puncture = false;
+  bool counted = true;          // at or above the counted height (SAE J232: the blade plane)
 };
 
 struct FlightResult {
   Fate fate = Fate::Escaped;
   static constexpr int kMaxMarks = 4;  // marks beyond this are counted but not located
   std::array<MarkRecord, kMaxMarks> marks{};
-  int mark_count = 0;
+  int mark_count = 0;  // every mark, counted or not
+  // Counted marks only (at or above the counted height), by category; and the others.
   int hits_zone = 0, punctures_zone = 0, hits_outside = 0, punctures_outside = 0;
+  int uncounted_marks = 0;
   // The first arrival at the board, marked or not: kinetic energy along the board's
   // normal and that energy per presented width (what the board model compares).
   double board_energy = -1;            // J; < 0: never reached the board
@@ -62,6 +68,7 @@ struct FlightContext {
   const scenario::Scenario* scenario = nullptr;
   double escape_radius = 0;  // horizontal distance at which the nail has left the test
   double deck_radius = 0;
+  double counted_height = 0;  // marks below it are not counted (Scenario::counted_height)
   const std::vector<scenario::GuardSpec>* guards = nullptr;  // indexed by the scene's guard index
 };
 

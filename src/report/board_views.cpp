@@ -14,7 +14,8 @@ namespace j232::report {
 namespace {
 
 constexpr double kDeg = 180.0 / units::pi;
-const std::string kHitColour = "#0072B2", kPunctureColour = "#D55E00", kZoneColour = "#E69F00", kBoardColour = "#8a8a8a";
+const std::string kHitColour = "#0072B2", kPunctureColour = "#D55E00", kZoneColour = "#E69F00", kBoardColour = "#8a8a8a",
+                  kUncountedColour = "#b8b8b8";
 
 // The board unrolled onto a grid of 1 deg x 1 cm cells; each cell says whether a target
 // triangle (and which label) covers its centre. Drawn as runs of cells: a few hundred
@@ -88,14 +89,19 @@ struct BoardRaster {
 };
 
 void draw_marks(Chart& chart, const MarkSample& m, bool plan) {
-  std::vector<double> hx, hy, px, py;
+  std::vector<double> hx, hy, px, py, ux, uy;
   for (const auto* row : m.rows) {
     const auto& p = row->mark.point;
     const double x = plan ? p.x() : azimuth_deg(p.x(), p.y());
     const double y = plan ? p.y() : p.z();
+    if (!row->mark.counted) {
+      ux.push_back(x), uy.push_back(y);
+      continue;
+    }
     (row->mark.puncture ? px : hx).push_back(x);
     (row->mark.puncture ? py : hy).push_back(y);
   }
+  if (!ux.empty()) chart.points(ux, uy, kUncountedColour, fmt::format("below the blade plane, not counted ({})", ux.size()), 1.6);
   chart.points(hx, hy, kHitColour, fmt::format("hit ({})", hx.size()), 1.8);
   chart.points(px, py, kPunctureColour, fmt::format("puncture ({})", px.size()), 2.6);
 }
@@ -114,7 +120,7 @@ double azimuth_deg(double x, double y) { return std::atan2(y, x) * kDeg; }
 MarkSample sample_marks(const assess::Assessment& a, std::size_t max_marks) {
   MarkSample m;
   m.replicates = a.replicates;
-  m.marks = static_cast<std::size_t>(a.marks - a.unlocated_marks);
+  m.marks = static_cast<std::size_t>(a.marks + a.uncounted_marks - a.unlocated_marks);
   // The runner kept the marks of its first replicates; take as many whole replicates of
   // those as fit in max_marks.
   const auto& kept = a.mark_sample;
@@ -138,6 +144,8 @@ std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, co
   BoardRaster(soup).draw(chart);
   draw_marks(chart, marks, false);
   chart.hline(s.geometry.height, "#000", fmt::format("blade plane ({:.0f} mm)", 1000 * s.geometry.height));
+  if (s.criteria.counted_height)
+    chart.hline(s.counted_height(), "#444", fmt::format("counted from {:.0f} mm (departs from J232)", 1000 * s.counted_height()));
   for (std::size_t i = 0; i < s.feed.stations.size(); ++i)
     chart.vline(s.feed.stations[i].azimuth * kDeg, "#009E73", s.feed.stations.size() > 1 ? fmt::format("feed {}", i + 1) : "feed station");
   chart.x_range(-180, 180);

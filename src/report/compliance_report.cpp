@@ -83,9 +83,15 @@ std::string criteria_section(const assess::Summary& sum, const json& r) {
                      deciding ? "<strong>decides the verdict</strong>" : "");
   }
   o += "</tbody></table>\n";
-  o += fmt::format("<p>Marks: {} in all, {} per nail fed ({} could not be located: more than four marks from one nail).</p>\n",
+  o += fmt::format("<p>Counted marks: {} in all, {} per nail fed ({} could not be located: more than four marks from one "
+                   "nail). SAE J232 counts only marks above the plane of the blade tip circle: marks from {} m up are counted; "
+                   "{} marks lower on the board were not (greyed on the hit map).</p>\n",
                    number("marks", r["marks"], "{}"), number("marks_per_nail", r["marks_per_nail"], "{:.4f}"),
-                   number("marks_not_located", r["marks_not_located"], "{}"));
+                   number("marks_not_located", r["marks_not_located"], "{}"),
+                   number("counted_height_m", r["counted_height_m"], "{:.3f}"),
+                   number("marks_below_counted_height", r["marks_below_counted_height"], "{}"));
+  for (const auto& d : r["departures_from_j232"])
+    o += fmt::format("<p class=\"warning\"><strong>Departs from SAE J232:</strong> {}.</p>\n", escape(d.get<std::string>()));
   o += "</section>\n";
   return o;
 }
@@ -125,7 +131,8 @@ std::string fates_section(const json& r) {
       {"contained_by_housing", "contained by the housing (at rest under the deck)"},
       {"stopped_by_guard", "stopped by a guard"},
       {"reached_board_unmarked", "reached the board without marking it"},
-      {"marked_board", "marked the board (hit or puncture)"},
+      {"marked_board", "marked the board where J232 counts (hit or puncture)"},
+      {"marked_below_counted_height", "marked the board only below the blade plane (not counted)"},
       {"escaped", "escaped (over the board or at rest short of it)"},
       {"cut_off", "cut off still moving by the run's time, bounce or step limit"}};
   for (const auto& [key, label] : names) {

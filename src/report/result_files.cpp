@@ -24,6 +24,18 @@ json histogram_json(const assess::Histogram& h, const char* unit) {
 }
 }  // namespace
 
+std::vector<std::string> departures_from_j232(const scenario::Scenario& s) {
+  std::vector<std::string> d;
+  if (s.criteria.limits_depart_from_j232())
+    d.push_back(fmt::format("criteria limits {:g} %, {:g} %, {:g} %, {:g} % instead of SAE J232's 20 %, 0.5 %, 15 %, 5 %",
+                            100 * s.criteria.hits_zone, 100 * s.criteria.punctures_zone, 100 * s.criteria.hits_outside,
+                            100 * s.criteria.punctures_outside));
+  if (s.criteria.counted_height)
+    d.push_back(fmt::format("marks counted from {:.0f} mm above ground instead of from the blade plane ({:.0f} mm)",
+                            1000 * *s.criteria.counted_height, 1000 * s.geometry.height));
+  return d;
+}
+
 json result_json(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
                  const Provenance& p) {
   json criteria = json::array();
@@ -50,6 +62,8 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"required_pass_probability", sum.required},
       {"deciding_criterion", sum.criteria[sum.deciding].name},
       {"denominator", s.criteria.denominator == scenario::CriteriaSpec::Denominator::Marks ? "marks" : "nails_fed"},
+      {"counted_height_m", s.counted_height()},
+      {"departures_from_j232", departures_from_j232(s)},
       {"criteria", criteria},
       {"replicates", sum.replicates},
       {"replicates_passed", sum.passed},
@@ -57,6 +71,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"nails_struck", sum.struck},
       {"marks", sum.marks},
       {"marks_per_nail", sum.marks_per_nail},
+      {"marks_below_counted_height", a.uncounted_marks},
       {"marks_not_located", a.unlocated_marks},
       {"fates", fates},
       {"exit_speed", histogram_json(a.exit_speed, "m/s")},
@@ -86,16 +101,16 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
 }
 
 std::string marks_csv_header() {
-  return "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark\n";
+  return "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark,counted\n";
 }
 
 void append_marks_csv_row(std::string& out, const assess::MarkRow& m) {
   const auto& p = m.mark.point;
   double az = std::atan2(p.y(), p.x()) * 180.0 / units::pi;
   if (az < 0) az += 360.0;
-  fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{}\n", m.replicate, m.nail,
+  fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{},{}\n", m.replicate, m.nail,
                  p.x(), p.y(), p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside", m.mark.normal_energy,
-                 m.mark.puncture ? "puncture" : "hit");
+                 m.mark.puncture ? "puncture" : "hit", m.mark.counted ? "yes" : "below_counted_height");
 }
 
 const char* verdict_word(const assess::Summary& sum) {
@@ -136,8 +151,11 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
                        100 * cs.mean_share, fmt::format("{:.2f}-{:.2f} %", 100 * cs.q05, 100 * cs.q95),
                        cs.pass.estimate, c == sum.deciding ? "  <- decides" : "");
   }
-  out += fmt::format("  nails: {} fed, {} struck ({:.1f} %), {:.3f} marks per nail\n", sum.nails, sum.struck,
-                     sum.nails ? 100.0 * sum.struck / sum.nails : 0.0, sum.marks_per_nail);
+  out += fmt::format("  nails: {} fed, {} struck ({:.1f} %), {:.3f} counted marks per nail; {} marks below the blade plane not "
+                     "counted\n",
+                     sum.nails, sum.struck, sum.nails ? 100.0 * sum.struck / sum.nails : 0.0, sum.marks_per_nail,
+                     sum.uncounted_marks);
+  for (const auto& d : departures_from_j232(s)) out += fmt::format("  DEPARTS FROM SAE J232: {}\n", d);
   return out;
 }
 

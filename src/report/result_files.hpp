@@ -26,6 +26,9 @@ nlohmann::ordered_json result_json(const scenario::Scenario& s, const assess::As
 std::string marks_csv_header();
 void append_marks_csv_row(std::string& out, const assess::MarkRow& row);
 
+// How the scenario departs from SAE J232's own rules (limits, counted height), in words.
+std::vector<std::string> departures_from_j232(const scenario::Scenario& s);
+
 // The verdict word of a run: "passes", "fails", or "invalid" (the test did not happen).
 const char* verdict_word(const assess::Summary& sum);
 

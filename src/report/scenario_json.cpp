@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "scene/j232_setup.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::report {
@@ -62,6 +63,7 @@ json guard_json(const scenario::GuardSpec& g) {
 }  // namespace
 
 nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
+  const scene::MeshRoles roles = scene::mesh_roles(s);
   json stations = json::array();
   for (const auto& st : s.feed.stations) stations.push_back({{"radius_m", st.radius}, {"azimuth_deg", st.azimuth * kDeg}});
   json guards = json::array(), deflectors = json::array(), meshes = json::array();
@@ -110,22 +112,26 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"outlet_speed_max_m_s", s.feed.outlet_speed_max},
         {"tilt_max_deg", s.feed.tilt_max * kDeg},
         {"ground_speed_m_s", s.feed.ground_speed}}},
-      {"housing",
-       {{"deck_radius_m", s.housing.deck_radius},
-        {"skirt_bottom_m", s.housing.skirt_bottom},
-        {"skirt_depth_m", s.housing.skirt_depth},
-        {"restitution", restitution_json(s.housing.restitution)},
-        {"friction", s.housing.friction},
-        {"guards", guards},
-        {"deflectors", deflectors}}},
+      {"housing", roles.housing ? json{{"generated", false},
+                                       {"restitution", restitution_json(s.housing.restitution)},
+                                       {"friction", s.housing.friction}}
+                                 : json{{"generated", true},
+                                        {"deck_radius_m", s.housing.deck_radius},
+                                        {"skirt_bottom_m", s.housing.skirt_bottom},
+                                        {"skirt_depth_m", s.housing.skirt_depth},
+                                        {"restitution", restitution_json(s.housing.restitution)},
+                                        {"friction", s.housing.friction},
+                                        {"guards", guards},
+                                        {"deflectors", deflectors}}},
       {"ground",
        {{"restitution", s.ground.restitution}, {"friction", s.ground.friction}, {"roughness_deg", s.ground.roughness * kDeg}}},
-      {"target",
-       {{"distance_m", s.target.distance},
-        {"radius_m", s.blade.tip_radius() + s.target.distance},
-        {"bottom_m", s.target.bottom},
-        {"top_m", s.target.top},
-        {"segments", s.target.segments}}},
+      {"target", roles.target ? json{{"generated", false}}
+                              : json{{"generated", true},
+                                     {"distance_m", s.target.distance},
+                                     {"radius_m", s.blade.tip_radius() + s.target.distance},
+                                     {"bottom_m", s.target.bottom},
+                                     {"top_m", s.target.top},
+                                     {"segments", s.target.segments}}},
       {"meshes", meshes},
       {"operator_zone", zone},
       {"board",
@@ -154,7 +160,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
 
 std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   std::vector<Assumption> a;
-  const char* params = "shared/reference/physical-parameters.md";
+  const char* params = "docs/model.md, sourced defaults";
   a.push_back({"Impact: impulse-momentum model of the blade (hub + pinned links), frictionless central-plane contact, "
                "nail as a slender rod struck off centre; the blade is back at speed and radially aligned for every nail",
                "report 445-1 Ch. 2, generalised (docs/model.md)"});
@@ -167,13 +173,18 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                fmt::format("{} (6d box nail)", params)});
   a.push_back({fmt::format("Feed: {} nails, dropped {:.0f} mm onto the blade at {} station(s), upright within {:.0f} deg",
                            s.feed.nails, s.feed.drop_height * 1e3, s.feed.stations.size(), s.feed.tilt_max * 180 / units::pi),
-               "estimate: SAE J232 feed geometry not available (DESIGN.md 4.2)"});
+               "estimate: SAE J232 feed geometry not available (docs/model.md 5.1)"});
   a.push_back({fmt::format("Board: puncture at {:g} J/m of presented width, hit at {:g} of that; normal kinetic energy",
                            s.board.puncture_energy_per_width, s.board.hit_fraction),
                fmt::format("{} (estimate: no published value for 350# double-wall)", params)});
-  a.push_back({fmt::format("Target ring {:.0f} mm outside the tip circle, {:.0f} to {:.0f} mm above ground",
-                           s.target.distance * 1e3, s.target.bottom * 1e3, s.target.top * 1e3),
-               fmt::format("{} (ANSI B71.1 enclosure wording as stand-in)", params)});
+  if (scene::mesh_roles(s).target)
+    a.push_back({"Target board: the scenario's target mesh(es)", "scenario (user geometry)"});
+  else
+    a.push_back({fmt::format("Target ring {:.0f} mm outside the tip circle, {:.0f} to {:.0f} mm above ground",
+                             s.target.distance * 1e3, s.target.bottom * 1e3, s.target.top * 1e3),
+                 fmt::format("{} (ANSI B71.1 enclosure wording as stand-in)", params)});
+  if (scene::mesh_roles(s).housing)
+    a.push_back({"Deck, skirt, guards and deflectors: the scenario's mesh(es)", "scenario (user geometry)"});
   a.push_back({s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector
                    ? std::string("Operator zone: explicit sector of the board")
                    : fmt::format("Operator zone: board seen from the blade toward the 95th-percentile reach envelope of "
@@ -190,7 +201,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   a.push_back({s.criteria.denominator == scenario::CriteriaSpec::Denominator::NailsFed
                    ? std::string("Shares are of the nails fed")
                    : std::string("Shares are of all marks (the report's literal wording)"),
-               "DESIGN.md 2"});
+               "docs/model.md 5.6 (the report's wording read two ways)"});
   a.push_back({fmt::format("Verdict: passes when P(pass) >= {:g}", s.criteria.required_pass_probability),
                "program default (not part of SAE J232)"});
   return a;

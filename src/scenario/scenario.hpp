@@ -114,6 +114,11 @@ struct BoardSpec {  // double-wall 350# corrugated board
 
 struct CriteriaSpec {  // report 445-1, Chapter 3 (SAE J232)
   double hits_zone = 0.20, punctures_zone = 0.005, hits_outside = 0.15, punctures_outside = 0.05;
+  // SAE J232 counts only marks above the plane of the blade tip circle (report 445-1,
+  // Ch. 3). None: that plane (the blade height); a value departs from J232 and says so.
+  std::optional<double> counted_height;
+  // The limits SAE J232 sets (the defaults above): true when any differs.
+  bool limits_depart_from_j232() const;
   enum class Denominator { NailsFed, Marks } denominator = Denominator::NailsFed;
   // The verdict: the mower passes when its estimated probability of passing one
   // physical test is at least this. A program default, not part of SAE J232.
@@ -156,6 +161,9 @@ struct Scenario {
   CriteriaSpec criteria;
   AirSpec air;
   RunSpec run;
+
+  // Marks below this height (m above ground) are not counted (CriteriaSpec::counted_height).
+  double counted_height() const { return criteria.counted_height.value_or(geometry.height); }
 };
 
 // Reads and checks a scenario file. Throws InputError naming file, line, key, value.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <fmt/format.h>
 
 #include "scenario/blade_input.hpp"
@@ -118,10 +119,12 @@ void read_zone(const TableReader& t, OperatorZoneSpec& z) {
 }
 
 void read_criteria(const TableReader& t, CriteriaSpec& c) {
-  c.hits_zone = t.quantity_or("hits_zone", Kind::Dimensionless, c.hits_zone, Range::UnitInterval);
-  c.punctures_zone = t.quantity_or("punctures_zone", Kind::Dimensionless, c.punctures_zone, Range::UnitInterval);
-  c.hits_outside = t.quantity_or("hits_outside", Kind::Dimensionless, c.hits_outside, Range::UnitInterval);
-  c.punctures_outside = t.quantity_or("punctures_outside", Kind::Dimensionless, c.punctures_outside, Range::UnitInterval);
+  // Limits are percentages written with their unit: a bare 0.5 could mean 0.5 % or 50 %.
+  c.hits_zone = t.percentage_or("hits_zone", c.hits_zone);
+  c.punctures_zone = t.percentage_or("punctures_zone", c.punctures_zone);
+  c.hits_outside = t.percentage_or("hits_outside", c.hits_outside);
+  c.punctures_outside = t.percentage_or("punctures_outside", c.punctures_outside);
+  c.counted_height = t.optional_quantity("counted_height", Kind::Length, Range::between(0, 5));
   c.denominator = t.string_or("denominator", "nails_fed", {"nails_fed", "marks"}) == "marks"
                       ? CriteriaSpec::Denominator::Marks
                       : CriteriaSpec::Denominator::NailsFed;
@@ -147,9 +150,38 @@ void read_run(const TableReader& t, RunSpec& r) {
   t.refuse_unknown_keys();
 }
 
+// Keys of the generated set-up that a mesh replaces are refused, never silently ignored.
+void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshFile>& meshes) {
+  auto first = [&](std::initializer_list<const char*> labels) -> const MeshFile* {
+    for (const auto& m : meshes)
+      for (const char* l : labels)
+        if (m.label == l) return &m;
+    return nullptr;
+  };
+  if (const MeshFile* deck = first({"housing"}))
+    if (auto h = root.table("housing"))
+      for (const char* key : {"deck_radius", "skirt_bottom", "skirt_depth", "guards", "deflectors"})
+        if (h->has(key))
+          throw h->error(key, fmt::format("the housing mesh {} replaces the generated deck, skirt, guards and deflectors; "
+                                          "remove this key (give guards and deflectors as meshes with label = \"guard\" "
+                                          "or \"deflector\"); housing.restitution and housing.friction still apply",
+                                          deck->path));
+  if (const MeshFile* board = first({"target", "operator_zone"}))
+    if (auto t = root.table("target"))
+      for (const char* key : {"distance", "bottom", "top", "segments"})
+        if (t->has(key))
+          throw t->error(key, fmt::format("the target mesh {} replaces the generated board ring; remove this key", board->path));
+}
+
 const std::vector<std::string> kMeshLabels = {"ground", "housing", "deflector", "guard", "target", "operator_zone"};
 
 }  // namespace
+
+bool CriteriaSpec::limits_depart_from_j232() const {
+  const CriteriaSpec j232;
+  return hits_zone != j232.hits_zone || punctures_zone != j232.punctures_zone || hits_outside != j232.hits_outside ||
+         punctures_outside != j232.punctures_outside;
+}
 
 Scenario read_scenario(const std::string& file) { return read_scenario(parse_toml_file(file), file); }
 
@@ -211,6 +243,8 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     m.refuse_unknown_keys();
     s.meshes.push_back(mesh);
   }
+
+  refuse_what_meshes_replace(root, s.meshes);
 
   if (auto z = root.table("operator_zone")) read_zone(*z, s.zone);
   if (auto b = root.table("board")) {

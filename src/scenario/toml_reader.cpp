@@ -129,6 +129,20 @@ std::string TableReader::string_or(std::string_view key, std::string fallback,
   throw error(key, fmt::format("expected one of {}", choices));
 }
 
+double TableReader::percentage_or(std::string_view key, double fallback) const {
+  const toml::node* n = node(key);
+  if (!n) return fallback;
+  const std::string expected = "expected a percentage with its unit, from \"0 %\" to \"100 %\", such as \"0.5 %\"";
+  const auto text = n->value_exact<std::string>();
+  if (!text || text->find('%') == std::string::npos) throw error(key, expected);
+  try {
+    const double v = units::parse(*text, units::Kind::Dimensionless);
+    if (v >= 0.0 && v <= 1.0) return v;
+  } catch (const units::UnitError&) {
+  }
+  throw error(key, expected);
+}
+
 bool TableReader::boolean_or(std::string_view key, bool fallback) const {
   const toml::node* n = node(key);
   if (!n) return fallback;

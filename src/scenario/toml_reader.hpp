@@ -51,6 +51,8 @@ class TableReader {
 
   std::string string_or(std::string_view key, std::string fallback, const std::vector<std::string>& allowed) const;
   bool boolean_or(std::string_view key, bool fallback) const;
+  // A percentage written with its unit ("0.5 %"), 0 to 100 %, as a fraction.
+  double percentage_or(std::string_view key, double fallback) const;
   long long integer_or(std::string_view key, long long fallback, long long min, long long max) const;
   // A full unsigned 64-bit value (a seed): an integer, or a string for values beyond
   // TOML's signed 64-bit integers ("18446744073709551615").

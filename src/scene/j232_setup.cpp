@@ -128,49 +128,8 @@ Soup subdivide(const Soup& in, double max_edge, std::size_t max_triangles) {
   return out;
 }
 
-}  // namespace
-
-double target_radius(const scenario::Scenario& s) { return s.blade.tip_radius() + s.target.distance; }
-
-Soup build_scene_soup(const scenario::Scenario& s) {
-  Soup soup;
-  const OperatorZone zone(s.zone, s.geometry.height);
-  const double ground_half = target_radius(s) + 2.0;
-
-  if (!s.meshes.empty()) {
-    bool has_ground = false;
-    std::uint16_t guard = 0;
-    for (std::size_t i = 0; i < s.meshes.size(); ++i) {
-      const auto& m = s.meshes[i];
-      Surface label = Surface::Housing;
-      if (m.label == "ground") label = Surface::Ground, has_ground = true;
-      if (m.label == "deflector") label = Surface::Deflector;
-      if (m.label == "guard") label = Surface::Guard;
-      if (m.label == "target") label = Surface::TargetOutside;
-      if (m.label == "operator_zone") label = Surface::TargetZone;
-      Soup part;
-      try {
-        part = read_mesh(m.path, label, m.scale, label == Surface::Guard ? guard++ : 0);
-        // Plain target meshes carry the scenario's operator zone, face by (small) face.
-        if (label == Surface::TargetOutside) part = subdivide(part, 0.05, kMaxSceneTriangles - soup.triangles.size());
-        if (soup.triangles.size() + part.triangles.size() > kMaxSceneTriangles)
-          throw std::runtime_error(fmt::format("{}: the scene would hold more than {} triangles", m.path, kMaxSceneTriangles));
-      } catch (const std::runtime_error& e) {
-        throw scenario::InputError(s.file, std::nullopt, fmt::format("meshes[{}].path", i + 1), "", e.what());
-      }
-      if (label == Surface::TargetOutside)
-        for (std::size_t t = 0; t < part.triangles.size(); ++t) {
-          const auto& tri = part.triangles[t];
-          if (zone.contains((part.points[tri[0]] + part.points[tri[1]] + part.points[tri[2]]) / 3.0))
-            part.labels[t] = Surface::TargetZone;
-        }
-      soup.append(part);
-    }
-    if (!has_ground) add_ground(soup, ground_half);
-    return soup;
-  }
-
-  add_ground(soup, ground_half);
+// The generated deck plate, skirt, chain guards (numbered from first_guard) and deflectors.
+void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_guard) {
   const auto& h = s.housing;
   const double deck_top = h.skirt_bottom + h.skirt_depth;
   add_disc(soup, h.deck_radius, deck_top, 96, Surface::Housing);
@@ -180,13 +139,86 @@ Soup build_scene_soup(const scenario::Scenario& s) {
     const auto& guard = h.guards[g];
     const double span = arc_span(guard.azimuth_from, guard.azimuth_to);
     add_wall(soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, kTwoPi / 96), {guard.bottom, h.skirt_bottom},
-             [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(g));
+             [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
   }
   for (const auto& d : h.deflectors) {
     const double span = arc_span(d.azimuth_from, d.azimuth_to);
     add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, kTwoPi / 96), {d.bottom, d.top},
              [](const Vec3&) { return Surface::Deflector; });
   }
+}
+
+}  // namespace
+
+double target_radius(const scenario::Scenario& s) { return s.blade.tip_radius() + s.target.distance; }
+
+MeshRoles mesh_roles(const scenario::Scenario& s) {
+  MeshRoles r;
+  for (const auto& m : s.meshes) {
+    if (m.label == "ground") r.ground = true;
+    if (m.label == "housing") r.housing = true;
+    if (m.label == "target" || m.label == "operator_zone") r.target = true;
+  }
+  return r;
+}
+
+double escape_radius(const scenario::Scenario& s, const Soup& soup) {
+  double reach = target_radius(s);
+  if (s.meshes.empty()) return reach + 1.0;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (soup.labels[t] != Surface::Ground)
+      for (auto v : soup.triangles[t]) reach = std::max(reach, std::hypot(soup.points[v].x(), soup.points[v].y()));
+  return reach + 1.0;
+}
+
+Soup build_scene_soup(const scenario::Scenario& s) {
+  Soup soup;
+  const OperatorZone zone(s.zone, s.geometry.height);
+  const MeshRoles replaced = mesh_roles(s);
+
+  // The scenario's meshes first (guards among them numbered first), then whatever of the
+  // standard set-up they do not replace.
+  std::uint16_t guard = 0;
+  double mesh_reach = 0;
+  for (std::size_t i = 0; i < s.meshes.size(); ++i) {
+    const auto& m = s.meshes[i];
+    Surface label = Surface::Housing;
+    if (m.label == "ground") label = Surface::Ground;
+    if (m.label == "deflector") label = Surface::Deflector;
+    if (m.label == "guard") label = Surface::Guard;
+    if (m.label == "target") label = Surface::TargetOutside;
+    if (m.label == "operator_zone") label = Surface::TargetZone;
+    Soup part;
+    try {
+      part = read_mesh(m.path, label, m.scale, label == Surface::Guard ? guard++ : 0);
+      // Plain target meshes carry the scenario's operator zone, face by (small) face.
+      if (label == Surface::TargetOutside) part = subdivide(part, 0.05, kMaxSceneTriangles - soup.triangles.size());
+      if (soup.triangles.size() + part.triangles.size() > kMaxSceneTriangles)
+        throw std::runtime_error(fmt::format("{}: the scene would hold more than {} triangles", m.path, kMaxSceneTriangles));
+    } catch (const std::runtime_error& e) {
+      throw scenario::InputError(s.file, std::nullopt, fmt::format("meshes[{}].path", i + 1), "", e.what());
+    }
+    if (label == Surface::TargetOutside)
+      for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+        const auto& tri = part.triangles[t];
+        if (zone.contains((part.points[tri[0]] + part.points[tri[1]] + part.points[tri[2]]) / 3.0))
+          part.labels[t] = Surface::TargetZone;
+      }
+    if (label != Surface::Ground)
+      for (const auto& p : part.points) mesh_reach = std::max(mesh_reach, std::hypot(p.x(), p.y()));
+    soup.append(part);
+  }
+  if (!s.meshes.empty()) {
+    // Only what the meshes leave to be generated; the generated guards follow the mesh guards.
+    Soup generated;
+    if (!replaced.ground) add_ground(generated, std::max(target_radius(s), mesh_reach) + 2.0);
+    if (!replaced.housing) add_housing(generated, s, guard);
+    if (!replaced.target) add_target_ring(generated, s, zone);
+    soup.append(generated);
+    return soup;
+  }
+  add_ground(soup, target_radius(s) + 2.0);
+  add_housing(soup, s, 0);
   add_target_ring(soup, s, zone);
   return soup;
 }

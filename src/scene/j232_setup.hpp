@@ -1,7 +1,8 @@
 #pragma once
 // The scene of a scenario: the standard J232 set-up generated from its dimensions
 // (ground, deck with skirt, chain guards, deflectors, ring of target board carrying
-// the operator zone), or the scenario's own meshes with a label per file.
+// the operator zone), with any part replaced by the scenario's own meshes (a label per
+// file: see MeshRoles).
 #include "scenario/scenario.hpp"
 #include "scene/soup.hpp"
 
@@ -12,5 +13,17 @@ Soup build_scene_soup(const scenario::Scenario& s);
 
 // The radius of the generated target ring.
 double target_radius(const scenario::Scenario& s);
+
+// What the scenario's meshes replace of the standard set-up: a ground mesh the generated
+// turf, a housing mesh the generated deck, skirt, guards and deflectors, a target (or
+// operator_zone) mesh the generated board ring. Guard and deflector meshes add to it.
+struct MeshRoles {
+  bool ground = false, housing = false, target = false;
+};
+MeshRoles mesh_roles(const scenario::Scenario& s);
+
+// Beyond this horizontal distance a nail has left the test: 1 m past the farthest of
+// the board ring and every mesh surface but the ground.
+double escape_radius(const scenario::Scenario& s, const Soup& soup);
 
 }  // namespace j232::scene
