@@ -186,3 +186,16 @@ TEST_CASE("stop rule: batches run until the P(pass) interval is narrow enough", 
   const auto before = assess::summarise(shorter, s);
   CHECK(0.5 * (before.pass.high - before.pass.low) > 0.02);
 }
+
+TEST_CASE("re-strikes: in a closed deck some nails come back into the blade's disc and are struck again", "[assess][restrike]") {
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted.toml"));
+  s.run.replicates = 200;
+  const assess::Simulator sim(s);
+  const auto a = assess::run_assessment(sim, 2);
+  CHECK(a.strikes.total == a.struck);
+  CHECK(a.strikes.mean() > 1.0);              // strikes per struck nail, the first included
+  CHECK(a.strikes.counts[1] < a.struck);      // some struck more than once
+  CHECK(a.strikes.counts[0] == 0);            // every struck nail was struck at least once
+  const auto sum = assess::summarise(a, s);
+  CHECK(sum.validity.valid);
+}

@@ -2,6 +2,7 @@
 // Smirnov) and cases whose answer is known.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 
 #include "feed/feed.hpp"
 #include "stats_check.hpp"
@@ -129,4 +130,124 @@ TEST_CASE("random streams: keyed by (seed, replicate, nail, purpose), independen
   random::Stream e(5, 0, 0, random::Purpose::Test);
   for (int i = 0; i < 50000; ++i) u.push_back(e.uniform());
   CHECK(test::ks_statistic(u, [](double x) { return x; }) < test::ks_critical_001(u.size()));
+}
+
+// ---- The blade in the scene: sweeps of a moving nail, and strikes ----------------------
+
+#include "feed/spindle.hpp"
+#include "random/stream.hpp"
+
+namespace {
+feed::Spindle bar_spindle(int sense) {
+  blade::Blade b;  // a centred 1.2 m bar: two edges, at 0 and pi, reaching 0.6 m
+  b.omega = 100.0;
+  b.hub.bar_mass = 10.0;
+  b.hub.bar_length = 1.2;
+  feed::Spindle sp(b, scenario::BladeGeometry{}, blade::Restitution::constant(0.9));
+  sp.sense = sense;
+  return sp;
+}
+}  // namespace
+
+TEST_CASE("blade sweep: a nail in the disc is struck when an edge reaches its azimuth", "[feed][restrike]") {
+  for (const int sense : {+1, -1}) {
+    const auto sp = bar_spindle(sense);
+    // Moving slowly outward along azimuth sense * 1 rad: edge 0 gets there at t = 1 / omega.
+    const double az = sense * 1.0;
+    const Eigen::Vector3d p0(0.3 * std::cos(az), 0.3 * std::sin(az), sp.height), v(std::cos(az), std::sin(az), 0.0);
+    const auto h = feed::first_sweep(sp, 0.0, p0, v, 0.0, 0.05, 0.0, -1.0);
+    REQUIRE(h);
+    CHECK(h->edge == 0);
+    CHECK(h->time == Approx(0.01).margin(1e-9));
+    CHECK(h->radius == Approx(0.31).margin(1e-9));
+    CHECK(std::remainder(h->azimuth - az, 2 * units::pi) == Approx(0).margin(1e-9));
+    // Starting at phase 0.5 rad, the same edge gets there 5 ms sooner.
+    CHECK(feed::first_sweep(sp, sense * 0.5, p0, v, 0.0, 0.05, 0.0, -1.0)->time == Approx(0.005).margin(1e-9));
+    // Between edges: leaving the window before the edge arrives, the nail is not struck.
+    CHECK_FALSE(feed::first_sweep(sp, 0.0, p0, v, 0.0, 0.009, 0.0, -1.0));
+    // Above the slab, or beyond the tip circle, nothing strikes it.
+    CHECK_FALSE(feed::first_sweep(sp, 0.0, p0 + Eigen::Vector3d(0, 0, 0.01), v, 0.0, 0.05, 0.0, -1.0));
+    CHECK_FALSE(feed::first_sweep(sp, 0.0, 2.1 * p0, v, 0.0, 0.05, 0.0, -1.0));
+    // ...unless the nail's own height reaches into the slab.
+    CHECK(feed::first_sweep(sp, 0.0, p0 + Eigen::Vector3d(0, 0, 0.01), v, 0.0, 0.05, 0.02, -1.0));
+  }
+}
+
+TEST_CASE("blade sweep: a nail crossing the disc fast is met where the edge and the chord cross", "[feed][restrike]") {
+  // A nail flying straight across the disc at 20 m/s, through the axis' neighbourhood:
+  // check the answer against a brute-force scan of the edge-to-nail angle.
+  const auto sp = bar_spindle(+1);
+  random::Stream rng(11, 0, 0, random::Purpose::Test);
+  int found = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double a = 2 * units::pi * rng.uniform(), phase = 2 * units::pi * rng.uniform();
+    const Eigen::Vector3d p0(0.7 * std::cos(a), 0.7 * std::sin(a), sp.height);
+    const double heading = a + units::pi + rng.uniform(-0.6, 0.6);
+    const Eigen::Vector3d v(20 * std::cos(heading), 20 * std::sin(heading), 0);
+    const auto h = feed::first_sweep(sp, phase, p0, v, 0.0, 0.07, 0.0, -1.0);
+    // Brute force: scan the edge-to-nail angle for its first sign change (not the jump at
+    // +/-pi), where the edge is faster than the nail along its motion.
+    double brute = -1;
+    std::vector<double> last(sp.edges.size(), 0.0);
+    const double step = 2e-6;
+    for (int k = 0; k * step <= 0.07 && brute < 0; ++k) {
+      const double t = k * step;
+      const Eigen::Vector3d p = p0 + v * t;
+      const double r = p.head<2>().norm();
+      for (std::size_t e = 0; e < sp.edges.size(); ++e) {
+        const double d = std::remainder(phase + sp.edges[e].azimuth + sp.omega() * t - std::atan2(p.y(), p.x()), 2 * units::pi);
+        const Eigen::Vector2d tangent(-p.y() / r, p.x() / r);
+        if (k > 0 && r <= sp.reach && last[e] * d <= 0 && std::abs(last[e] - d) < 1 && sp.omega() * r > v.head<2>().dot(tangent) &&
+            brute < 0)
+          brute = t - step * d / (d - last[e]);
+        last[e] = d;
+      }
+    }
+    INFO("trial " << trial);
+    if (brute < 0) {
+      CHECK_FALSE(h);
+      continue;
+    }
+    REQUIRE(h);
+    CHECK(h->time == Approx(brute).margin(1e-6));
+    ++found;
+  }
+  CHECK(found > 50);
+}
+
+TEST_CASE("blade strike: momentum, restitution and energy hold at every strike", "[feed][restrike][physics]") {
+  const auto sp = bar_spindle(+1);
+  random::Stream rng(5, 0, 0, random::Purpose::Test);
+  int struck = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    feed::BladeHit h;
+    h.radius = rng.uniform(0.05, 0.6);
+    h.azimuth = rng.uniform(-3.1, 3.1);
+    h.edge = 0;
+    feed::NailAtBlade nail;
+    nail.mass = 0.002;
+    nail.length = 0.05;
+    nail.velocity = {rng.uniform(-40, 40), rng.uniform(-40, 40), rng.uniform(-5, 5)};
+    nail.spin = {rng.uniform(-500, 500), rng.uniform(-500, 500), 0};
+    nail.axis = Eigen::Vector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized();
+    nail.spin -= nail.spin.dot(nail.axis) * nail.axis;
+    nail.offset = rng.uniform(-0.025, 0.025);
+    const auto c = feed::strike(sp, h, nail);
+    if (!c) continue;
+    ++struck;
+    const Eigen::Vector3d n(-std::sin(h.azimuth), std::cos(h.azimuth), 0);
+    const Eigen::Vector3d dv = c->velocity_after - nail.velocity;
+    CHECK(c->impulse > 0);
+    CHECK(dv.cross(n).norm() < 1e-9 * (1 + dv.norm()));                  // impulse along the normal only
+    CHECK(nail.mass * dv.dot(n) == Approx(c->impulse).epsilon(1e-9));    // nail's linear momentum
+    const double inertia = nail.mass * nail.length * nail.length / 12;
+    const Eigen::Vector3d r = nail.offset * nail.axis;
+    CHECK((inertia * (c->spin_after - nail.spin) - r.cross(n) * c->impulse).norm() < 1e-9);  // its angular momentum
+    CHECK(c->energy_lost >= 0);
+    // Restitution at the contact point: separation = e x approach.
+    const double before = c->blade_speed_before - (nail.velocity + nail.spin.cross(r)).dot(n);
+    const double after = (c->velocity_after + c->spin_after.cross(r)).dot(n) - c->blade_speed_after;
+    CHECK(after == Approx(0.9 * before).epsilon(1e-9));
+  }
+  CHECK(struck > 500);
 }

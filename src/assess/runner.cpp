@@ -44,7 +44,7 @@ struct ChunkResult {
   std::vector<ReplicateTally> tallies;
   std::vector<MarkRow> marks;
   Histogram exit_speed{0.5, 400}, mark_energy{0.05, 600}, board_energy{0.05, 600}, board_energy_per_width{5, 400},
-      contact_radius{0.005, 400};
+      contact_radius{0.005, 400}, strikes{1, 52};
   std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
 
   void clear() { *this = ChunkResult(); }
@@ -67,6 +67,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       if (o.flight.non_finite) continue;  // nothing of it is a number worth recording
       c.exit_speed.add(o.exit_speed);
       c.contact_radius.add(o.contact_radius);
+      c.strikes.add(o.flight.strikes);
       if (o.flight.board_energy >= 0) {
         c.board_energy.add(o.flight.board_energy);
         c.board_energy_per_width.add(o.flight.board_energy_per_width);
@@ -114,6 +115,7 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
   into.board_energy.merge(c.board_energy);
   into.board_energy_per_width.merge(c.board_energy_per_width);
   into.contact_radius.merge(c.contact_radius);
+  into.strikes.merge(c.strikes);
   into.nails += c.nails;
   into.struck += c.struck;
   into.queries += c.queries;

@@ -60,6 +60,7 @@ struct Assessment {
   Histogram board_energy{0.05, 600};    // J: every first arrival at the board, marked or not
   Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
   Histogram contact_radius{0.005, 400}; // m
+  Histogram strikes{1, 52};             // blade strikes per struck nail: bin k holds k strikes
   std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
   double wall_seconds = 0;
   int threads = 0;

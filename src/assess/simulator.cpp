@@ -11,9 +11,9 @@
 namespace j232::assess {
 
 namespace {
-blade::BladeModel make_model(const scenario::Scenario& s) {
+std::vector<feed::Spindle> make_spindles(const scenario::Scenario& s) {
   try {
-    return blade::BladeModel(s.blade);
+    return {feed::Spindle(s.blade, s.geometry, s.restitution)};
   } catch (const std::invalid_argument& e) {
     throw scenario::InputError(s.file, std::nullopt, "blade", "", e.what());
   }
@@ -21,7 +21,7 @@ blade::BladeModel make_model(const scenario::Scenario& s) {
 }  // namespace
 
 Simulator::Simulator(const scenario::Scenario& s)
-    : scenario_(s), model_(make_model(s)), edges_(feed::leading_edges(s.blade)) {
+    : scenario_(s), spindles_(make_spindles(s)) {
   try {
     scene_ = std::make_unique<scene::Scene>(scene::build_scene_soup(scenario_));
   } catch (const std::invalid_argument& e) {
@@ -38,6 +38,7 @@ Simulator::Simulator(const scenario::Scenario& s)
   context_.counted_height = s.counted_height();
   context_.escape_radius = scene::escape_radius(s, scene_->soup());
   context_.guards = &guards_;
+  context_.spindles = &spindles_;
 }
 
 NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
@@ -46,32 +47,25 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
   out.flight.fate = flight::Fate::NotStruck;
   random::Stream feed_rng(s.run.seed, replicate, static_cast<std::uint64_t>(nail), random::Purpose::Feed);
   const feed::NailDrop drop = feed::sample_drop(s, nail, feed_rng);
-  const auto strike = feed::find_strike(drop, edges_, s.blade.omega, s.geometry);
+  const auto strike = feed::find_strike(drop, spindles_.front().edges, s.blade.omega, s.geometry);
   if (!strike) return out;
 
-  const feed::Edge& edge = edges_[strike->edge];
-  const auto where = edge.arm ? blade::locate(s.blade, *edge.arm, strike->radius)
-                              : std::optional<blade::ContactLocation>(blade::ContactLocation::hub(strike->radius));
-  if (!where) return out;
-  // The edge's lift tilts the contact normal up out of the blade plane.
-  const double cos_lift = std::cos(s.geometry.lift_angle), sin_lift = std::sin(s.geometry.lift_angle);
-  const blade::Vec3 tangent(-std::sin(strike->azimuth), std::cos(strike->azimuth), 0.0);
-  blade::BladeAtContact at;
-  at.normal = cos_lift * tangent + sin_lift * blade::Vec3::UnitZ();
-  at.effective_mass = model_.effective_mass(*where) / (cos_lift * cos_lift);
-  at.speed = s.blade.omega * strike->radius * cos_lift;
-
-  blade::StruckObject nail_body;
-  nail_body.mass = drop.mass;
-  nail_body.velocity = strike->nail_velocity;
-  blade::Rod rod;
-  rod.length = drop.length;
-  rod.transverse_inertia = drop.mass * drop.length * drop.length / 12.0;
-  rod.axis = drop.axis;
-  rod.offset = strike->offset;
-  nail_body.rod = rod;
-  const blade::ContactOutcome contact = blade::resolve_contact(at, nail_body, s.restitution);
-  if (!contact.approaching) return out;
+  // The feeding spindle (the one blade of a [blade] scenario) strikes it.
+  const feed::Spindle& spindle = spindles_.front();
+  feed::BladeHit hit;
+  hit.time = strike->time;
+  hit.edge = strike->edge;
+  hit.radius = strike->radius;
+  hit.azimuth = strike->azimuth;
+  feed::NailAtBlade struck;
+  struck.mass = drop.mass;
+  struck.length = drop.length;
+  struck.velocity = strike->nail_velocity;
+  struck.axis = drop.axis;
+  struck.offset = strike->offset;
+  const auto hit_outcome = feed::strike(spindle, hit, struck);
+  if (!hit_outcome) return out;
+  const blade::ContactOutcome& contact = *hit_outcome;
   if (!contact.velocity_after.allFinite() || !contact.spin_after.allFinite()) {
     out.flight.fate = flight::Fate::CutOff;
     out.flight.non_finite = true;
@@ -83,6 +77,7 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
   body.velocity = contact.velocity_after;
   body.spin = contact.spin_after;
   body.axis = drop.axis;
+  body.time = strike->time;  // the blades' clock: re-strikes are timed against it
   flight::Drag drag;
   drag.on = s.air.drag;
   drag.k_axial = s.air.density * s.air.cd_axial * (0.25 * units::pi * drop.diameter * drop.diameter) / (2 * drop.mass);
@@ -90,7 +85,9 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
   drag.air = {-s.feed.ground_speed, 0.0, 0.0};  // still air, seen from the moving mower
 
   random::Stream flight_rng(s.run.seed, replicate, static_cast<std::uint64_t>(nail), random::Purpose::Flight);
-  out.flight = flight::fly(body, drop.length, drop.diameter, drop.mass, drag, context_, flight_rng);
+  feed::BladePhases phases;
+  phases.at_zero[0] = drop.blade_phase;
+  out.flight = flight::fly(body, drop.length, drop.diameter, drop.mass, drag, context_, phases, flight_rng);
   out.exit_speed = contact.velocity_after.norm();
   out.contact_radius = strike->radius;
   return out;

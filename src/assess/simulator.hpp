@@ -8,6 +8,7 @@
 #include "blade/blade_model.hpp"
 #include "blade/impact.hpp"
 #include "feed/feed.hpp"
+#include "feed/spindle.hpp"
 #include "flight/nail_flight.hpp"
 #include "scenario/scenario.hpp"
 #include "scene/scene.hpp"
@@ -16,7 +17,7 @@ namespace j232::assess {
 
 struct NailOutcome {
   flight::FlightResult flight;  // fate NotStruck when the blade missed it
-  double exit_speed = 0;        // m/s after the blade (0 if not struck)
+  double exit_speed = 0;        // m/s after the first strike (0 if not struck)
   double contact_radius = 0;
 };
 
@@ -34,8 +35,7 @@ class Simulator {
 
  private:
   scenario::Scenario scenario_;
-  blade::BladeModel model_;
-  std::vector<feed::Edge> edges_;
+  std::vector<feed::Spindle> spindles_;
   std::unique_ptr<scene::Scene> scene_;
   std::vector<scenario::GuardSpec> guards_;
   flight::FlightContext context_;

@@ -1,6 +1,7 @@
 #include "flight/nail_flight.hpp"
 
 #include <boost/random/normal_distribution.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "board/board.hpp"
@@ -26,6 +27,7 @@ namespace {
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
 constexpr double kMaxChord = 0.5;    // m
 constexpr double kLift = 0.002;      // m: a sliding nail's centre above the ground
+constexpr double kStrikeGap = 1e-7;  // s: an edge that has just struck cannot strike again at once
 
 // Restitution along the normal n (facing the incoming nail), Coulomb friction along the surface.
 Vec3 bounce(const Vec3& v, const Vec3& n, double e, double mu) {
@@ -53,7 +55,7 @@ Vec3 rough_normal(const Vec3& n, double roughness, random::Stream& rng) {
 }  // namespace
 
 FlightResult fly(const Body& start, double length, double diameter, double mass, const Drag& drag,
-                 const FlightContext& ctx, random::Stream& rng) {
+                 const FlightContext& ctx, const feed::BladePhases& phases, random::Stream& rng) {
   const scenario::Scenario& s = *ctx.scenario;
   FlightResult r;
   Body b = start;
@@ -64,6 +66,49 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   bool cut_off = false;
   int steps = 0;
   const double t_end = start.time + s.run.time_limit;
+  double last_strike = start.time;
+
+  // The nail as spindle `sp` would meet it, were it at `body`.
+  auto at_blade = [&](const feed::Spindle& sp, const Body& body) {
+    feed::NailAtBlade nail;
+    nail.mass = mass;
+    nail.length = length;
+    nail.velocity = body.velocity;
+    nail.spin = body.spin;
+    nail.axis = body.axis;
+    nail.offset = std::abs(body.axis.z()) > 1e-6
+                      ? std::clamp((sp.height - body.position.z()) / body.axis.z(), -0.5 * length, 0.5 * length)
+                      : 0.0;
+    return nail;
+  };
+  // The earliest blade strike of the nail on the chord from `from` over dt, if any. An
+  // edge that sweeps a nail moving away from it faster than it (the nail it has just
+  // thrown, spinning) passes it: only approaching contacts count.
+  auto blade_sweep = [&](const Body& from, const Vec3& velocity, double dt) -> std::optional<feed::BladeHit> {
+    std::optional<feed::BladeHit> best;
+    if (!ctx.spindles) return best;
+    const double half_height = 0.5 * length * std::abs(from.axis.z());
+    for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
+      const feed::Spindle& sp = (*ctx.spindles)[k];
+      auto h = feed::first_sweep(sp, phases.at_zero[k], from.position, velocity, from.time, from.time + dt, half_height,
+                                 last_strike + kStrikeGap);
+      if (!h || (best && h->time >= best->time) || !feed::strike(sp, *h, at_blade(sp, from))) continue;
+      h->spindle = k;
+      best = h;
+    }
+    return best;
+  };
+  // Struck again: the blade's impact core gives the new velocity and spin.
+  auto restrike = [&](const feed::BladeHit& h) {
+    const feed::Spindle& sp = (*ctx.spindles)[h.spindle];
+    last_strike = h.time;
+    const auto contact = feed::strike(sp, h, at_blade(sp, b));
+    if (!contact) return;  // the nail outruns the edge there: it passes
+    b.velocity = contact->velocity_after;
+    b.spin = contact->spin_after;
+    ++r.strikes;
+    last_contact_guard = false;
+  };
 
   auto record_mark = [&](const Vec3& point, double energy, bool zone, bool puncture) {
     const bool counted = point.z() >= ctx.counted_height;
@@ -125,7 +170,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
       r.non_finite = true;
       break;
     }
-    if (b.time >= t_end || r.bounces > s.run.max_bounces || ++steps > kMaxFlightSteps) {
+    if (b.time >= t_end || r.bounces > s.run.max_bounces || ++steps > kMaxFlightSteps || r.strikes > FlightResult::kMaxStrikes) {
       cut_off = true;
       break;
     }
@@ -140,8 +185,17 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
       b = next;
       continue;
     }
+    // The blades first: a sweep on this chord cuts the scene query short.
+    const auto sweep = blade_sweep(b, chord / dt, dt);
+    const double reach = sweep ? len * (sweep->time - b.time) / dt : len;
     ++r.queries;
-    const auto hit = ctx.scene->first_hit(b.position, chord / len, len, skip);
+    const auto hit = ctx.scene->first_hit(b.position, chord / len, reach, skip);
+    if (!hit && sweep) {
+      b = advance(b, sweep->time - b.time, drag);
+      skip = {};
+      restrike(*sweep);
+      continue;
+    }
     if (!hit) {
       b = next;
       skip = {};

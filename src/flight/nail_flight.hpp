@@ -6,6 +6,8 @@
 //   housing, deflector: bounce with restitution e(v) and Coulomb friction;
 //   guard (chain or belting): passes between the links with probability `openness`,
 //       keeping `pass_speed_factor` of its speed, or bounces;
+//   blade (a spindle's turning disc): struck again by an edge that sweeps it there, with
+//       the same impact core as the feed's strike (feed/spindle.hpp);
 //   ground: bounce with restitution, friction and a random tilt of the local normal
 //       (roughness); once the rebound is too weak to leave the ground (< 0.5 m/s) it
 //       slides to rest under friction, still able to strike a wall on the way.
@@ -14,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "feed/spindle.hpp"
 #include "flight/trajectory.hpp"
 #include "random/stream.hpp"
 #include "scenario/scenario.hpp"
@@ -56,6 +59,8 @@ struct FlightResult {
   double board_energy = -1;            // J; < 0: never reached the board
   double board_energy_per_width = -1;  // J/m
   int bounces = 0;
+  int strikes = 1;          // blade strikes, the first (the feed's) included
+  static constexpr int kMaxStrikes = 50;  // beyond: cut off (a nail caught between blade and deck)
   bool non_finite = false;  // the state stopped being a finite number (a bug or absurd input)
   int queries = 0;  // scene ray queries (for the benchmark)
   double flight_time = 0;
@@ -70,10 +75,12 @@ struct FlightContext {
   double deck_radius = 0;
   double counted_height = 0;  // marks below it are not counted (Scenario::counted_height)
   const std::vector<scenario::GuardSpec>* guards = nullptr;  // indexed by the scene's guard index
+  const std::vector<feed::Spindle>* spindles = nullptr;      // the turning blades; none: nothing strikes again
 };
 
-// `nail_length`, `nail_diameter` for the board model; `drag` already scaled to this nail's mass.
+// `nail_length`, `nail_diameter` for the board model; `drag` already scaled to this nail's
+// mass; `phases`: the blades' angles at time 0 of the nail's clock (start.time is on it).
 FlightResult fly(const Body& start, double nail_length, double nail_diameter, double nail_mass, const Drag& drag,
-                 const FlightContext& context, random::Stream& rng);
+                 const FlightContext& context, const feed::BladePhases& phases, random::Stream& rng);
 
 }  // namespace j232::flight

@@ -142,8 +142,14 @@ std::string fates_section(const json& r) {
                      label, number("fates." + key + ".nails", f["nails"], "{}"),
                      number("fates." + key + ".fraction", f["fraction"], "{:.2f}", 100), 240 * share);
   }
-  o += fmt::format("</tbody></table>\n<p>{} nails fed in all, {} struck.</p>\n</section>\n", number("nails_fed", r["nails_fed"], "{}"),
-                   number("nails_struck", r["nails_struck"], "{}"));
+  const auto& k = r["strikes_per_struck_nail"];
+  o += fmt::format("</tbody></table>\n<p>{} nails fed in all, {} struck. The turning blade is part of the scene: a nail "
+                   "that comes back into its disc is struck again. Blade strikes per struck nail: {} on average; {} % were "
+                   "struck more than once (at most {} times).</p>\n</section>\n",
+                   number("nails_fed", r["nails_fed"], "{}"), number("nails_struck", r["nails_struck"], "{}"),
+                   number("strikes_per_struck_nail.mean", k["mean"], "{:.4f}"),
+                   number("strikes_per_struck_nail.share_struck_again", k["share_struck_again"], "{:.2f}", 100),
+                   number("strikes_per_struck_nail.most", k["most"], "{}"));
   return o;
 }
 

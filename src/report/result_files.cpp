@@ -17,6 +17,19 @@ json interval_json(const assess::Interval& i) {
   return {{"estimate", i.estimate}, {"low", i.low}, {"high", i.high}, {"confidence", 0.95}, {"method", "Wilson score"}};
 }
 
+// Blade strikes per struck nail: the first (the feed's) and every strike after it.
+json strikes_json(const assess::Histogram& h) {
+  const std::uint64_t once = h.counts.size() > 1 ? h.counts[1] : 0;
+  std::size_t most = 0;
+  for (std::size_t k = 0; k < h.counts.size(); ++k)
+    if (h.counts[k] > 0) most = k;
+  std::vector<std::uint64_t> counts(h.counts.begin() + 1, h.counts.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(most, 1)) + 1);
+  return {{"mean", h.mean()},
+          {"share_struck_again", h.total ? static_cast<double>(h.total - once) / static_cast<double>(h.total) : 0.0},
+          {"most", most},
+          {"nails_by_strikes_from_1", counts}};
+}
+
 json histogram_json(const assess::Histogram& h, const char* unit) {
   return {{"unit", unit},     {"count", h.total},          {"mean", h.mean()},
           {"q05", h.quantile(0.05)}, {"q50", h.quantile(0.5)}, {"q95", h.quantile(0.95)},
@@ -77,6 +90,8 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"exit_speed", histogram_json(a.exit_speed, "m/s")},
       {"mark_energy", histogram_json(a.mark_energy, "J")},
       {"contact_radius", histogram_json(a.contact_radius, "m")},
+      {"strikes_per_struck_nail", strikes_json(a.strikes)},
+      {"strikes_per_struck_nail", strikes_json(a.strikes)},
       {"board_energy", histogram_json(a.board_energy, "J")},
       {"board_energy_per_width", histogram_json(a.board_energy_per_width, "J/m")},
       {"scene_queries_per_nail", sum.queries_per_nail},

@@ -1,0 +1,137 @@
+#include "feed/spindle.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "units/quantity.hpp"
+
+namespace j232::feed {
+
+namespace {
+constexpr double kTwoPi = 2.0 * units::pi;
+constexpr double kSampleAngle = 0.3;  // rad: the edge-to-nail angle is sampled at least this finely
+}  // namespace
+
+Spindle::Spindle(const blade::Blade& b, const scenario::BladeGeometry& g, const blade::Restitution& e)
+    : height(g.height), thickness(g.thickness), lift_angle(g.lift_angle), blade(b), model(b), edges(leading_edges(b)),
+      restitution(e) {
+  for (const auto& edge : edges) reach = std::max(reach, edge.reach);
+}
+
+std::optional<BladeHit> first_sweep(const Spindle& sp, double phase, const Eigen::Vector3d& p0, const Eigen::Vector3d& v,
+                                    double t0, double t1, double half_height, double after) {
+  double lo = std::max(t0, after), hi = t1;
+  if (!(hi > lo)) return std::nullopt;
+  // In the slab: |z(t) - height| <= thickness / 2 + half_height, z linear in t.
+  const double band = 0.5 * sp.thickness + half_height;
+  const double dz = p0.z() - sp.height;
+  if (v.z() == 0.0) {
+    if (std::abs(dz) > band) return std::nullopt;
+  } else {
+    double ta = t0 + (-band - dz) / v.z(), tb = t0 + (band - dz) / v.z();
+    if (ta > tb) std::swap(ta, tb);
+    lo = std::max(lo, ta), hi = std::min(hi, tb);
+    if (!(hi > lo)) return std::nullopt;
+  }
+  // Within the tip circle: |q(t)|^2 <= reach^2 with q the horizontal offset from the axis.
+  const Eigen::Vector2d q0 = p0.head<2>() - sp.centre, w = v.head<2>();
+  const double a = w.squaredNorm(), b = 2 * q0.dot(w), c = q0.squaredNorm() - sp.reach * sp.reach;
+  if (a == 0.0) {
+    if (c > 0) return std::nullopt;
+  } else {
+    // Roots in s = t - t0.
+    const double disc = b * b - 4 * a * c;
+    if (disc < 0) return std::nullopt;
+    const double root = std::sqrt(disc);
+    lo = std::max(lo, t0 + (-b - root) / (2 * a)), hi = std::min(hi, t0 + (-b + root) / (2 * a));
+    if (!(hi > lo)) return std::nullopt;
+  }
+
+  // For each edge, the angle from the nail to the edge, unwrapped, sampled finely enough
+  // that it cannot pass a whole multiple of 2 pi between samples unseen, then bisected.
+  // Along a straight chord the nail's azimuth turns one way only, through the angle the
+  // chord subtends at the axis (at most pi), so that angle and the edge's turn bound it.
+  const double omega = sp.sense * sp.omega();
+  const auto q_at = [&](double t) -> Eigen::Vector2d { return q0 + w * (t - t0); };
+  const Eigen::Vector2d q_lo = q_at(lo), q_hi = q_at(hi);
+  const double subtended = std::abs(std::atan2(q_lo.x() * q_hi.y() - q_lo.y() * q_hi.x(), q_lo.dot(q_hi)));
+  const int samples = 1 + static_cast<int>(std::ceil((std::abs(omega) * (hi - lo) + subtended) / kSampleAngle));
+  std::optional<BladeHit> best;
+  for (std::size_t e = 0; e < sp.edges.size(); ++e) {
+    const double edge0 = phase + sp.edges[e].azimuth;
+    // delta(t) = edge angle - nail azimuth, continuous (unwrapped sample to sample).
+    double t_prev = lo;
+    Eigen::Vector2d q = q_at(lo);
+    double azimuth_prev = std::atan2(q.y(), q.x());
+    double delta_prev = edge0 + omega * lo - azimuth_prev;
+    for (int k = 1; k <= samples; ++k) {
+      const double t = lo + (hi - lo) * k / samples;
+      if (best && t_prev >= best->time) break;
+      q = q_at(t);
+      const double azimuth = azimuth_prev + std::remainder(std::atan2(q.y(), q.x()) - azimuth_prev, kTwoPi);
+      const double delta = edge0 + omega * t - azimuth;
+      const double turns_prev = std::floor(delta_prev / kTwoPi), turns = std::floor(delta / kTwoPi);
+      if (turns != turns_prev) {
+        // A multiple of 2 pi lies between: bisect delta(t) - target to it.
+        const double target = kTwoPi * std::max(turns, turns_prev);
+        double a_t = t_prev, b_t = t, a_d = delta_prev - target;
+        for (int it = 0; it < 60 && b_t - a_t > 1e-12; ++it) {
+          const double m = 0.5 * (a_t + b_t);
+          const Eigen::Vector2d qm = q_at(m);
+          const double am = azimuth_prev + std::remainder(std::atan2(qm.y(), qm.x()) - azimuth_prev, kTwoPi);
+          const double dm = edge0 + omega * m - am - target;
+          if ((dm < 0) == (a_d < 0)) a_t = m, a_d = dm; else b_t = m;
+        }
+        const double ts = 0.5 * (a_t + b_t);
+        const Eigen::Vector2d qs = q_at(ts);
+        const double r = qs.norm();
+        // The edge meets the nail only if it is faster along its own motion there (a nail
+        // that outruns the edge, as one just thrown by it does, is passed, not struck).
+        const Eigen::Vector2d tangent = sp.sense * Eigen::Vector2d(-qs.y(), qs.x()) / std::max(r, 1e-12);
+        const bool approaching = sp.omega() * r > w.dot(tangent);
+        if (approaching && r > 0 && r <= sp.edges[e].reach && (!best || ts < best->time)) {
+          BladeHit h;
+          h.edge = e;
+          h.time = ts;
+          h.radius = r;
+          h.azimuth = std::atan2(qs.y(), qs.x());
+          best = h;
+        }
+        break;  // later crossings of this edge are later still
+      }
+      t_prev = t, azimuth_prev = azimuth, delta_prev = delta;
+    }
+  }
+  return best;
+}
+
+std::optional<blade::ContactOutcome> strike(const Spindle& sp, const BladeHit& hit, const NailAtBlade& nail) {
+  const Edge& edge = sp.edges[hit.edge];
+  const auto where = edge.arm ? blade::locate(sp.blade, *edge.arm, hit.radius)
+                              : std::optional<blade::ContactLocation>(blade::ContactLocation::hub(hit.radius));
+  if (!where) return std::nullopt;
+  // The edge moves along the tangent of its sense of rotation; its lift tilts the
+  // contact normal up out of the blade plane.
+  const double cos_lift = std::cos(sp.lift_angle), sin_lift = std::sin(sp.lift_angle);
+  const blade::Vec3 tangent = sp.sense * blade::Vec3(-std::sin(hit.azimuth), std::cos(hit.azimuth), 0.0);
+  blade::BladeAtContact at;
+  at.normal = cos_lift * tangent + sin_lift * blade::Vec3::UnitZ();
+  at.effective_mass = sp.model.effective_mass(*where) / (cos_lift * cos_lift);
+  at.speed = sp.omega() * hit.radius * cos_lift;
+
+  blade::StruckObject body;
+  body.mass = nail.mass;
+  body.velocity = nail.velocity;
+  body.spin = nail.spin;
+  blade::Rod rod;
+  rod.length = nail.length;
+  rod.transverse_inertia = nail.mass * nail.length * nail.length / 12.0;
+  rod.axis = nail.axis;
+  rod.offset = nail.offset;
+  body.rod = rod;
+  const blade::ContactOutcome contact = blade::resolve_contact(at, body, sp.restitution);
+  if (!contact.approaching) return std::nullopt;
+  return contact;
+}
+
+}  // namespace j232::feed
