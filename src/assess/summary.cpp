@@ -70,6 +70,7 @@ Summary summarise(const Assessment& a, const scenario::Scenario& scenario) {
   for (int c = 1; c < kCategories; ++c)
     if (tighter(c, s.deciding)) s.deciding = c;
   s.marks_per_nail = s.nails ? static_cast<double>(s.marks) / static_cast<double>(s.nails) : 0;
+  s.exit_speed_mean = a.exit_speed.mean();
   s.queries_per_nail = s.nails ? static_cast<double>(a.queries) / static_cast<double>(s.nails) : 0;
   s.validity = check_validity(a, scenario);
   return s;

@@ -36,6 +36,7 @@ struct Summary {
   double marks_per_nail = 0;
   std::array<std::uint64_t, flight::kFates> fates{};
   double queries_per_nail = 0;
+  double exit_speed_mean = 0;  // m/s, off the first strike
   Validity validity;
 };
 

@@ -96,10 +96,18 @@ std::string criteria_section(const assess::Summary& sum, const json& r) {
   return o;
 }
 
-std::string histogram_section(const scenario::Scenario& s, const assess::Assessment& a) {
+std::string histogram_section(const scenario::Scenario& s, const assess::Assessment& a, const json& r) {
   std::string o = "<section id=\"energies\">\n<h2>3. Speeds and energies</h2>\n";
-  o += "<figure>" + histogram_chart(a.exit_speed, "Nail speed leaving the blade", "speed after impact (m/s)", "m/s", "struck nails", palette(0)).svg() +
-       "</figure>\n";
+  Chart speed = histogram_chart(a.exit_speed, "Nail speed leaving the blade", "speed after impact (m/s)", "m/s", "struck nails", palette(0));
+  const double tip = s.blade.omega * s.blade.tip_radius();
+  speed.vline(tip, "#000", fmt::format("blade tip speed {:.1f} m/s", tip));
+  o += "<figure>" + speed.svg() +
+       fmt::format("<figcaption>Thrown at {} × the blade tip speed on average (5–95 %: {} to {} ×); published speeds of "
+                   "mower-thrown objects are about 0.8 to 1.4 × tip speed (Chazen and Chamberlain, 1962, as widely "
+                   "reported).</figcaption></figure>\n",
+                   number("exit_speed_over_tip_speed.mean", r["exit_speed_over_tip_speed"]["mean"], "{:.2f}"),
+                   number("exit_speed_over_tip_speed.q05", r["exit_speed_over_tip_speed"]["q05"], "{:.2f}"),
+                   number("exit_speed_over_tip_speed.q95", r["exit_speed_over_tip_speed"]["q95"], "{:.2f}"));
   // Kinetic energy along the board's normal at the first arrival; the thresholds
   // depend on how the nail presents itself, so both extremes are drawn.
   Chart energy = histogram_chart(a.board_energy, "Kinetic energy at the board (normal to it)", "normal kinetic energy at the board (J)", "J",
@@ -219,7 +227,7 @@ std::string compliance_report_html(const scenario::Scenario& s, const assess::As
        "and the feed stations' azimuths are drawn for reference.</figcaption></figure>\n";
   o += "<figure>" + plan_view_svg(s, soup, marks) + "<figcaption>Seen from above; the blade turns counter-clockwise.</figcaption></figure>\n";
   o += "</section>\n";
-  o += histogram_section(s, a);
+  o += histogram_section(s, a, r);
   o += fates_section(r);
   o += scenario_section(r);
   o += assumptions_section(r);

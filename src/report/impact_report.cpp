@@ -45,6 +45,7 @@ nlohmann::ordered_json impact_json(const scenario::ImpactCase& in, const blade::
         {"blade_speed_rpm", in.blade.omega / rpm},
         {"blade_mass_kg", in.blade.mass()},
         {"tip_radius_m", in.blade.tip_radius()},
+        {"tip_speed_m_s", in.blade.omega * in.blade.tip_radius()},
         {"hub_drive", in.blade.hub.constant_speed ? "constant_speed" : "free"},
         {"object", in.object_name},
         {"object_mass_kg", in.object.mass},
@@ -66,6 +67,7 @@ nlohmann::ordered_json impact_json(const scenario::ImpactCase& in, const blade::
       {"object_velocity_after_m_s", vec(c.velocity_after)},
       {"object_speed_after_m_s", c.velocity_after.norm()},
       {"object_speed_after_ft_min", c.velocity_after.norm() / ft_per_min},
+      {"object_speed_after_over_tip_speed", c.velocity_after.norm() / (in.blade.omega * in.blade.tip_radius())},
       {"object_discharge_speed_ft_min", c.velocity_after.y() / ft_per_min},
       {"object_spin_after_rad_s", vec(c.spin_after)},
       {"hub_rate_after_rad_s", s.hub_rate_after},
@@ -81,7 +83,9 @@ std::string impact_table(const scenario::ImpactCase& in, const blade::ImpactSolu
   auto row = [&](std::string_view label, std::string value) { out += fmt::format("  {:<34} {}\n", label, value); };
   out += fmt::format("j232 impact — {}\n", in.title.empty() ? in.source : in.title);
   out += "\nInput\n";
-  row("blade speed", fmt::format("{:.1f} rpm ({:.2f} rad/s)", in.blade.omega / rpm, in.blade.omega));
+  row("blade speed", fmt::format("{:.1f} rpm ({:.2f} rad/s); tip speed {:.2f} m/s ({:.0f} ft/min)", in.blade.omega / rpm,
+                                 in.blade.omega, in.blade.omega * in.blade.tip_radius(),
+                                 in.blade.omega * in.blade.tip_radius() / ft_per_min));
   row("blade mass, tip radius", fmt::format("{:.4g} kg ({:.4g} lb), {:.4g} m ({:.4g} in)", in.blade.mass(),
                                             in.blade.mass() / units::pound, in.blade.tip_radius(),
                                             in.blade.tip_radius() / units::inch));
@@ -100,6 +104,7 @@ std::string impact_table(const scenario::ImpactCase& in, const blade::ImpactSolu
   row("impulse on object", fmt::format("{:.5g} N s", c.impulse));
   row("OBJECT SPEED AFTER IMPACT", fmt::format("{:.4f} m/s ({:.1f} ft/min)", c.velocity_after.norm(),
                                                c.velocity_after.norm() / ft_per_min));
+  row("  as a multiple of tip speed", fmt::format("{:.3f}", c.velocity_after.norm() / (in.blade.omega * in.blade.tip_radius())));
   row("  along the blade's motion", fmt::format("{:.4f} m/s ({:.1f} ft/min)", c.velocity_after.y(),
                                                 c.velocity_after.y() / ft_per_min));
   if (in.object.rod)

