@@ -6,6 +6,7 @@
 #include <charconv>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -16,13 +17,20 @@ namespace {
 constexpr std::uintmax_t kMaxMeshBytes = 512ull << 20;
 constexpr std::size_t kMaxMeshFaces = 2'000'000;
 
-// CGAL 5.5's PLY reader trusts the header's order (a `property` before any `element`
-// crashes it; found by fuzzing): the header is checked here first. Empty when sound.
+// CGAL 5.5's PLY reader trusts its header (a `property` before any `element`, or a vertex
+// coordinate of a type it has no reader for, crashes it; a 32-bit list count lets one face
+// allocate gigabytes; all found by fuzzing): the header is checked here first. Empty when
+// sound.
 std::string ply_header_problem(const std::string& path) {
+  static const std::set<std::string> kTypes = {"char",  "uchar",  "short",  "ushort",  "int",     "uint",
+                                               "float", "double", "int8",   "uint8",   "int16",   "uint16",
+                                               "int32", "uint32", "float32", "float64"};
+  static const std::set<std::string> kReal = {"float", "double", "float32", "float64"};
   std::ifstream in(path, std::ios::binary);
   std::string line;
   if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return "does not start with \"ply\"";
   bool element = false;
+  std::string element_name;
   for (int n = 2; n < 10000 && std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
@@ -34,8 +42,23 @@ std::string ply_header_problem(const std::string& path) {
       long long count = -1;
       if (!(words >> name >> count) || count < 0) return fmt::format("line {}: expected \"element NAME COUNT\"", n);
       element = true;
+      element_name = name;
     } else if (word == "property") {
       if (!element) return fmt::format("line {}: a property before any element", n);
+      std::string type, name;
+      words >> type;
+      if (type == "list") {
+        std::string count_type;
+        words >> count_type >> type;
+        if (!kTypes.count(count_type)) return fmt::format("line {}: unknown property type", n);
+        // A list's length is allocated as read: with a 32-bit count one face can ask for
+        // gigabytes (found by fuzzing). Exporters write uchar counts.
+        if (count_type != "uchar" && count_type != "uint8" && count_type != "ushort" && count_type != "uint16")
+          return fmt::format("line {}: a list's count must be uchar or ushort", n);
+      }
+      if (!(words >> name) || !kTypes.count(type)) return fmt::format("line {}: expected \"property TYPE NAME\"", n);
+      if (element_name == "vertex" && (name == "x" || name == "y" || name == "z") && !kReal.count(type))
+        return fmt::format("line {}: vertex coordinate {} must be float or double", n, name);
     } else if (word != "format" && word != "comment" && word != "obj_info" && !word.empty()) {
       return fmt::format("line {}: unknown header keyword \"{}\"", n, word.substr(0, 40));
     }
