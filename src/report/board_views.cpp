@@ -101,7 +101,7 @@ void draw_marks(Chart& chart, const MarkSample& m, bool plan) {
     (row->mark.puncture ? px : hx).push_back(x);
     (row->mark.puncture ? py : hy).push_back(y);
   }
-  if (!ux.empty()) chart.points(ux, uy, kUncountedColour, fmt::format("below the blade plane, not counted ({})", ux.size()), 1.6);
+  if (!ux.empty()) chart.points(ux, uy, kUncountedColour, fmt::format("not counted ({})", ux.size()), 1.6);
   chart.points(hx, hy, kHitColour, fmt::format("hit ({})", hx.size()), 1.8);
   chart.points(px, py, kPunctureColour, fmt::format("puncture ({})", px.size()), 2.6);
 }

@@ -224,7 +224,8 @@ std::string compliance_report_html(const scenario::Scenario& s, const assess::As
   o += "<section id=\"hit-map\">\n<h2>2. Where the marks are</h2>\n";
   o += "<figure>" + hit_map_svg(s, soup, marks) +
        "<figcaption>The target board unrolled around the spindle: azimuth 0 is straight ahead, 90 to the left. The blade plane "
-       "and the feed stations' azimuths are drawn for reference.</figcaption></figure>\n";
+       "and the feed stations' azimuths are drawn for reference. Grey marks lie below the blade plane: SAE J232 does not "
+       "count them.</figcaption></figure>\n";
   o += "<figure>" + plan_view_svg(s, soup, marks) + "<figcaption>Seen from above; the blade turns counter-clockwise.</figcaption></figure>\n";
   o += "</section>\n";
   o += histogram_section(s, a, r);
