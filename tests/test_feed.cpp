@@ -13,10 +13,10 @@ using namespace j232;
 namespace {
 scenario::Scenario straight_scenario() {
   scenario::Scenario s;
-  s.blade.omega = 1000 * units::rpm;
-  s.blade.hub.bar_mass = 10;
-  s.blade.hub.bar_length = 1.2192;  // centred: two edges, 24 in reach
-  s.feed.stations = {{0.55, 0.0}};
+  s.spindles[0].blade.omega = 1000 * units::rpm;
+  s.spindles[0].blade.hub.bar_mass = 10;
+  s.spindles[0].blade.hub.bar_length = 1.2192;  // centred: two edges, 24 in reach
+  s.feed.stations = {{0, 0.55, 0.0}};
   return s;
 }
 constexpr double kTwoPi = 2 * units::pi;
@@ -63,7 +63,7 @@ TEST_CASE("feed: strike probability and strike time match the blade's sweep", "[
   s.feed.outlet_speed_max = 0;  // fixed fall speed: a fixed window
   s.feed.tilt_max = 0;
   s.nail.length_tolerance = 0;
-  const auto edges = feed::leading_edges(s.blade);
+  const auto edges = feed::leading_edges(s.spindles[0].blade);
   REQUIRE(edges.size() == 2);
   std::vector<double> times;
   const int n = 20000;
@@ -71,14 +71,14 @@ TEST_CASE("feed: strike probability and strike time match the blade's sweep", "[
   for (int i = 0; i < n; ++i) {
     random::Stream rng(11, 0, static_cast<std::uint64_t>(i), random::Purpose::Feed);
     const auto d = feed::sample_drop(s, i, rng);
-    window = feed::slab_window(d, s.geometry);
-    if (auto strike = feed::find_strike(d, edges, s.blade.omega, s.geometry)) {
+    window = feed::slab_window(d, s.spindles[0].geometry);
+    if (auto strike = feed::find_strike(d, edges, s.spindles[0].blade.omega, s.spindles[0].geometry)) {
       times.push_back(strike->time);
       CHECK(strike->offset >= -0.5 * d.length - 1e-12);
       CHECK(strike->offset <= 0.5 * d.length + 1e-12);
     }
   }
-  const double p = window * s.blade.omega / units::pi;
+  const double p = window * s.spindles[0].blade.omega / units::pi;
   const double se = std::sqrt(p * (1 - p) / n);
   CHECK(std::abs(static_cast<double>(times.size()) / n - p) < 4 * se);
   CHECK(test::ks_statistic(times, [&](double t) { return t / window; }) < test::ks_critical_001(times.size()));
@@ -86,12 +86,12 @@ TEST_CASE("feed: strike probability and strike time match the blade's sweep", "[
 
 TEST_CASE("feed: nails outside the tip circle fall through; the contact is where the nail is", "[feed]") {
   auto s = straight_scenario();
-  s.feed.stations = {{0.70, 0.5}};  // beyond the 0.6096 m reach
-  const auto edges = feed::leading_edges(s.blade);
+  s.feed.stations = {{0, 0.70, 0.5}};  // beyond the 0.6096 m reach
+  const auto edges = feed::leading_edges(s.spindles[0].blade);
   int struck = 0;
   for (int i = 0; i < 2000; ++i) {
     random::Stream rng(3, 0, static_cast<std::uint64_t>(i), random::Purpose::Feed);
-    struck += feed::find_strike(feed::sample_drop(s, i, rng), edges, s.blade.omega, s.geometry).has_value();
+    struck += feed::find_strike(feed::sample_drop(s, i, rng), edges, s.spindles[0].blade.omega, s.spindles[0].geometry).has_value();
   }
   CHECK(struck == 0);
 
@@ -101,18 +101,18 @@ TEST_CASE("feed: nails outside the tip circle fall through; the contact is where
   d.position = {0.5 * std::cos(0.3), 0.5 * std::sin(0.3)};
   d.fall_speed = 0.5;  // slow: long window
   d.blade_phase = 0.25;
-  s.geometry.thickness = 0.006;
-  const auto strike = feed::find_strike(d, edges, s.blade.omega, s.geometry);
+  s.spindles[0].geometry.thickness = 0.006;
+  const auto strike = feed::find_strike(d, edges, s.spindles[0].blade.omega, s.spindles[0].geometry);
   REQUIRE(strike);
   CHECK(strike->edge == 0);
-  CHECK(strike->time == Approx(0.05 / s.blade.omega).epsilon(1e-12));
+  CHECK(strike->time == Approx(0.05 / s.spindles[0].blade.omega).epsilon(1e-12));
   CHECK(strike->radius == Approx(0.5));
   CHECK(strike->azimuth == Approx(0.3));
   // The blade's mid-plane lies (fall - thickness/2) above the tip, or the tip is struck.
   const double t = strike->time, fall = 0.5 * t + 0.5 * feed::kGravity * t * t;
   CHECK(strike->offset == Approx(std::max(0.0, fall - 0.003) - 0.0254).epsilon(1e-9));
-  d.blade_phase = 0.3 - 0.012 * s.blade.omega;  // struck 12 ms in: the nail has fallen past the mid-plane
-  const auto later = feed::find_strike(d, edges, s.blade.omega, s.geometry);
+  d.blade_phase = 0.3 - 0.012 * s.spindles[0].blade.omega;  // struck 12 ms in: the nail has fallen past the mid-plane
+  const auto later = feed::find_strike(d, edges, s.spindles[0].blade.omega, s.spindles[0].geometry);
   REQUIRE(later);
   const double t2 = later->time, fall2 = 0.5 * t2 + 0.5 * feed::kGravity * t2 * t2;
   CHECK(t2 == Approx(0.012).epsilon(1e-9));

@@ -18,11 +18,11 @@ using scene::Vec3;
 namespace {
 scenario::Scenario basic() {
   scenario::Scenario s;
-  s.blade.omega = 100;
-  s.blade.hub.bar_mass = 10;
-  s.blade.hub.bar_length = 1.2;  // tip radius 0.6
+  s.spindles[0].blade.omega = 100;
+  s.spindles[0].blade.hub.bar_mass = 10;
+  s.spindles[0].blade.hub.bar_length = 1.2;  // tip radius 0.6
   s.housing.deck_radius = 0.65;
-  s.target.top = s.geometry.height + 0.61;
+  s.target.top = s.spindles[0].geometry.height + 0.61;
   return s;
 }
 
@@ -35,7 +35,7 @@ std::string write(const std::string& name, const std::string& text) {
 TEST_CASE("scene: rays meet the generated deck, skirt, ground and board where they are", "[scene]") {
   const auto s = basic();
   const scene::Scene sc(scene::build_scene_soup(s));
-  const Vec3 blade(0, 0, s.geometry.height);
+  const Vec3 blade(0, 0, s.spindles[0].geometry.height);
   const auto side = sc.first_hit(blade, Vec3(1, 0, 0), 10);
   REQUIRE(side);
   CHECK(side->surface == scene::Surface::Housing);
@@ -47,7 +47,7 @@ TEST_CASE("scene: rays meet the generated deck, skirt, ground and board where th
   const auto down = sc.first_hit(blade, Vec3(0, 0, -1), 10);
   REQUIRE(down);
   CHECK(down->surface == scene::Surface::Ground);
-  CHECK(down->distance == Approx(s.geometry.height));
+  CHECK(down->distance == Approx(s.spindles[0].geometry.height));
   // Under the skirt, out to the board.
   const auto low = sc.first_hit(Vec3(0, 0, 0.01), Vec3(1, 0, 0), 10);
   REQUIRE(low);
@@ -123,7 +123,7 @@ TEST_CASE("scene: the operator-zone share converges to the sector's fraction of 
     random::Stream rng(17, 0, static_cast<std::uint64_t>(i), random::Purpose::Test);
     const double a = 2 * units::pi * rng.uniform();
     flight::Body b;
-    b.position = {0, 0, s.geometry.height};
+    b.position = {0, 0, s.spindles[0].geometry.height};
     b.velocity = {100 * std::cos(a), 100 * std::sin(a), 0};
     b.axis = Vec3::UnitZ();  // broadside to the board
     const auto r = flight::fly(b, 0.0508, 0.00251, 0.002, {}, ctx, {}, rng);
@@ -141,7 +141,7 @@ TEST_CASE("counted height: J232 counts only marks above the blade plane", "[scen
   const auto s = basic();
   const scene::Scene sc(scene::build_scene_soup(s));
   std::vector<scenario::GuardSpec> guards(1);
-  const double counted = s.geometry.height;
+  const double counted = s.spindles[0].geometry.height;
   const flight::FlightContext ctx{&sc, &s, 100.0, 0.65, counted, &guards};
   for (const double dz : {0.05, -0.05}) {
     random::Stream rng(3, 0, 0, random::Purpose::Test);

@@ -12,11 +12,20 @@ namespace j232::assess {
 
 namespace {
 std::vector<feed::Spindle> make_spindles(const scenario::Scenario& s) {
-  try {
-    return {feed::Spindle(s.blade, s.geometry, s.restitution)};
-  } catch (const std::invalid_argument& e) {
-    throw scenario::InputError(s.file, std::nullopt, "blade", "", e.what());
+  std::vector<feed::Spindle> out;
+  for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+    const auto& spec = s.spindles[k];
+    try {
+      feed::Spindle sp(spec.blade, spec.geometry, s.restitution);
+      sp.centre = {spec.x, spec.y};
+      sp.sense = spec.sense;
+      out.push_back(std::move(sp));
+    } catch (const std::invalid_argument& e) {
+      throw scenario::InputError(s.file, std::nullopt, s.spindles.size() == 1 ? "blade" : fmt::format("spindles[{}].blade", k + 1), "",
+                                 e.what());
+    }
   }
+  return out;
 }
 }  // namespace
 
@@ -34,7 +43,7 @@ Simulator::Simulator(const scenario::Scenario& s)
   if (guards_.empty()) guards_.emplace_back();
   context_.scene = scene_.get();
   context_.scenario = &scenario_;
-  context_.deck_radius = scene::mesh_roles(s).housing ? s.blade.tip_radius() + 0.05 : s.housing.deck_radius;
+  context_.deck_radius = scene::mesh_roles(s).housing ? s.reach() + 0.05 : s.housing.deck_radius;
   context_.counted_height = s.counted_height();
   context_.escape_radius = scene::escape_radius(s, scene_->soup());
   context_.guards = &guards_;
@@ -47,11 +56,13 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
   out.flight.fate = flight::Fate::NotStruck;
   random::Stream feed_rng(s.run.seed, replicate, static_cast<std::uint64_t>(nail), random::Purpose::Feed);
   const feed::NailDrop drop = feed::sample_drop(s, nail, feed_rng);
-  const auto strike = feed::find_strike(drop, spindles_.front().edges, s.blade.omega, s.geometry);
+  // The spindle this nail's station feeds strikes it (drop and strike are about its axis).
+  const std::size_t k0 = s.feed.stations[static_cast<std::size_t>(drop.station)].spindle;
+  const feed::Spindle& spindle = spindles_[k0];
+  const scenario::SpindleSpec& spec = s.spindles[k0];
+  const auto strike = feed::find_strike(drop, spindle.edges, spindle.omega(), spec.geometry, spindle.sense);
   if (!strike) return out;
 
-  // The feeding spindle (the one blade of a [blade] scenario) strikes it.
-  const feed::Spindle& spindle = spindles_.front();
   feed::BladeHit hit;
   hit.time = strike->time;
   hit.edge = strike->edge;
@@ -73,7 +84,7 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
   }
 
   flight::Body body;
-  body.position = strike->contact_point - strike->offset * drop.axis;
+  body.position = strike->contact_point - strike->offset * drop.axis + blade::Vec3(spindle.centre.x(), spindle.centre.y(), 0.0);
   body.velocity = contact.velocity_after;
   body.spin = contact.spin_after;
   body.axis = drop.axis;
@@ -85,8 +96,18 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
   drag.air = {-s.feed.ground_speed, 0.0, 0.0};  // still air, seen from the moving mower
 
   random::Stream flight_rng(s.run.seed, replicate, static_cast<std::uint64_t>(nail), random::Purpose::Flight);
+  // The other blades' angles at time 0: locked to the feeding one on a timed deck, else
+  // independent and random (belt-driven spindles drift apart).
   feed::BladePhases phases;
-  phases.at_zero[0] = drop.blade_phase;
+  for (std::size_t k = 0; k < spindles_.size(); ++k) {
+    const auto& other = s.spindles[k];
+    if (k == k0)
+      phases.at_zero[k] = drop.blade_phase;
+    else if (other.phase && spec.phase)
+      phases.at_zero[k] = drop.blade_phase - *spec.phase + *other.phase;
+    else
+      phases.at_zero[k] = 2 * units::pi * feed_rng.uniform();
+  }
   out.flight = flight::fly(body, drop.length, drop.diameter, drop.mass, drag, context_, phases, flight_rng);
   out.exit_speed = contact.velocity_after.norm();
   out.contact_radius = strike->radius;

@@ -63,7 +63,7 @@ double slab_window(const NailDrop& d, const scenario::BladeGeometry& g) {
 }
 
 std::optional<Strike> find_strike(const NailDrop& d, const std::vector<Edge>& edges, double omega,
-                                  const scenario::BladeGeometry& g) {
+                                  const scenario::BladeGeometry& g, int sense) {
   const double window = slab_window(d, g);
   const double phi0 = std::atan2(d.position.y(), d.position.x());
   std::optional<Strike> best;
@@ -71,13 +71,14 @@ std::optional<Strike> find_strike(const NailDrop& d, const std::vector<Edge>& ed
     // The edge's angle is blade_phase + azimuth + omega t; the nail's azimuth phi(t)
     // drifts slowly. Solve edge(t) = phi(t) (mod 2 pi) by fixed-point iteration: it
     // contracts because the nail's angular drift is far slower than the blade.
-    const double gap = wrap(phi0 - d.blade_phase - edges[e].azimuth);
+    // Turning clockwise (sense -1) the edge closes the gap the other way round.
+    const double gap = wrap(sense * (phi0 - d.blade_phase - edges[e].azimuth));
     double t = gap / omega;
     for (int it = 0; it < 4; ++it) {
       const Eigen::Vector2d p = d.position + d.drift * t;
       double dphi = std::atan2(p.y(), p.x()) - phi0;
       dphi = std::remainder(dphi, kTwoPi);
-      t = (gap + dphi) / omega;
+      t = (gap + sense * dphi) / omega;
     }
     if (t < 0.0 || t > window || (best && t >= best->time)) continue;
     const Eigen::Vector2d p = d.position + d.drift * t;

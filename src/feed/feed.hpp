@@ -24,7 +24,7 @@ struct NailDrop {
   int station = 0;
   double length = 0, mass = 0, diameter = 0, head_diameter = 0;
   Vec3 axis = Vec3::UnitZ();  // unit, tip -> head
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // axis at the blade plane at t = 0, m
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // axis at the blade plane at t = 0, from the spindle's axis, m
   Eigen::Vector2d drift = Eigen::Vector2d::Zero();     // horizontal velocity relative to the mower, m/s
   double fall_speed = 0;                               // downward, at t = 0, m/s
   double blade_phase = 0;                              // angle of the blade at t = 0, rad in [0, 2 pi)
@@ -50,8 +50,9 @@ struct Strike {
 };
 
 // Which edge meets the falling nail first, where along the nail, or nullopt (falls through).
+// `drop.position` is relative to the spindle's axis; `sense` +1 counter-clockwise, -1 clockwise.
 std::optional<Strike> find_strike(const NailDrop& drop, const std::vector<Edge>& edges, double omega,
-                                  const scenario::BladeGeometry& geometry);
+                                  const scenario::BladeGeometry& geometry, int sense = +1);
 
 // The time a nail spans the blade slab, from t = 0.
 double slab_window(const NailDrop& drop, const scenario::BladeGeometry& geometry);

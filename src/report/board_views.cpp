@@ -143,11 +143,11 @@ std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, co
               "height above ground (m)", 900, 380);
   BoardRaster(soup).draw(chart);
   draw_marks(chart, marks, false);
-  chart.hline(s.geometry.height, "#000", fmt::format("blade plane ({:.0f} mm)", 1000 * s.geometry.height));
+  chart.hline(s.blade_plane(), "#000", fmt::format("blade plane ({:.0f} mm)", 1000 * s.blade_plane()));
   if (s.criteria.counted_height)
     chart.hline(s.counted_height(), "#444", fmt::format("counted from {:.0f} mm (departs from J232)", 1000 * s.counted_height()));
   for (std::size_t i = 0; i < s.feed.stations.size(); ++i)
-    chart.vline(s.feed.stations[i].azimuth * kDeg, "#009E73", s.feed.stations.size() > 1 ? fmt::format("feed {}", i + 1) : "feed station");
+    chart.vline(azimuth_deg(s.station_x(s.feed.stations[i]), s.station_y(s.feed.stations[i])), "#009E73", s.feed.stations.size() > 1 ? fmt::format("feed {}", i + 1) : "feed station");
   chart.x_range(-180, 180);
   chart.x_ticks({-180, -135, -90, -45, 0, 45, 90, 135, 180});
   chart.caption(sample_caption(marks));
@@ -206,9 +206,13 @@ std::string plan_view_svg(const scenario::Scenario& s, const scene::Soup& soup, 
     if (!layer.tx.empty()) chart.triangles(layer.tx, layer.ty, st.colour, 0.12, layer.x0.empty() ? st.label : "");
     if (!layer.x0.empty()) chart.segments(layer.x0, layer.y0, layer.x1, layer.y1, st.colour, st.label, st.width);
   }
-  chart.circle(0, 0, s.blade.tip_radius(), "#000", fmt::format("blade tip circle (r {:.3f} m)", s.blade.tip_radius()), true);
+  for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+    const auto& sp = s.spindles[k];
+    chart.circle(sp.x, sp.y, sp.blade.tip_radius(), "#000",
+                 k == 0 ? fmt::format("blade tip circle{} (r {:.3f} m)", s.spindles.size() > 1 ? "s" : "", sp.blade.tip_radius()) : "", true);
+  }
   std::vector<double> fx, fy;
-  for (const auto& f : s.feed.stations) fx.push_back(f.radius * std::cos(f.azimuth)), fy.push_back(f.radius * std::sin(f.azimuth));
+  for (const auto& f : s.feed.stations) fx.push_back(s.station_x(f)), fy.push_back(s.station_y(f));
   chart.points(fx, fy, "#009E73", "feed station", 4);
   if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived)
     chart.points({s.zone.seat_x}, {s.zone.seat_y}, "#000000", "operator seat", 4);

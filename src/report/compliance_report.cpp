@@ -99,7 +99,7 @@ std::string criteria_section(const assess::Summary& sum, const json& r) {
 std::string histogram_section(const scenario::Scenario& s, const assess::Assessment& a, const json& r) {
   std::string o = "<section id=\"energies\">\n<h2>3. Speeds and energies</h2>\n";
   Chart speed = histogram_chart(a.exit_speed, "Nail speed leaving the blade", "speed after impact (m/s)", "m/s", "struck nails", palette(0));
-  const double tip = s.blade.omega * s.blade.tip_radius();
+  const double tip = s.tip_speed();
   speed.vline(tip, "#000", fmt::format("blade tip speed {:.1f} m/s", tip));
   o += "<figure>" + speed.svg() +
        fmt::format("<figcaption>Thrown at {} × the blade tip speed on average (5–95 %: {} to {} ×); published speeds of "

@@ -45,7 +45,7 @@ std::vector<std::string> departures_from_j232(const scenario::Scenario& s) {
                             100 * s.criteria.punctures_outside));
   if (s.criteria.counted_height)
     d.push_back(fmt::format("marks counted from {:.0f} mm above ground instead of from the blade plane ({:.0f} mm)",
-                            1000 * *s.criteria.counted_height, 1000 * s.geometry.height));
+                            1000 * *s.criteria.counted_height, 1000 * s.blade_plane()));
   return d;
 }
 
@@ -88,16 +88,15 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"marks_not_located", a.unlocated_marks},
       {"fates", fates},
       {"exit_speed", histogram_json(a.exit_speed, "m/s")},
-      {"tip_speed_m_s", s.blade.omega * s.blade.tip_radius()},
+      {"tip_speed_m_s", s.tip_speed()},
       {"exit_speed_over_tip_speed",
-       {{"mean", a.exit_speed.mean() / (s.blade.omega * s.blade.tip_radius())},
-        {"q05", a.exit_speed.quantile(0.05) / (s.blade.omega * s.blade.tip_radius())},
-        {"q95", a.exit_speed.quantile(0.95) / (s.blade.omega * s.blade.tip_radius())},
+       {{"mean", a.exit_speed.mean() / (s.tip_speed())},
+        {"q05", a.exit_speed.quantile(0.05) / (s.tip_speed())},
+        {"q95", a.exit_speed.quantile(0.95) / (s.tip_speed())},
         {"published_range", {0.8, 1.4}},
         {"published_source", "Chazen and Chamberlain, New England Journal of Medicine, 1962, as widely reported"}}},
       {"mark_energy", histogram_json(a.mark_energy, "J")},
       {"contact_radius", histogram_json(a.contact_radius, "m")},
-      {"strikes_per_struck_nail", strikes_json(a.strikes)},
       {"strikes_per_struck_nail", strikes_json(a.strikes)},
       {"board_energy", histogram_json(a.board_energy, "J")},
       {"board_energy_per_width", histogram_json(a.board_energy_per_width, "J/m")},
@@ -177,7 +176,7 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
                      "counted\n",
                      sum.nails, sum.struck, sum.nails ? 100.0 * sum.struck / sum.nails : 0.0, sum.marks_per_nail,
                      sum.uncounted_marks);
-  const double tip = s.blade.omega * s.blade.tip_radius();
+  const double tip = s.tip_speed();
   out += fmt::format("  thrown at {:.2f} x the blade tip speed ({:.1f} m/s) on average (published thrown-object speeds: "
                      "0.8-1.4 x)\n",
                      sum.exit_speed_mean / tip, tip);

@@ -20,8 +20,8 @@ json restitution_json(const blade::Restitution& r) {
           {"reference_speed_m_s", r.reference_speed}};
 }
 
-json blade_json(const scenario::Scenario& s) {
-  const auto& b = s.blade;
+json spindle_json(const scenario::SpindleSpec& sp) {
+  const auto& b = sp.blade;
   json arms = json::array();
   for (const auto& a : b.arms) {
     json links = json::array();
@@ -35,9 +35,9 @@ json blade_json(const scenario::Scenario& s) {
   }
   return {{"speed_rpm", b.omega / units::rpm},
           {"speed_rad_s", b.omega},
-          {"height_m", s.geometry.height},
-          {"thickness_m", s.geometry.thickness},
-          {"lift_angle_deg", s.geometry.lift_angle * kDeg},
+          {"height_m", sp.geometry.height},
+          {"thickness_m", sp.geometry.thickness},
+          {"lift_angle_deg", sp.geometry.lift_angle * kDeg},
           {"mass_kg", b.mass()},
           {"tip_radius_m", b.tip_radius()},
           {"hub",
@@ -47,7 +47,12 @@ json blade_json(const scenario::Scenario& s) {
             {"inertia_kg_m2", b.hub.extra_inertia},
             {"drive_inertia_kg_m2", b.hub.drive_inertia},
             {"drive", b.hub.constant_speed ? "constant_speed" : "free"}}},
-          {"arms", arms}};
+          {"arms", arms},
+          {"blade_name", sp.blade_name},
+          {"x_m", sp.x},
+          {"y_m", sp.y},
+          {"sense", sp.sense > 0 ? "ccw" : "cw"},
+          {"phase_deg", sp.phase ? json(*sp.phase * kDeg) : json("random")}};
 }
 
 json guard_json(const scenario::GuardSpec& g) {
@@ -63,9 +68,15 @@ json guard_json(const scenario::GuardSpec& g) {
 }  // namespace
 
 nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
+  json openings = json::array();
+  for (const auto& o : s.housing.openings)
+    openings.push_back({{"name", o.name}, {"azimuth_from_deg", o.azimuth_from * kDeg}, {"azimuth_to_deg", o.azimuth_to * kDeg}, {"top_m", o.top}});
+  json spindles = json::array();
+  for (const auto& sp : s.spindles) spindles.push_back(spindle_json(sp));
   const scene::MeshRoles roles = scene::mesh_roles(s);
   json stations = json::array();
-  for (const auto& st : s.feed.stations) stations.push_back({{"radius_m", st.radius}, {"azimuth_deg", st.azimuth * kDeg}});
+  for (const auto& st : s.feed.stations)
+    stations.push_back({{"spindle", st.spindle + 1}, {"radius_m", st.radius}, {"azimuth_deg", st.azimuth * kDeg}});
   json guards = json::array(), deflectors = json::array(), meshes = json::array();
   for (const auto& g : s.housing.guards) guards.push_back(guard_json(g));
   for (const auto& d : s.housing.deflectors)
@@ -95,7 +106,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
   return {
       {"file", s.file},
       {"title", s.title},
-      {"blade", blade_json(s)},
+      {"spindles", spindles},
       {"restitution", restitution_json(s.restitution)},
       {"nail",
        {{"length_m", s.nail.length},
@@ -117,6 +128,8 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
                                        {"friction", s.housing.friction}}
                                  : json{{"generated", true},
                                         {"deck_radius_m", s.housing.deck_radius},
+                                        {"margin_m", s.housing.margin},
+                                        {"openings", openings},
                                         {"skirt_bottom_m", s.housing.skirt_bottom},
                                         {"skirt_depth_m", s.housing.skirt_depth},
                                         {"restitution", restitution_json(s.housing.restitution)},
@@ -128,7 +141,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
       {"target", roles.target ? json{{"generated", false}}
                               : json{{"generated", true},
                                      {"distance_m", s.target.distance},
-                                     {"radius_m", s.blade.tip_radius() + s.target.distance},
+                                     {"radius_m", s.reach() + s.target.distance},
                                      {"bottom_m", s.target.bottom},
                                      {"top_m", s.target.top},
                                      {"segments", s.target.segments}}},

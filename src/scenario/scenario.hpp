@@ -7,6 +7,7 @@
 // World frame: origin on the spindle axis at ground level, z up, x forward (the
 // direction of travel), y to the left. The blade turns counter-clockwise seen from
 // above. Azimuth is measured from +x toward +y.
+#include <cmath>
 #include <optional>
 #include <toml++/toml.h>
 #include <string>
@@ -27,13 +28,14 @@ struct NailSpec {  // uncoated 6d steel box nail
 };
 
 struct FeedStation {
-  double radius = 0.0;   // from the spindle, m
-  double azimuth = 0.0;  // rad
+  std::size_t spindle = 0;  // which spindle's blade it feeds (J232 feeds every blade)
+  double radius = 0.0;      // from that spindle's axis, m
+  double azimuth = 0.0;     // about that axis, from +x, rad
 };
 
 struct FeedSpec {
   int nails = 150;
-  std::vector<FeedStation> stations;  // nails go to stations in turn; default: one, 2 in inside the tip circle, in front
+  std::vector<FeedStation> stations;  // nails go to stations in turn; default: one per spindle, 2 in inside its tip circle, in front
   double drop_height = 0.30;          // funnel outlet above the top of the blade, m
   double outlet_diameter = 0.025;     // funnel outlet, m: uniform position within it
   double outlet_speed_max = 0.5;      // speed leaving the outlet, uniform in [0, max], m/s
@@ -45,6 +47,25 @@ struct BladeGeometry {
   double height = 0.076;      // blade plane above ground, m (3 in)
   double thickness = 0.006;   // m; a nail is struck while it spans this slab
   double lift_angle = 0.0;    // edge bevel / lift: the contact normal tilts up by this angle, rad
+};
+
+// One spindle of the deck and its blade. A scenario with [blade] has one, at the origin.
+struct SpindleSpec {
+  std::string blade_name;  // its [blades.NAME], or empty for an inline blade
+  blade::Blade blade;
+  BladeGeometry geometry;
+  double x = 0.0, y = 0.0;  // the spindle's axis, m
+  int sense = +1;           // +1 counter-clockwise seen from above, -1 clockwise
+  // The blade's angle at each nail's time 0: a fixed offset from the deck's (timed
+  // spindles, geared or on a timing belt) or none (untimed: independent and random).
+  std::optional<double> phase;
+  double reach() const { return std::hypot(x, y) + blade.tip_radius(); }  // from the origin
+};
+
+struct OpeningSpec {  // a discharge opening: the skirt is cut away between two azimuths
+  std::string name = "discharge";
+  double azimuth_from = 0.0, azimuth_to = 0.0;  // about the origin, counter-clockwise from -> to
+  double top = 0.0;                             // the opening's upper edge above ground, m (default: the deck)
 };
 
 struct GuardSpec {  // chain or belting curtain hanging from the skirt
@@ -65,11 +86,13 @@ struct DeflectorSpec {  // a solid vertical panel inside or outside the skirt
 };
 
 struct HousingSpec {
-  double deck_radius = 0.0;           // default: tip radius + 50 mm
+  double deck_radius = 0.0;           // default (0 here): the blades' reach + margin
   double skirt_bottom = 0.038;        // above ground (skid shoes 1.5 in below the blade)
   double skirt_depth = 0.175;         // skirt bottom to deck plate
   blade::Restitution restitution = blade::Restitution::power_law(1.06, -0.25, 0.9);  // steel on steel
   double friction = 0.4;
+  double margin = 0.050;              // deck outline outside every tip circle (several spindles)
+  std::vector<OpeningSpec> openings;
   std::vector<GuardSpec> guards;
   std::vector<DeflectorSpec> deflectors;
 };
@@ -147,8 +170,7 @@ struct RunSpec {
 struct Scenario {
   std::string file;
   std::string title;
-  blade::Blade blade;
-  BladeGeometry geometry;
+  std::vector<SpindleSpec> spindles = std::vector<SpindleSpec>(1);  // at least one; [blade]: one at the origin
   blade::Restitution restitution = blade::Restitution::constant(0.9);  // nail on blade
   NailSpec nail;
   FeedSpec feed;
@@ -163,7 +185,16 @@ struct Scenario {
   RunSpec run;
 
   // Marks below this height (m above ground) are not counted (CriteriaSpec::counted_height).
-  double counted_height() const { return criteria.counted_height.value_or(geometry.height); }
+  double counted_height() const { return criteria.counted_height.value_or(blade_plane()); }
+  // The highest blade plane (J232 counts marks above the blade tip-circle plane).
+  double blade_plane() const;
+  // How far the blades reach from the origin (the board ring is centred there).
+  double reach() const;
+  // The fastest blade tip.
+  double tip_speed() const;
+  // Where a feed station drops its nails, in the world frame (m).
+  double station_x(const FeedStation& f) const { return spindles[f.spindle].x + f.radius * std::cos(f.azimuth); }
+  double station_y(const FeedStation& f) const { return spindles[f.spindle].y + f.radius * std::sin(f.azimuth); }
 };
 
 // Reads and checks a scenario file. Throws InputError naming file, line, key, value.

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <set>
 #include <fmt/format.h>
 
 #include "scenario/blade_input.hpp"
@@ -35,7 +36,7 @@ void read_nail(const TableReader& t, NailSpec& n) {
   t.refuse_unknown_keys();
 }
 
-void read_feed(const TableReader& t, FeedSpec& f, double tip_radius) {
+void read_feed(const TableReader& t, FeedSpec& f, const std::vector<SpindleSpec>& spindles) {
   f.nails = static_cast<int>(t.integer_or("nails", f.nails, 1, 100000));
   f.drop_height = t.quantity_or("drop_height", Kind::Length, f.drop_height, Range::between(0, 3));
   f.outlet_diameter = t.quantity_or("outlet_diameter", Kind::Length, f.outlet_diameter, Range::between(0, 0.3));
@@ -45,8 +46,9 @@ void read_feed(const TableReader& t, FeedSpec& f, double tip_radius) {
   f.ground_speed = t.quantity_or("ground_speed", Kind::Speed, f.ground_speed, Range::between(0, 15));
   for (const auto& s : t.array_of_tables("stations", 360)) {
     FeedStation st;
+    st.spindle = static_cast<std::size_t>(s.integer_or("spindle", 1, 1, static_cast<long long>(spindles.size())) - 1);
     // A station outside the tip circle feeds nails the blade can never strike.
-    st.radius = s.quantity("radius", Kind::Length, Range::between(0, tip_radius));
+    st.radius = s.quantity("radius", Kind::Length, Range::between(0, spindles[st.spindle].blade.tip_radius()));
     st.azimuth = s.quantity_or("azimuth", Kind::Angle, 0.0, kAnyAzimuth);
     s.refuse_unknown_keys();
     f.stations.push_back(st);
@@ -67,8 +69,13 @@ void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry) {
   g.friction = t.quantity_or("friction", Kind::Dimensionless, g.friction, Range::between(0, 2));
 }
 
-void read_housing(const TableReader& t, HousingSpec& h) {
-  h.deck_radius = t.quantity_or("deck_radius", Kind::Length, h.deck_radius, Range::positive_up_to(10));
+void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
+  // One spindle: a round deck of deck_radius. Several: the deck's outline follows their tip
+  // circles at `margin`, and deck_radius has no meaning.
+  h.margin = t.quantity_or("margin", Kind::Length, h.margin, Range::between(0.005, 1));
+  if (several_spindles && t.has("deck_radius"))
+    throw t.error("deck_radius", "with several spindles the deck's outline follows their tip circles; set housing.margin instead");
+  if (auto r = t.optional_quantity("deck_radius", Kind::Length, Range::positive_up_to(10))) h.deck_radius = *r;
   h.skirt_bottom = t.quantity_or("skirt_bottom", Kind::Length, h.skirt_bottom, Range::between(0, 1));
   h.skirt_depth = t.quantity_or("skirt_depth", Kind::Length, h.skirt_depth, Range::between(0.001, 1));
   h.friction = t.quantity_or("friction", Kind::Dimensionless, h.friction, Range::between(0, 2));
@@ -80,6 +87,16 @@ void read_housing(const TableReader& t, HousingSpec& h) {
       throw g.error("bottom", fmt::format("expected the curtain's lower edge below the skirt bottom ({} m)", h.skirt_bottom));
     g.refuse_unknown_keys();
     h.guards.push_back(guard);
+  }
+  for (const auto& o : t.array_of_tables("openings")) {
+    OpeningSpec op;
+    op.name = o.string_or("name", op.name, {});
+    op.azimuth_from = o.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
+    op.azimuth_to = o.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+    op.top = o.quantity_or("top", Kind::Length, h.skirt_bottom + h.skirt_depth, Range::between(0, 2));
+    if (op.top <= h.skirt_bottom) throw o.error("top", "expected the opening's upper edge above the skirt's bottom");
+    o.refuse_unknown_keys();
+    h.openings.push_back(op);
   }
   for (const auto& d : t.array_of_tables("deflectors")) {
     DeflectorSpec def;
@@ -150,6 +167,73 @@ void read_run(const TableReader& t, RunSpec& r) {
   t.refuse_unknown_keys();
 }
 
+// A blade with its geometry (height, thickness, lift) from a [blade]-like table.
+void read_blade_and_geometry(const TableReader& t, SpindleSpec& sp) {
+  sp.blade = read_blade(t);
+  sp.geometry.height = t.quantity_or("height", Kind::Length, sp.geometry.height, Range::between(0.005, 1));
+  sp.geometry.thickness = t.quantity_or("thickness", Kind::Length, sp.geometry.thickness, Range::between(0.0005, 0.05));
+  sp.geometry.lift_angle = t.quantity_or("lift_angle", Kind::Angle, sp.geometry.lift_angle, Range::between(-45 * kDegree, 45 * kDegree));
+  t.refuse_unknown_keys();
+}
+
+// [blade] (one spindle at the origin), or [[spindles]] with blades inline or by name
+// from [blades.NAME] (a deck of identical blades is written once).
+void read_spindles(const TableReader& root, std::vector<SpindleSpec>& spindles) {
+  spindles.clear();
+  const auto blade_table = root.table("blade");
+  const auto tables = root.array_of_tables("spindles", 8);
+  if (blade_table && !tables.empty())
+    throw root.error("spindles", "give either [blade] (one spindle at the origin) or [[spindles]], not both");
+  if (blade_table) {
+    SpindleSpec sp;
+    read_blade_and_geometry(*blade_table, sp);
+    spindles.push_back(sp);
+    return;
+  }
+  if (tables.empty()) throw root.error("blade", "missing; expected a [blade] table, or [[spindles]] for a deck of several");
+  const auto named = root.table("blades");
+  std::set<std::string> used;
+  for (const auto& t : tables) {
+    SpindleSpec sp;
+    if (t.is_string("blade")) {
+      sp.blade_name = t.string_or("blade", "", {});
+      const auto b = named ? named->table(sp.blade_name) : std::nullopt;
+      if (!b) throw t.error("blade", fmt::format("no [blades.{}] table gives this blade", sp.blade_name));
+      read_blade_and_geometry(*b, sp);
+      used.insert(sp.blade_name);
+    } else if (const auto b = t.table("blade")) {
+      read_blade_and_geometry(*b, sp);
+    } else {
+      throw t.error("blade", "missing; expected the name of a [blades.NAME] table or an inline [spindles.blade] table");
+    }
+    sp.x = t.quantity_or("x", Kind::Length, 0.0, Range::between(-10, 10));
+    sp.y = t.quantity_or("y", Kind::Length, 0.0, Range::between(-10, 10));
+    sp.geometry.height = t.quantity_or("height", Kind::Length, sp.geometry.height, Range::between(0.005, 1));
+    sp.sense = t.string_or("sense", "ccw", {"ccw", "cw"}) == "cw" ? -1 : +1;
+    if (t.is_string("phase") && t.string_or("phase", "", {}) == "random")
+      sp.phase.reset();
+    else
+      sp.phase = t.optional_quantity("phase", Kind::Angle, kAnyAzimuth);
+    t.refuse_unknown_keys();
+    spindles.push_back(sp);
+  }
+  if (named) {
+    for (const auto& name : named->keys())
+      if (!used.count(name)) throw named->error(name, "no spindle uses this blade; remove it or give it to a [[spindles]] entry");
+    named->refuse_unknown_keys();
+  }
+  // Blades must not overlap: two tip circles closer than their radii would cut each other.
+  for (std::size_t i = 0; i < spindles.size(); ++i)
+    for (std::size_t j = i + 1; j < spindles.size(); ++j) {
+      const double d = std::hypot(spindles[i].x - spindles[j].x, spindles[i].y - spindles[j].y);
+      if (d < spindles[i].blade.tip_radius() + spindles[j].blade.tip_radius() &&
+          std::abs(spindles[i].geometry.height - spindles[j].geometry.height) < 0.5 * (spindles[i].geometry.thickness + spindles[j].geometry.thickness))
+        throw tables[j].error("x", fmt::format("spindle {}'s tip circle overlaps spindle {}'s in the same plane ({:.3f} m apart, "
+                                               "radii {:.3f} and {:.3f} m): stagger their heights or move them apart",
+                                               j + 1, i + 1, d, spindles[i].blade.tip_radius(), spindles[j].blade.tip_radius()));
+    }
+}
+
 // Keys of the generated set-up that a mesh replaces are refused, never silently ignored.
 void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshFile>& meshes) {
   auto first = [&](std::initializer_list<const char*> labels) -> const MeshFile* {
@@ -177,6 +261,22 @@ const std::vector<std::string> kMeshLabels = {"ground", "housing", "deflector", 
 
 }  // namespace
 
+double Scenario::blade_plane() const {
+  double h = 0;
+  for (const auto& sp : spindles) h = std::max(h, sp.geometry.height);
+  return h;
+}
+double Scenario::reach() const {
+  double r = 0;
+  for (const auto& sp : spindles) r = std::max(r, sp.reach());
+  return r;
+}
+double Scenario::tip_speed() const {
+  double v = 0;
+  for (const auto& sp : spindles) v = std::max(v, sp.blade.omega * sp.blade.tip_radius());
+  return v;
+}
+
 bool CriteriaSpec::limits_depart_from_j232() const {
   const CriteriaSpec j232;
   return hits_zone != j232.hits_zone || punctures_zone != j232.punctures_zone || hits_outside != j232.hits_outside ||
@@ -191,25 +291,20 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   s.file = file;
   s.title = root.string_or("title", std::filesystem::path(file).stem().string(), {});
 
-  auto blade_table = root.table("blade");
-  if (!blade_table) throw root.error("blade", "missing; expected a [blade] table");
-  s.blade = read_blade(*blade_table);
-  s.geometry.height = blade_table->quantity_or("height", Kind::Length, s.geometry.height, Range::between(0.005, 1));
-  s.geometry.thickness = blade_table->quantity_or("thickness", Kind::Length, s.geometry.thickness, Range::between(0.0005, 0.05));
-  s.geometry.lift_angle = blade_table->quantity_or("lift_angle", Kind::Angle, s.geometry.lift_angle);
-  if (std::abs(s.geometry.lift_angle) > 45 * kDegree) throw blade_table->error("lift_angle", "expected within +/-45 deg");
-  blade_table->refuse_unknown_keys();
-  const double tip = s.blade.tip_radius();
+  read_spindles(root, s.spindles);
+  const double reach = s.reach();
 
   if (auto r = root.table("restitution")) s.restitution = read_restitution(*r);
   if (auto n = root.table("nail")) read_nail(*n, s.nail);
-  if (auto f = root.table("feed")) read_feed(*f, s.feed, tip);
-  if (s.feed.stations.empty()) s.feed.stations.push_back({std::max(0.0, tip - 0.0508), 0.0});
+  if (auto f = root.table("feed")) read_feed(*f, s.feed, s.spindles);
+  if (s.feed.stations.empty())  // one per spindle, 2 in inside its tip circle, in front
+    for (std::size_t k = 0; k < s.spindles.size(); ++k)
+      s.feed.stations.push_back({k, std::max(0.0, s.spindles[k].blade.tip_radius() - 0.0508), 0.0});
 
-  s.housing.deck_radius = tip + 0.050;
-  if (auto h = root.table("housing")) read_housing(*h, s.housing);
-  if (s.housing.deck_radius <= tip)
-    throw root.table("housing")->error("deck_radius", fmt::format("expected a deck wider than the blade's tip circle ({:.4g} m)", tip));
+  if (auto h = root.table("housing")) read_housing(*h, s.housing, s.spindles.size() > 1);
+  if (s.housing.deck_radius == 0.0) s.housing.deck_radius = reach + s.housing.margin;
+  if (s.housing.deck_radius <= reach)
+    throw root.table("housing")->error("deck_radius", fmt::format("expected a deck wider than the blade's tip circle ({:.4g} m)", reach));
 
   if (auto g = root.table("ground")) {
     s.ground.restitution = g->quantity_or("restitution", Kind::Dimensionless, s.ground.restitution, Range::UnitInterval);
@@ -218,14 +313,14 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     g->refuse_unknown_keys();
   }
 
-  s.target.top = s.geometry.height + 0.610;
+  s.target.top = s.blade_plane() + 0.610;
   if (auto t = root.table("target")) {
     s.target.distance = t->quantity_or("distance", Kind::Length, s.target.distance, Range::between(0.05, 10));
     s.target.bottom = t->quantity_or("bottom", Kind::Length, s.target.bottom, Range::between(0, 5));
     s.target.top = t->quantity_or("top", Kind::Length, s.target.top, Range::positive_up_to(10));
     s.target.segments = static_cast<int>(t->integer_or("segments", s.target.segments, 16, 3600));
     if (s.target.top <= s.target.bottom) throw t->error("top", "expected the board's top above its bottom");
-    if (tip + s.target.distance <= s.housing.deck_radius)
+    if (reach + s.target.distance <= s.housing.deck_radius)
       throw t->error("distance", "expected the board outside the mower deck");
     t->refuse_unknown_keys();
   }

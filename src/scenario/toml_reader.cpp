@@ -23,6 +23,17 @@ const toml::node* TableReader::node(std::string_view key) const {
 
 bool TableReader::has(std::string_view key) const { return table_->contains(key); }
 
+bool TableReader::is_string(std::string_view key) const {
+  const toml::node* n = table_->get(key);
+  return n && n->is_string();
+}
+
+std::vector<std::string> TableReader::keys() const {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : *table_) out.emplace_back(k.str());
+  return out;
+}
+
 std::optional<int> TableReader::line_of(std::string_view key) const {
   if (const toml::node* n = table_->get(key)) return static_cast<int>(n->source().begin.line);
   if (table_->source().begin.line > 0) return static_cast<int>(table_->source().begin.line);

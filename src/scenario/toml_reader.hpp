@@ -43,6 +43,10 @@ class TableReader {
   TableReader(const toml::table& table, std::string file, std::string path);
 
   bool has(std::string_view key) const;
+  // The key holds a string (a quantity, or a name); asks nothing, so marks nothing as used.
+  bool is_string(std::string_view key) const;
+  // Every key the table holds, in order.
+  std::vector<std::string> keys() const;
 
   // A quantity written with units ("22 lb"); plain numbers only for Kind::Dimensionless.
   double quantity(std::string_view key, units::Kind kind, Range range = Range::Any) const;

@@ -128,9 +128,85 @@ Soup subdivide(const Soup& in, double max_edge, std::size_t max_triangles) {
   return out;
 }
 
+// The deck's outline seen from above, counter-clockwise: the convex hull of every
+// spindle's tip circle widened by the margin (a round deck for one spindle).
+std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& sp : s.spindles)
+    for (int i = 0; i < 96; ++i) {
+      const double a = kTwoPi * i / 96, r = s.spindles.size() == 1 ? s.housing.deck_radius : sp.blade.tip_radius() + s.housing.margin;
+      points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
+    }
+  // Andrew's monotone chain.
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (const auto& p : points) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+// Whether azimuth a (about the origin) lies in the arc from -> to (counter-clockwise).
+bool in_arc(double a, double from, double to) {
+  return std::fmod(std::fmod(a - from, kTwoPi) + kTwoPi, kTwoPi) < arc_span(from, to);
+}
+
+// A deck whose outline is a polygon (several spindles, or openings cut in the skirt): the
+// plate fanned from the centroid, the skirt in pieces of at most 0.1 m along the outline,
+// each piece cut away where an opening is, guards hanging below it (and across an
+// opening, up to its top).
+void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_guard) {
+  const auto& h = s.housing;
+  const double deck_top = h.skirt_bottom + h.skirt_depth;
+  const auto outline = deck_outline(s);
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (const auto& p : outline) centroid += p;
+  centroid /= static_cast<double>(outline.size());
+  const std::uint32_t c = soup.add_point({centroid.x(), centroid.y(), deck_top});
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const auto& p = outline[i];
+    const auto& q = outline[(i + 1) % outline.size()];
+    soup.add_triangle(c, soup.add_point({p.x(), p.y(), deck_top}), soup.add_point({q.x(), q.y(), deck_top}), Surface::Housing);
+    const int pieces = std::max(1, static_cast<int>(std::ceil((q - p).norm() / 0.1)));
+    for (int k = 0; k < pieces; ++k) {
+      const Eigen::Vector2d a = p + (q - p) * k / pieces, b = p + (q - p) * (k + 1) / pieces, m = 0.5 * (a + b);
+      const double azimuth = std::atan2(m.y(), m.x());
+      auto quad = [&](double z0, double z1, Surface label, std::uint16_t guard) {
+        if (z1 - z0 < 1e-6) return;
+        soup.add_quad(soup.add_point({a.x(), a.y(), z0}), soup.add_point({b.x(), b.y(), z0}), soup.add_point({b.x(), b.y(), z1}),
+                      soup.add_point({a.x(), a.y(), z1}), label, guard);
+      };
+      double skirt_from = h.skirt_bottom;
+      for (const auto& o : h.openings)
+        if (in_arc(azimuth, o.azimuth_from, o.azimuth_to)) skirt_from = std::max(skirt_from, o.top);
+      quad(skirt_from, deck_top, Surface::Housing, 0);
+      for (std::size_t g = 0; g < h.guards.size(); ++g)
+        if (in_arc(azimuth, h.guards[g].azimuth_from, h.guards[g].azimuth_to))
+          quad(h.guards[g].bottom, skirt_from, Surface::Guard, static_cast<std::uint16_t>(first_guard + g));
+    }
+  }
+  for (const auto& d : h.deflectors) {
+    const double span = arc_span(d.azimuth_from, d.azimuth_to);
+    add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, kTwoPi / 96), {d.bottom, d.top},
+             [](const Vec3&) { return Surface::Deflector; });
+  }
+}
+
 // The generated deck plate, skirt, chain guards (numbered from first_guard) and deflectors.
 void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_guard) {
   const auto& h = s.housing;
+  const auto& sp = s.spindles.front();
+  if (s.spindles.size() > 1 || sp.x != 0.0 || sp.y != 0.0 || !h.openings.empty()) return add_outline_housing(soup, s, first_guard);
   const double deck_top = h.skirt_bottom + h.skirt_depth;
   add_disc(soup, h.deck_radius, deck_top, 96, Surface::Housing);
   add_wall(soup, h.deck_radius, arc_breaks(0.0, kTwoPi, kTwoPi / 96), {h.skirt_bottom, deck_top},
@@ -150,7 +226,7 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
 
 }  // namespace
 
-double target_radius(const scenario::Scenario& s) { return s.blade.tip_radius() + s.target.distance; }
+double target_radius(const scenario::Scenario& s) { return s.reach() + s.target.distance; }
 
 MeshRoles mesh_roles(const scenario::Scenario& s) {
   MeshRoles r;
@@ -173,7 +249,7 @@ double escape_radius(const scenario::Scenario& s, const Soup& soup) {
 
 Soup build_scene_soup(const scenario::Scenario& s) {
   Soup soup;
-  const OperatorZone zone(s.zone, s.geometry.height);
+  const OperatorZone zone(s.zone, s.blade_plane());
   const MeshRoles replaced = mesh_roles(s);
 
   // The scenario's meshes first (guards among them numbered first), then whatever of the

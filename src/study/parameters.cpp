@@ -132,15 +132,22 @@ void apply(const Setting& s, scenario::ImpactCase& c) {
   }
 }
 
+// Blade parameters apply to every spindle's blade (a deck of several is swept as one).
 void apply(const Setting& s, scenario::Scenario& sc) {
   switch (s.info.parameter) {
-    case Parameter::BladeSpeed: sc.blade.omega = s.si; break;
-    case Parameter::BladeMass: scale_blade_mass(sc.blade, s.si); break;
+    case Parameter::BladeSpeed:
+      for (auto& sp : sc.spindles) sp.blade.omega = s.si;
+      break;
+    case Parameter::BladeMass:
+      for (auto& sp : sc.spindles) scale_blade_mass(sp.blade, s.si);
+      break;
     case Parameter::Restitution: sc.restitution = blade::Restitution::constant(s.si); break;
     case Parameter::ContactRadius:
       for (auto& f : sc.feed.stations) f.radius = s.si;
       break;
-    case Parameter::PivotPosition: set_pivot_position(sc.blade, s.si); break;
+    case Parameter::PivotPosition:
+      for (auto& sp : sc.spindles) set_pivot_position(sp.blade, s.si);
+      break;
     case Parameter::ObjectMass: sc.nail.mass = s.si; break;
     case Parameter::ObjectSpeed:
       throw std::invalid_argument("object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead");
