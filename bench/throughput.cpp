@@ -1,8 +1,10 @@
 // j232_bench: how fast the assessment runs, and where the time goes.
 //
-//   build/j232_bench [SCENARIO] [--replicates N]
+//   build/j232_bench [SCENARIO...] [--replicates N]
 //
-// Prints simulated nails per second on 1 and on 2 threads (median of 3 runs each), the
+// Without a scenario it measures the report's highway mower (scenarios/highway-pivoted.toml)
+// and the three-spindle deck (scenarios/deck-72in-three-spindle.toml). For each: simulated
+// nails per second on 1 and on 2 threads (median of 3 runs each), the
 // mean number of scene (AABB) queries per nail, the raw query rate on the same scene
 // with chords like the nails' (so the cost of everything beyond the queries is
 // visible), and the wall time of the full assessment.
@@ -11,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <sys/resource.h>
 #include <vector>
 
 #include "assess/runner.hpp"
@@ -25,13 +28,39 @@ static double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+static void bench(const std::string& path, long long replicates);
+
 int main(int argc, char** argv) {
-  std::string path = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted.toml";
-  long long replicates = 10000;
+  std::vector<std::string> paths;
+  long long replicates = 3000;
   for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      std::printf("usage: j232_bench [SCENARIO...] [--replicates N]   (default: highway-pivoted and the three-spindle deck, 3000)\n");
+      return 0;
+    }
     if (!std::strcmp(argv[i], "--replicates") && i + 1 < argc) replicates = std::atoll(argv[++i]);
-    else path = argv[i];
+    else paths.emplace_back(argv[i]);
   }
+  if (replicates < 1) {
+    std::fprintf(stderr, "j232_bench: --replicates expects a positive number\n");
+    return 2;
+  }
+  if (paths.empty())
+    for (const char* name : {"highway-pivoted.toml", "deck-72in-three-spindle.toml"})
+      paths.push_back(std::string(J232_SOURCE_DIR) + "/scenarios/" + name);
+  try {
+    for (const auto& p : paths) bench(p, replicates);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "j232_bench: %s\n", e.what());
+    return 2;
+  }
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  std::printf("peak resident memory: %.0f MB\n", static_cast<double>(usage.ru_maxrss) / 1024.0);
+  return 0;
+}
+
+static void bench(const std::string& path, long long replicates) {
   auto s = scenario::read_scenario(path);
   s.run.replicates = replicates;
   s.run.target_half_width.reset();
@@ -72,5 +101,4 @@ int main(int argc, char** argv) {
   std::printf("  raw AABB queries (0.3 m chords, 1 thread): %.0f queries/s (%.0f%% hit), %zu faces\n", rate,
               100.0 * hits / n, scene.face_count());
   std::printf("  so queries alone would allow %.0f nails/s on 1 thread\n", rate / queries_per_nail);
-  return 0;
 }
