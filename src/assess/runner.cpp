@@ -34,17 +34,24 @@ double ShareDistribution::quantile(double p) const {
   return at_lo + (h - static_cast<double>(lo)) * (at_hi - at_lo);
 }
 
+void NailHistograms::merge(const NailHistograms& c) {
+  exit_speed.merge(c.exit_speed);
+  mark_energy.merge(c.mark_energy);
+  board_energy.merge(c.board_energy);
+  board_energy_per_width.merge(c.board_energy_per_width);
+  contact_radius.merge(c.contact_radius);
+  strikes.merge(c.strikes);
+}
+
 namespace {
 
 constexpr std::uint64_t kChunk = 8;   // replicates per chunk: fixed, so the merge order is too
 constexpr std::uint64_t kWave = 128;  // chunks in flight at once: bounds memory, keeps both cores busy
 
 // What one chunk of replicates produced, before it is merged.
-struct ChunkResult {
+struct ChunkResult : NailHistograms {
   std::vector<ReplicateTally> tallies;
   std::vector<MarkRow> marks;
-  Histogram exit_speed{0.5, 400}, mark_energy{0.05, 600}, board_energy{0.05, 600}, board_energy_per_width{5, 400},
-      contact_radius{0.005, 400}, strikes{1, 52};
   std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
 
   void clear() { *this = ChunkResult(); }
@@ -110,12 +117,7 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
       into.mark_sample_closed = true;
     }
   }
-  into.exit_speed.merge(c.exit_speed);
-  into.mark_energy.merge(c.mark_energy);
-  into.board_energy.merge(c.board_energy);
-  into.board_energy_per_width.merge(c.board_energy_per_width);
-  into.contact_radius.merge(c.contact_radius);
-  into.strikes.merge(c.strikes);
+  into.NailHistograms::merge(c);
   into.nails += c.nails;
   into.struck += c.struck;
   into.queries += c.queries;

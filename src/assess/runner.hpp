@@ -39,11 +39,24 @@ struct ShareDistribution {
   double quantile(double p) const;
 };
 
+// The per-nail distributions a run records: fixed bins, so merging chunks is exact and
+// order-free. A chunk's and the whole run's are the same set.
+struct NailHistograms {
+  Histogram exit_speed{0.5, 400};       // m/s, 0.5 m/s bins to 200 m/s
+  Histogram mark_energy{0.05, 600};     // J, 0.05 J bins to 30 J: marks only
+  Histogram board_energy{0.05, 600};    // J: every first arrival at the board, marked or not
+  Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
+  Histogram contact_radius{0.005, 400}; // m
+  Histogram strikes{1, 52};             // blade strikes per struck nail: bin k holds k strikes
+
+  void merge(const NailHistograms& other);
+};
+
 // The marks of the first replicates, for pictures: whole replicates (a fair sample, as
 // replicates are independent), as many as fit in kMarkSample marks (at least one).
 inline constexpr std::size_t kMarkSample = 3000;
 
-struct Assessment {
+struct Assessment : NailHistograms {
   std::uint64_t replicates = 0, passed = 0;
   std::array<std::uint64_t, kCategories> criterion_passed{};
   std::array<ShareDistribution, kCategories> shares;
@@ -55,12 +68,6 @@ struct Assessment {
   std::uint64_t mark_sample_replicates = 0;  // replicates 0 .. this-1 are in the sample
   bool mark_sample_closed = false;           // a replicate did not fit: no later one is added
 
-  Histogram exit_speed{0.5, 400};       // m/s, 0.5 m/s bins to 200 m/s
-  Histogram mark_energy{0.05, 600};     // J, 0.05 J bins to 30 J: marks only
-  Histogram board_energy{0.05, 600};    // J: every first arrival at the board, marked or not
-  Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
-  Histogram contact_radius{0.005, 400}; // m
-  Histogram strikes{1, 52};             // blade strikes per struck nail: bin k holds k strikes
   std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
   double wall_seconds = 0;
   int threads = 0;

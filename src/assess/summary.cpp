@@ -15,8 +15,8 @@ Validity check_validity(const Assessment& a, const scenario::Scenario& s) {
   if (a.replicates == 0) refuse("no replicate was run");
   if (a.struck == 0)
     refuse(fmt::format("the blade struck none of the {} nails fed, so no test happened: check that the feed stations lie "
-                       "within the blade's tip circle ({:.3f} m) and the blade's speed and height",
-                       a.nails, s.spindles.front().blade.tip_radius()));
+                       "within their blade's tip circle and the blade's speed and height",
+                       a.nails));
   const std::uint64_t cut = a.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
   if (a.struck > 0 && static_cast<double>(cut) > kMaxCutOffShare * static_cast<double>(a.struck))
     refuse(fmt::format("{} of {} struck nails ({:.1f} %) were cut off still moving by [run] time_limit ({:g} s), "

@@ -73,7 +73,6 @@ void OutputFolder::commit() {
     fs::rename(staged(f), fs::path(folder_) / f, ec);
     if (ec) refuse((fs::path(folder_) / f).string(), "cannot move the new file into place: " + ec.message());
   }
-  committed_ = true;
 }
 
 StreamedFile::StreamedFile(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {

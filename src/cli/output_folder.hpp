@@ -43,7 +43,6 @@ class OutputFolder {
   std::string folder_, staging_;
   std::vector<std::string> files_;
   int lock_fd_ = -1;
-  bool committed_ = false;
 };
 
 // A file written a piece at a time (marks.csv as the run goes), with its size and digest.

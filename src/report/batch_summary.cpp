@@ -13,8 +13,6 @@ using json = nlohmann::ordered_json;
 
 const char* kCriteria[] = {"hits_zone", "punctures_zone", "hits_outside", "punctures_outside"};
 
-std::string csv_field(const std::string& s) { return csv_text_cell(s); }
-
 std::string verdict_of(const BatchRow& r) { return r.result ? (*r.result)["verdict"].get<std::string>() : "error"; }
 }  // namespace
 
@@ -60,18 +58,18 @@ std::string batch_summary_csv(const std::vector<BatchRow>& rows) {
                   "punctures_outside,deciding_criterion,replicates,report,error\n";
   for (const auto& r : rows) {
     if (!r.result) {
-      o += fmt::format("{},,error,,,,,,,,,,,,,{}\n", csv_field(r.scenario), csv_field(r.error));
+      o += fmt::format("{},,error,,,,,,,,,,,,,{}\n", csv_text_cell(r.scenario), csv_text_cell(r.error));
       continue;
     }
     const json& x = *r.result;
     const json& p = x["pass_probability"];
-    o += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:g}", csv_field(r.scenario), csv_field(x["scenario"]["title"].get<std::string>()),
+    o += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:g}", csv_text_cell(r.scenario), csv_text_cell(x["scenario"]["title"].get<std::string>()),
                      verdict_of(r), x["verdict_settled"].get<bool>(), p["estimate"].get<double>(), p["low"].get<double>(),
                      p["high"].get<double>(), x["required_pass_probability"].get<double>());
     for (std::size_t c = 0; c < 4; ++c) o += fmt::format(",{:.6g}", x["criteria"][c]["mean_share"].get<double>());
     o += fmt::format(",{},{},{},{}\n", x["deciding_criterion"].get<std::string>(), x["replicates"].get<long long>(),
-                     csv_field(relative_url(r.folder + "/report.html")),
-                     x["verdict"] == "invalid" ? csv_field("invalid: " + x["invalid_because"][0].get<std::string>()) : "");
+                     csv_text_cell(relative_url(r.folder + "/report.html")),
+                     x["verdict"] == "invalid" ? csv_text_cell("invalid: " + x["invalid_because"][0].get<std::string>()) : "");
   }
   return o;
 }

@@ -66,6 +66,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
         {"nails", sum.fates[f]}, {"fraction", sum.nails ? static_cast<double>(sum.fates[f]) / sum.nails : 0.0}};
   json assumed = json::array();
   for (const auto& x : assumptions(s)) assumed.push_back({{"assumption", x.what}, {"source", x.source}});
+  const double tip_speed = s.tip_speed();
   json result = {
       {"program", "j232 run"},
       {"verdict", verdict_word(sum)},
@@ -88,11 +89,11 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"marks_not_located", a.unlocated_marks},
       {"fates", fates},
       {"exit_speed", histogram_json(a.exit_speed, "m/s")},
-      {"tip_speed_m_s", s.tip_speed()},
+      {"tip_speed_m_s", tip_speed},
       {"exit_speed_over_tip_speed",
-       {{"mean", a.exit_speed.mean() / (s.tip_speed())},
-        {"q05", a.exit_speed.quantile(0.05) / (s.tip_speed())},
-        {"q95", a.exit_speed.quantile(0.95) / (s.tip_speed())},
+       {{"mean", a.exit_speed.mean() / tip_speed},
+        {"q05", a.exit_speed.quantile(0.05) / tip_speed},
+        {"q95", a.exit_speed.quantile(0.95) / tip_speed},
         {"published_range", {0.8, 1.4}},
         {"published_source", "Chazen and Chamberlain, New England Journal of Medicine, 1962, as widely reported"}}},
       {"mark_energy", histogram_json(a.mark_energy, "J")},

@@ -156,6 +156,15 @@ std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
   return hull;
 }
 
+// Solid vertical panels on arcs about the origin.
+void add_deflectors(Soup& soup, const scenario::HousingSpec& h) {
+  for (const auto& d : h.deflectors) {
+    const double span = arc_span(d.azimuth_from, d.azimuth_to);
+    add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, kTwoPi / 96), {d.bottom, d.top},
+             [](const Vec3&) { return Surface::Deflector; });
+  }
+}
+
 // Whether azimuth a (about the origin) lies in the arc from -> to (counter-clockwise).
 bool in_arc(double a, double from, double to) {
   return std::fmod(std::fmod(a - from, kTwoPi) + kTwoPi, kTwoPi) < arc_span(from, to);
@@ -195,11 +204,7 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
           quad(h.guards[g].bottom, skirt_from, Surface::Guard, static_cast<std::uint16_t>(first_guard + g));
     }
   }
-  for (const auto& d : h.deflectors) {
-    const double span = arc_span(d.azimuth_from, d.azimuth_to);
-    add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, kTwoPi / 96), {d.bottom, d.top},
-             [](const Vec3&) { return Surface::Deflector; });
-  }
+  add_deflectors(soup, h);
 }
 
 // The generated deck plate, skirt, chain guards (numbered from first_guard) and deflectors.
@@ -217,11 +222,7 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
     add_wall(soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, kTwoPi / 96), {guard.bottom, h.skirt_bottom},
              [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
   }
-  for (const auto& d : h.deflectors) {
-    const double span = arc_span(d.azimuth_from, d.azimuth_to);
-    add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, kTwoPi / 96), {d.bottom, d.top},
-             [](const Vec3&) { return Surface::Deflector; });
-  }
+  add_deflectors(soup, h);
 }
 
 }  // namespace
