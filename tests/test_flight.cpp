@@ -103,7 +103,7 @@ TEST_CASE("flight: drag shortens a nail's flight; cross-flow drag exceeds end-on
   broadside.axis = Vec3::UnitY();
   const auto sideways = land(ground, broadside, point_first);
   CHECK(sideways.end_position.x() < dragged.end_position.x());
-  // About 3 % speed lost per metre broadside (physical-parameters.md): check the rate.
+  // About 3 % speed lost per metre broadside (docs/model.md §8): check the rate.
   const Vec3 a = flight::drag_acceleration(point_first, Vec3(60, 0, 0), Vec3::UnitY());
   CHECK(-a.x() / 60.0 / 60.0 == Approx(0.0383).epsilon(0.02));  // dv/dx = a / v per metre, relative
 }

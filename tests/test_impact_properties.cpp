@@ -1,4 +1,4 @@
-// Invariants of the impact core over many random blades (DESIGN.md §4.1):
+// Invariants of the impact core over many random blades (docs/model.md §2–3):
 // angular momentum about the spindle and about every pivot, restitution at the
 // contact, energy loss >= 0 (zero at e = 1), the heavy-blade limit and seized pins.
 #include <catch2/catch.hpp>

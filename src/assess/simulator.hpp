@@ -1,5 +1,5 @@
 #pragma once
-// One nail's life, start to end, as one short function (DESIGN.md §3): sample the
+// One nail's life, start to end, as one short function (docs/model.md §5): sample the
 // feed, find the strike, resolve the impact, fly. Everything the nails of a scenario
 // share (blade model, edges, scene) is built once here; simulate() allocates nothing.
 #include <memory>

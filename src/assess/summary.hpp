@@ -1,6 +1,6 @@
 #pragma once
 // What a run means: P(pass) with its interval, each criterion's share distribution and
-// pass probability, the verdict and the criterion that decides it (DESIGN.md §4.5).
+// pass probability, the verdict and the criterion that decides it (docs/model.md §5.6).
 #include <array>
 #include <string>
 #include <vector>

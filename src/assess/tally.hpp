@@ -1,6 +1,6 @@
 #pragma once
 // One replicate is one whole J232 test: its nails' marks counted in four categories,
-// turned into shares and judged against the criteria (DESIGN.md §2, §4.5).
+// turned into shares and judged against the criteria (docs/model.md §5.6).
 #include <array>
 #include <cstdint>
 

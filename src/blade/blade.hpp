@@ -1,5 +1,5 @@
 #pragma once
-// What a rotary mower blade is, as the impact core sees it (DESIGN.md §4.1):
+// What a rotary mower blade is, as the impact core sees it (docs/model.md §2–3):
 // a hub turning about the spindle, carrying arms; each arm is a chain of slender
 // links pinned end to end, the first pinned to the hub at the arm's pivot radius.
 //

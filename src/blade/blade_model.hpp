@@ -1,5 +1,5 @@
 #pragma once
-// The blade as a linear mechanical system for impulsive contact (DESIGN.md §4.1).
+// The blade as a linear mechanical system for impulsive contact (docs/model.md §2–3).
 //
 // Generalised coordinates are the absolute angles of the free bodies: the hub (unless
 // it is driven at constant speed) and every link whose inner pin is not seized. A

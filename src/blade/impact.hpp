@@ -1,6 +1,6 @@
 #pragma once
 // The impact core: one impulsive contact between the blade and a struck object
-// (report 445-1 Chapter 2, generalised; DESIGN.md §4.1).
+// (report 445-1 Chapter 2, generalised; docs/model.md §2–3).
 //
 // The blade side is reduced to two numbers at the contact: its effective mass m_b
 // (BladeModel::effective_mass) and the speed v_p of the contact point along the

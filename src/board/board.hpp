@@ -1,6 +1,6 @@
 #pragma once
 // Corrugated board: does a nail arriving with this kinetic energy normal to the board,
-// presenting this width, leave a mark? (physical-parameters.md, "Target")
+// presenting this width, leave a mark? (docs/model.md §5.5 and §8)
 //   puncture energy  E_p = k_p * w,   w = L |sin theta| + D |cos theta|
 //   hit energy       E_h = f_h * E_p
 // theta: angle between the nail's axis and the board normal; D: the shank diameter.

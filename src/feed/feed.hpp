@@ -1,5 +1,5 @@
 #pragma once
-// The J232 nail feed and the blade's strike (DESIGN.md §4.2).
+// The J232 nail feed and the blade's strike (docs/model.md §5.1).
 //
 // Nails drop upright through a tube and funnel at feed stations. Time t = 0 is the
 // moment a nail's tip reaches the top of the blade slab; at that moment the blade

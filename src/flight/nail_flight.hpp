@@ -1,6 +1,6 @@
 #pragma once
 // One thrown nail from the blade to its end: chords against the scene, and what each
-// surface does to it (DESIGN.md §4.3):
+// surface does to it (docs/model.md §5.3):
 //   target (operator zone or outside): the board model marks it (hit / puncture) or not;
 //       either way the board catches the nail (it drops at the board's foot);
 //   housing, deflector: bounce with restitution e(v) and Coulomb friction;

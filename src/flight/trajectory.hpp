@@ -1,5 +1,5 @@
 #pragma once
-// Free flight of a nail between contacts (DESIGN.md §4.3): gravity, and optionally air
+// Free flight of a nail between contacts (docs/model.md §5.3): gravity, and optionally air
 // drag per velocity component relative to the nail's axis. Without drag the path is an
 // exact parabola; with drag it is integrated by classical RK4 with steps short enough
 // that each step is also a chord whose sag stays under the tolerance.

@@ -1,5 +1,5 @@
 #pragma once
-// Random numbers as a pure function of indices (DESIGN.md §4.6, after pbrt-v4 and
+// Random numbers as a pure function of indices (docs/model.md §5.7, after pbrt-v4 and
 // OpenMC): every nail's stream is keyed by (scenario seed, replicate, nail, purpose),
 // so results are bit-identical for any thread count and any order of work.
 //

@@ -173,7 +173,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
 
 std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   std::vector<Assumption> a;
-  const char* params = "docs/model.md, sourced defaults";
+  const char* params = "docs/model.md §8";
   a.push_back({"Impact: impulse-momentum model of the blade (hub + pinned links), frictionless central-plane contact, "
                "nail as a slender rod struck off centre; the blade is back at speed and radially aligned for every nail",
                "report 445-1 Ch. 2, generalised (docs/model.md)"});

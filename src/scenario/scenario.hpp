@@ -1,7 +1,7 @@
 #pragma once
 // A J232 assessment scenario: everything one simulated test needs, typed, checked
-// and in SI (DESIGN.md §3). Defaults are the sourced values of
-// shared/reference/physical-parameters.md or report 445-1; docs/model.md lists them
+// and in SI (docs/model.md §5). Defaults are sourced values (docs/model.md §8) or report
+// 445-1's; docs/model.md lists them
 // with their sources, and every result echoes the values used.
 //
 // World frame: origin on the spindle axis at ground level, z up, x forward (the
@@ -122,7 +122,7 @@ struct OperatorZoneSpec {
   enum class Kind { Sector, Derived } kind = Kind::Derived;
   // Sector: an azimuth range and height range of the target board.
   double azimuth_from = 0.0, azimuth_to = 0.0, bottom = 0.0, top = 0.0;
-  // Derived (DESIGN.md §4.4): seated operator; seat index point position.
+  // Derived (docs/model.md §5.4): seated operator; seat index point position.
   double seat_x = 2.0, seat_y = 0.0, seat_z = 0.90;
   double shoulder_height = 0.646;   // above the seat
   double shoulder_half_width = 0.20;

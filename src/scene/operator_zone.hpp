@@ -1,5 +1,5 @@
 #pragma once
-// Which part of the target board is the operator zone (DESIGN.md §4.4): an explicit
+// Which part of the target board is the operator zone (docs/model.md §5.4): an explicit
 // sector (azimuth and height ranges), or derived from a seated operator: the board
 // points through which a straight line from the blade reaches the 95th-percentile
 // reach envelope — spheres of the extended reach about each shoulder, and a sphere

@@ -1,4 +1,4 @@
-// The only translation unit that sees CGAL's AABB tree (slow to compile; DESIGN.md §5).
+// The only translation unit that sees CGAL's AABB tree (slow to compile, so kept out of every other file).
 #include "scene/scene.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>

@@ -1,6 +1,6 @@
 #pragma once
 // The scene a thrown nail flies through: a CGAL Surface_mesh with a label per face,
-// indexed by a CGAL AABB tree for first-hit ray queries (DESIGN.md §4.3–4.4). CGAL
+// indexed by a CGAL AABB tree for first-hit ray queries (docs/model.md §5.3–5.4). CGAL
 // stays inside scene.cpp; this header is all the rest of the program sees.
 #include <memory>
 #include <optional>

@@ -11,7 +11,7 @@ namespace j232::scene {
 
 using Vec3 = Eigen::Vector3d;
 
-// What a surface is, which decides what a nail does there (DESIGN.md §4.3).
+// What a surface is, which decides what a nail does there (docs/model.md §5.3).
 enum class Surface : std::uint8_t { Ground, Housing, Deflector, Guard, TargetOutside, TargetZone };
 inline constexpr int kSurfaceKinds = 6;
 
