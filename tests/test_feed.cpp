@@ -217,6 +217,7 @@ TEST_CASE("blade sweep: a nail crossing the disc fast is met where the edge and 
 
 TEST_CASE("blade strike: momentum, restitution and energy hold at every strike", "[feed][restrike][physics]") {
   const auto sp = bar_spindle(+1);
+  REQUIRE(sp.lift_angle > 0);  // the default edge is bevelled: the check covers a tilted normal
   random::Stream rng(5, 0, 0, random::Purpose::Test);
   int struck = 0;
   for (int trial = 0; trial < 2000; ++trial) {
@@ -235,7 +236,9 @@ TEST_CASE("blade strike: momentum, restitution and energy hold at every strike",
     const auto c = feed::strike(sp, h, nail);
     if (!c) continue;
     ++struck;
-    const Eigen::Vector3d n(-std::sin(h.azimuth), std::cos(h.azimuth), 0);
+    // The contact normal: the edge's direction of travel tilted up by its lift.
+    const Eigen::Vector3d n = std::cos(sp.lift_angle) * Eigen::Vector3d(-std::sin(h.azimuth), std::cos(h.azimuth), 0) +
+                              std::sin(sp.lift_angle) * Eigen::Vector3d::UnitZ();
     const Eigen::Vector3d dv = c->velocity_after - nail.velocity;
     CHECK(c->impulse > 0);
     CHECK(dv.cross(n).norm() < 1e-9 * (1 + dv.norm()));                  // impulse along the normal only

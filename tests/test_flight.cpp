@@ -113,3 +113,24 @@ TEST_CASE("flight: the axis turns with the spin", "[flight]") {
   CHECK(turned.x() == Approx(1.0).epsilon(1e-12));
   CHECK(turned.z() == Approx(0.0).margin(1e-12));
 }
+
+TEST_CASE("turf: normal restitution follows the impact-angle law, never above 1", "[flight][ground]") {
+  scenario::GroundSpec turf;  // defaults: 0.15 at 90 deg, exponent 1.03 (Wyllie 2014's fit)
+  const double deg = 3.14159265358979323846 / 180;
+  CHECK(turf.restitution_at(90 * deg) == Approx(0.15).epsilon(1e-12));
+  // The rockfall fit e = 19.5 theta^-1.03 (degrees), scaled to 0.15 at 90 deg: ratios match.
+  for (double a : {20.0, 45.0, 60.0})
+    CHECK(turf.restitution_at(a * deg) / turf.restitution_at(90 * deg) ==
+          Approx(19.5 * std::pow(a, -1.03) / (19.5 * std::pow(90.0, -1.03))).epsilon(1e-12));
+  double previous = 2;
+  for (double a = 0; a <= 90; a += 0.5) {  // falls with the angle, capped at 1 (no gain of normal speed)
+    const double e = turf.restitution_at(a * deg);
+    CHECK(e <= previous);
+    CHECK(e <= 1.0);
+    CHECK(e >= 0.15 - 1e-12);
+    previous = e;
+  }
+  CHECK(turf.restitution_at(1 * deg) == 1.0);
+  turf.angle_exponent = 0;  // the constant law
+  CHECK(turf.restitution_at(5 * deg) == 0.15);
+}

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "board/board.hpp"
+#include "units/quantity.hpp"
 
 namespace j232::flight {
 
@@ -45,7 +46,7 @@ Vec3 rough_normal(const Vec3& n, double roughness, random::Stream& rng) {
   if (roughness <= 0) return n;
   boost::random::normal_distribution<double> tilt(0.0, roughness);
   const double angle = tilt(rng);
-  const double psi = 2 * 3.14159265358979323846 * rng.uniform();
+  const double psi = 2 * units::pi * rng.uniform();
   Vec3 u = n.unitOrthogonal();
   const Vec3 w = n.cross(u);
   const Vec3 axis = std::cos(psi) * u + std::sin(psi) * w;
@@ -155,7 +156,10 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
       }
       case scene::Surface::Ground: {
         const Vec3 rough = rough_normal(n, s.ground.roughness, rng);
-        b.velocity = bounce(b.velocity, rough, s.ground.restitution, s.ground.friction);
+        // The impact angle against the local (rough) surface sets the normal restitution.
+        const double speed = b.velocity.norm();
+        const double angle = speed > 0 ? std::asin(std::clamp(-b.velocity.dot(rough) / speed, 0.0, 1.0)) : 0.5 * units::pi;
+        b.velocity = bounce(b.velocity, rough, s.ground.restitution_at(angle), s.ground.friction);
         const double out = b.velocity.dot(n);
         if (out < 0) b.velocity -= 2 * out * n;  // a rough facet cannot send it into the ground
         break;
@@ -210,7 +214,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     // On the ground with too little rebound to fly: slide to rest, or into a wall and on.
     if (hit->surface == scene::Surface::Ground && b.velocity.dot(hit->normal) < kSlideBelow) {
       const Vec3 up = hit->normal;
-      const double decel = s.ground.friction * 9.80665;
+      const double decel = s.ground.friction * -kGravity.z();
       bool stopped = false;
       while (!stopped) {
         Vec3 slide = b.velocity - b.velocity.dot(up) * up;

@@ -1,5 +1,6 @@
 #include "report/scenario_json.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "scene/j232_setup.hpp"
@@ -137,7 +138,10 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
                                         {"guards", guards},
                                         {"deflectors", deflectors}}},
       {"ground",
-       {{"restitution", s.ground.restitution}, {"friction", s.ground.friction}, {"roughness_deg", s.ground.roughness * kDeg}}},
+       {{"restitution", s.ground.restitution},
+        {"angle_exponent", s.ground.angle_exponent},
+        {"friction", s.ground.friction},
+        {"roughness_deg", s.ground.roughness * kDeg}}},
       {"target", roles.target ? json{{"generated", false}}
                               : json{{"generated", true},
                                      {"distance_m", s.target.distance},
@@ -181,6 +185,12 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                                                                    ? fmt::format("e = {:g}", s.restitution.e)
                                                                    : std::string("e(v) power law")),
                "report 445-1 (0.3-0.9); Johnson, Contact Mechanics 11.4 for e(v)"});
+  double lift_min = s.spindles.front().geometry.lift_angle, lift_max = lift_min;
+  for (const auto& sp : s.spindles)
+    lift_min = std::min(lift_min, sp.geometry.lift_angle), lift_max = std::max(lift_max, sp.geometry.lift_angle);
+  a.push_back({lift_min == lift_max ? fmt::format("Blade edge lifts struck nails {:g} deg above the blade plane", lift_min * kDeg)
+                                    : fmt::format("Blade edges lift struck nails {:g} to {:g} deg", lift_min * kDeg, lift_max * kDeg),
+               fmt::format("{} (estimate; the dominant trajectory parameter per Litherland and Yoerger 1967)", params)});
   a.push_back({fmt::format("Nail: {:.1f} mm long, {:.2f} mm shank, {:.2f} g +/- {:.2f} g", s.nail.length * 1e3,
                            s.nail.diameter * 1e3, s.nail.mass * 1e3, s.nail.mass_tolerance * 1e3),
                fmt::format("{} (6d box nail)", params)});
@@ -204,9 +214,13 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                                  "an operator seated at ({:.2f}, {:.2f}, {:.2f}) m",
                                  s.zone.seat_x, s.zone.seat_y, s.zone.seat_z),
                fmt::format("{} (MIL-STD-1472G reach values)", params)});
-  a.push_back({fmt::format("Ground: restitution {:g}, friction {:g}, roughness {:.0f} deg", s.ground.restitution,
-                           s.ground.friction, s.ground.roughness * 180 / units::pi),
-               fmt::format("{} (turf, estimate)", params)});
+  a.push_back({s.ground.angle_exponent == 0
+                   ? fmt::format("Ground: restitution {:g} at any angle, friction {:g}, roughness {:.0f} deg", s.ground.restitution,
+                                 s.ground.friction, s.ground.roughness * kDeg)
+                   : fmt::format("Ground: normal restitution {:g} x (impact angle / 90 deg)^-{:g} (at most 1), friction {:g}, "
+                                 "roughness {:.0f} deg",
+                                 s.ground.restitution, s.ground.angle_exponent, s.ground.friction, s.ground.roughness * kDeg),
+               fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)});
   a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3", s.air.cd_normal,
                                         s.air.cd_axial, s.air.density)
                           : std::string("Air drag off (conservative: faster nails)"),

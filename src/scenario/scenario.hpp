@@ -7,7 +7,9 @@
 // World frame: origin on the spindle axis at ground level, z up, x forward (the
 // direction of travel), y to the left. The blade turns counter-clockwise seen from
 // above. Azimuth is measured from +x toward +y.
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <toml++/toml.h>
 #include <string>
@@ -46,7 +48,11 @@ struct FeedSpec {
 struct BladeGeometry {
   double height = 0.076;      // blade plane above ground, m (3 in)
   double thickness = 0.006;   // m; a nail is struck while it spans this slab
-  double lift_angle = 0.0;    // edge bevel / lift: the contact normal tilts up by this angle, rad
+  // Edge bevel / lift: the contact normal tilts up out of the blade plane by this angle,
+  // rad. Litherland and Yoerger (1967) found it the parameter that most decides where
+  // struck material goes; no figure for industrial cutters is published, so the default
+  // is an estimate (5 deg: a bevelled edge), stated in every report (docs/model.md §8).
+  double lift_angle = 0.0873;
 };
 
 // One spindle of the deck and its blade. A scenario with [blade] has one, at the origin.
@@ -98,9 +104,20 @@ struct HousingSpec {
 };
 
 struct GroundSpec {  // turf
-  double restitution = 0.15;
+  // Normal restitution depends on the impact angle (docs/model.md §5.3): rockfall field
+  // data (Wyllie 2014) fit e_n = 19.5 theta^-1.03 (theta in degrees between the path and
+  // the surface), so shallow impacts keep more of their normal speed. j232 keeps the
+  // exponent and scales the law to `restitution` at a perpendicular impact, capped at 1.
+  double restitution = 0.15;        // e_n at a 90 deg (perpendicular) impact
+  double angle_exponent = 1.03;     // 0: one constant e_n at every angle
   double friction = 0.5;
   double roughness = 0.1745;  // std. dev. of the local surface normal's tilt, rad (10 deg)
+  // e_n for an impact whose path makes `angle` (rad, 0-pi/2) with the surface.
+  double restitution_at(double angle) const {
+    if (angle_exponent == 0.0) return restitution;
+    const double ratio = std::max(angle, 1e-3) / (0.5 * std::numbers::pi);
+    return std::min(1.0, restitution * std::pow(ratio, -angle_exponent));
+  }
 };
 
 struct MeshFile {

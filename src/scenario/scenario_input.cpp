@@ -308,6 +308,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
 
   if (auto g = root.table("ground")) {
     s.ground.restitution = g->quantity_or("restitution", Kind::Dimensionless, s.ground.restitution, Range::UnitInterval);
+    s.ground.angle_exponent = g->quantity_or("angle_exponent", Kind::Dimensionless, s.ground.angle_exponent, Range::between(0, 3));
     s.ground.friction = g->quantity_or("friction", Kind::Dimensionless, s.ground.friction, Range::between(0, 2));
     s.ground.roughness = g->quantity_or("roughness", Kind::Angle, s.ground.roughness, Range::between(0, 45 * kDegree));
     g->refuse_unknown_keys();
