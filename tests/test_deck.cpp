@@ -1,6 +1,8 @@
 // A deck of several spindles: the scenario form, clockwise blades, and a whole run.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <toml++/toml.h>
 
@@ -123,4 +125,96 @@ TEST_CASE("deck: the three-spindle deck runs, its outline encloses every tip cir
   const auto one = assess::run_assessment(sim, 1);
   CHECK(one.strikes.counts == a.strikes.counts);
   CHECK(one.shares[assess::PuncturesOutside].counts == a.shares[assess::PuncturesOutside].counts);
+}
+
+TEST_CASE("deck: a discharge chute roofs its opening, runs outward and keeps nails low", "[deck][housing]") {
+  auto s = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
+  REQUIRE(s.housing.openings.size() == 1);
+  const auto& o = s.housing.openings[0];
+  REQUIRE(o.chute_length > 0);
+  // The opening is on the right (azimuth -110 to -70 deg): the chute runs toward -y from the
+  // outline (outer spindle at y -0.597 m, tip circle + margin) for chute_length.
+  const double outline_y = -0.597 - s.spindles[2].blade.tip_radius() - s.housing.margin;
+  const auto soup = scene::build_scene_soup(s);
+  double lowest_y = 0;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (soup.labels[t] == scene::Surface::Housing)
+      for (auto v : soup.triangles[t]) {
+        const auto& p = soup.points[v];
+        if (p.y() < outline_y - 0.01) {  // part of the chute: between the skirt's foot and its roof
+          CHECK(p.z() >= s.housing.skirt_bottom - 1e-12);
+          CHECK(p.z() <= o.top + 1e-12);
+        }
+        lowest_y = std::min(lowest_y, p.y());
+      }
+  CHECK(lowest_y == Approx(outline_y - o.chute_length).margin(0.005));
+  // The same deck with and without its chute, on the same random numbers: the chute turns
+  // the nails that leave by the opening down into the turf.
+  s.run.replicates = 100;
+  auto open = s;
+  open.housing.openings[0].chute_length = 0;
+  const auto with = assess::summarise(assess::run_assessment(assess::Simulator(s), 2), s);
+  const auto without = assess::summarise(assess::run_assessment(assess::Simulator(open), 2), open);
+  INFO("punctures outside: " << with.criteria[assess::PuncturesOutside].mean_share << " with the chute, "
+                             << without.criteria[assess::PuncturesOutside].mean_share << " without");
+  CHECK(with.criteria[assess::PuncturesOutside].mean_share < 0.2 * without.criteria[assess::PuncturesOutside].mean_share);
+}
+
+TEST_CASE("deck: guards and deflectors along polylines hang on a mesh deck too", "[deck][housing][mesh]") {
+  using Catch::Contains;
+  const std::string path = scenario_path("highway-meshes.toml");
+  std::ifstream in(path);
+  const std::string base((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto read_with = [&](const std::string& extra) { return scenario::read_scenario(toml::parse(base + extra, path), path); };
+  // A solid curtain wrapped round the mesh deck's rear discharge opening (150-210 deg at
+  // 26 in): its ends reach forward, or glancing nails would slide along it and out.
+  const std::string curtain = R"(
+[[housing.guards]]
+name = "rear curtain"
+along = [["-10 in", "-32 in"], ["-30 in", "-24 in"], ["-30 in", "24 in"], ["-10 in", "32 in"]]
+top = "8.5 in"
+bottom = "0 in"
+openness = 0
+)";
+  const auto s = read_with(curtain);
+  REQUIRE(s.housing.guards.size() == 1);
+  CHECK(s.housing.guards[0].along.size() == 4);
+  const auto soup = scene::build_scene_soup(s);
+  std::size_t curtain_faces = 0;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (soup.labels[t] == scene::Surface::Guard) {
+      ++curtain_faces;
+      CHECK(soup.guard_index[t] == 0);
+      for (auto v : soup.triangles[t]) {
+        CHECK(soup.points[v].x() <= -10 * units::inch + 1e-9);
+        CHECK(soup.points[v].z() <= 8.5 * units::inch + 1e-9);
+      }
+    }
+  CHECK(curtain_faces >= 2 * (3 + 13 + 3));  // 21 + 48 + 21 in, in pieces of at most 0.1 m, two triangles each
+  // It stops what the opening lets out.
+  auto with = s, without = read_with("");
+  with.run.replicates = without.run.replicates = 60;
+  const auto a = assess::summarise(assess::run_assessment(assess::Simulator(with), 2), with);
+  const auto b = assess::summarise(assess::run_assessment(assess::Simulator(without), 2), without);
+  INFO("hits outside: " << a.criteria[assess::HitsOutside].mean_share << " with the curtain, " << b.criteria[assess::HitsOutside].mean_share << " without");
+  CHECK(a.criteria[assess::HitsOutside].mean_share < 0.5 * b.criteria[assess::HitsOutside].mean_share);
+  // What a mesh deck has no use for is refused, naming the mesh.
+  CHECK_THROWS_WITH(read_with("[[housing.guards]]\nazimuth_from = \"0 deg\"\nazimuth_to = \"90 deg\"\n"),
+                    Contains("housing.guards[1].azimuth_from") && Contains("meshes/deck.obj") && Contains("along"));
+  CHECK_THROWS_WITH(read_with("[[housing.guards]]\nalong = [[\"0 m\", \"1 m\"], [\"1 m\", \"1 m\"]]\n"),
+                    Contains("housing.guards[1].along") && Contains("`top`"));
+  CHECK_THROWS_WITH(read_with("[housing]\nskirt_bottom = \"2 in\"\n"), Contains("housing.skirt_bottom") && Contains("meshes/deck.obj"));
+  // A deflector panel along a polyline is a solid wall.
+  const auto d = read_with("[[housing.deflectors]]\nalong = [[\"-28 in\", \"-16 in\"], [\"-28 in\", \"16 in\"]]\nbottom = \"0 m\"\ntop = \"8 in\"\n");
+  std::size_t panel = 0;
+  const auto dsoup = scene::build_scene_soup(d);
+  for (std::size_t t = 0; t < dsoup.triangles.size(); ++t) panel += dsoup.labels[t] == scene::Surface::Deflector;
+  CHECK(panel >= 18);
+  // Malformed paths name the key and the expected form.
+  CHECK_THROWS_WITH(read_with("[[housing.deflectors]]\nalong = [[\"1 m\"]]\nbottom = \"0 m\"\ntop = \"8 in\"\n"),
+                    Contains("housing.deflectors[1].along") && Contains("points [x, y]"));
+  CHECK_THROWS_WITH(read_with("[[housing.deflectors]]\nalong = [[\"1 m\", \"2 m\"], [\"1 kg\", \"0 m\"]]\nbottom = \"0 m\"\ntop = \"8 in\"\n"),
+                    Contains("housing.deflectors[1].along"));
+  CHECK_THROWS_WITH(read_with("[[housing.deflectors]]\nalong = [[\"1 m\", \"2 m\"], [\"1 m\", \"0 m\"]]\nradius = \"1 m\"\nbottom = \"0 m\"\ntop = \"8 in\"\n"),
+                    Contains("housing.deflectors[1].radius") && Contains("not both"));
 }

@@ -39,7 +39,7 @@ Simulator::Simulator(const scenario::Scenario& s)
   // Numbered as the scene numbers them: mesh guards first, then the generated ones.
   for (const auto& m : s.meshes)
     if (m.label == "guard") guards_.push_back(m.guard);
-  if (!scene::mesh_roles(s).housing) guards_.insert(guards_.end(), s.housing.guards.begin(), s.housing.guards.end());
+  guards_.insert(guards_.end(), s.housing.guards.begin(), s.housing.guards.end());  // a mesh deck keeps only polyline guards
   if (guards_.empty()) guards_.emplace_back();
   context_.scene = scene_.get();
   context_.scenario = &scenario_;

@@ -57,21 +57,39 @@ json spindle_json(const scenario::SpindleSpec& sp) {
 }
 
 json guard_json(const scenario::GuardSpec& g) {
-  return {{"name", g.name},
-          {"azimuth_from_deg", g.azimuth_from * kDeg},
-          {"azimuth_to_deg", g.azimuth_to * kDeg},
-          {"bottom_m", g.bottom},
-          {"openness", g.openness},
-          {"pass_speed_factor", g.pass_speed_factor},
-          {"restitution", g.restitution},
-          {"friction", g.friction}};
+  json j = {{"name", g.name}};
+  if (g.along.empty())
+    j.update({{"azimuth_from_deg", g.azimuth_from * kDeg}, {"azimuth_to_deg", g.azimuth_to * kDeg}});
+  else
+    j.update({{"along_m", g.along}, {"top_m", g.top}});
+  j.update({{"bottom_m", g.bottom},
+            {"openness", g.openness},
+            {"pass_speed_factor", g.pass_speed_factor},
+            {"restitution", g.restitution},
+            {"friction", g.friction}});
+  return j;
+}
+
+json deflector_json(const scenario::DeflectorSpec& d) {
+  json j = {{"name", d.name}};
+  if (d.along.empty())
+    j.update({{"azimuth_from_deg", d.azimuth_from * kDeg}, {"azimuth_to_deg", d.azimuth_to * kDeg}, {"radius_m", d.radius}});
+  else
+    j.update({{"along_m", d.along}});
+  j.update({{"bottom_m", d.bottom}, {"top_m", d.top}});
+  return j;
+}
+
+json opening_json(const scenario::OpeningSpec& o) {
+  json j = {{"name", o.name}, {"azimuth_from_deg", o.azimuth_from * kDeg}, {"azimuth_to_deg", o.azimuth_to * kDeg}, {"top_m", o.top}};
+  if (o.chute_length > 0) j.update({{"chute_length_m", o.chute_length}, {"chute_end_top_m", o.chute_end_top}});
+  return j;
 }
 }  // namespace
 
 nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
   json openings = json::array();
-  for (const auto& o : s.housing.openings)
-    openings.push_back({{"name", o.name}, {"azimuth_from_deg", o.azimuth_from * kDeg}, {"azimuth_to_deg", o.azimuth_to * kDeg}, {"top_m", o.top}});
+  for (const auto& o : s.housing.openings) openings.push_back(opening_json(o));
   json spindles = json::array();
   for (const auto& sp : s.spindles) spindles.push_back(spindle_json(sp));
   const scene::MeshRoles roles = scene::mesh_roles(s);
@@ -80,13 +98,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
     stations.push_back({{"spindle", st.spindle + 1}, {"radius_m", st.radius}, {"azimuth_deg", st.azimuth * kDeg}});
   json guards = json::array(), deflectors = json::array(), meshes = json::array();
   for (const auto& g : s.housing.guards) guards.push_back(guard_json(g));
-  for (const auto& d : s.housing.deflectors)
-    deflectors.push_back({{"name", d.name},
-                          {"azimuth_from_deg", d.azimuth_from * kDeg},
-                          {"azimuth_to_deg", d.azimuth_to * kDeg},
-                          {"radius_m", d.radius},
-                          {"bottom_m", d.bottom},
-                          {"top_m", d.top}});
+  for (const auto& d : s.housing.deflectors) deflectors.push_back(deflector_json(d));
   for (const auto& m : s.meshes) meshes.push_back({{"path", m.path}, {"label", m.label}, {"scale", m.scale}});
   json zone;
   if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector)
@@ -126,7 +138,9 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"ground_speed_m_s", s.feed.ground_speed}}},
       {"housing", roles.housing ? json{{"generated", false},
                                        {"restitution", restitution_json(s.housing.restitution)},
-                                       {"friction", s.housing.friction}}
+                                       {"friction", s.housing.friction},
+                                       {"guards", guards},
+                                       {"deflectors", deflectors}}
                                  : json{{"generated", true},
                                         {"deck_radius_m", s.housing.deck_radius},
                                         {"margin_m", s.housing.margin},
@@ -207,7 +221,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                              s.target.distance * 1e3, s.target.bottom * 1e3, s.target.top * 1e3),
                  fmt::format("{} (ANSI B71.1 enclosure wording as stand-in)", params)});
   if (scene::mesh_roles(s).housing)
-    a.push_back({"Deck, skirt, guards and deflectors: the scenario's mesh(es)", "scenario (user geometry)"});
+    a.push_back({"Deck and skirt: the scenario's mesh(es)", "scenario (user geometry)"});
   a.push_back({s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector
                    ? std::string("Operator zone: explicit sector of the board")
                    : fmt::format("Operator zone: board seen from the blade toward the 95th-percentile reach envelope of "

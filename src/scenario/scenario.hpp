@@ -8,6 +8,7 @@
 // direction of travel), y to the left. The blade turns counter-clockwise seen from
 // above. Azimuth is measured from +x toward +y.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -68,15 +69,28 @@ struct SpindleSpec {
   double reach() const { return std::hypot(x, y) + blade.tip_radius(); }  // from the origin
 };
 
+// A polyline in plan, (x, y) in m.
+using PlanPath = std::vector<std::array<double, 2>>;
+
 struct OpeningSpec {  // a discharge opening: the skirt is cut away between two azimuths
   std::string name = "discharge";
   double azimuth_from = 0.0, azimuth_to = 0.0;  // about the origin, counter-clockwise from -> to
   double top = 0.0;                             // the opening's upper edge above ground, m (default: the deck)
+  // An optional chute: a hood of steel plate from the opening's edges straight outward
+  // (along the opening's middle azimuth) for chute_length, its roof sloping from the
+  // opening's top to chute_end_top, its side walls down to the skirt's bottom.
+  double chute_length = 0.0;   // 0: no chute
+  double chute_end_top = 0.0;  // roof height at the chute's mouth (default: the opening's top)
 };
 
-struct GuardSpec {  // chain or belting curtain hanging from the skirt
+struct GuardSpec {  // chain or belting curtain
   std::string name = "guard";
-  double azimuth_from = 0.0, azimuth_to = 0.0;  // rad, counter-clockwise from -> to
+  // Where it hangs: below the skirt along the deck's outline between two azimuths (rad,
+  // counter-clockwise from -> to), or, when `along` is given, along that polyline from
+  // `top` down to `bottom` (a curtain on its own bracket; any deck, meshes included).
+  double azimuth_from = 0.0, azimuth_to = 0.0;
+  PlanPath along;
+  double top = 0.0;                             // upper edge along a polyline, m
   double bottom = 0.010;                        // lower edge above ground, m
   double openness = 0.35;                       // probability a nail passes between the links
   double pass_speed_factor = 0.7;               // speed kept when passing
@@ -86,8 +100,10 @@ struct GuardSpec {  // chain or belting curtain hanging from the skirt
 
 struct DeflectorSpec {  // a solid vertical panel inside or outside the skirt
   std::string name = "deflector";
+  // On an arc about the origin (radius, azimuths), or along a polyline when `along` is given.
   double azimuth_from = 0.0, azimuth_to = 0.0;
   double radius = 0.0;
+  PlanPath along;
   double bottom = 0.0, top = 0.0;
 };
 

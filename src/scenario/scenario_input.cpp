@@ -56,11 +56,26 @@ void read_feed(const TableReader& t, FeedSpec& f, const std::vector<SpindleSpec>
   t.refuse_unknown_keys();
 }
 
+// Plan coordinates of parts placed by polyline: within the 100 m scene.
+constexpr Range kPlanCoordinate = Range::between(-50, 50);
+
+// A part is placed one way or the other: keys of the other way are refused.
+void refuse_with(const TableReader& t, std::initializer_list<const char*> keys, const char* chosen) {
+  for (const char* key : keys)
+    if (t.has(key)) throw t.error(key, fmt::format("give either `{}` or the arc keys, not both", chosen));
+}
+
 void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry) {
   g.name = t.string_or("name", g.name, {});
   if (with_geometry) {
-    g.azimuth_from = t.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
-    g.azimuth_to = t.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+    if (t.has("along")) {
+      refuse_with(t, {"azimuth_from", "azimuth_to"}, "along");
+      g.along = t.points("along", Kind::Length, kPlanCoordinate, 2, 64);
+      g.top = t.quantity_or("top", Kind::Length, 0.0, Range::positive_up_to(2));  // 0: the deck's top (resolved later)
+    } else {
+      g.azimuth_from = t.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
+      g.azimuth_to = t.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+    }
     g.bottom = t.quantity_or("bottom", Kind::Length, g.bottom, Range::between(0, 1));
   }
   g.openness = t.quantity_or("openness", Kind::Dimensionless, g.openness, Range::UnitInterval);
@@ -83,8 +98,13 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
   for (const auto& g : t.array_of_tables("guards")) {
     GuardSpec guard;
     read_guard(g, guard, true);
-    if (guard.bottom >= h.skirt_bottom)
+    if (!guard.along.empty()) {
+      if (guard.top == 0.0) guard.top = h.skirt_bottom + h.skirt_depth;
+      if (guard.bottom >= guard.top)
+        throw g.error("bottom", fmt::format("expected the curtain's lower edge below its top ({} m)", guard.top));
+    } else if (guard.bottom >= h.skirt_bottom) {
       throw g.error("bottom", fmt::format("expected the curtain's lower edge below the skirt bottom ({} m)", h.skirt_bottom));
+    }
     g.refuse_unknown_keys();
     h.guards.push_back(guard);
   }
@@ -95,15 +115,26 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
     op.azimuth_to = o.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
     op.top = o.quantity_or("top", Kind::Length, h.skirt_bottom + h.skirt_depth, Range::between(0, 2));
     if (op.top <= h.skirt_bottom) throw o.error("top", "expected the opening's upper edge above the skirt's bottom");
+    op.chute_length = o.quantity_or("chute_length", Kind::Length, 0.0, Range::between(0, 3));
+    op.chute_end_top = o.quantity_or("chute_end_top", Kind::Length, op.top, Range::between(0, 2));
+    if (o.has("chute_end_top") && op.chute_length == 0.0)
+      throw o.error("chute_end_top", "a chute's mouth needs a chute: set chute_length too");
+    if (op.chute_end_top <= h.skirt_bottom)
+      throw o.error("chute_end_top", fmt::format("expected the chute's mouth above the skirt's bottom ({} m)", h.skirt_bottom));
     o.refuse_unknown_keys();
     h.openings.push_back(op);
   }
   for (const auto& d : t.array_of_tables("deflectors")) {
     DeflectorSpec def;
     def.name = d.string_or("name", def.name, {});
-    def.azimuth_from = d.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
-    def.azimuth_to = d.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
-    def.radius = d.quantity("radius", Kind::Length, Range::positive_up_to(10));
+    if (d.has("along")) {
+      refuse_with(d, {"azimuth_from", "azimuth_to", "radius"}, "along");
+      def.along = d.points("along", Kind::Length, kPlanCoordinate, 2, 64);
+    } else {
+      def.azimuth_from = d.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
+      def.azimuth_to = d.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+      def.radius = d.quantity("radius", Kind::Length, Range::positive_up_to(10));
+    }
     def.bottom = d.quantity("bottom", Kind::Length, Range::between(0, 5));
     def.top = d.quantity("top", Kind::Length, Range::positive_up_to(5));
     if (def.top <= def.bottom) throw d.error("top", "expected the top above the bottom");
@@ -243,13 +274,20 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
     return nullptr;
   };
   if (const MeshFile* deck = first({"housing"}))
-    if (auto h = root.table("housing"))
-      for (const char* key : {"deck_radius", "skirt_bottom", "skirt_depth", "guards", "deflectors"})
+    if (auto h = root.table("housing")) {
+      const std::string replaces = fmt::format("the housing mesh {} replaces the generated deck and skirt", deck->path);
+      for (const char* key : {"deck_radius", "skirt_bottom", "skirt_depth", "margin", "openings"})
         if (h->has(key))
-          throw h->error(key, fmt::format("the housing mesh {} replaces the generated deck, skirt, guards and deflectors; "
-                                          "remove this key (give guards and deflectors as meshes with label = \"guard\" "
-                                          "or \"deflector\"); housing.restitution and housing.friction still apply",
-                                          deck->path));
+          throw h->error(key, replaces + "; remove this key (housing.restitution and housing.friction still apply)");
+      // Guards along the generated outline have no outline to follow; along a polyline
+      // (with its own top) they hang anywhere. Deflectors stand on their own.
+      for (const auto& g : h->array_of_tables("guards")) {
+        if (!g.has("along"))
+          throw g.error("azimuth_from", replaces + ", so a guard cannot follow its outline: give the curtain's "
+                                        "path as `along = [[x, y], ...]` with `top`, or as a mesh with label = \"guard\"");
+        if (!g.has("top")) throw g.error("along", replaces + ": give the curtain's upper edge as `top`");
+      }
+    }
   if (const MeshFile* board = first({"target", "operator_zone"}))
     if (auto t = root.table("target"))
       for (const char* key : {"distance", "bottom", "top", "segments"})

@@ -117,6 +117,35 @@ std::optional<double> TableReader::optional_quantity(std::string_view key, units
   return value;
 }
 
+std::vector<std::array<double, 2>> TableReader::points(std::string_view key, units::Kind kind, Range range,
+                                                        std::size_t min_points, std::size_t max_points) const {
+  const toml::node* n = node(key);
+  const std::string expected = fmt::format("expected {} to {} points [x, y] such as [[\"30 in\", \"-12 in\"], [\"30 in\", "
+                                           "\"12 in\"]], each coordinate {}",
+                                           min_points, max_points, expected_words(kind, range).substr(std::string("expected ").size()));
+  if (!n) throw error(key, "missing; " + expected);
+  const toml::array* list = n->as_array();
+  if (!list || list->size() < min_points || list->size() > max_points) throw error(key, expected);
+  std::vector<std::array<double, 2>> out;
+  for (const auto& item : *list) {
+    const toml::array* pair = item.as_array();
+    if (!pair || pair->size() != 2) throw error(key, expected);
+    std::array<double, 2> p{};
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto text = (*pair)[i].value_exact<std::string>();
+      if (!text) throw error(key, expected);
+      try {
+        p[i] = units::parse(*text, kind);
+      } catch (const units::UnitError& e) {
+        throw error(key, fmt::format("{}: {}", *text, e.what()));
+      }
+      if (!std::isfinite(p[i]) || !range.contains(p[i])) throw error(key, expected);
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
 double TableReader::quantity(std::string_view key, units::Kind kind, Range range) const {
   if (auto v = optional_quantity(key, kind, range)) return *v;
   throw error(key, "missing; " + expected_words(kind, range));

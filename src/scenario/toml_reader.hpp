@@ -2,6 +2,7 @@
 // Typed, checked access to one TOML table. Every read names the key's full path
 // (blade.hub.bar_mass) and line in its error; keys the program does not know are
 // refused (a typo must not silently fall back to a default).
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -52,6 +53,11 @@ class TableReader {
   double quantity(std::string_view key, units::Kind kind, Range range = Range::Any) const;
   double quantity_or(std::string_view key, units::Kind kind, double fallback, Range range = Range::Any) const;
   std::optional<double> optional_quantity(std::string_view key, units::Kind kind, Range range = Range::Any) const;
+
+  // A polyline in plan: [["30 in", "-12 in"], ["30 in", "12 in"], ...], each coordinate a
+  // quantity of `kind` within `range`, min_points to max_points points.
+  std::vector<std::array<double, 2>> points(std::string_view key, units::Kind kind, Range range, std::size_t min_points,
+                                            std::size_t max_points) const;
 
   std::string string_or(std::string_view key, std::string fallback, const std::vector<std::string>& allowed) const;
   bool boolean_or(std::string_view key, bool fallback) const;

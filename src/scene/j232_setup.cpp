@@ -156,13 +156,59 @@ std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
   return hull;
 }
 
-// Solid vertical panels on arcs about the origin.
-void add_deflectors(Soup& soup, const scenario::HousingSpec& h) {
+// A vertical wall along a polyline in plan, from z0 to z1, in pieces of at most 0.1 m.
+void add_path_wall(Soup& soup, const scenario::PlanPath& path, double z0, double z1, Surface label, std::uint16_t guard = 0) {
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const Eigen::Vector2d p(path[i][0], path[i][1]), q(path[i + 1][0], path[i + 1][1]);
+    const int pieces = std::max(1, static_cast<int>(std::ceil((q - p).norm() / 0.1)));
+    for (int k = 0; k < pieces; ++k) {
+      const Eigen::Vector2d a = p + (q - p) * k / pieces, b = p + (q - p) * (k + 1) / pieces;
+      soup.add_quad(soup.add_point({a.x(), a.y(), z0}), soup.add_point({b.x(), b.y(), z0}), soup.add_point({b.x(), b.y(), z1}),
+                    soup.add_point({a.x(), a.y(), z1}), label, guard);
+    }
+  }
+}
+
+// What stands on its own, on any deck (generated or a mesh): deflector panels (on arcs
+// about the origin or along polylines) and guards hung along polylines (numbered from
+// first_guard by their place in housing.guards).
+void add_free_parts(Soup& soup, const scenario::HousingSpec& h, std::uint16_t first_guard) {
   for (const auto& d : h.deflectors) {
+    if (!d.along.empty()) {
+      add_path_wall(soup, d.along, d.bottom, d.top, Surface::Deflector);
+      continue;
+    }
     const double span = arc_span(d.azimuth_from, d.azimuth_to);
     add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, kTwoPi / 96), {d.bottom, d.top},
              [](const Vec3&) { return Surface::Deflector; });
   }
+  for (std::size_t g = 0; g < h.guards.size(); ++g)
+    if (!h.guards[g].along.empty())
+      add_path_wall(soup, h.guards[g].along, h.guards[g].bottom, h.guards[g].top, Surface::Guard,
+                    static_cast<std::uint16_t>(first_guard + g));
+}
+
+// A discharge chute over an opening whose skirt pieces are `pieces` (outline segments in
+// plan): a roof swept from each piece straight outward along the opening's middle
+// azimuth, sloping from the opening's top to the chute's mouth, and two side walls.
+void add_chute(Soup& soup, const scenario::OpeningSpec& o, double skirt_bottom,
+               const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& pieces) {
+  if (o.chute_length <= 0 || pieces.empty()) return;
+  const double mid = o.azimuth_from + 0.5 * arc_span(o.azimuth_from, o.azimuth_to);
+  const Eigen::Vector2d out = o.chute_length * Eigen::Vector2d(std::cos(mid), std::sin(mid));
+  auto rel = [&](const Eigen::Vector2d& p) { return std::fmod(std::atan2(p.y(), p.x()) - o.azimuth_from + 2 * kTwoPi, kTwoPi); };
+  Eigen::Vector2d first = pieces.front().first, last = pieces.front().second;
+  for (const auto& [a, b] : pieces) {
+    if (rel(a) < rel(first)) first = a;
+    if (rel(b) > rel(last)) last = b;
+    soup.add_quad(soup.add_point({a.x(), a.y(), o.top}), soup.add_point({b.x(), b.y(), o.top}),
+                  soup.add_point({b.x() + out.x(), b.y() + out.y(), o.chute_end_top}),
+                  soup.add_point({a.x() + out.x(), a.y() + out.y(), o.chute_end_top}), Surface::Housing);
+  }
+  for (const Eigen::Vector2d& p : {first, last})
+    soup.add_quad(soup.add_point({p.x(), p.y(), skirt_bottom}), soup.add_point({p.x() + out.x(), p.y() + out.y(), skirt_bottom}),
+                  soup.add_point({p.x() + out.x(), p.y() + out.y(), o.chute_end_top}), soup.add_point({p.x(), p.y(), o.top}),
+                  Surface::Housing);
 }
 
 // Whether azimuth a (about the origin) lies in the arc from -> to (counter-clockwise).
@@ -182,6 +228,7 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
   for (const auto& p : outline) centroid += p;
   centroid /= static_cast<double>(outline.size());
   const std::uint32_t c = soup.add_point({centroid.x(), centroid.y(), deck_top});
+  std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>> opening_pieces(h.openings.size());
   for (std::size_t i = 0; i < outline.size(); ++i) {
     const auto& p = outline[i];
     const auto& q = outline[(i + 1) % outline.size()];
@@ -196,15 +243,18 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
                       soup.add_point({a.x(), a.y(), z1}), label, guard);
       };
       double skirt_from = h.skirt_bottom;
-      for (const auto& o : h.openings)
-        if (in_arc(azimuth, o.azimuth_from, o.azimuth_to)) skirt_from = std::max(skirt_from, o.top);
+      for (std::size_t o = 0; o < h.openings.size(); ++o)
+        if (in_arc(azimuth, h.openings[o].azimuth_from, h.openings[o].azimuth_to)) {
+          skirt_from = std::max(skirt_from, h.openings[o].top);
+          opening_pieces[o].emplace_back(a, b);
+        }
       quad(skirt_from, deck_top, Surface::Housing, 0);
       for (std::size_t g = 0; g < h.guards.size(); ++g)
-        if (in_arc(azimuth, h.guards[g].azimuth_from, h.guards[g].azimuth_to))
+        if (h.guards[g].along.empty() && in_arc(azimuth, h.guards[g].azimuth_from, h.guards[g].azimuth_to))
           quad(h.guards[g].bottom, skirt_from, Surface::Guard, static_cast<std::uint16_t>(first_guard + g));
     }
   }
-  add_deflectors(soup, h);
+  for (std::size_t o = 0; o < h.openings.size(); ++o) add_chute(soup, h.openings[o], h.skirt_bottom, opening_pieces[o]);
 }
 
 // The generated deck plate, skirt, chain guards (numbered from first_guard) and deflectors.
@@ -218,11 +268,11 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
            [](const Vec3&) { return Surface::Housing; });
   for (std::size_t g = 0; g < h.guards.size(); ++g) {
     const auto& guard = h.guards[g];
+    if (!guard.along.empty()) continue;  // hung along its own path (add_free_parts)
     const double span = arc_span(guard.azimuth_from, guard.azimuth_to);
     add_wall(soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, kTwoPi / 96), {guard.bottom, h.skirt_bottom},
              [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
   }
-  add_deflectors(soup, h);
 }
 
 }  // namespace
@@ -241,7 +291,6 @@ MeshRoles mesh_roles(const scenario::Scenario& s) {
 
 double escape_radius(const scenario::Scenario& s, const Soup& soup) {
   double reach = target_radius(s);
-  if (s.meshes.empty()) return reach + 1.0;
   for (std::size_t t = 0; t < soup.triangles.size(); ++t)
     if (soup.labels[t] != Surface::Ground)
       for (auto v : soup.triangles[t]) reach = std::max(reach, std::hypot(soup.points[v].x(), soup.points[v].y()));
@@ -290,12 +339,14 @@ Soup build_scene_soup(const scenario::Scenario& s) {
     Soup generated;
     if (!replaced.ground) add_ground(generated, std::max(target_radius(s), mesh_reach) + 2.0);
     if (!replaced.housing) add_housing(generated, s, guard);
+    add_free_parts(generated, s.housing, guard);
     if (!replaced.target) add_target_ring(generated, s, zone);
     soup.append(generated);
     return soup;
   }
   add_ground(soup, target_radius(s) + 2.0);
   add_housing(soup, s, 0);
+  add_free_parts(soup, s.housing, 0);
   add_target_ring(soup, s, zone);
   return soup;
 }
