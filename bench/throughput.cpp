@@ -3,11 +3,12 @@
 //   build/j232_bench [SCENARIO...] [--replicates N]
 //
 // Without a scenario it measures the report's highway mower (scenarios/highway-pivoted.toml)
-// and the three-spindle deck (scenarios/deck-72in-three-spindle.toml). For each: simulated
-// nails per second on 1 and on 2 threads (median of 3 runs each), the
-// mean number of scene (AABB) queries per nail, the raw query rate on the same scene
-// with chords like the nails' (so the cost of everything beyond the queries is
-// visible), and the wall time of the full assessment.
+// and the three-spindle deck (scenarios/deck-72in-three-spindle.toml). For each, and for
+// each scene engine built in (CGAL's AABB tree, Embree's BVH; --engine picks one):
+// simulated nails per second on 1 and on 2 threads (median of 3 runs each) and the wall
+// time of the full assessment; the mean number of scene queries per nail; and the raw
+// query rate on the same scene with chords like the nails' (ns per query), so the cost of
+// everything beyond the queries is visible.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -28,18 +29,37 @@ static double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-static void bench(const std::string& path, long long replicates);
+static void bench(const std::string& path, long long replicates, const std::vector<scene::Engine>& engines);
 
 int main(int argc, char** argv) {
   std::vector<std::string> paths;
   long long replicates = 3000;
+  std::string engine_choice = "both";
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-      std::printf("usage: j232_bench [SCENARIO...] [--replicates N]   (default: highway-pivoted and the three-spindle deck, 3000)\n");
+      std::printf("usage: j232_bench [SCENARIO...] [--replicates N] [--engine cgal|embree|both]\n"
+                  "  defaults: highway-pivoted and the three-spindle deck, 3000 replicates, every engine built in\n");
       return 0;
     }
-    if (!std::strcmp(argv[i], "--replicates") && i + 1 < argc) replicates = std::atoll(argv[++i]);
-    else paths.emplace_back(argv[i]);
+    if (!std::strcmp(argv[i], "--replicates") && i + 1 < argc) {
+      replicates = std::atoll(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--engine") && i + 1 < argc) {
+      const std::string e = argv[++i];
+      if (e != "cgal" && e != "embree" && e != "both") {
+        std::fprintf(stderr, "j232_bench: --engine expects cgal, embree or both, not %s\n", e.c_str());
+        return 2;
+      }
+      engine_choice = e;
+    } else {
+      paths.emplace_back(argv[i]);
+    }
+  }
+  std::vector<scene::Engine> engines;
+  for (auto e : {scene::Engine::Cgal, scene::Engine::Embree})
+    if ((engine_choice == "both" || engine_choice == scene::engine_name(e)) && scene::engine_available(e)) engines.push_back(e);
+  if (engines.empty()) {
+    std::fprintf(stderr, "j232_bench: the %s engine is not built in\n", engine_choice.c_str());
+    return 2;
   }
   if (replicates < 1) {
     std::fprintf(stderr, "j232_bench: --replicates expects a positive number\n");
@@ -49,7 +69,7 @@ int main(int argc, char** argv) {
     for (const char* name : {"highway-pivoted.toml", "deck-72in-three-spindle.toml"})
       paths.push_back(std::string(J232_SOURCE_DIR) + "/scenarios/" + name);
   try {
-    for (const auto& p : paths) bench(p, replicates);
+    for (const auto& p : paths) bench(p, replicates, engines);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "j232_bench: %s\n", e.what());
     return 2;
@@ -60,45 +80,54 @@ int main(int argc, char** argv) {
   return 0;
 }
 
-static void bench(const std::string& path, long long replicates) {
+static void bench(const std::string& path, long long replicates, const std::vector<scene::Engine>& engines) {
   auto s = scenario::read_scenario(path);
   s.run.replicates = replicates;
   s.run.target_half_width.reset();
-  const assess::Simulator sim(s);
   std::printf("j232_bench: %s\n  %lld replicates x %d nails = %lld nails per run\n", s.title.c_str(), replicates,
               s.feed.nails, replicates * s.feed.nails);
-
-  double queries_per_nail = 0;
-  for (int threads : {1, 2}) {
-    std::vector<double> rates, walls;
-    for (int rep = 0; rep < 3; ++rep) {
-      const auto a = assess::run_assessment(sim, threads);
-      rates.push_back(static_cast<double>(a.nails) / a.wall_seconds);
-      walls.push_back(a.wall_seconds);
-      queries_per_nail = static_cast<double>(a.queries) / static_cast<double>(a.nails);
+  std::vector<double> two_thread_rates;
+  for (const scene::Engine engine : engines) {
+    const auto built = Clock::now();
+    const assess::Simulator sim(s, engine);
+    const double build_seconds = std::chrono::duration<double>(Clock::now() - built).count();
+    std::printf("  engine %s (scene built in %.3f s):\n", scene::engine_name(engine), build_seconds);
+    double queries_per_nail = 0;
+    for (int threads : {1, 2}) {
+      std::vector<double> rates, walls;
+      for (int rep = 0; rep < 3; ++rep) {
+        const auto a = assess::run_assessment(sim, threads);
+        rates.push_back(static_cast<double>(a.nails) / a.wall_seconds);
+        walls.push_back(a.wall_seconds);
+        queries_per_nail = static_cast<double>(a.queries) / static_cast<double>(a.nails);
+      }
+      std::printf("    %d thread%s: %10.0f nails/s (median of 3; %.2f s per full assessment)\n", threads,
+                  threads == 1 ? " " : "s", median(rates), median(walls));
+      if (threads == 2) two_thread_rates.push_back(median(rates));
     }
-    std::printf("  %d thread%s: %10.0f nails/s (median of 3; %.2f s per full assessment)\n", threads,
-                threads == 1 ? " " : "s", median(rates), median(walls));
-  }
-  std::printf("  scene queries per nail: %.2f\n", queries_per_nail);
+    std::printf("    scene queries per nail: %.2f\n", queries_per_nail);
 
-  // Raw query rate: chords of 0.3 m from random points under the deck in random directions.
-  const auto& scene = sim.scene();
-  const int n = 2'000'000;
-  random::Stream rng(1, 0, 0, random::Purpose::Test);
-  std::vector<scene::Vec3> from(1024), dir(1024);
-  for (std::size_t i = 0; i < from.size(); ++i) {
-    const double r = 0.6 * std::sqrt(rng.uniform()), a = 6.283185307179586 * rng.uniform();
-    from[i] = {r * std::cos(a), r * std::sin(a), 0.02 + 0.15 * rng.uniform()};
-    scene::Vec3 d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    dir[i] = d.normalized();
+    // Raw query rate: chords of 0.3 m from random points under the deck in random directions.
+    const auto& scene = sim.scene();
+    const int n = 2'000'000;
+    random::Stream rng(1, 0, 0, random::Purpose::Test);
+    std::vector<scene::Vec3> from(1024), dir(1024);
+    for (std::size_t i = 0; i < from.size(); ++i) {
+      const double r = 0.6 * std::sqrt(rng.uniform()), a = 6.283185307179586 * rng.uniform();
+      from[i] = {s.spindles[i % s.spindles.size()].x + r * std::cos(a), s.spindles[i % s.spindles.size()].y + r * std::sin(a),
+                 0.02 + 0.15 * rng.uniform()};
+      scene::Vec3 d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+      dir[i] = d.normalized();
+    }
+    const auto t0 = Clock::now();
+    long hits = 0;
+    for (int i = 0; i < n; ++i) hits += scene.first_hit(from[i & 1023], dir[i & 1023], 0.3).has_value();
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double rate = n / seconds;
+    std::printf("    raw queries (0.3 m chords, 1 thread): %.0f queries/s, %.0f ns per query (%.0f%% hit), %zu faces\n", rate,
+                1e9 / rate, 100.0 * hits / n, scene.face_count());
+    std::printf("    so queries alone would allow %.0f nails/s on 1 thread\n", rate / queries_per_nail);
   }
-  const auto t0 = Clock::now();
-  long hits = 0;
-  for (int i = 0; i < n; ++i) hits += scene.first_hit(from[i & 1023], dir[i & 1023], 0.3).has_value();
-  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-  const double rate = n / seconds;
-  std::printf("  raw AABB queries (0.3 m chords, 1 thread): %.0f queries/s (%.0f%% hit), %zu faces\n", rate,
-              100.0 * hits / n, scene.face_count());
-  std::printf("  so queries alone would allow %.0f nails/s on 1 thread\n", rate / queries_per_nail);
+  if (two_thread_rates.size() == 2)
+    std::printf("  embree / cgal, 2 threads: %.2fx\n", two_thread_rates[1] / two_thread_rates[0]);
 }

@@ -25,7 +25,8 @@ class Simulator {
  public:
   // Builds the blade model and the scene; throws scenario::InputError for bad meshes
   // or an unsound blade.
-  explicit Simulator(const scenario::Scenario& scenario);
+  // `engine` chooses the scene's ray-query index (the same hits either way).
+  explicit Simulator(const scenario::Scenario& scenario, scene::Engine engine = scene::default_engine());
 
   NailOutcome simulate(std::uint64_t replicate, int nail) const;
 

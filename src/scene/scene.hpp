@@ -1,7 +1,8 @@
 #pragma once
-// The scene a thrown nail flies through: a CGAL Surface_mesh with a label per face,
-// indexed by a CGAL AABB tree for first-hit ray queries (docs/model.md §5.3–5.4). CGAL
-// stays inside scene.cpp; this header is all the rest of the program sees.
+// The scene a thrown nail flies through: labelled triangles indexed for first-hit ray
+// queries (docs/model.md §5.3–5.4) by CGAL's AABB tree or Embree's BVH. CGAL stays inside
+// scene.cpp and Embree inside embree_index.cpp; this header is all the rest of the
+// program sees.
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,21 +32,30 @@ struct Skip {
   }
 };
 
+// Which index chooses the triangles a ray query tests: CGAL's AABB tree (the reference)
+// or Embree's BVH (faster; built in when Embree 3 is found at configure time). The same
+// exact double-precision test decides every hit, so both give the same answers.
+enum class Engine { Cgal, Embree };
+bool engine_available(Engine e);
+Engine default_engine();  // Embree when built in
+const char* engine_name(Engine e);  // "cgal", "embree"
+
 class Scene {
  public:
-  // Throws std::invalid_argument for an empty scene or a degenerate (zero-area) face.
-  explicit Scene(Soup soup);
+  // Throws std::invalid_argument for an empty scene or a degenerate (zero-area) face, and
+  // std::runtime_error when the engine is not built in.
+  explicit Scene(Soup soup, Engine engine = default_engine());
   ~Scene();
   Scene(Scene&&) noexcept;
   Scene& operator=(Scene&&) noexcept;
 
-  // First surface along from + t dir, 0 < t <= max_distance (dir: unit vector).
+  // First surface along from + t dir, 0 < t <= max_distance (dir: unit vector). Among
+  // faces hit at the same distance, the lowest face number.
   std::optional<Hit> first_hit(const Vec3& from, const Vec3& dir, double max_distance, const Skip& skip = {}) const;
 
   const Soup& soup() const;
   std::size_t face_count() const;
-  double face_area(std::uint32_t face) const;
-  Vec3 face_centroid(std::uint32_t face) const;
+  Engine engine() const;
 
  private:
   struct Impl;

@@ -1,0 +1,86 @@
+// The two scene engines (CGAL's AABB tree, Embree's BVH) answer every ray query the same,
+// bit for bit: the same face at the same distance, on the shipped scenes, for rays
+// that start on surfaces as a bouncing nail's do, and for whole assessments.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "assess/runner.hpp"
+#include "assess/summary.hpp"
+#include "random/stream.hpp"
+#include "report/result_files.hpp"
+#include "scenario/scenario.hpp"
+#include "scene/j232_setup.hpp"
+#include "scene/scene.hpp"
+
+using namespace j232;
+using scene::Vec3;
+
+namespace {
+std::string scenario_path(const char* name) { return std::string(J232_SOURCE_DIR) + "/scenarios/" + name; }
+
+Vec3 random_direction(random::Stream& rng) {
+  const double z = rng.uniform(-1, 1), a = rng.uniform(0, 6.283185307179586);
+  const double r = std::sqrt(1 - z * z);
+  return {r * std::cos(a), r * std::sin(a), z};
+}
+}  // namespace
+
+TEST_CASE("scene engines: Embree and CGAL give identical hits on chains of queries", "[scene][engine]") {
+  if (!scene::engine_available(scene::Engine::Embree)) {
+    WARN("Embree is not built in: only the CGAL engine to test");
+    return;
+  }
+  for (const char* name : {"highway-pivoted-chains.toml", "highway-meshes.toml", "deck-72in-three-spindle.toml", "batwing-15ft.toml"}) {
+    const auto s = scenario::read_scenario(scenario_path(name));
+    const auto soup = scene::build_scene_soup(s);
+    const scene::Scene cgal(soup, scene::Engine::Cgal), embree(soup, scene::Engine::Embree);
+    REQUIRE(cgal.engine() == scene::Engine::Cgal);
+    REQUIRE(embree.engine() == scene::Engine::Embree);
+    random::Stream rng(7, 0, 0, random::Purpose::Test);
+    long queries = 0, hits = 0;
+    // Like a nail's flight: start near the blade, go a chord's length, and from each hit
+    // go on in a random direction away from that face, skipping it.
+    for (int chain = 0; chain < 1500; ++chain) {
+      Vec3 from(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(0.02, 0.3));
+      scene::Skip skip;
+      for (int step = 0; step < 12; ++step) {
+        const Vec3 dir = random_direction(rng);
+        const double reach = step % 3 == 0 ? 5.0 : rng.uniform(0.01, 0.5);
+        const auto a = cgal.first_hit(from, dir, reach, skip), b = embree.first_hit(from, dir, reach, skip);
+        ++queries;
+        REQUIRE(a.has_value() == b.has_value());
+        if (!a) {
+          from += reach * dir;
+          skip = {};
+          continue;
+        }
+        ++hits;
+        INFO(name << ": query " << queries << " from " << from.transpose() << " along " << dir.transpose());
+        REQUIRE(a->face == b->face);
+        REQUIRE(a->distance == b->distance);  // bit for bit
+        from = a->point;
+        skip = {};
+        skip.add(a->face);
+      }
+    }
+    INFO(name << ": " << queries << " queries, " << hits << " hits");
+    CHECK(hits > 3000);  // most chains meet surfaces: the comparison is about hits
+  }
+}
+
+TEST_CASE("scene engines: a whole assessment is the same with either engine", "[scene][engine][assess]") {
+  if (!scene::engine_available(scene::Engine::Embree)) {
+    WARN("Embree is not built in: only the CGAL engine to test");
+    return;
+  }
+  auto s = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
+  s.run.replicates = 24;
+  const report::Provenance p{"test", "test", "today", "digest", 0, 0, {}};
+  std::string dumps[2];
+  for (int e = 0; e < 2; ++e) {
+    const assess::Simulator sim(s, e == 0 ? scene::Engine::Cgal : scene::Engine::Embree);
+    const auto a = assess::run_assessment(sim, 2);
+    dumps[e] = report::result_json(s, a, assess::summarise(a, s), p).dump();
+  }
+  CHECK(dumps[0] == dumps[1]);
+}
