@@ -55,11 +55,23 @@ TEST_CASE("scene: rays meet the generated deck, skirt, ground and board where th
   CHECK(low->distance == Approx(0.6 + 0.61).epsilon(1e-3));
   // Too short a ray meets nothing; a skipped face is passed through.
   CHECK_FALSE(sc.first_hit(blade, Vec3(1, 0, 0), 0.5));
+  // Along +x the ray meets the skirt on the edge its two faces share: the lower face
+  // number is the answer, and the other face at the same distance once that is skipped.
   scene::Skip skip;
   skip.add(side->face);
-  const auto next = sc.first_hit(blade, Vec3(1, 0, 0), 10, skip);
+  const auto twin = sc.first_hit(blade, Vec3(1, 0, 0), 10, skip);
+  REQUIRE(twin);
+  CHECK(twin->distance == side->distance);
+  CHECK(twin->face > side->face);
+  // Off the edge, a skipped face is passed through to what lies beyond.
+  const Vec3 off_edge = Vec3(1, 0.02, 0).normalized();
+  const auto inner = sc.first_hit(blade, off_edge, 10);
+  REQUIRE(inner);
+  scene::Skip pass;
+  pass.add(inner->face);
+  const auto next = sc.first_hit(blade, off_edge, 10, pass);
   REQUIRE(next);
-  CHECK(next->distance > side->distance);
+  CHECK(next->distance > inner->distance + 0.1);
 }
 
 TEST_CASE("scene: user meshes are read, scaled and labelled; bad ones are refused", "[scene][mesh]") {

@@ -9,7 +9,15 @@ namespace j232::blade {
 double Restitution::at(double approach_speed) const {
   if (model == Model::Constant) return e;
   const double v = std::max(approach_speed, 1e-12);
-  return std::clamp(coefficient * std::pow(v / reference_speed, exponent), 0.0, std::min(maximum, 1.0));
+  const double cap = std::min(maximum, 1.0);
+  // Slow contacts (grazing bounces, most of them) sit on the cap. For Johnson's exponent
+  // -1/4 the speed below which the law exceeds the cap is (coefficient / cap)^4 times the
+  // reference: no pow needed there (with a margin, so the answer is the same).
+  if (exponent == -0.25 && cap > 0) {
+    const double r = coefficient / cap, r2 = r * r;
+    if (v < reference_speed * r2 * r2 * (1 - 1e-9)) return cap;
+  }
+  return std::clamp(coefficient * std::pow(v / reference_speed, exponent), 0.0, cap);
 }
 
 std::string Restitution::problem() const {

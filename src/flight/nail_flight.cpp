@@ -181,8 +181,9 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     const double horizontal = std::hypot(b.position.x(), b.position.y());
     if (horizontal > ctx.escape_radius || b.position.z() < -1.0) break;
 
-    const double dt = std::min(chord_step(b, s.run.chord_tolerance, kMaxChord, drag), t_end - b.time);
-    const Body next = advance(b, dt, drag);
+    const Vec3 accel = acceleration(b, drag);  // shared by the chord's length, its step and a step to a hit on it
+    const double dt = std::min(chord_step(b, accel, s.run.chord_tolerance, kMaxChord), t_end - b.time);
+    const Body next = advance(b, dt, drag, accel);
     const Vec3 chord = next.position - b.position;
     const double len = chord.norm();
     if (!(len > 1e-12)) {
@@ -195,7 +196,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     ++r.queries;
     const auto hit = ctx.scene->first_hit(b.position, chord / len, reach, skip);
     if (!hit && sweep) {
-      b = advance(b, sweep->time - b.time, drag);
+      b = advance(b, sweep->time - b.time, drag, accel);
       skip = {};
       restrike(*sweep);
       continue;
@@ -205,7 +206,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
       skip = {};
       continue;
     }
-    b = advance(b, dt * hit->distance / len, drag);
+    b = advance(b, dt * hit->distance / len, drag, accel);
     b.position = hit->point;
     skip = {};
     skip.add(hit->face);

@@ -32,10 +32,17 @@ Vec3 rotate_axis(const Vec3& axis, const Vec3& spin, double dt);
 // Drag acceleration at velocity v with the nail's axis along `axis`.
 Vec3 drag_acceleration(const Drag& drag, const Vec3& velocity, const Vec3& axis);
 
-// Advances the body by dt: exact parabola without drag, one RK4 step with it.
-Body advance(const Body& body, double dt, const Drag& drag);
+// Gravity plus drag on the body as it is.
+Vec3 acceleration(const Body& body, const Drag& drag);
 
-// The longest step whose chord sags less than `tolerance` and runs at most `max_length`.
-double chord_step(const Body& body, double tolerance, double max_length, const Drag& drag);
+// Advances the body by dt: exact parabola without drag, one RK4 step with it. The second
+// form takes the body's acceleration(), already known (the chord's length needed it, and
+// a step to a hit on the chord starts from the same body): one drag evaluation fewer.
+Body advance(const Body& body, double dt, const Drag& drag);
+Body advance(const Body& body, double dt, const Drag& drag, const Vec3& acceleration_at_start);
+
+// The longest step whose chord sags less than `tolerance` and runs at most `max_length`,
+// for a body with the given acceleration().
+double chord_step(const Body& body, const Vec3& acceleration, double tolerance, double max_length);
 
 }  // namespace j232::flight
