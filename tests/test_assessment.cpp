@@ -89,7 +89,7 @@ struct Collected {
 };
 Collected run_collecting(const assess::Simulator& sim, int threads) {
   Collected c;
-  c.a = assess::run_assessment(sim, threads, nullptr, [&](const assess::MarkRow& row) { report::append_marks_csv_row(c.marks, row); });
+  c.a = assess::run_assessment(sim, threads, nullptr, [&](const assess::MarkRow& row) { report::append_marks_csv_row(c.marks, row, sim); });
   return c;
 }
 }  // namespace
@@ -116,7 +116,7 @@ TEST_CASE("determinism: the same result, bit for bit, on 1 and 2 threads and in 
   // Replicates run in two pieces merge to the same result as one run.
   assess::Assessment parts;
   std::string part_marks = report::marks_csv_header();
-  const assess::MarkSink sink = [&](const assess::MarkRow& row) { report::append_marks_csv_row(part_marks, row); };
+  const assess::MarkSink sink = [&](const assess::MarkRow& row) { report::append_marks_csv_row(part_marks, row, sim); };
   assess::run_replicates(sim, 0, 24, parts, nullptr, sink);
   assess::run_replicates(sim, 24, 24, parts, nullptr, sink);
   CHECK(report::result_json(s, parts, assess::summarise(parts, s), p).dump() == json_one.dump());
@@ -202,4 +202,60 @@ TEST_CASE("re-strikes: in a closed deck some nails come back into the blade's di
   CHECK(a.strikes.counts[0] == 0);            // every struck nail was struck at least once
   const auto sum = assess::summarise(a, s);
   CHECK(sum.validity.valid);
+}
+
+TEST_CASE("trace: every mark's trail is consistent and the ways out add up", "[assess][trace]") {
+  // The deck with a side discharge: counted marks leave by the opening.
+  auto deck = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
+  deck.run.replicates = 40;
+  const assess::Simulator sim(deck);
+  std::vector<assess::MarkRow> rows;
+  const auto a = assess::run_assessment(sim, 2, nullptr, [&](const assess::MarkRow& r) { rows.push_back(r); });
+  REQUIRE(rows.size() > 100);
+  for (const auto& r : rows) {
+    const auto& t = r.trace;
+    REQUIRE(t.touch_count > 0);
+    if (t.touch_count <= flight::NailTrace::kMaxTouches) {
+      CHECK(t.touches[static_cast<std::size_t>(t.touch_count - 1)] == flight::Touch::Board);  // a mark ends at the board
+      int blade = 0;
+      for (int i = 0; i < t.touch_count; ++i) blade += t.touches[static_cast<std::size_t>(i)] == flight::Touch::Blade;
+      CHECK(r.strikes == 1 + blade);  // the first strike is not listed
+    }
+    CHECK(t.exit != flight::Exit::Inside);  // the board stands outside the deck
+    CHECK(t.last_strike_speed > 0);
+    CHECK(r.flight_time > 0);
+    CHECK(r.spindle < 3);
+  }
+  std::uint64_t by_exit = 0, by_strikes = 0, by_first = 0, nails = 0;
+  for (const auto& [key, row] : a.exits.marks)
+    for (auto n : row) by_exit += n;
+  for (auto n : a.exits.marks_by_strikes) by_strikes += n;
+  for (auto n : a.exits.marks_by_first_touch) by_first += n;
+  for (const auto& [key, n] : a.exits.nails) nails += n;
+  CHECK(by_exit == a.marks);  // every counted mark has a way out
+  CHECK(by_strikes == a.marks);
+  CHECK(by_first == a.marks);
+  CHECK(nails == a.struck);
+  const auto opening = a.exits.marks.find(assess::exit_key(flight::Exit::Opening, 0));
+  REQUIRE(opening != a.exits.marks.end());
+  std::uint64_t through = 0;
+  for (auto n : opening->second) through += n;
+  CHECK(through > 0.9 * static_cast<double>(a.marks));
+  CHECK(a.exit_names.at(assess::exit_key(flight::Exit::Opening, 0)) == "opening: side discharge");
+
+  // A chained deck with its skirt raised: nails leave through the chains, and are named so.
+  auto chains = scenario::read_scenario(scenario_path("highway-pivoted-chains.toml"));
+  chains.housing.skirt_bottom = 0.09;
+  for (auto& g : chains.housing.guards) g.openness = 0.5;
+  chains.run.replicates = 40;
+  const assess::Simulator chained(chains);
+  const auto c = assess::run_assessment(chained, 2);
+  bool through_guard = false;
+  for (const auto& [key, n] : c.exits.nails)
+    if (assess::exit_of(key) == flight::Exit::Guard && n > 0) {
+      through_guard = true;
+      const auto& name = c.exit_names.at(key);
+      CHECK((name == "guard: front chains" || name == "guard: rear chains"));
+    }
+  CHECK(through_guard);
 }

@@ -1,5 +1,8 @@
 #include "assess/runner.hpp"
 
+#include "units/quantity.hpp"
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <oneapi/tbb/global_control.h>
@@ -34,7 +37,32 @@ double ShareDistribution::quantile(double p) const {
   return at_lo + (h - static_cast<double>(lo)) * (at_hi - at_lo);
 }
 
+void ExitTable::add(const flight::FlightResult& f) {
+  const flight::NailTrace& t = f.trace;
+  const std::uint32_t key = exit_key(t.exit, t.exit_index);
+  ++nails[key];
+  const int counted = f.mark_count - f.uncounted_marks;
+  if (counted <= 0) return;
+  const auto c = static_cast<std::uint64_t>(counted);
+  const int band = std::clamp(static_cast<int>(std::floor((t.exit_azimuth + units::pi) / (2 * units::pi / kBands))), 0, kBands - 1);
+  auto& row = marks[key];  // value-initialised to zeros when new
+  row[static_cast<std::size_t>(band)] += c;
+  marks_by_strikes[static_cast<std::size_t>(std::clamp(f.strikes, 1, 5) - 1)] += c;
+  marks_by_first_touch[t.touch_count > 0 ? static_cast<std::size_t>(t.touches[0]) : flight::kTouchKinds] += c;
+}
+
+void ExitTable::merge(const ExitTable& o) {
+  for (const auto& [k, n] : o.nails) nails[k] += n;
+  for (const auto& [k, row] : o.marks) {
+    auto& into = marks[k];
+    for (int b = 0; b < kBands; ++b) into[static_cast<std::size_t>(b)] += row[static_cast<std::size_t>(b)];
+  }
+  for (std::size_t i = 0; i < marks_by_strikes.size(); ++i) marks_by_strikes[i] += o.marks_by_strikes[i];
+  for (std::size_t i = 0; i < marks_by_first_touch.size(); ++i) marks_by_first_touch[i] += o.marks_by_first_touch[i];
+}
+
 void NailHistograms::merge(const NailHistograms& c) {
+  exits.merge(c.exits);
   exit_speed.merge(c.exit_speed);
   mark_energy.merge(c.mark_energy);
   board_energy.merge(c.board_energy);
@@ -75,6 +103,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       c.exit_speed.add(o.exit_speed);
       c.contact_radius.add(o.contact_radius);
       c.strikes.add(o.flight.strikes);
+      c.exits.add(o.flight);
       if (o.flight.board_energy >= 0) {
         c.board_energy.add(o.flight.board_energy);
         c.board_energy_per_width.add(o.flight.board_energy_per_width);
@@ -82,7 +111,9 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       const int located = std::min(o.flight.mark_count, flight::FlightResult::kMaxMarks);
       c.unlocated_marks += static_cast<std::uint64_t>(o.flight.mark_count - located);
       for (int m = 0; m < located; ++m) {
-        c.marks.push_back({static_cast<std::uint32_t>(replicate), static_cast<std::uint32_t>(n), o.flight.marks[m]});
+        c.marks.push_back({static_cast<std::uint32_t>(replicate), static_cast<std::uint32_t>(n), o.flight.marks[m],
+                           static_cast<std::uint16_t>(o.spindle), static_cast<std::uint16_t>(o.station), o.flight.strikes,
+                           o.flight.flight_time, o.flight.trace});
         c.mark_energy.add(o.flight.marks[m].normal_energy);
       }
     }
@@ -144,6 +175,8 @@ void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t cou
     });
     for (std::uint64_t c = 0; c < in_wave; ++c) merge(into, wave[c], sim.scenario().criteria, sink);  // deterministic
   }
+  for (const auto& [key, n] : into.exits.nails)
+    if (!into.exit_names.count(key)) into.exit_names[key] = sim.exit_name(exit_of(key), exit_index(key));
 }
 
 Assessment run_assessment(const Simulator& sim, int threads, Progress* progress, const MarkSink& sink) {

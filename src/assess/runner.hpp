@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "assess/simulator.hpp"
@@ -21,6 +22,26 @@ struct MarkRow {
   std::uint32_t replicate = 0;
   std::uint32_t nail = 0;
   flight::MarkRecord mark;
+  // The nail's trail: where it was fed, its strikes, what it touched and how it left.
+  std::uint16_t spindle = 0, station = 0;  // 0-based
+  int strikes = 1;
+  double flight_time = 0;  // s from the first strike to its end
+  flight::NailTrace trace;
+};
+
+// How nails left the deck, for the counted marks: what to close (docs/model.md §5.8).
+inline std::uint32_t exit_key(flight::Exit e, std::uint16_t index) { return static_cast<std::uint32_t>(e) << 16 | index; }
+inline flight::Exit exit_of(std::uint32_t key) { return static_cast<flight::Exit>(key >> 16); }
+inline std::uint16_t exit_index(std::uint32_t key) { return static_cast<std::uint16_t>(key & 0xFFFFu); }
+struct ExitTable {
+  static constexpr int kBands = 8;  // exit azimuth about the origin in 45 deg bands from -180 deg
+  std::map<std::uint32_t, std::uint64_t> nails;                        // struck nails by exit path
+  std::map<std::uint32_t, std::array<std::uint64_t, kBands>> marks;    // their counted marks, by exit band
+  std::array<std::uint64_t, 5> marks_by_strikes{};                     // nails struck 1, 2, 3, 4, 5+ times
+  std::array<std::uint64_t, flight::kTouchKinds + 1> marks_by_first_touch{};  // the last: straight to the board
+
+  void add(const flight::FlightResult& f);
+  void merge(const ExitTable& other);
 };
 
 // Receives every located mark, in (replicate, nail) order, as the merge reaches it.
@@ -48,6 +69,7 @@ struct NailHistograms {
   Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
   Histogram contact_radius{0.005, 400}; // m
   Histogram strikes{1, 52};             // blade strikes per struck nail: bin k holds k strikes
+  ExitTable exits;
 
   void merge(const NailHistograms& other);
 };
@@ -71,6 +93,7 @@ struct Assessment : NailHistograms {
   std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
   double wall_seconds = 0;
   int threads = 0;
+  std::map<std::uint32_t, std::string> exit_names;  // every exit path in `exits`, in words
 };
 
 struct Progress {

@@ -47,7 +47,25 @@ Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine)
   context_.counted_height = s.counted_height();
   context_.escape_radius = scene::escape_radius(s, scene_->soup());
   context_.guards = &guards_;
+  footprint_ = scene::deck_footprint(s, scene_->soup());
+  context_.deck_outline = &footprint_.outline;
+  context_.generated_deck = footprint_.generated;
+  context_.skirt_bottom = footprint_.skirt_bottom;
+  context_.deck_top = footprint_.top;
   context_.spindles = &spindles_;
+}
+
+std::string Simulator::exit_name(flight::Exit exit, std::uint16_t index) const {
+  switch (exit) {
+    case flight::Exit::Inside: return "never left the deck";
+    case flight::Exit::UnderSkirt: return "under the skirt";
+    case flight::Exit::OverDeck: return "over the deck";
+    case flight::Exit::DeckEdge: return "deck edge";
+    case flight::Exit::Opening:
+      return "opening: " + (index < scenario_.housing.openings.size() ? scenario_.housing.openings[index].name : std::string("?"));
+    case flight::Exit::Guard: return "guard: " + (index < guards_.size() ? guards_[index].name : std::string("?"));
+  }
+  return "unknown";
 }
 
 NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
@@ -60,6 +78,8 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
   const std::size_t k0 = s.feed.stations[static_cast<std::size_t>(drop.station)].spindle;
   const feed::Spindle& spindle = spindles_[k0];
   const scenario::SpindleSpec& spec = s.spindles[k0];
+  out.station = drop.station;
+  out.spindle = static_cast<int>(k0);
   const auto strike = feed::find_strike(drop, spindle.edges, spindle.omega(), spec.geometry, spindle.sense);
   if (!strike) return out;
 

@@ -3,6 +3,7 @@
 // feed, find the strike, resolve the impact, fly. Everything the nails of a scenario
 // share (blade model, edges, scene) is built once here; simulate() allocates nothing.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "blade/blade_model.hpp"
@@ -11,6 +12,7 @@
 #include "feed/spindle.hpp"
 #include "flight/nail_flight.hpp"
 #include "scenario/scenario.hpp"
+#include "scene/j232_setup.hpp"
 #include "scene/scene.hpp"
 
 namespace j232::assess {
@@ -19,6 +21,8 @@ struct NailOutcome {
   flight::FlightResult flight;  // fate NotStruck when the blade missed it
   double exit_speed = 0;        // m/s after the first strike (0 if not struck)
   double contact_radius = 0;
+  int station = 0;              // the feed station it was dropped at (0-based)
+  int spindle = 0;              // the spindle that fed it (0-based)
 };
 
 class Simulator {
@@ -33,12 +37,17 @@ class Simulator {
   const scenario::Scenario& scenario() const { return scenario_; }
   const scene::Scene& scene() const { return *scene_; }
   double deck_radius() const { return context_.deck_radius; }
+  const scene::DeckFootprint& deck_footprint() const { return footprint_; }
+  // How a nail left the deck, in words: "under the skirt", "opening: side discharge",
+  // "guard: front chains", "over the deck", "deck edge", "never left the deck".
+  std::string exit_name(flight::Exit exit, std::uint16_t index) const;
 
  private:
   scenario::Scenario scenario_;
   std::vector<feed::Spindle> spindles_;
   std::unique_ptr<scene::Scene> scene_;
   std::vector<scenario::GuardSpec> guards_;
+  scene::DeckFootprint footprint_;
   flight::FlightContext context_;
 };
 

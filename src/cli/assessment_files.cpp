@@ -110,7 +110,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   marks.write(report::marks_csv_header());
   std::string buffer;
   const assess::MarkSink sink = [&](const assess::MarkRow& row) {
-    report::append_marks_csv_row(buffer, row);
+    report::append_marks_csv_row(buffer, row, simulator);
     if (buffer.size() > (1u << 20)) marks.write(buffer), buffer.clear();
   };
   assess::Progress progress;

@@ -23,7 +23,37 @@ const char* fate_name(Fate f) {
   return "unknown";
 }
 
+const char* touch_name(Touch t) {
+  switch (t) {
+    case Touch::Blade: return "blade";
+    case Touch::Housing: return "housing";
+    case Touch::Deflector: return "deflector";
+    case Touch::GuardBounce: return "guard";
+    case Touch::GuardPass: return "guard-pass";
+    case Touch::Ground: return "ground";
+    case Touch::Board: return "board";
+  }
+  return "unknown";
+}
+
 namespace {
+
+// Whether p lies inside the convex counter-clockwise outline (on it counts as inside).
+bool inside_outline(const std::vector<Eigen::Vector2d>& outline, double x, double y) {
+  for (std::size_t i = 0, n = outline.size(); i < n; ++i) {
+    const Eigen::Vector2d& a = outline[i];
+    const Eigen::Vector2d& b = outline[(i + 1) % n];
+    if ((b.x() - a.x()) * (y - a.y()) - (b.y() - a.y()) * (x - a.x()) < -1e-9) return false;
+  }
+  return true;
+}
+
+bool in_arc(double a, double from, double to) {
+  const double two_pi = 2 * units::pi;
+  double span = std::fmod(to - from, two_pi);
+  if (span <= 0) span += two_pi;
+  return std::fmod(std::fmod(a - from, two_pi) + two_pi, two_pi) < span;
+}
 
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
 constexpr double kMaxChord = 0.5;    // m
@@ -68,6 +98,65 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   int steps = 0;
   const double t_end = start.time + s.run.time_limit;
   double last_strike = start.time;
+  NailTrace& trace = r.trace;
+  trace.last_strike_speed = start.velocity.norm();
+  Touch last_touch = Touch::Blade;
+  std::uint16_t last_guard_passed = 0;
+  const std::vector<Eigen::Vector2d>* outline = ctx.deck_outline;
+  bool in_deck = outline && inside_outline(*outline, b.position.x(), b.position.y());
+  auto touch = [&](Touch t) {
+    trace.touch(t);
+    last_touch = t;
+  };
+  // The nail moved straight from `from` to `to`: if that took it out of the deck's outline
+  // for the first time, where and how (a guard it had just passed, an opening, under the
+  // skirt, over the deck).
+  auto moved = [&](const Vec3& from, const Vec3& to) {
+    if (!in_deck || inside_outline(*outline, to.x(), to.y())) return;
+    in_deck = false;
+    double lo = 0, hi = 1;
+    for (int i = 0; i < 40; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      const Vec3 p = from + mid * (to - from);
+      (inside_outline(*outline, p.x(), p.y()) ? lo : hi) = mid;
+    }
+    const Vec3 c = from + hi * (to - from);
+    trace.exit_azimuth = std::atan2(c.y(), c.x());
+    trace.exit_height = c.z();
+    if (last_touch == Touch::GuardPass) {
+      trace.exit = Exit::Guard;
+      trace.exit_index = last_guard_passed;
+      return;
+    }
+    if (c.z() >= ctx.deck_top) {
+      trace.exit = Exit::OverDeck;
+      return;
+    }
+    if (!ctx.generated_deck) {
+      trace.exit = Exit::DeckEdge;
+      return;
+    }
+    const auto& openings = s.housing.openings;
+    for (std::size_t i = 0; i < openings.size(); ++i)
+      if (c.z() < openings[i].top && in_arc(trace.exit_azimuth, openings[i].azimuth_from, openings[i].azimuth_to)) {
+        trace.exit = Exit::Opening;
+        trace.exit_index = static_cast<std::uint16_t>(i);
+        return;
+      }
+    if (c.z() < ctx.skirt_bottom + 1e-9) {
+      trace.exit = Exit::UnderSkirt;
+      return;
+    }
+    // Through the skirt's height: a gap in it, which is an opening's (the skirt is cut by
+    // whole pieces, so an opening reaches a little past its azimuths): the nearest one.
+    trace.exit = Exit::DeckEdge;
+    double nearest = HUGE_VAL;
+    for (std::size_t i = 0; i < openings.size(); ++i)
+      for (double edge : {openings[i].azimuth_from, openings[i].azimuth_to}) {
+        const double d = std::abs(std::remainder(trace.exit_azimuth - edge, 2 * units::pi));
+        if (d < nearest) nearest = d, trace.exit = Exit::Opening, trace.exit_index = static_cast<std::uint16_t>(i);
+      }
+  };
 
   // The nail as spindle `sp` would meet it, were it at `body`.
   auto at_blade = [&](const feed::Spindle& sp, const Body& body) {
@@ -108,6 +197,8 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     b.velocity = contact->velocity_after;
     b.spin = contact->spin_after;
     ++r.strikes;
+    touch(Touch::Blade);
+    trace.last_strike_speed = b.velocity.norm();
     last_contact_guard = false;
   };
 
@@ -136,21 +227,26 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
         if (mark != board::Mark::None)
           record_mark(hit.point, energy, hit.surface == scene::Surface::TargetZone, mark == board::Mark::Puncture);
         // The board is the test's catcher: a nail that does not go through it drops at its foot.
+        touch(Touch::Board);
         at_board = true;
         return false;
       }
       case scene::Surface::Housing:
       case scene::Surface::Deflector:
         b.velocity = bounce(b.velocity, n, s.housing.restitution.at(-vn), s.housing.friction);
+        touch(hit.surface == scene::Surface::Housing ? Touch::Housing : Touch::Deflector);
         last_contact_guard = false;
         break;
       case scene::Surface::Guard: {
         const auto& g = ctx.guards->at(hit.guard);
         if (rng.uniform() < g.openness) {
           b.velocity *= g.pass_speed_factor;  // slips between the links, losing speed
+          touch(Touch::GuardPass);
+          last_guard_passed = hit.guard;
           return true;
         }
         b.velocity = bounce(b.velocity, n, g.restitution, g.friction);
+        touch(Touch::GuardBounce);
         last_contact_guard = true;
         break;
       }
@@ -162,6 +258,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
         b.velocity = bounce(b.velocity, rough, s.ground.restitution_at(angle), s.ground.friction);
         const double out = b.velocity.dot(n);
         if (out < 0) b.velocity -= 2 * out * n;  // a rough facet cannot send it into the ground
+        touch(Touch::Ground);
         break;
       }
     }
@@ -196,16 +293,20 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     ++r.queries;
     const auto hit = ctx.scene->first_hit(b.position, chord / len, reach, skip);
     if (!hit && sweep) {
+      const Vec3 from = b.position;
       b = advance(b, sweep->time - b.time, drag, accel);
+      moved(from, b.position);
       skip = {};
       restrike(*sweep);
       continue;
     }
     if (!hit) {
+      moved(b.position, next.position);
       b = next;
       skip = {};
       continue;
     }
+    moved(b.position, hit->point);
     b = advance(b, dt * hit->distance / len, drag, accel);
     b.position = hit->point;
     skip = {};
@@ -234,6 +335,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
         ++r.queries;
         const auto wall = ctx.scene->first_hit(from, slide, distance, skip);
         if (!wall) {
+          moved(from, from + distance * slide);
           b.position = from + distance * slide;
           b.time += speed / decel;
           b.velocity = Vec3::Zero();
@@ -242,6 +344,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
         }
         const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
         b.time += (speed - arrive) / decel;
+        moved(from, wall->point);
         b.position = wall->point;
         b.velocity = arrive * slide;
         skip = {};

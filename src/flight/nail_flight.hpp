@@ -46,6 +46,33 @@ struct MarkRecord {
   bool counted = true;          // at or above the counted height (SAE J232: the blade plane)
 };
 
+// What a thrown nail touched after its first strike, in order, and how it left the deck
+// (docs/model.md §5.3a): the trail that explains a mark.
+enum class Touch : std::uint8_t { Blade, Housing, Deflector, GuardBounce, GuardPass, Ground, Board };
+inline constexpr int kTouchKinds = 7;
+const char* touch_name(Touch t);  // "blade", "housing", "deflector", "guard", "guard-pass", "ground", "board"
+
+// Where the nail first crossed the deck's outline going out: under the skirt, through a
+// discharge opening, through a guard's curtain, over the deck; the deck's edge of a mesh
+// deck (its openings are not named); or it never left.
+enum class Exit : std::uint8_t { Inside, UnderSkirt, Opening, Guard, OverDeck, DeckEdge };
+
+struct NailTrace {
+  static constexpr int kMaxTouches = 24;  // further touches are counted, not listed
+  std::array<Touch, kMaxTouches> touches{};
+  int touch_count = 0;
+  Exit exit = Exit::Inside;
+  std::uint16_t exit_index = 0;  // the opening (housing.openings) or guard (the scene's guard index)
+  double exit_azimuth = 0;       // rad, about the origin, where it crossed the outline
+  double exit_height = 0;        // m above ground there
+  double last_strike_speed = 0;  // m/s off the last blade strike
+
+  void touch(Touch t) {
+    if (touch_count < kMaxTouches) touches[static_cast<std::size_t>(touch_count)] = t;
+    ++touch_count;
+  }
+};
+
 struct FlightResult {
   Fate fate = Fate::Escaped;
   static constexpr int kMaxMarks = 4;  // marks beyond this are counted but not located
@@ -65,6 +92,7 @@ struct FlightResult {
   int queries = 0;  // scene ray queries (for the benchmark)
   double flight_time = 0;
   Vec3 end_position = Vec3::Zero();
+  NailTrace trace;
 };
 
 // What the flight needs beyond the body: scene, the scenario's surfaces, and settings.
@@ -76,6 +104,11 @@ struct FlightContext {
   double counted_height = 0;  // marks below it are not counted (Scenario::counted_height)
   const std::vector<scenario::GuardSpec>* guards = nullptr;  // indexed by the scene's guard index
   const std::vector<feed::Spindle>* spindles = nullptr;      // the turning blades; none: nothing strikes again
+  // The deck's outline in plan (convex, counter-clockwise) and what crossing it means: a
+  // generated deck names its openings, skirt and plate heights; a mesh deck does not.
+  const std::vector<Eigen::Vector2d>* deck_outline = nullptr;
+  bool generated_deck = true;
+  double skirt_bottom = 0, deck_top = 0;
 };
 
 // `nail_length`, `nail_diameter` for the board model; `drag` already scaled to this nail's

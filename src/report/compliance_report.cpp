@@ -131,6 +131,49 @@ std::string histogram_section(const scenario::Scenario& s, const assess::Assessm
   return o;
 }
 
+// Which way the marking nails got out, so the reader sees which path to close.
+std::string exits_section(const json& r) {
+  const auto& h = r["how_nails_leave"];
+  std::string o = "<section id=\"exits\">\n<h3>How nails leave the deck</h3>\n<table class=\"numbers\"><thead><tr><th>way out</th>"
+                  "<th>struck nails</th><th>share of struck nails</th><th>counted marks</th><th>share of counted marks</th>"
+                  "<th>where most of its marks left (azimuth)</th></tr></thead><tbody>\n";
+  for (std::size_t i = 0; i < h["by_exit"].size(); ++i) {
+    const auto& e = h["by_exit"][i];
+    const std::string key = fmt::format("how_nails_leave.by_exit.{}", i);
+    std::string band = "&mdash;";
+    std::uint64_t most = 0;
+    for (std::size_t b = 0; b < e["by_exit_azimuth"].size(); ++b) {
+      const auto& row = e["by_exit_azimuth"][b];
+      if (row["marks"].get<std::uint64_t>() > most) {
+        most = row["marks"].get<std::uint64_t>();
+        band = fmt::format("{} to {} deg ({} marks)", row["from_deg"].get<int>(), row["to_deg"].get<int>(),
+                           number(fmt::format("{}.by_exit_azimuth.{}.marks", key, b), row["marks"], "{}"));
+      }
+    }
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} %</td><td>{}</td><td>{} %</td><td>{}</td></tr>\n",
+                     escape(e["exit"].get<std::string>()), number(key + ".nails", e["nails"], "{}"),
+                     number(key + ".share_of_struck_nails", e["share_of_struck_nails"], "{:.2f}", 100),
+                     number(key + ".marks", e["marks"], "{}"), number(key + ".share_of_marks", e["share_of_marks"], "{:.1f}", 100), band);
+  }
+  o += "</tbody></table>\n<p>Counted marks by the number of blade strikes of their nail: ";
+  for (std::size_t i = 0; i < h["by_strikes"].size(); ++i)
+    o += fmt::format("{}{}: {} %", i ? ", " : "", h["by_strikes"][i]["strikes"].get<std::string>(),
+                     number(fmt::format("how_nails_leave.by_strikes.{}.share_of_marks", i), h["by_strikes"][i]["share_of_marks"], "{:.1f}", 100));
+  o += ". By the first surface touched after the first strike: ";
+  bool first = true;
+  for (std::size_t i = 0; i < h["by_first_surface"].size(); ++i) {
+    const auto& f = h["by_first_surface"][i];
+    if (f["marks"].get<std::uint64_t>() == 0) continue;
+    o += fmt::format("{}{}: {} %", first ? "" : ", ", escape(f["first_surface"].get<std::string>()),
+                     number(fmt::format("how_nails_leave.by_first_surface.{}.share_of_marks", i), f["share_of_marks"], "{:.1f}", 100));
+    first = false;
+  }
+  if (first) o += "no counted marks";
+  o += ". The way out is where the nail first crossed the deck's outline; marks.csv gives every mark's trail (feed station, "
+       "strikes, speed off the last strike, surfaces touched in order, way out, flight time).</p>\n</section>\n";
+  return o;
+}
+
 std::string fates_section(const json& r) {
   std::string o = "<section id=\"fates\">\n<h2>4. Where the nails went</h2>\n<table class=\"numbers\"><thead><tr><th>fate</th>"
                   "<th>nails</th><th>share of nails fed</th><th></th></tr></thead><tbody>\n";
@@ -158,7 +201,7 @@ std::string fates_section(const json& r) {
                    number("strikes_per_struck_nail.mean", k["mean"], "{:.4f}"),
                    number("strikes_per_struck_nail.share_struck_again", k["share_struck_again"], "{:.2f}", 100),
                    number("strikes_per_struck_nail.most", k["most"], "{}"));
-  return o;
+  return o + exits_section(r);
 }
 
 // The scenario echo flattened to dotted keys: every value the run used.

@@ -1,5 +1,6 @@
 #include "report/result_files.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -34,6 +35,76 @@ json histogram_json(const assess::Histogram& h, const char* unit) {
   return {{"unit", unit},     {"count", h.total},          {"mean", h.mean()},
           {"q05", h.quantile(0.05)}, {"q50", h.quantile(0.5)}, {"q95", h.quantile(0.95)},
           {"bin_width", h.bin_width}, {"counts", h.counts}};
+}
+// How the nails left the deck, for the counted marks (the table "How nails leave").
+json exits_json(const assess::Assessment& a) {
+  const auto& e = a.exits;
+  std::uint64_t counted = 0;
+  for (const auto& [key, row] : e.marks)
+    for (auto n : row) counted += n;
+  auto share = [&](std::uint64_t n) { return counted ? static_cast<double>(n) / static_cast<double>(counted) : 0.0; };
+  json by_exit = json::array();
+  for (const auto& [key, nails] : e.nails) {
+    std::array<std::uint64_t, assess::ExitTable::kBands> row{};
+    if (auto it = e.marks.find(key); it != e.marks.end()) row = it->second;
+    std::uint64_t marks = 0;
+    json bands = json::array();
+    for (int b = 0; b < assess::ExitTable::kBands; ++b) {
+      marks += row[static_cast<std::size_t>(b)];
+      bands.push_back({{"from_deg", -180 + 45 * b}, {"to_deg", -135 + 45 * b}, {"marks", row[static_cast<std::size_t>(b)]},
+                       {"share_of_marks", share(row[static_cast<std::size_t>(b)])}});
+    }
+    const auto name = a.exit_names.find(key);
+    by_exit.push_back({{"exit", name != a.exit_names.end() ? name->second : std::string("unnamed")},
+                       {"nails", nails},
+                       {"share_of_struck_nails", a.struck ? static_cast<double>(nails) / static_cast<double>(a.struck) : 0.0},
+                       {"marks", marks},
+                       {"share_of_marks", share(marks)},
+                       {"by_exit_azimuth", bands}});
+  }
+  json by_strikes = json::array();
+  for (std::size_t i = 0; i < e.marks_by_strikes.size(); ++i)
+    by_strikes.push_back({{"strikes", i + 1 == e.marks_by_strikes.size() ? fmt::format("{}+", i + 1) : fmt::format("{}", i + 1)},
+                          {"marks", e.marks_by_strikes[i]},
+                          {"share_of_marks", share(e.marks_by_strikes[i])}});
+  json by_first = json::array();
+  for (std::size_t i = 0; i < e.marks_by_first_touch.size(); ++i)
+    by_first.push_back({{"first_surface", i < static_cast<std::size_t>(flight::kTouchKinds)
+                                              ? std::string(flight::touch_name(static_cast<flight::Touch>(i)))
+                                              : std::string("none (straight to the board)")},
+                        {"marks", e.marks_by_first_touch[i]},
+                        {"share_of_marks", share(e.marks_by_first_touch[i])}});
+  return {{"counted_marks", counted}, {"by_exit", by_exit}, {"by_strikes", by_strikes}, {"by_first_surface", by_first}};
+}
+
+// The first located marks with their nails' trails (marks.csv has them all).
+json mark_examples_json(const assess::Assessment& a) {
+  json out = json::array();
+  for (const auto& m : a.mark_sample) {
+    if (out.size() >= 20) break;
+    const auto& t = m.trace;
+    json path = json::array();
+    for (int i = 0; i < std::min(t.touch_count, flight::NailTrace::kMaxTouches); ++i)
+      path.push_back(flight::touch_name(t.touches[static_cast<std::size_t>(i)]));
+    const auto name = a.exit_names.find(assess::exit_key(t.exit, t.exit_index));
+    out.push_back({{"replicate", m.replicate},
+                   {"nail", m.nail},
+                   {"point_m", {m.mark.point.x(), m.mark.point.y(), m.mark.point.z()}},
+                   {"mark", m.mark.puncture ? "puncture" : "hit"},
+                   {"counted", m.mark.counted},
+                   {"zone", m.mark.in_zone},
+                   {"spindle", m.spindle + 1},
+                   {"station", m.station + 1},
+                   {"strikes", m.strikes},
+                   {"speed_off_last_strike_m_s", t.last_strike_speed},
+                   {"path", path},
+                   {"path_truncated", t.touch_count > flight::NailTrace::kMaxTouches},
+                   {"exit", name != a.exit_names.end() ? name->second : std::string("unnamed")},
+                   {"exit_azimuth_deg", t.exit_azimuth * 180.0 / units::pi},
+                   {"exit_height_m", t.exit_height},
+                   {"flight_time_s", m.flight_time}});
+  }
+  return out;
 }
 }  // namespace
 
@@ -99,6 +170,8 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"mark_energy", histogram_json(a.mark_energy, "J")},
       {"contact_radius", histogram_json(a.contact_radius, "m")},
       {"strikes_per_struck_nail", strikes_json(a.strikes)},
+      {"how_nails_leave", exits_json(a)},
+      {"mark_examples", mark_examples_json(a)},
       {"board_energy", histogram_json(a.board_energy, "J")},
       {"board_energy_per_width", histogram_json(a.board_energy_per_width, "J/m")},
       {"scene_queries_per_nail", sum.queries_per_nail},
@@ -123,16 +196,28 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
 }
 
 std::string marks_csv_header() {
-  return "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark,counted\n";
+  return "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark,counted,"
+         "spindle,station,strikes,speed_off_last_strike_m_s,exit,exit_azimuth_deg,exit_height_m,flight_time_s,path\n";
 }
 
-void append_marks_csv_row(std::string& out, const assess::MarkRow& m) {
+void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const assess::Simulator& sim) {
   const auto& p = m.mark.point;
   double az = std::atan2(p.y(), p.x()) * 180.0 / units::pi;
   if (az < 0) az += 360.0;
-  fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{},{}\n", m.replicate, m.nail,
+  fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{},{},", m.replicate, m.nail,
                  p.x(), p.y(), p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside", m.mark.normal_energy,
                  m.mark.puncture ? "puncture" : "hit", m.mark.counted ? "yes" : "below_counted_height");
+  const flight::NailTrace& t = m.trace;
+  // The path: what it touched after the first strike, in order ("..." when longer than listed).
+  std::string path;
+  for (int i = 0; i < std::min(t.touch_count, flight::NailTrace::kMaxTouches); ++i)
+    path += (i ? ";" : "") + std::string(flight::touch_name(t.touches[static_cast<std::size_t>(i)]));
+  if (t.touch_count > flight::NailTrace::kMaxTouches) path += ";...";
+  double exit_az = t.exit_azimuth * 180.0 / units::pi;
+  if (exit_az < 0) exit_az += 360.0;
+  fmt::format_to(std::back_inserter(out), "{},{},{},{:.3f},{},{:.2f},{:.4f},{:.5f},{}\n", m.spindle + 1, m.station + 1, m.strikes,
+                 t.last_strike_speed, csv_text_cell(sim.exit_name(t.exit, t.exit_index)), exit_az, t.exit_height, m.flight_time,
+                 csv_text_cell(path));
 }
 
 const char* verdict_word(const assess::Summary& sum) {

@@ -24,7 +24,8 @@ nlohmann::ordered_json result_json(const scenario::Scenario& s, const assess::As
                                    const Provenance& provenance);
 // marks.csv is written as the run goes (its rows arrive in order from the runner's sink).
 std::string marks_csv_header();
-void append_marks_csv_row(std::string& out, const assess::MarkRow& row);
+// `sim` names each mark's exit path (its openings and guards).
+void append_marks_csv_row(std::string& out, const assess::MarkRow& row, const assess::Simulator& sim);
 
 // How the scenario departs from SAE J232's own rules (limits, counted height), in words.
 std::vector<std::string> departures_from_j232(const scenario::Scenario& s);

@@ -128,20 +128,13 @@ Soup subdivide(const Soup& in, double max_edge, std::size_t max_triangles) {
   return out;
 }
 
-// The deck's outline seen from above, counter-clockwise: the convex hull of every
-// spindle's tip circle widened by the margin (a round deck for one spindle).
-std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
-  std::vector<Eigen::Vector2d> points;
-  for (const auto& sp : s.spindles)
-    for (int i = 0; i < 96; ++i) {
-      const double a = kTwoPi * i / 96, r = s.spindles.size() == 1 ? s.housing.deck_radius : sp.blade.tip_radius() + s.housing.margin;
-      points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
-    }
-  // Andrew's monotone chain.
+// The convex hull of points in plan, counter-clockwise (Andrew's monotone chain).
+std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points) {
   std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
   };
+  if (points.size() < 3) return points;
   std::vector<Eigen::Vector2d> hull(2 * points.size());
   std::size_t k = 0;
   for (const auto& p : points) {
@@ -154,6 +147,18 @@ std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
   }
   hull.resize(k - 1);
   return hull;
+}
+
+// The deck's outline seen from above, counter-clockwise: the convex hull of every
+// spindle's tip circle widened by the margin (a round deck for one spindle).
+std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& sp : s.spindles)
+    for (int i = 0; i < 96; ++i) {
+      const double a = kTwoPi * i / 96, r = s.spindles.size() == 1 ? s.housing.deck_radius : sp.blade.tip_radius() + s.housing.margin;
+      points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
+    }
+  return convex_hull(std::move(points));
 }
 
 // A vertical wall along a polyline in plan, from z0 to z1, in pieces of at most 0.1 m.
@@ -278,6 +283,26 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
 }  // namespace
 
 double target_radius(const scenario::Scenario& s) { return s.reach() + s.target.distance; }
+
+DeckFootprint deck_footprint(const scenario::Scenario& s, const Soup& soup) {
+  DeckFootprint f;
+  if (!mesh_roles(s).housing) {
+    f.outline = deck_outline(s);
+    f.top = s.housing.skirt_bottom + s.housing.skirt_depth;
+    f.skirt_bottom = s.housing.skirt_bottom;
+    return f;
+  }
+  f.generated = false;
+  std::vector<Eigen::Vector2d> points;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (soup.labels[t] == Surface::Housing)
+      for (auto v : soup.triangles[t]) {
+        points.emplace_back(soup.points[v].x(), soup.points[v].y());
+        f.top = std::max(f.top, soup.points[v].z());
+      }
+  f.outline = convex_hull(std::move(points));
+  return f;
+}
 
 MeshRoles mesh_roles(const scenario::Scenario& s) {
   MeshRoles r;

@@ -22,6 +22,16 @@ struct MeshRoles {
 };
 MeshRoles mesh_roles(const scenario::Scenario& s);
 
+// The deck in plan: its outline (convex, counter-clockwise) - the generated deck's, or
+// the hull of the housing meshes' points - and the heights that name how a nail crossed
+// it (a mesh deck's skirt height is not known: 0).
+struct DeckFootprint {
+  std::vector<Eigen::Vector2d> outline;
+  double top = 0, skirt_bottom = 0;
+  bool generated = true;
+};
+DeckFootprint deck_footprint(const scenario::Scenario& s, const Soup& soup);
+
 // Beyond this horizontal distance a nail has left the test: 1 m past the farthest of
 // the board ring and every mesh surface but the ground.
 double escape_radius(const scenario::Scenario& s, const Soup& soup);
