@@ -121,11 +121,13 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
 }
 
 // Chunks are merged in index order: the replicates' judgements, then their marks.
-void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec& criteria, const MarkSink& sink) {
+void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec& criteria, const MarkSink& sink,
+           const ReplicateSink& replicate_sink) {
   std::size_t next_mark = 0;
   for (const ReplicateTally& t : c.tallies) {
     const std::uint64_t replicate = into.replicates++;
     const Judgement j = judge(t, criteria);
+    if (replicate_sink) replicate_sink(replicate, j);
     into.passed += j.pass ? 1 : 0;
     for (int k = 0; k < kCategories; ++k) {
       into.criterion_passed[k] += j.passes[k] ? 1 : 0;
@@ -159,7 +161,7 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
 }  // namespace
 
 void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& into,
-                    Progress* progress, const MarkSink& sink) {
+                    Progress* progress, const MarkSink& sink, const ReplicateSink& replicate_sink) {
   const std::uint64_t chunks = (count + kChunk - 1) / kChunk;
   std::vector<ChunkResult> wave(static_cast<std::size_t>(std::min(chunks, kWave)));
   for (std::uint64_t w0 = 0; w0 < chunks; w0 += kWave) {
@@ -173,13 +175,14 @@ void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t cou
         if (progress) progress->done += static_cast<long long>(n);
       }
     });
-    for (std::uint64_t c = 0; c < in_wave; ++c) merge(into, wave[c], sim.scenario().criteria, sink);  // deterministic
+    for (std::uint64_t c = 0; c < in_wave; ++c) merge(into, wave[c], sim.scenario().criteria, sink, replicate_sink);  // deterministic
   }
   for (const auto& [key, n] : into.exits.nails)
     if (!into.exit_names.count(key)) into.exit_names[key] = sim.exit_name(exit_of(key), exit_index(key));
 }
 
-Assessment run_assessment(const Simulator& sim, int threads, Progress* progress, const MarkSink& sink) {
+Assessment run_assessment(const Simulator& sim, int threads, Progress* progress, const MarkSink& sink,
+                          const ReplicateSink& replicate_sink) {
   const auto& run = sim.scenario().run;
   const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
   const int used = threads > 0 ? threads : available;
@@ -189,14 +192,14 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress,
   const auto start = std::chrono::steady_clock::now();
   const auto first_batch = static_cast<std::uint64_t>(run.replicates);
   if (progress) progress->total = run.target_half_width ? run.max_replicates : run.replicates;
-  run_replicates(sim, 0, first_batch, a, progress, sink);
+  run_replicates(sim, 0, first_batch, a, progress, sink, replicate_sink);
   if (run.target_half_width) {
     // Batches of the first batch's size until the interval is narrow enough.
     for (;;) {
       const Interval i = wilson(a.passed, a.replicates);
       if (0.5 * (i.high - i.low) <= *run.target_half_width || a.replicates >= static_cast<std::uint64_t>(run.max_replicates)) break;
       run_replicates(sim, a.replicates, std::min(first_batch, static_cast<std::uint64_t>(run.max_replicates) - a.replicates), a,
-                     progress, sink);
+                     progress, sink, replicate_sink);
     }
   }
   a.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -46,6 +46,9 @@ struct ExitTable {
 
 // Receives every located mark, in (replicate, nail) order, as the merge reaches it.
 using MarkSink = std::function<void(const MarkRow&)>;
+// Receives every replicate's judgement (its four shares and pass), in replicate order:
+// what paired comparisons of designs need (j232 compare).
+using ReplicateSink = std::function<void(std::uint64_t replicate, const Judgement&)>;
 
 // One criterion's share over replicates, exactly and in bounded memory: a share is a
 // ratio of small counts, so it takes few distinct values however many replicates run.
@@ -104,11 +107,11 @@ struct Progress {
 // Runs the scenario's replicates (or, with a target half-width, batches until the
 // P(pass) interval is that narrow or max_replicates is reached).
 Assessment run_assessment(const Simulator& simulator, int threads, Progress* progress = nullptr,
-                          const MarkSink& marks = {});
+                          const MarkSink& marks = {}, const ReplicateSink& replicates = {});
 
 // Replicates [first, first + count) merged into `into`, which must hold replicates
 // [0, first) already (used by run_assessment and tests).
 void run_replicates(const Simulator& simulator, std::uint64_t first, std::uint64_t count, Assessment& into,
-                    Progress* progress, const MarkSink& marks = {});
+                    Progress* progress, const MarkSink& marks = {}, const ReplicateSink& replicates = {});
 
 }  // namespace j232::assess

@@ -14,6 +14,7 @@
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/progress_bar.hpp"
 #include "report/atomic_file.hpp"
 #include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
@@ -28,40 +29,6 @@
 namespace j232::cli {
 namespace {
 
-// A progress bar on stderr, redrawn from its own thread, only on a terminal.
-class ProgressBar {
- public:
-  explicit ProgressBar(assess::Progress& p) : progress_(p), on_(isatty(fileno(stderr)) != 0) {
-    if (on_) thread_ = std::thread([this] { loop(); });
-  }
-  ~ProgressBar() {
-    stop_ = true;
-    if (thread_.joinable()) thread_.join();
-    if (on_) std::fprintf(stderr, "\r%70s\r", "");
-  }
-  ProgressBar(const ProgressBar&) = delete;
-  ProgressBar& operator=(const ProgressBar&) = delete;
-
- private:
-  void loop() {
-    const auto start = std::chrono::steady_clock::now();
-    while (!stop_) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      const long long done = progress_.done, total = std::max(1LL, progress_.total.load());
-      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const double frac = std::min(1.0, static_cast<double>(done) / total);
-      const int width = 30, filled = static_cast<int>(frac * width);
-      const double eta = done > 0 ? elapsed * (total - done) / done : 0;
-      std::fprintf(stderr, "\r[%s%s] %3.0f%%  %lld/%lld replicates  %.1f s  ETA %.0f s ", std::string(filled, '#').c_str(),
-                   std::string(width - filled, ' ').c_str(), 100 * frac, done, total, elapsed, eta);
-      std::fflush(stderr);
-    }
-  }
-  assess::Progress& progress_;
-  bool on_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
 
 std::string utc_now() {
   const std::time_t t = std::time(nullptr);

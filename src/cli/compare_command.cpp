@@ -1,0 +1,77 @@
+// `j232 compare`: several designs judged against one another with common random numbers.
+#include <fmt/format.h>
+#include <memory>
+
+#include "cli/assessment_files.hpp"
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/output_folder.hpp"
+#include "cli/progress_bar.hpp"
+#include "report/atomic_file.hpp"
+#include "report/comparison_report.hpp"
+#include "report/text_safety.hpp"
+#include "scenario/scenario.hpp"
+#include "study/compare.hpp"
+
+namespace j232::cli {
+namespace {
+
+using report::terminal_safe;
+
+struct CompareOptions {
+  std::vector<std::string> scenarios;
+  std::string out = "results/compare";
+  RunOverrides overrides;
+};
+
+int compare(const CompareOptions& o) {
+  std::vector<scenario::Scenario> designs;
+  for (const auto& file : o.scenarios) designs.push_back(scenario::read_scenario(file));  // every file checked before running
+  if (o.overrides.replicates > 0) designs.front().run.replicates = o.overrides.replicates;
+  if (o.overrides.seed) designs.front().run.seed = *o.overrides.seed;
+  const int threads = o.overrides.threads >= 0 ? o.overrides.threads : designs.front().run.threads;
+  OutputFolder out(o.out, {"compare.csv", "compare.html", "compare.json"});
+  assess::Progress progress;
+  study::Comparison c;
+  {
+    ProgressBar bar(progress);
+    c = study::compare_designs(designs, threads, &progress, [&](std::size_t d, const scenario::Scenario& s) {
+      progress.done = 0;
+      fmt::print("[{}/{}] {} ({} replicates, seed {})\n", d + 1, designs.size(), terminal_safe(s.title), s.run.replicates, s.run.seed);
+      std::fflush(stdout);
+    });
+  }
+  const auto j = report::comparison_json(c);
+  report::write_atomically(out.staged("compare.csv"), report::comparison_csv(c));
+  report::write_atomically(out.staged("compare.html"), report::comparison_html(j));
+  report::write_atomically(out.staged("compare.json"), j.dump(2) + "\n");
+  out.commit();
+  static const char* names[] = {"hits in the zone", "punctures in the zone", "hits outside", "punctures outside"};
+  for (std::size_t d = 1; d < c.designs.size(); ++d) {
+    const auto& v = c.versus_first[d - 1];
+    fmt::print("design {} minus design 1 (95 % interval; independent runs would give +/-):\n", d + 1);
+    fmt::print("  P(pass)                {:+.3f} ({:+.3f} to {:+.3f}; +/-{:.3f})\n", v.pass.mean, v.pass.low, v.pass.high,
+               v.independent_pass_half_width);
+    for (int k = 0; k < assess::kCategories; ++k) {
+      const auto& m = v.shares[static_cast<std::size_t>(k)];
+      fmt::print("  {:<23}{:+.3f} % ({:+.3f} to {:+.3f} %; +/-{:.3f} %)\n", names[k], 100 * m.mean, 100 * m.low, 100 * m.high,
+                 100 * v.independent_half_width[static_cast<std::size_t>(k)]);
+    }
+  }
+  fmt::print("Wrote {}/compare.html, compare.json and compare.csv\n", terminal_safe(o.out));
+  return kOk;
+}
+
+}  // namespace
+
+Runner add_compare_command(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Compare designs with common random numbers: each design's shares and their differences from the first, with intervals");
+  cmd->add_option("scenarios", o->scenarios, "Two or more scenario files (TOML); the first is the reference")->required()->expected(2, -1);
+  cmd->add_option("--out", o->out, "Output folder for compare.html, compare.json and compare.csv")->capture_default_str();
+  add_run_overrides(*cmd, o->overrides, "the first scenario's (every design runs with the first's)");
+  return [o] { return compare(*o); };
+}
+
+}  // namespace j232::cli

@@ -1,0 +1,52 @@
+#pragma once
+// Comparing designs (docs/model.md §6a): the same test run on several scenarios with
+// common random numbers - the same seed, so replicate r of every design drops its nails
+// from the same random feed and draws the same random flights - and each design's
+// difference from the first judged replicate by replicate. Paired, the difference's
+// interval is far tighter than two independent runs would give.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "assess/runner.hpp"
+#include "assess/statistics.hpp"
+#include "scenario/scenario.hpp"
+
+namespace j232::study {
+
+// A mean over replicates with its 95 % interval (normal approximation, mean +/- 1.96 s/sqrt(n)).
+struct MeanInterval {
+  double mean = 0, low = 0, high = 0;
+};
+
+struct DesignResult {
+  std::string file, title;
+  assess::Interval pass;                          // P(pass), Wilson
+  std::array<MeanInterval, assess::kCategories> shares;
+  std::array<double, assess::kCategories> limits{};
+  std::uint64_t marks = 0, nails = 0;
+};
+
+// A design minus the first, replicate by replicate.
+struct Difference {
+  MeanInterval pass;  // difference of the pass indicators: of P(pass)
+  std::array<MeanInterval, assess::kCategories> shares;
+  // The half-width two independent runs of the same size would give (from the designs'
+  // own spreads), to show what the pairing gained.
+  std::array<double, assess::kCategories> independent_half_width{};
+  double independent_pass_half_width = 0;
+};
+
+struct Comparison {
+  std::uint64_t replicates = 0;
+  unsigned long long seed = 0;
+  std::vector<DesignResult> designs;
+  std::vector<Difference> versus_first;  // one per design after the first
+};
+
+// Runs every design with the first design's seed and replicates (each design's scenario
+// is changed to them; a stop rule is not used). `on_design` is told before each run.
+Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads, assess::Progress* progress = nullptr,
+                           const std::function<void(std::size_t, const scenario::Scenario&)>& on_design = {});
+
+}  // namespace j232::study

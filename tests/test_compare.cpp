@@ -1,0 +1,53 @@
+// Comparing designs with common random numbers (study/compare.hpp).
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "scenario/scenario.hpp"
+#include "study/compare.hpp"
+
+using namespace j232;
+
+namespace {
+std::string scenario_path(const char* name) { return std::string(J232_SOURCE_DIR) + "/scenarios/" + name; }
+}  // namespace
+
+TEST_CASE("compare: a design against itself differs by exactly nothing", "[compare]") {
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted-raised-skirt.toml"));
+  s.run.replicates = 40;
+  const auto c = study::compare_designs({s, s}, 2);
+  REQUIRE(c.versus_first.size() == 1);
+  for (int k = 0; k < assess::kCategories; ++k) {
+    const auto& d = c.versus_first[0].shares[static_cast<std::size_t>(k)];
+    CHECK(d.mean == 0.0);
+    CHECK(d.low == 0.0);
+    CHECK(d.high == 0.0);
+    CHECK(c.designs[0].shares[static_cast<std::size_t>(k)].mean == c.designs[1].shares[static_cast<std::size_t>(k)].mean);
+  }
+  // ...while independent runs of it would leave a real interval on the outside shares.
+  CHECK(c.versus_first[0].independent_half_width[assess::PuncturesOutside] > 0.005);
+}
+
+TEST_CASE("compare: common random numbers make a small design change measurable", "[compare][statistics]") {
+  // Two chain curtains that differ a little in how open they are.
+  auto a = scenario::read_scenario(scenario_path("highway-pivoted-raised-skirt-chains.toml"));
+  a.run.replicates = 200;
+  auto b = a;
+  for (auto& g : b.housing.guards) g.openness = 0.3;
+  b.file = "more open";
+  const auto c = study::compare_designs({a, b}, 2);
+  const auto& v = c.versus_first[0];
+  for (int k : {assess::HitsOutside, assess::PuncturesOutside}) {
+    const auto& d = v.shares[static_cast<std::size_t>(k)];
+    const double paired = 0.5 * (d.high - d.low);
+    INFO("criterion " << k << ": difference " << d.mean << ", paired +/-" << paired << ", independent +/-"
+                      << v.independent_half_width[static_cast<std::size_t>(k)]);
+    CHECK(d.mean > 0);                                                       // more open lets more out
+    CHECK(d.low > 0);                                                        // and the pairing resolves it
+    CHECK(paired < 0.8 * v.independent_half_width[static_cast<std::size_t>(k)]);  // tighter than independent runs
+    // The difference is the difference of the designs' means.
+    CHECK(d.mean == Approx(c.designs[1].shares[static_cast<std::size_t>(k)].mean - c.designs[0].shares[static_cast<std::size_t>(k)].mean)
+                        .margin(1e-12));
+  }
+  // Both ran with the first's seed and replicates.
+  CHECK(c.replicates == 200);
+}
