@@ -1,5 +1,6 @@
 #include "study/compare.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,9 +15,10 @@ struct Moments {
   void add(double x) { n += 1, sum += x, sum_sq += x * x; }
   double mean() const { return n > 0 ? sum / n : 0.0; }
   double variance() const { return n > 1 ? std::max(0.0, (sum_sq - sum * sum / n) / (n - 1)) : 0.0; }
-  MeanInterval interval() const {
+  // Clipped to the values the quantity can take: [0, 1] for a share, [-1, 1] for a difference.
+  MeanInterval interval(double lowest, double highest) const {
     const double half = n > 1 ? kZ * std::sqrt(variance() / n) : 0.0;
-    return {mean(), mean() - half, mean() + half};
+    return {mean(), std::max(lowest, mean() - half), std::min(highest, mean() + half)};
   }
 };
 }  // namespace
@@ -48,7 +50,7 @@ Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads,
     for (int k = 0; k < assess::kCategories; ++k) {
       Moments m;
       for (const auto& row : per[d]) m.add(row[static_cast<std::size_t>(k)]);
-      res.shares[static_cast<std::size_t>(k)] = m.interval();
+      res.shares[static_cast<std::size_t>(k)] = m.interval(0.0, 1.0);
     }
     res.limits = {s.criteria.hits_zone, s.criteria.punctures_zone, s.criteria.hits_outside, s.criteria.punctures_outside};
     res.marks = a.marks;
@@ -68,10 +70,10 @@ Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads,
       const double n = static_cast<double>(c.replicates);
       const double independent = n > 1 ? kZ * std::sqrt((first.variance() + other.variance()) / n) : 0.0;
       if (k == assess::kCategories) {
-        diff.pass = paired.interval();
+        diff.pass = paired.interval(-1.0, 1.0);
         diff.independent_pass_half_width = independent;
       } else {
-        diff.shares[static_cast<std::size_t>(k)] = paired.interval();
+        diff.shares[static_cast<std::size_t>(k)] = paired.interval(-1.0, 1.0);
         diff.independent_half_width[static_cast<std::size_t>(k)] = independent;
       }
     }
