@@ -152,14 +152,22 @@ TEST_CASE("sweep: over a J232 scenario, P(pass) with its interval at every point
     const double p = r.values[study::column(t, "p_pass")];
     CHECK(r.values[study::column(t, "p_pass_low")] <= p);
     CHECK(p <= r.values[study::column(t, "p_pass_high")]);
+    for (const char* c : {"hits_zone", "punctures_zone", "hits_outside", "punctures_outside"}) {  // single tests' spread
+      const std::string name = c;
+      CHECK(r.values[study::column(t, "q05_" + name)] <= r.values[study::column(t, "q95_" + name)]);
+      CHECK(r.values[study::column(t, "share_" + name)] >= 0);
+    }
+    CHECK(r.values[study::column(t, "limit_punctures_outside")] == 0.05);
   }
   // Raised skirt fails; lowered below the blade (1 in) it contains the nails and passes.
   CHECK(t.rows[0].values[study::column(t, "p_pass")] < 0.1);
   CHECK(t.rows[1].values[study::column(t, "p_pass")] > 0.9);
   CHECK(t.rows[0].x == Approx(6 * units::inch));
   const auto charts = study::sweep_charts(spec, t);
-  REQUIRE(charts.size() == 1);
+  REQUIRE(charts.size() == 5);  // P(pass), then each criterion's share with its band and limit
   CHECK(charts[0].first == "pass-probability");
+  CHECK(charts[4].first == "share-punctures_outside");
+  CHECK(charts[4].second.find("limit 5 %") != std::string::npos);
 }
 
 TEST_CASE("sweep: bad sweep input names the key and value", "[sweep][input]") {

@@ -177,9 +177,11 @@ std::vector<double> assessment_point(const SweepSpec& spec, const Point& p, cons
   // A point where the test did not really happen has no P(pass) to plot.
   if (!sum.validity.valid) throw point_error(spec, p, "the simulated test is invalid here: " + sum.validity.reasons.front());
   required = sum.required;
-  return {static_cast<double>(sum.replicates), sum.pass.estimate, sum.pass.low, sum.pass.high,
-          sum.criteria[0].mean_share, sum.criteria[1].mean_share, sum.criteria[2].mean_share, sum.criteria[3].mean_share,
-          sum.marks_per_nail};
+  std::vector<double> v{static_cast<double>(sum.replicates), sum.pass.estimate, sum.pass.low, sum.pass.high,
+                        sum.criteria[0].mean_share, sum.criteria[1].mean_share, sum.criteria[2].mean_share, sum.criteria[3].mean_share,
+                        sum.marks_per_nail};
+  for (const auto& c : sum.criteria) v.insert(v.end(), {c.q05, c.q95, c.limit});
+  return v;
 }
 
 }  // namespace
@@ -253,7 +255,10 @@ SweepTable run_sweep(const SweepSpec& spec, int threads, SweepProgress* progress
   t.assessment = !base.contains("contact");
   if (t.assessment)
     t.columns = {"replicates", "p_pass", "p_pass_low", "p_pass_high", "share_hits_zone", "share_punctures_zone",
-                 "share_hits_outside", "share_punctures_outside", "marks_per_nail"};
+                 "share_hits_outside", "share_punctures_outside", "marks_per_nail",
+                 "q05_hits_zone", "q95_hits_zone", "limit_hits_zone", "q05_punctures_zone", "q95_punctures_zone",
+                 "limit_punctures_zone", "q05_hits_outside", "q95_hits_outside", "limit_hits_outside",
+                 "q05_punctures_outside", "q95_punctures_outside", "limit_punctures_outside"};
   else
     t.columns = {"object_mass_kg", "blade_mass_kg", "blade_speed_rpm", "contact_radius_m", "restitution",
                  "object_speed_before_m_s", "object_speed_after_m_s", "object_speed_after_ft_min", "tip_speed_m_s",
@@ -313,6 +318,34 @@ std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& s
     chart.caption(fmt::format("Bands and bars: Wilson 95 % intervals, {} replicates per point.",
                               t.rows.empty() ? 0 : static_cast<long long>(t.rows.front().values[0])));
     out.emplace_back("pass-probability", chart.svg());
+    // Each criterion's share per point: the mean and the 5-95 % range of single tests, and
+    // its limit, so the margin to the limit shows, not only P(pass)'s jump.
+    static const char* criteria[] = {"hits_zone", "punctures_zone", "hits_outside", "punctures_outside"};
+    static const char* words[] = {"hits in the operator zone", "punctures in the operator zone", "hits outside the zone",
+                                  "punctures outside the zone"};
+    for (int k = 0; k < 4; ++k) {
+      const std::string name = criteria[k];
+      const std::size_t mean = column(t, "share_" + name), q05 = column(t, "q05_" + name), q95 = column(t, "q95_" + name),
+                        limit = column(t, "limit_" + name);
+      report::Chart c(fmt::format("{}: {}", spec.title, words[k]), spec.x.info.axis_title, "share of the nails fed (%)");
+      double top = 0;
+      for (std::size_t s = 0; s < n_series; ++s) {
+        std::vector<double> x, y, yl, yh;
+        for (const auto* r : series_rows(s)) {
+          x.push_back(r->x), y.push_back(100 * r->values[mean]), yl.push_back(100 * r->values[q05]), yh.push_back(100 * r->values[q95]);
+          top = std::max(top, 100 * r->values[q95]);
+        }
+        const std::string label = t.series_labels[s].empty() ? "mean share" : t.series_labels[s];
+        c.band(x, yl, yh, report::palette(s), "");
+        c.line(x, y, report::palette(s), label);
+      }
+      const double lim = t.rows.empty() ? 0 : 100 * t.rows.front().values[limit];
+      c.hline(lim, "#c62828", fmt::format("limit {:g} %", lim));
+      c.y_range(0, 1.1 * std::max(top, lim) + 1e-9);
+      c.caption("Line: mean share over the replicates; band: 5-95 % range of the share in single "
+                "tests; dashed: the criterion's limit.");
+      out.emplace_back("share-" + name, c.svg());
+    }
     return out;
   }
   const std::size_t speed = column(t, "object_speed_after_m_s"), ratio = column(t, "mass_ratio"), dimless = column(t, "dimensionless_velocity");
