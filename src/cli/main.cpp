@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   const Runner batch = add_batch_command(app);
   const Runner sweep = add_sweep_command(app);
   const Runner compare = add_compare_command(app);
+  const Runner uq = add_uq_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("batch")) return batch();
     if (app.got_subcommand("sweep")) return sweep();
     if (app.got_subcommand("compare")) return compare();
+    if (app.got_subcommand("uq")) return uq();
   } catch (const j232::scenario::InputError& e) {
     fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
     return kBadInput;

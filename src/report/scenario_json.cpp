@@ -80,6 +80,15 @@ json deflector_json(const scenario::DeflectorSpec& d) {
   return j;
 }
 
+json uncertainty_json(const scenario::UncertaintySpec& u) {
+  json inputs = json::array();
+  for (const auto& in : u.inputs) inputs.push_back({{"parameter", in.parameter}, {"low", in.low}, {"high", in.high}, {"basis", in.basis}});
+  return {{"base_draws", u.base_draws},
+          {"replicates", u.replicates},
+          {"inputs", inputs},
+          {"used_by", "j232 uq (not by j232 run); no inputs: the default set of estimated inputs"}};
+}
+
 json opening_json(const scenario::OpeningSpec& o) {
   json j = {{"name", o.name}, {"azimuth_from_deg", o.azimuth_from * kDeg}, {"azimuth_to_deg", o.azimuth_to * kDeg}, {"top_m", o.top}};
   if (o.chute_length > 0) j.update({{"chute_length_m", o.chute_length}, {"chute_end_top_m", o.chute_end_top}});
@@ -177,6 +186,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"required_pass_probability", s.criteria.required_pass_probability}}},
       {"air",
        {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}}},
+      {"uncertainty", uncertainty_json(s.uncertainty)},
       {"run",
        {{"replicates", s.run.replicates},
         {"seed", s.run.seed},

@@ -200,6 +200,21 @@ struct RunSpec {
   double rest_speed = 0.3;              // m/s: slower after a bounce is at rest
 };
 
+// An uncertainty study of the scenario (`j232 uq`, docs/model.md §6b): inputs varied
+// uniformly between two values, each with the basis of its range. `parameter` is a sweep
+// parameter (`restitution`, `lift_angle`, ...) or any dotted key of the file; `low` and
+// `high` are written as that key takes them ("0.7", "0 deg"). No inputs: j232 uq uses its
+// default set of the estimated inputs.
+struct UncertainInput {
+  std::string parameter, low, high, basis;
+  std::optional<int> line;
+};
+struct UncertaintySpec {
+  std::vector<UncertainInput> inputs;
+  long long base_draws = 32;   // N of the Saltelli scheme: N (k + 2) assessments
+  long long replicates = 200;  // per assessment
+};
+
 struct Scenario {
   std::string file;
   std::string title;
@@ -216,6 +231,7 @@ struct Scenario {
   CriteriaSpec criteria;
   AirSpec air;
   RunSpec run;
+  UncertaintySpec uncertainty;
 
   // Marks below this height (m above ground) are not counted (CriteriaSpec::counted_height).
   double counted_height() const { return criteria.counted_height.value_or(blade_plane()); }

@@ -144,6 +144,32 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
   t.refuse_unknown_keys();
 }
 
+// A value as the key it will be set on takes it: a string as written, a number as text.
+std::string value_text(const TableReader& t, const char* key) {
+  if (t.is_string(key)) return t.string_or(key, "", {});
+  return fmt::format("{:.17g}", t.quantity(key, Kind::Dimensionless));
+}
+
+void read_uncertainty(const TableReader& t, UncertaintySpec& u) {
+  u.base_draws = t.integer_or("base_draws", u.base_draws, 2, 4096);
+  u.replicates = t.integer_or("replicates", u.replicates, 10, 1000000);
+  for (const auto& i : t.array_of_tables("inputs", 16)) {
+    UncertainInput in;
+    in.parameter = i.string_or("parameter", "", {});
+    if (in.parameter.empty()) throw i.error("parameter", "missing; expected a sweep parameter or a dotted key of this file");
+    if (!i.has("low")) throw i.error("low", "missing; expected the range's low end as the key takes it (\"0.7\", \"0 deg\")");
+    if (!i.has("high")) throw i.error("high", "missing; expected the range's high end as the key takes it");
+    in.low = value_text(i, "low");
+    in.high = value_text(i, "high");
+    in.basis = i.string_or("basis", "", {});
+    if (in.basis.empty()) throw i.error("basis", "missing; say what the range rests on (a source, or \"estimate: ...\")");
+    in.line = i.line_of("parameter");
+    i.refuse_unknown_keys();
+    u.inputs.push_back(in);
+  }
+  t.refuse_unknown_keys();
+}
+
 void read_zone(const TableReader& t, OperatorZoneSpec& z) {
   const std::string kind = t.string_or("kind", "derived", {"derived", "sector"});
   if (kind == "sector") {
@@ -397,6 +423,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     a->refuse_unknown_keys();
   }
   if (auto r = root.table("run")) read_run(*r, s.run);
+  if (auto u = root.table("uncertainty")) read_uncertainty(*u, s.uncertainty);
   root.refuse_unknown_keys();
   return s;
 }

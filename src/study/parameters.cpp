@@ -17,6 +17,7 @@ ParameterInfo parameter_info(const std::string& name) {
   if (name == "contact_radius") return {Parameter::ContactRadius, name, Kind::Length, "contact radius (m)", 1.0};
   if (name == "pivot_position") return {Parameter::PivotPosition, name, Kind::Dimensionless, "pivot position S/L", 1.0};
   if (name == "object_mass") return {Parameter::ObjectMass, name, Kind::Mass, "object mass (kg)", 1.0};
+  if (name == "lift_angle") return {Parameter::LiftAngle, name, Kind::Angle, "blade lift angle (deg)", units::pi / 180};
   if (name == "object_speed") return {Parameter::ObjectSpeed, name, Kind::Speed, "object speed toward the blade (m/s)", 1.0};
   return {Parameter::FileKey, name, Kind::Dimensionless, name, 1.0};
 }
@@ -68,6 +69,9 @@ Setting make_setting(const ParameterInfo& info, const std::string& text, const s
       break;
     case Parameter::PivotPosition:
       if (s.si <= 0 || s.si >= 1) throw refuse("expected S/L strictly between 0 and 1");
+      break;
+    case Parameter::LiftAngle:
+      if (std::abs(s.si) > units::pi / 4) throw refuse("expected a lift angle from -45 deg to 45 deg");
       break;
     default:
       if (!(s.si > 0)) throw refuse(fmt::format("expected a positive {}", units::describe(info.kind)));
@@ -128,6 +132,7 @@ void apply(const Setting& s, scenario::ImpactCase& c) {
       c.object.mass = s.si;
       break;
     case Parameter::ObjectSpeed: c.object.velocity = {0.0, -s.si, 0.0}; break;
+    case Parameter::LiftAngle: throw std::invalid_argument("lift_angle: an impact case has no blade edge geometry; it is a J232 parameter");
     case Parameter::FileKey: break;
   }
 }
@@ -151,6 +156,9 @@ void apply(const Setting& s, scenario::Scenario& sc) {
     case Parameter::ObjectMass: sc.nail.mass = s.si; break;
     case Parameter::ObjectSpeed:
       throw std::invalid_argument("object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead");
+    case Parameter::LiftAngle:
+      for (auto& sp : sc.spindles) sp.geometry.lift_angle = s.si;
+      break;
     case Parameter::FileKey: break;
   }
 }

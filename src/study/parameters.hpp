@@ -15,6 +15,7 @@
 //                                radius and the blade's mass are kept
 //   object_mass      "2 g"       impact: the object; J232: the nail
 //   object_speed     "440 ft/min" impact only: the object's speed toward the blade
+//   lift_angle       "5 deg"     J232 only: every blade edge's lift (a deck's blades alike)
 //
 // Any other name is a dotted key of the base file itself (`housing.guards.openness`),
 // set before the file is read, so every input can be swept.
@@ -28,7 +29,7 @@
 
 namespace j232::study {
 
-enum class Parameter { BladeSpeed, BladeMass, Restitution, ContactRadius, PivotPosition, ObjectMass, ObjectSpeed, FileKey };
+enum class Parameter { BladeSpeed, BladeMass, Restitution, ContactRadius, PivotPosition, ObjectMass, ObjectSpeed, LiftAngle, FileKey };
 
 struct ParameterInfo {
   Parameter parameter;

@@ -1,0 +1,164 @@
+#include "report/uncertainty_report.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "assess/statistics.hpp"
+#include "report/html_page.hpp"
+#include "report/svg_chart.hpp"
+#include "report/text_safety.hpp"
+
+namespace j232::report {
+
+namespace {
+using json = nlohmann::ordered_json;
+const char* kWords[study::kUqOutputs] = {"P(pass one test)", "hits in the operator zone", "punctures in the operator zone",
+                                        "hits outside the zone", "punctures outside the zone", "passes (P(pass) at least the required)"};
+
+json index_json(const study::Index& i) { return {{"estimate", i.estimate}, {"low", i.low}, {"high", i.high}}; }
+}  // namespace
+
+json uncertainty_json(const study::UncertaintyResult& r) {
+  json inputs = json::array();
+  for (const auto& in : r.plan.inputs)
+    inputs.push_back({{"parameter", in.parameter}, {"low", in.low}, {"high", in.high}, {"distribution", "uniform"}, {"basis", in.basis}});
+  json outputs, sensitivity;
+  for (int o = 0; o < study::kUqOutputs; ++o) {
+    std::vector<double> v;
+    for (const auto& out : r.outputs) v.push_back(out[static_cast<std::size_t>(o)]);
+    std::sort(v.begin(), v.end());
+    double mean = 0;
+    for (double x : v) mean += x;
+    mean /= static_cast<double>(v.size());
+    outputs[study::kUqOutputNames[o]] = {{"mean", mean},
+                                         {"min", v.front()},
+                                         {"q05", assess::quantile_sorted(v, 0.05)},
+                                         {"q50", assess::quantile_sorted(v, 0.5)},
+                                         {"q95", assess::quantile_sorted(v, 0.95)},
+                                         {"max", v.back()}};
+    const auto& idx = r.indices[static_cast<std::size_t>(o)];
+    json rows = json::array();
+    for (std::size_t i = 0; i < r.plan.inputs.size(); ++i)
+      rows.push_back({{"input", r.plan.inputs[i].parameter}, {"first_order", index_json(idx.first[i])}, {"total", index_json(idx.total[i])}});
+    sensitivity[study::kUqOutputNames[o]] = {{"variance", idx.variance}, {"indices", rows}};
+  }
+  const double passing = outputs["passes"]["mean"].get<double>();
+  return {{"program", "j232 uq"},
+          {"scenario", r.scenario_file},
+          {"title", r.title},
+          {"method", "Saltelli scheme on a Sobol' sequence (Boost.Random), N (k + 2) assessments with common random numbers; "
+                     "first-order indices by Saltelli et al. (2010), total by Jansen (1999); 95 % bootstrap intervals (500 "
+                     "resamples of the base draws)"},
+          {"inputs", inputs},
+          {"default_inputs", r.plan.defaults},
+          {"base_draws", r.plan.base_draws},
+          {"assessments", r.outputs.size()},
+          {"replicates_per_assessment", r.plan.replicates},
+          {"seed", r.seed},
+          {"required_pass_probability", r.required},
+          {"share_of_draws_passing", passing},
+          {"robust_verdict", passing == 1.0 ? "passes at every draw" : passing == 0.0 ? "fails at every draw" : "depends on the inputs"},
+          {"outputs", outputs},
+          {"sensitivity", sensitivity}};
+}
+
+std::string uncertainty_csv(const study::UncertaintyResult& r) {
+  std::string o = "assessment,block";
+  for (const auto& in : r.plan.inputs) o += "," + csv_text_cell(in.parameter);
+  for (const char* name : study::kUqOutputNames) o += std::string(",") + name;
+  o += "\n";
+  const std::size_t n = r.design.base;
+  for (std::size_t run = 0; run < r.outputs.size(); ++run) {
+    const std::size_t block = run / n;
+    const std::string b = block == 0 ? "A" : block == 1 ? "B" : fmt::format("AB{}", block - 1);
+    o += fmt::format("{},{}", run + 1, b);
+    for (double v : r.values[run]) o += fmt::format(",{:.8g}", v);
+    for (double v : r.outputs[run]) o += fmt::format(",{:.8g}", v);
+    o += "\n";
+  }
+  return o;
+}
+
+std::string uncertainty_html(const json& j) {
+  std::string o = page_head("j232 uncertainty study: " + j["title"].get<std::string>());
+  o += fmt::format("<h1>How much the verdict rests on uncertain inputs</h1>\n<p>{} ({})</p>\n", escape(j["title"].get<std::string>()),
+                   escape(j["scenario"].get<std::string>()));
+  const double passing = j["share_of_draws_passing"].get<double>();
+  o += fmt::format("<p class=\"verdict {}\"><strong>Robust verdict: the mower {}</strong> &mdash; it passes (P(pass) at least {}) in "
+                   "{} % of {} assessments drawn over the inputs' ranges.</p>\n",
+                   passing == 1.0 ? "pass" : passing == 0.0 ? "fail" : "invalid", escape(j["robust_verdict"].get<std::string>()),
+                   number("required_pass_probability", j["required_pass_probability"], "{:g}"),
+                   number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100),
+                   number("assessments", j["assessments"], "{}"));
+  o += fmt::format("<p>{} assessments of {} replicates each (Saltelli scheme, {} base draws; common random numbers, seed {}). "
+                   "Inputs, each uniform over its range{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th>"
+                   "<th>basis of the range</th></tr></thead><tbody>\n",
+                   number("assessments", j["assessments"], "{}"), number("replicates_per_assessment", j["replicates_per_assessment"], "{}"),
+                   number("base_draws", j["base_draws"], "{}"), number("seed", j["seed"], "{}"),
+                   j["default_inputs"].get<bool>() ? " (j232's default set of estimated inputs: the scenario has no [uncertainty])" : "");
+  const auto& inputs = j["inputs"];
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", i + 1, escape(inputs[i]["parameter"].get<std::string>()),
+                     escape(inputs[i]["low"].get<std::string>()), escape(inputs[i]["high"].get<std::string>()),
+                     escape(inputs[i]["basis"].get<std::string>()));
+  o += "</tbody></table>\n<h2>The outputs over the inputs' uncertainty</h2>\n<table class=\"numbers\"><thead><tr><th>output</th>"
+       "<th>mean</th><th>5 %</th><th>median</th><th>95 %</th><th>min</th><th>max</th></tr></thead><tbody>\n";
+  for (int k = 0; k < study::kUqOutputs - 1; ++k) {
+    const std::string name = study::kUqOutputNames[k];
+    const auto& x = j["outputs"][name];
+    const double scale = k == 0 ? 1.0 : 100.0;
+    const char* f = k == 0 ? "{:.3f}" : "{:.2f}";
+    const char* unit = k == 0 ? "" : " %";
+    o += fmt::format("<tr><td>{}</td>", kWords[k]);
+    for (const char* q : {"mean", "q05", "q50", "q95", "min", "max"})
+      o += fmt::format("<td>{}{}</td>", number(fmt::format("outputs.{}.{}", name, q), x[q], f, scale), unit);
+    o += "</tr>\n";
+  }
+  o += "</tbody></table>\n<h2>Which input drives what: Sobol' indices</h2>\n<p>First order: the share of the output's variance "
+       "an input causes alone; total: alone and with all its interactions. An input with both near 0 does not matter over its "
+       "range. Bars: 95 % bootstrap intervals.</p>\n";
+  for (int k = 0; k < study::kUqOutputs; ++k) {
+    const std::string name = study::kUqOutputNames[k];
+    const auto& s = j["sensitivity"][name];
+    if (s["variance"].get<double>() <= 0) {
+      o += fmt::format("<p>{}: the same at every draw (no variance to attribute).</p>\n", kWords[k]);
+      continue;
+    }
+    Chart chart(fmt::format("Sobol' indices: {}", kWords[k]), "input (numbered as in the table above)", "index", 640, 300);
+    std::vector<double> x1, y1, l1, h1, x2, y2, l2, h2;
+    o += fmt::format("<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>"
+                     "</tr></thead><tbody>\n", kWords[k]);
+    for (std::size_t i = 0; i < s["indices"].size(); ++i) {
+      const auto& row = s["indices"][i];
+      const std::string key = fmt::format("sensitivity.{}.indices.{}", name, i);
+      x1.push_back(static_cast<double>(i + 1) - 0.12), y1.push_back(row["first_order"]["estimate"]), l1.push_back(row["first_order"]["low"]),
+          h1.push_back(row["first_order"]["high"]);
+      x2.push_back(static_cast<double>(i + 1) + 0.12), y2.push_back(row["total"]["estimate"]), l2.push_back(row["total"]["low"]),
+          h2.push_back(row["total"]["high"]);
+      o += fmt::format("<tr><td>{} {}</td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} to {}</td></tr>\n", i + 1,
+                       escape(row["input"].get<std::string>()), number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
+                       number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
+                       number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}"),
+                       number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"),
+                       number(key + ".total.low", row["total"]["low"], "{:.3f}"), number(key + ".total.high", row["total"]["high"], "{:.3f}"));
+    }
+    o += "</tbody></table>\n";
+    std::vector<double> ticks;
+    for (std::size_t i = 0; i < s["indices"].size(); ++i) ticks.push_back(static_cast<double>(i + 1));
+    chart.x_range(0.5, static_cast<double>(ticks.size()) + 0.5);
+    chart.x_ticks(ticks);
+    double lo = 0, hi = 1;
+    for (double v : l1) lo = std::min(lo, v);
+    for (double v : h2) hi = std::max(hi, v);
+    chart.y_range(lo, hi);
+    chart.error_bars(x1, l1, h1, palette(0));
+    chart.points(x1, y1, palette(0), "first order", 4);
+    chart.error_bars(x2, l2, h2, palette(1));
+    chart.points(x2, y2, palette(1), "total", 4);
+    o += "<figure>" + chart.svg() + "</figure>\n";
+  }
+  o += page_foot();
+  return o;
+}
+
+}  // namespace j232::report

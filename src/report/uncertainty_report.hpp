@@ -1,0 +1,17 @@
+#pragma once
+// What `j232 uq` writes: uq.json (every number), uq.csv (one row per assessment: the
+// inputs drawn and the outputs) and uq.html (the robust verdict, the outputs'
+// distributions over the inputs' uncertainty, and Sobol' index charts; numbers tagged
+// with their uq.json keys).
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "study/uncertainty.hpp"
+
+namespace j232::report {
+
+nlohmann::ordered_json uncertainty_json(const study::UncertaintyResult& r);
+std::string uncertainty_csv(const study::UncertaintyResult& r);
+std::string uncertainty_html(const nlohmann::ordered_json& j);
+
+}  // namespace j232::report

@@ -1,0 +1,49 @@
+#pragma once
+// How much a verdict rests on estimated inputs (docs/model.md §6b): the scenario's
+// uncertain inputs ([uncertainty], or j232's default set of its estimated inputs) drawn by
+// the Saltelli scheme from a Sobol' sequence, a whole assessment at each draw with common
+// random numbers (one seed for all), and what comes of it: the distribution of P(pass) and
+// of each share over the inputs' uncertainty, the share of draws in which the mower
+// passes (a robust verdict), and Sobol' indices ranking the inputs for each.
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "assess/tally.hpp"
+#include "scenario/scenario.hpp"
+#include "study/sensitivity.hpp"
+
+namespace j232::study {
+
+// The inputs studied, with their ranges: the scenario's own, or the defaults (estimated
+// inputs of docs/model.md §8 with ranges and their bases). `defaults` says which.
+struct UncertaintyPlan {
+  std::vector<scenario::UncertainInput> inputs;
+  bool defaults = false;
+  std::size_t base_draws = 32;
+  long long replicates = 200;
+};
+UncertaintyPlan uncertainty_plan(const scenario::Scenario& s);
+
+// The outputs judged at each draw: P(pass), the four mean shares, and whether it passes.
+inline constexpr int kUqOutputs = 6;
+inline constexpr const char* kUqOutputNames[kUqOutputs] = {"p_pass", "hits_zone", "punctures_zone", "hits_outside",
+                                                          "punctures_outside", "passes"};
+
+struct UncertaintyResult {
+  UncertaintyPlan plan;
+  std::string scenario_file, title;
+  unsigned long long seed = 0;
+  double required = 0.9;
+  SaltelliDesign design;
+  std::vector<std::vector<double>> values;               // per run, per input: the value set (SI or the number written)
+  std::vector<std::array<double, kUqOutputs>> outputs;   // per run
+  std::array<SobolIndices, kUqOutputs> indices;
+};
+
+// Runs the study of the scenario file. `on_run(i, n)` is told before run i of n.
+UncertaintyResult run_uncertainty(const std::string& scenario_file, int threads,
+                                  const std::function<void(std::size_t, std::size_t)>& on_run = {});
+
+}  // namespace j232::study

@@ -1,0 +1,70 @@
+// The uncertainty study of a scenario (study/uncertainty.hpp): deterministic, checked inputs,
+// and an input the simulation ignores gets no share of the variance.
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <string>
+
+#include "scenario/input_error.hpp"
+#include "study/uncertainty.hpp"
+
+using namespace j232;
+
+namespace {
+std::string scenario_path(const char* name) { return std::string(J232_SOURCE_DIR) + "/scenarios/" + name; }
+
+// The raised-skirt scenario with an [uncertainty] table replaced by `table`.
+std::string with_uncertainty(const std::string& name, const std::string& table) {
+  std::ifstream in(scenario_path("highway-pivoted-raised-skirt.toml"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = text.substr(0, text.find("[uncertainty]"));
+  // Meshes and relative paths: none in this scenario, so the copy may live anywhere.
+  const std::string path = std::string(J232_BINARY_DIR) + "/" + name;
+  std::ofstream(path) << text << table;
+  return path;
+}
+}  // namespace
+
+TEST_CASE("uncertainty: the study is deterministic, and an ignored input gets no share", "[uncertainty]") {
+  // air.cd_axial is a real input, but with drag off it changes nothing.
+  const auto file = with_uncertainty("uq-ignored.toml", R"(
+[air]
+drag = false
+[uncertainty]
+base_draws = 6
+replicates = 12
+[[uncertainty.inputs]]
+parameter = "lift_angle"
+low = "0 deg"
+high = "10 deg"
+basis = "test"
+[[uncertainty.inputs]]
+parameter = "air.cd_axial"
+low = 0.5
+high = 1.0
+basis = "test: drag is off, so this must not matter"
+)");
+  const auto a = study::run_uncertainty(file, 2), b = study::run_uncertainty(file, 1);
+  REQUIRE(a.outputs.size() == 6 * 4);
+  for (std::size_t i = 0; i < a.outputs.size(); ++i) CHECK(a.outputs[i] == b.outputs[i]);  // any thread count
+  const auto& pass = a.indices[0];
+  CHECK(pass.total[1].estimate == 0.0);  // f(AB_2) == f(A) at every row
+  CHECK(pass.first[1].estimate == 0.0);
+  // The lift angle decides this mower (docs/validation.md): it carries the variance.
+  const auto& punct = a.indices[4];
+  REQUIRE(punct.variance > 0);
+  CHECK(punct.total[0].estimate > 0.5);
+}
+
+TEST_CASE("uncertainty: bad inputs are refused with the key and what was expected", "[uncertainty][input]") {
+  using Catch::Contains;
+  auto one = [](const std::string& low, const std::string& high) {
+    return "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"lift_angle\"\nlow = " + low + "\nhigh = " + high + "\nbasis = \"x\"\n";
+  };
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad1.toml", one("\"0 deg\"", "\"10 rad\"")), 1),
+                    Contains("uncertainty.inputs[1].high") && Contains("same unit"));
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad2.toml", one("\"10 deg\"", "\"5 deg\"")), 1),
+                    Contains("uncertainty.inputs[1].high") && Contains("above low"));
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad3.toml", one("\"0 deg\"", "\"80 deg\"")), 1), Contains("45 deg"));
+  CHECK_THROWS_AS(scenario::read_scenario(with_uncertainty("uq-bad4.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"x\"\nlow = 1\nhigh = 2\n")),
+                  scenario::InputError);  // no basis
+}
