@@ -7,6 +7,7 @@
 #include "allocation_counter.hpp"
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
+#include "assess/trajectories.hpp"
 #include "board/board.hpp"
 #include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
@@ -258,4 +259,65 @@ TEST_CASE("trace: every mark's trail is consistent and the ways out add up", "[a
       CHECK((name == "guard: front chains" || name == "guard: rear chains"));
     }
   CHECK(through_guard);
+}
+
+TEST_CASE("trajectories: a traced nail does what it did in the run, and notable nails are capped", "[assess][trajectories]") {
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted-chains.toml"));
+  s.housing.skirt_bottom = 0.09;
+  for (auto& g : s.housing.guards) g.openness = 0.5;
+  s.run.replicates = 8;
+  const assess::Simulator sim(s);
+  std::vector<assess::MarkRow> rows;
+  assess::run_assessment(sim, 2, nullptr, [&](const assess::MarkRow& r) { rows.push_back(r); });
+  REQUIRE(rows.size() > 20);
+  std::vector<flight::Vec3> path;
+  for (std::size_t i = 0; i < rows.size(); i += 7) {
+    const auto& row = rows[i];
+    const auto plain = sim.simulate(row.replicate, static_cast<int>(row.nail));
+    const auto traced = sim.trace(row.replicate, static_cast<int>(row.nail), path);
+    // Recording the path changes nothing about the nail.
+    CHECK(traced.flight.fate == plain.flight.fate);
+    CHECK(traced.flight.strikes == row.strikes);
+    CHECK(traced.flight.mark_count == plain.flight.mark_count);
+    CHECK(traced.flight.end_position == plain.flight.end_position);
+    CHECK(traced.flight.flight_time == row.flight_time);
+    REQUIRE(path.size() >= 2);
+    // The path ends where the nail ended, passes through its mark, and never jumps further
+    // than the nail can fly in one chord.
+    CHECK((path.back() - plain.flight.end_position).norm() < 1e-9);
+    double nearest = HUGE_VAL;
+    for (const auto& p : path) nearest = std::min(nearest, (p - row.mark.point).norm());
+    CHECK(nearest < 1e-9);
+    for (std::size_t k = 1; k < path.size(); ++k) CHECK((path[k] - path[k - 1]).norm() < 2.0);
+  }
+  // Notable nails: counted marks in the zone or punctures, each nail once, up to the cap of
+  // each kind, chosen the same whatever the order of the nails.
+  auto row = [](std::uint32_t replicate, std::uint32_t nail, bool counted, bool zone, bool puncture) {
+    assess::MarkRow r;
+    r.replicate = replicate, r.nail = nail;
+    r.mark.counted = counted, r.mark.in_zone = zone, r.mark.puncture = puncture;
+    return r;
+  };
+  assess::NotableNails notable(5), reversed(5);
+  for (std::uint32_t n = 0; n < 8; ++n) {
+    notable.add(row(0, n, true, true, false));
+    notable.add(row(0, n, true, true, true));  // a second mark of the same nail is the same nail
+  }
+  for (std::uint32_t n = 8; n-- > 0;) reversed.add(row(0, n, true, true, false));
+  reversed.add(row(1, 97, true, true, false));
+  notable.add(row(1, 99, false, true, true));   // below the blade plane: not notable
+  notable.add(row(1, 98, true, false, false));  // a hit outside the zone: not notable
+  notable.add(row(1, 97, true, false, true));   // a puncture outside the zone, then a zone mark:
+  notable.add(row(1, 97, true, true, false));   // drawn as a zone nail
+  notable.add(row(1, 96, true, false, true));
+  CHECK(notable.zone().size() == 5);
+  CHECK(notable.zone() == reversed.zone());
+  CHECK(notable.puncture() == std::vector<assess::NotableNails::NailId>{{1, 96}});
+  CHECK(notable.seen() == 10);
+  CHECK(notable.not_kept() == 4);
+  const auto traced = assess::trace_nails(sim, 3, notable);
+  REQUIRE(traced.size() == 9);
+  for (int i = 0; i < 3; ++i) CHECK(traced[static_cast<std::size_t>(i)].why == "sample");
+  CHECK(traced.back().why == "puncture");
+  for (const auto& t : traced) CHECK(t.points.size() >= 2);
 }

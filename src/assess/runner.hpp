@@ -81,6 +81,15 @@ struct NailHistograms {
 // replicates are independent), as many as fit in kMarkSample marks (at least one).
 inline constexpr std::size_t kMarkSample = 3000;
 
+// A nail's whole path, kept for pictures (assess/trajectories.hpp).
+struct Trajectory {
+  std::uint64_t replicate = 0;
+  int nail = 0;
+  std::string why;  // "sample", "operator zone", "puncture"
+  flight::Fate fate = flight::Fate::Escaped;
+  std::vector<flight::Vec3> points;
+};
+
 struct Assessment : NailHistograms {
   std::uint64_t replicates = 0, passed = 0;
   std::array<std::uint64_t, kCategories> criterion_passed{};
@@ -97,6 +106,10 @@ struct Assessment : NailHistograms {
   double wall_seconds = 0;
   int threads = 0;
   std::map<std::uint32_t, std::string> exit_names;  // every exit path in `exits`, in words
+  // Filled after the run when asked for (run --trajectories): chosen nails' paths, and how
+  // many notable nails (zone marks, punctures) were not kept beyond the cap.
+  std::vector<Trajectory> trajectories;
+  std::uint64_t trajectories_not_kept = 0;
 };
 
 struct Progress {

@@ -68,7 +68,14 @@ std::string Simulator::exit_name(flight::Exit exit, std::uint16_t index) const {
   return "unknown";
 }
 
-NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
+NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const { return run_nail(replicate, nail, nullptr); }
+
+NailOutcome Simulator::trace(std::uint64_t replicate, int nail, std::vector<flight::Vec3>& path) const {
+  path.clear();
+  return run_nail(replicate, nail, &path);
+}
+
+NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<flight::Vec3>* path) const {
   const scenario::Scenario& s = scenario_;
   NailOutcome out;
   out.flight.fate = flight::Fate::NotStruck;
@@ -128,7 +135,9 @@ NailOutcome Simulator::simulate(std::uint64_t replicate, int nail) const {
     else
       phases.at_zero[k] = 2 * units::pi * feed_rng.uniform();
   }
-  out.flight = flight::fly(body, drop.length, drop.diameter, drop.mass, drag, context_, phases, flight_rng);
+  flight::FlightContext context = context_;
+  context.path = path;
+  out.flight = flight::fly(body, drop.length, drop.diameter, drop.mass, drag, context, phases, flight_rng);
   out.exit_speed = contact.velocity_after.norm();
   out.contact_radius = strike->radius;
   return out;

@@ -33,6 +33,9 @@ class Simulator {
   explicit Simulator(const scenario::Scenario& scenario, scene::Engine engine = scene::default_engine());
 
   NailOutcome simulate(std::uint64_t replicate, int nail) const;
+  // The same nail again (deterministic: the same outcome), its path recorded: the centre at
+  // the first strike and at every contact, strike and chord end (for trajectory pictures).
+  NailOutcome trace(std::uint64_t replicate, int nail, std::vector<flight::Vec3>& path) const;
 
   const scenario::Scenario& scenario() const { return scenario_; }
   const scene::Scene& scene() const { return *scene_; }
@@ -43,6 +46,7 @@ class Simulator {
   std::string exit_name(flight::Exit exit, std::uint16_t index) const;
 
  private:
+  NailOutcome run_nail(std::uint64_t replicate, int nail, std::vector<flight::Vec3>* path) const;
   scenario::Scenario scenario_;
   std::vector<feed::Spindle> spindles_;
   std::unique_ptr<scene::Scene> scene_;

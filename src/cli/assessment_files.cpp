@@ -15,6 +15,7 @@
 #include "assess/summary.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/progress_bar.hpp"
+#include "assess/trajectories.hpp"
 #include "report/atomic_file.hpp"
 #include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
@@ -50,6 +51,7 @@ std::string digest(const std::string& scenario_file, const std::vector<scenario:
   for (const auto& m : meshes) f.add(file_bytes(m.path)), separator();
   // Not the thread count: results do not depend on it.
   f.add(fmt::format("{} {} {} {}", o.replicates, o.seed ? std::to_string(*o.seed) : "-1", J232_VERSION, J232_GIT_REVISION));
+  if (o.trajectories > 0) f.add(fmt::format(" trajectories {}", o.trajectories));
   separator();
   return f.hex();
 }
@@ -76,7 +78,9 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   StreamedFile marks(folder.staged("marks.csv"));
   marks.write(report::marks_csv_header());
   std::string buffer;
+  assess::NotableNails notable;
   const assess::MarkSink sink = [&](const assess::MarkRow& row) {
+    if (o.trajectories > 0) notable.add(row);
     report::append_marks_csv_row(buffer, row, simulator);
     if (buffer.size() > (1u << 20)) marks.write(buffer), buffer.clear();
   };
@@ -88,6 +92,10 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   }
   marks.write(buffer);
   marks.close();
+  if (o.trajectories > 0) {
+    a.trajectories = assess::trace_nails(simulator, o.trajectories, notable);
+    a.trajectories_not_kept = notable.not_kept();
+  }
   const assess::Summary sum = assess::summarise(a, s);
 
   report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds, {}};
@@ -102,6 +110,13 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   report::write_atomically(folder.staged("result.json"), outcome.result.dump(2) + "\n");
   folder.commit();
   return outcome;
+}
+
+void add_trajectories_option(CLI::App& cmd, RunOverrides& o) {
+  cmd.add_option("--trajectories", o.trajectories,
+                 "Keep and draw the whole paths of the first K struck nails, plus every nail that marked the operator zone or "
+                 "punctured the board (up to 100 of each, chosen at random)")
+      ->check(CLI::Range(0, 1000));
 }
 
 void add_run_overrides(CLI::App& cmd, RunOverrides& o, const std::string& whose) {

@@ -14,10 +14,13 @@ struct RunOverrides {
   long long replicates = 0;            // 0: the scenario's
   std::optional<std::uint64_t> seed;   // none: the scenario's
   int threads = -1;                    // < 0: the scenario's
+  std::size_t trajectories = 0;        // sampled nail paths to keep (plus notable ones); 0: none
 };
 
 // --replicates, --seed (any unsigned 64-bit value, or refused) and --threads on `cmd`.
 void add_run_overrides(CLI::App& cmd, RunOverrides& overrides, const std::string& whose);
+// --trajectories K (run and batch).
+void add_trajectories_option(CLI::App& cmd, RunOverrides& overrides);
 
 struct RunOutcome {
   nlohmann::ordered_json result;  // what result.json holds

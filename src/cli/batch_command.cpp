@@ -127,6 +127,7 @@ Runner add_batch_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "Output folder: one subfolder per scenario, plus summary.html/.json/.csv")->capture_default_str();
   cmd->add_flag("--resume", o->resume, "Keep results that are complete and were made from the same inputs and program");
   add_run_overrides(*cmd, o->overrides, "each scenario's");
+  add_trajectories_option(*cmd, o->overrides);
   return [o] { return batch(*o); };
 }
 

@@ -111,7 +111,9 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   // The nail moved straight from `from` to `to`: if that took it out of the deck's outline
   // for the first time, where and how (a guard it had just passed, an opening, under the
   // skirt, over the deck).
+  if (ctx.path) ctx.path->push_back(b.position);
   auto moved = [&](const Vec3& from, const Vec3& to) {
+    if (ctx.path) ctx.path->push_back(to);
     if (!in_deck || inside_outline(*outline, to.x(), to.y())) return;
     in_deck = false;
     double lo = 0, hi = 1;

@@ -109,6 +109,9 @@ struct FlightContext {
   const std::vector<Eigen::Vector2d>* deck_outline = nullptr;
   bool generated_deck = true;
   double skirt_bottom = 0, deck_top = 0;
+  // When set, the nail's centre is appended at the start and after every move (tracing
+  // chosen nails again for pictures; the per-nail path of a run leaves it null).
+  std::vector<Vec3>* path = nullptr;
 };
 
 // `nail_length`, `nail_diameter` for the board model; `drag` already scaled to this nail's

@@ -154,8 +154,15 @@ std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, co
   return chart.svg();
 }
 
-std::string plan_view_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks) {
-  Chart chart("Plan view: mower, guards, targets and marks", "x, forward (m)", "y, left (m)", 620, 600);
+namespace {
+bool scene_has_target_mesh(const scenario::Scenario& s) {
+  for (const auto& m : s.meshes)
+    if (m.label == "target" || m.label == "operator_zone") return true;
+  return false;
+}
+
+// The mower, guards, board, tip circles, feed stations and seat seen from above.
+void draw_mower_plan(Chart& chart, const scenario::Scenario& s, const scene::Soup& soup) {
   chart.equal_aspect();
   // Vertical faces project to segments (deduplicated to 1 mm); others to filled triangles.
   struct Layer {
@@ -216,8 +223,61 @@ std::string plan_view_svg(const scenario::Scenario& s, const scene::Soup& soup, 
   chart.points(fx, fy, "#009E73", "feed station", 4);
   if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived)
     chart.points({s.zone.seat_x}, {s.zone.seat_y}, "#000000", "operator seat", 4);
+}
+
+// Colour of a path by why it was kept.
+const std::string& path_colour(const std::string& why) {
+  static const std::string zone = kZoneColour, puncture = "#D55E00", sample = "#0072B2";
+  return why == "operator zone" ? zone : why == "puncture" ? puncture : sample;
+}
+
+std::string paths_caption(const std::vector<assess::Trajectory>& paths, std::uint64_t not_kept) {
+  std::size_t n[3] = {0, 0, 0};
+  for (const auto& t : paths) ++n[t.why == "sample" ? 0 : t.why == "operator zone" ? 1 : 2];
+  return fmt::format("{} sampled nails (the first struck in replicate 0), {} that marked the operator zone and {} that punctured the "
+                     "board elsewhere{}.",
+                     n[0], n[1], n[2],
+                     not_kept ? fmt::format(" (at most 100 of each, chosen at random from the whole run; {} more not drawn)", not_kept)
+                              : std::string());
+}
+}  // namespace
+
+std::string plan_view_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks) {
+  Chart chart("Plan view: mower, guards, targets and marks", "x, forward (m)", "y, left (m)", 620, 600);
+  draw_mower_plan(chart, s, soup);
   draw_marks(chart, marks, true);
   chart.caption(sample_caption(marks));
+  return chart.svg();
+}
+
+std::string trajectories_plan_svg(const scenario::Scenario& s, const scene::Soup& soup, const std::vector<assess::Trajectory>& paths,
+                                  std::uint64_t not_kept) {
+  Chart chart("Paths of chosen nails, seen from above", "x, forward (m)", "y, left (m)", 620, 600);
+  draw_mower_plan(chart, s, soup);
+  std::set<std::string> labelled;
+  for (const auto& t : paths) {
+    std::vector<double> x, y;
+    for (const auto& p : t.points) x.push_back(p.x()), y.push_back(p.y());
+    chart.polyline(x, y, path_colour(t.why), labelled.insert(t.why).second ? "path: " + t.why : "", 1.0, 0.6);
+  }
+  chart.caption(paths_caption(paths, not_kept));
+  return chart.svg();
+}
+
+std::string trajectories_side_svg(const scenario::Scenario& s, const std::vector<assess::Trajectory>& paths, std::uint64_t not_kept) {
+  Chart chart("Paths of chosen nails, side elevation", "horizontal distance from the deck's centre (m)", "height above ground (m)", 900, 380);
+  std::set<std::string> labelled;
+  for (const auto& t : paths) {
+    std::vector<double> r, z;
+    for (const auto& p : t.points) r.push_back(std::hypot(p.x(), p.y())), z.push_back(p.z());
+    chart.polyline(r, z, path_colour(t.why), labelled.insert(t.why).second ? "path: " + t.why : "", 1.0, 0.6);
+  }
+  if (!scene_has_target_mesh(s)) {
+    const double ring = s.reach() + s.target.distance;
+    chart.segments({ring}, {s.target.bottom}, {ring}, {s.target.top}, kBoardColour, "target board", 3);
+  }
+  chart.hline(s.blade_plane(), "#000", fmt::format("blade plane ({:.0f} mm)", 1000 * s.blade_plane()));
+  chart.caption(paths_caption(paths, not_kept) + " Distance is from the origin, so a path that turns about it doubles back.");
   return chart.svg();
 }
 

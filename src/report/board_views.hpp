@@ -26,5 +26,10 @@ double azimuth_deg(double x, double y);
 
 std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks);
 std::string plan_view_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks);
+// Whole paths of chosen nails (run --trajectories) over the mower seen from above, and in
+// side elevation (distance from the origin against height) with the board and blade plane.
+std::string trajectories_plan_svg(const scenario::Scenario& s, const scene::Soup& soup, const std::vector<assess::Trajectory>& paths,
+                                  std::uint64_t not_kept);
+std::string trajectories_side_svg(const scenario::Scenario& s, const std::vector<assess::Trajectory>& paths, std::uint64_t not_kept);
 
 }  // namespace j232::report

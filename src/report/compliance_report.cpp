@@ -269,7 +269,11 @@ std::string compliance_report_html(const scenario::Scenario& s, const assess::As
        "<figcaption>The target board unrolled around the spindle: azimuth 0 is straight ahead, 90 to the left. The blade plane "
        "and the feed stations' azimuths are drawn for reference. Grey marks lie below the blade plane: SAE J232 does not "
        "count them.</figcaption></figure>\n";
-  o += "<figure>" + plan_view_svg(s, soup, marks) + "<figcaption>Seen from above; the blade turns counter-clockwise.</figcaption></figure>\n";
+  o += "<figure>" + plan_view_svg(s, soup, marks) + "<figcaption>Seen from above.</figcaption></figure>\n";
+  if (!a.trajectories.empty()) {
+    o += "<h3>Paths of chosen nails</h3>\n<figure>" + trajectories_plan_svg(s, soup, a.trajectories, a.trajectories_not_kept) +
+         "</figure>\n<figure>" + trajectories_side_svg(s, a.trajectories, a.trajectories_not_kept) + "</figure>\n";
+  }
   o += "</section>\n";
   o += histogram_section(s, a, r);
   o += fates_section(r);

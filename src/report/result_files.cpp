@@ -191,6 +191,20 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
   json files = json::array();
   for (const auto& f : p.files) files.push_back({{"name", f.name}, {"bytes", f.bytes}, {"fnv1a64", f.fnv1a64}});
   result["provenance"]["files"] = files;
+  if (!a.trajectories.empty()) {
+    // Paths of chosen nails (run --trajectories), only when asked for: they can be large.
+    json paths = json::array();
+    for (const auto& t : a.trajectories) {
+      json points = json::array();
+      for (const auto& q : t.points) points.push_back({std::round(q.x() * 1e4) / 1e4, std::round(q.y() * 1e4) / 1e4, std::round(q.z() * 1e4) / 1e4});
+      paths.push_back({{"replicate", t.replicate}, {"nail", t.nail}, {"why", t.why}, {"fate", flight::fate_name(t.fate)}, {"points_m", points}});
+    }
+    result["trajectories"] = {{"kept", a.trajectories.size()},
+                              {"notable_not_kept", a.trajectories_not_kept},
+                              {"note", "whole paths of the first struck nails of replicate 0 and of every nail that marked the "
+                                       "operator zone or punctured (up to 100 of each, chosen at random), traced again after the run; points to 0.1 mm"},
+                              {"paths", paths}};
+  }
   require_finite(result);
   return result;
 }

@@ -94,6 +94,13 @@ void Chart::line(const std::vector<double>& x, const std::vector<double>& y, con
   add_legend(label, colour, dashed ? "dash" : "line");
 }
 
+void Chart::polyline(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour, const std::string& label,
+                     double width, double opacity) {
+  line(x, y, colour, label, false);
+  items_.back().width = width;
+  items_.back().opacity = opacity;
+}
+
 void Chart::band(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi,
                  const std::string& colour, const std::string& label) {
   Item it{Item::Kind::Band, x, lo, hi, colour, colour, {}};
@@ -293,7 +300,9 @@ std::string Chart::svg() const {
         std::string d;
         for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
           if (std::isfinite(it.y[i])) fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", d.empty() ? "M" : "L", sx(it.x[i]), sy(it.y[i]));
-        fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\"{}/>\n", d, it.colour, dash);
+        const std::string faint = it.opacity < 1 ? fmt::format(" stroke-opacity=\"{:.2f}\"", it.opacity) : std::string();
+        fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{:.1f}\"{}{}/>\n", d, it.colour,
+                       it.width, dash, faint);
         if (it.markers)
           for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
             if (std::isfinite(it.y[i]))

@@ -34,6 +34,9 @@ class Chart {
             const std::string& label);
   void line(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour,
             const std::string& label, bool markers = true, bool dashed = false);
+  // A thin, see-through line without markers: many paths over one another.
+  void polyline(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour, const std::string& label,
+                double width, double opacity);
   void band(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi,
             const std::string& colour, const std::string& label);
   void error_bars(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi,
@@ -61,7 +64,7 @@ class Chart {
     std::vector<double> x, y, y2;
     std::string colour, fill, text;
     bool markers = false, dashed = false, filled = true;
-    double radius = 0, opacity = 1;
+    double radius = 0, opacity = 1, width = 1.8;
   };
   std::vector<Item> items_;
   struct LegendEntry {
