@@ -3,10 +3,14 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 #include "flight/nail_flight.hpp"
 #include "scene/j232_setup.hpp"
+#include "scene/markers.hpp"
 #include "scene/mesh_io.hpp"
 #include "scene/operator_zone.hpp"
 #include "scene/scene.hpp"
@@ -93,20 +97,64 @@ TEST_CASE("scene: user meshes are read, scaled and labelled; bad ones are refuse
     std::remove(f);
 }
 
-TEST_CASE("scene: export writes a labelled PLY and a grouped OBJ that read back", "[scene][export]") {
+TEST_CASE("scene: export writes a labelled PLY and a grouped OBJ that read back, with the mower's lines", "[scene][export]") {
   const auto s = basic();
   const auto soup = scene::build_scene_soup(s);
-  scene::export_scene(soup, "scene-test-export.ply");
-  scene::export_scene(soup, "scene-test-export.obj");
-  CHECK(scene::read_mesh("scene-test-export.ply", scene::Surface::Housing, 1.0).triangles.size() == soup.triangles.size());
-  CHECK(scene::read_mesh("scene-test-export.obj", scene::Surface::Housing, 1.0).triangles.size() == soup.triangles.size());
-  std::ifstream obj("scene-test-export.obj");
-  const std::string text((std::istreambuf_iterator<char>(obj)), {});
-  CHECK(text.find("g operator_zone") != std::string::npos);
-  CHECK(text.find("g ground") != std::string::npos);
-  CHECK_THROWS(scene::export_scene(soup, "scene-test-export.xyz"));
-  std::remove("scene-test-export.ply");
-  std::remove("scene-test-export.obj");
+  const auto markers = scene::mower_markers(s);
+  // One tip circle per spindle, one line per feed station, the seat's three arms and three
+  // great circles for each of the derived zone's three reach spheres.
+  std::map<std::string, std::size_t> groups;
+  for (const auto& m : markers) ++groups[m.group];
+  CHECK(groups["tip_circles"] == s.spindles.size());
+  CHECK(groups["feed_stations"] == s.feed.stations.size());
+  CHECK(groups["seat"] == 3);
+  CHECK(groups["reach_envelope"] == 9);
+  for (const auto& m : markers)
+    if (m.group == "tip_circles")
+      for (const auto& p : m.points) CHECK(std::hypot(p.x(), p.y()) == Approx(s.spindles[0].blade.tip_radius()));
+  auto lines = markers;
+  lines.push_back({"nail_paths", {0, 114, 178}, {{0.5, 0, 0.08}, {1.0, 0.2, 0.1}, {1.2, 0.3, 0.12}}, false});
+  for (const std::string ext : {".ply", ".obj"}) {
+    const std::string file = "scene-test-export" + ext;
+    const std::string text = scene::export_text(soup, lines, file);
+    std::ofstream(file) << text;
+    // Mesh readers take the surfaces and skip the lines.
+    CHECK(scene::read_mesh(file, scene::Surface::Housing, 1.0).triangles.size() == soup.triangles.size());
+    std::size_t vertices = soup.points.size(), segments = 0;
+    for (const auto& l : lines) vertices += l.points.size(), segments += l.points.size() - 1 + (l.closed ? 1 : 0);
+    std::istringstream in(text);
+    std::size_t v = 0, edges = 0, polyline_segments = 0;
+    std::size_t highest = 0;
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream words(line);
+      std::string head;
+      words >> head;
+      if (head == "v") ++v;
+      if (head == "l") {
+        std::size_t i = 0, n = 0;
+        while (words >> i) highest = std::max(highest, i), ++n;
+        polyline_segments += n - 1;
+      }
+      if (line.rfind("element vertex ", 0) == 0) v = std::stoul(line.substr(15));
+      if (line.rfind("element edge ", 0) == 0) edges = std::stoul(line.substr(13));
+    }
+    CHECK(v == vertices);
+    if (ext == ".obj") {
+      CHECK(polyline_segments == segments);
+      CHECK(highest == vertices);  // OBJ counts from 1: the last line point is the last vertex
+      CHECK(text.find("g operator_zone") != std::string::npos);
+      CHECK(text.find("g ground") != std::string::npos);
+      CHECK(text.find("g reach_envelope") != std::string::npos);
+      CHECK(text.find("g nail_paths") != std::string::npos);
+    } else {
+      CHECK(edges == segments);
+      // The last edge is the path's last segment: its last two vertices.
+      const auto last = text.substr(text.rfind('\n', text.size() - 2) + 1);
+      CHECK(last.rfind(fmt::format("{} {} 0 114 178", vertices - 2, vertices - 1), 0) == 0);
+    }
+    std::remove(file.c_str());
+  }
+  CHECK_THROWS_AS(scene::export_text(soup, lines, "scene-test-export.xyz"), std::invalid_argument);
 }
 
 TEST_CASE("scene: the operator-zone share converges to the sector's fraction of the ring", "[scene][zone][statistics]") {

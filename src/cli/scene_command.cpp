@@ -1,22 +1,67 @@
-// `j232 scene`: build a scenario's labelled scene and export it for a mesh viewer.
+// `j232 scene`: build a scenario's labelled scene and export it for a mesh viewer, with the
+// blades' tip circles, the feed stations, the seat and reach envelope, and optionally the
+// nail paths a run kept (`j232 run --trajectories K`).
 #include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "report/atomic_file.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scene/j232_setup.hpp"
+#include "scene/markers.hpp"
 #include "scene/scene.hpp"
 
 namespace j232::cli {
 namespace {
 struct SceneOptions {
-  std::string scenario, export_path;
+  std::string scenario, export_path, paths_from;
 };
 
+// The paths kept in a run's result.json of the scenario titled `title`, coloured as the
+// report draws them.
+std::vector<scene::Polyline> nail_paths(const std::string& result_file, const std::string& title) {
+  auto refuse = [&](const std::string& expected) { throw scenario::InputError(result_file, std::nullopt, "--paths", result_file, expected); };
+  std::ifstream in(result_file);
+  if (!in) refuse("a result.json of `j232 run` that can be read");
+  const auto j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) refuse("a result.json of `j232 run` (this is not JSON)");
+  if (!j.contains("trajectories")) refuse("a result.json with nail paths: run `j232 run SCENARIO --trajectories K` first");
+  std::vector<scene::Polyline> out;
+  try {
+    const std::string run_title = j.at("scenario").at("title").get<std::string>();
+    if (run_title != title) refuse(fmt::format("a run of this scenario (\"{}\"), not of \"{}\"", title, run_title));
+    for (const auto& path : j.at("trajectories").at("paths")) {
+      const std::string why = path.at("why").get<std::string>();
+      scene::Polyline p{"nail_paths", why == "operator zone" ? std::array<std::uint8_t, 3>{230, 159, 0}
+                                      : why == "puncture"    ? std::array<std::uint8_t, 3>{213, 94, 0}
+                                                             : std::array<std::uint8_t, 3>{0, 114, 178},
+                        {}, false};
+      for (const auto& q : path.at("points_m")) p.points.emplace_back(q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>());
+      out.push_back(std::move(p));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    refuse(fmt::format("trajectories as `j232 run --trajectories` writes them ({})", e.what()));
+  }
+  return out;
+}
+
 int run(const SceneOptions& o) {
+  // The options first: a mistake there is reported before any work.
+  if (!o.paths_from.empty() && o.export_path.empty())
+    throw scenario::InputError("", std::nullopt, "--paths", o.paths_from, "--export PATH too: the paths are written into the exported scene");
+  const std::string ext = std::filesystem::path(o.export_path).extension().string();
+  if (!o.export_path.empty() && ext != ".ply" && ext != ".obj")
+    throw scenario::InputError("", std::nullopt, "--export", o.export_path, "a file name ending in .ply or .obj");
   const scenario::Scenario s = scenario::read_scenario(o.scenario);
+  std::vector<scene::Polyline> lines = scene::mower_markers(s);
+  const std::vector<scene::Polyline> paths = o.paths_from.empty() ? std::vector<scene::Polyline>{} : nail_paths(o.paths_from, s.title);
+  lines.insert(lines.end(), paths.begin(), paths.end());
   scene::Soup soup = scene::build_scene_soup(s);
   std::size_t counts[scene::kSurfaceKinds] = {};
   for (auto l : soup.labels) ++counts[static_cast<int>(l)];
@@ -30,12 +75,12 @@ int run(const SceneOptions& o) {
   for (int l = 0; l < scene::kSurfaceKinds; ++l)
     if (counts[l]) fmt::print("  {:<14} {:>7} faces\n", scene::name(static_cast<scene::Surface>(l)), counts[l]);
   if (!o.export_path.empty()) {
-    try {
-      scene::export_scene(soup, o.export_path);
-    } catch (const std::exception& e) {
-      throw scenario::InputError("", std::nullopt, "--export", o.export_path, e.what());
-    }
-    fmt::print("wrote {}\n", o.export_path);
+    report::write_atomically(o.export_path, scene::export_text(soup, lines, o.export_path));
+    auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
+    fmt::print("wrote {} (the scene, {} tip circle{}, {} feed station{}{}{})\n", o.export_path, s.spindles.size(), plural(s.spindles.size()),
+               s.feed.stations.size(), plural(s.feed.stations.size()),
+               s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived ? ", the seat and reach envelope" : "",
+               paths.empty() ? "" : fmt::format(", {} nail paths", paths.size()));
   }
   return kOk;
 }
@@ -45,7 +90,10 @@ Runner add_scene_command(CLI::App& app) {
   auto o = std::make_shared<SceneOptions>();
   CLI::App* cmd = app.add_subcommand("scene", "Build a scenario's labelled scene; --export writes it as PLY or OBJ");
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML)")->required();
-  cmd->add_option("--export", o->export_path, "Write the labelled scene to PATH (.ply with a label and colour per face, or .obj with groups)");
+  cmd->add_option("--export", o->export_path,
+                  "Write the labelled scene to PATH (.ply with a label and colour per face, or .obj with groups), with the blades' "
+                  "tip circles, feed stations, seat and reach envelope as lines");
+  cmd->add_option("--paths", o->paths_from, "Add the nail paths kept in this result.json (from `j232 run --trajectories K`)");
   return [o] { return run(*o); };
 }
 

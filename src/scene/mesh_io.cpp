@@ -135,7 +135,20 @@ Soup read_mesh(const std::string& path, Surface label, double scale, std::uint16
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;
   try {
-    ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+    if (ext == ".obj") {
+      // Line elements ("l", polylines such as `j232 scene --export` writes) are valid OBJ,
+      // but CGAL 5.5's reader refuses the file for them: they carry no faces, so skip them.
+      std::ifstream in(path);
+      std::string text, line;
+      while (std::getline(in, line)) {
+        if (line.size() > 1 && line[0] == 'l' && (line[1] == ' ' || line[1] == '\t')) line = "#";
+        text += line, text += '\n';
+      }
+      std::istringstream soup_text(text);
+      ok = CGAL::IO::read_OBJ(soup_text, points, polygons, CGAL::parameters::verbose(false));
+    } else {
+      ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+    }
   } catch (const std::exception& e) {
     throw std::runtime_error(fmt::format("{}: cannot read the mesh: {}", path, e.what()));
   }

@@ -62,8 +62,10 @@ class Scene {
   std::unique_ptr<Impl> impl_;
 };
 
-// Writes the labelled scene for a mesh viewer: .ply (face property "label" and a colour
-// per label) or .obj (one group per label). Throws std::runtime_error on I/O failure.
-void export_scene(const Soup& soup, const std::string& path);
+// The labelled scene for a mesh viewer, as the text of a file named `path`: .ply (face
+// property "label" and a colour per label; the lines as PLY edges with a colour) or .obj
+// (one group per label, then one per group of lines, as OBJ line elements). Throws
+// std::invalid_argument for another extension.
+std::string export_text(const Soup& soup, const std::vector<Polyline>& lines, const std::string& path);
 
 }  // namespace j232::scene

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -17,6 +18,14 @@ inline constexpr int kSurfaceKinds = 6;
 
 std::string_view name(Surface s);  // "ground", "housing", ..., "target", "operator_zone"
 inline bool is_target(Surface s) { return s == Surface::TargetOutside || s == Surface::TargetZone; }
+
+// A line for a viewer, not a surface: exported with the scene (scene/markers.hpp).
+struct Polyline {
+  std::string group;                   // "tip_circles", "feed_stations", "seat", "reach_envelope", "nail_paths"
+  std::array<std::uint8_t, 3> colour;  // for a viewer
+  std::vector<Vec3> points;
+  bool closed = false;                 // the last point joins the first
+};
 
 struct Soup {
   std::vector<Vec3> points;
