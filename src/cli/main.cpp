@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   const Runner sweep = add_sweep_command(app);
   const Runner compare = add_compare_command(app);
   const Runner uq = add_uq_command(app);
+  const Runner calibrate = add_calibrate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("sweep")) return sweep();
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("uq")) return uq();
+    if (app.got_subcommand("calibrate")) return calibrate();
   } catch (const j232::scenario::InputError& e) {
     fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
     return kBadInput;

@@ -14,11 +14,12 @@
 #include "blade/blade.hpp"
 #include "random/stream.hpp"
 #include "scenario/scenario.hpp"
+#include "units/quantity.hpp"
 
 namespace j232::feed {
 
 using Vec3 = Eigen::Vector3d;
-inline constexpr double kGravity = 9.80665;
+inline constexpr double kGravity = units::standard_gravity;
 
 struct NailDrop {
   int station = 0;

@@ -5,6 +5,8 @@
 // that each step is also a chord whose sag stays under the tolerance.
 #include <Eigen/Dense>
 
+#include "units/quantity.hpp"
+
 namespace j232::flight {
 
 using Vec3 = Eigen::Vector3d;
@@ -24,7 +26,7 @@ struct Drag {
   Vec3 air = Vec3::Zero();  // air velocity in the mower's frame (still air seen from a moving mower)
 };
 
-inline const Vec3 kGravity(0.0, 0.0, -9.80665);
+inline const Vec3 kGravity(0.0, 0.0, -units::standard_gravity);
 
 // The axis after turning about the spin for dt (Rodrigues' rotation).
 Vec3 rotate_axis(const Vec3& axis, const Vec3& spin, double dt);

@@ -1,0 +1,71 @@
+// `j232 calibrate`: the nail-on-blade restitution law fitted to measured impacts, or e
+// from drop tests (docs/model.md §6c).
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/output_folder.hpp"
+#include "report/atomic_file.hpp"
+#include "report/calibration_files.hpp"
+#include "scenario/input_error.hpp"
+#include "study/calibration.hpp"
+
+namespace j232::cli {
+namespace {
+
+struct CalibrateOptions {
+  std::string cases, drops, law = "constant", out;
+};
+
+int calibrate(const CalibrateOptions& o) {
+  if (o.cases.empty() == o.drops.empty())
+    throw scenario::InputError("", std::nullopt, "calibrate", "",
+                               "either a cases file (measured impacts) or --drops FILE (drop tests), not both or neither");
+  if (!o.drops.empty()) {
+    const auto drops = study::read_drop_tests(o.drops);
+    const auto r = study::restitution_from_drops(drops);
+    fmt::print("{}", report::drop_test_table(drops, r));
+    if (!o.out.empty()) {
+      OutputFolder out(o.out, {"drop-test.json"});
+      report::write_atomically(out.staged("drop-test.json"), report::drop_test_json(drops, r).dump(2) + "\n");
+      out.commit();
+      fmt::print("Wrote {}/drop-test.json\n", o.out);
+    }
+    return kOk;
+  }
+  const auto law = o.law == "power_law" ? study::LawKind::PowerLaw : study::LawKind::Constant;
+  const auto cases = study::read_calibration_cases(o.cases);
+  const auto r = study::calibrate(cases, law, o.cases);
+  fmt::print("{}", report::calibration_table(r));
+  if (!o.out.empty()) {
+    OutputFolder out(o.out, {"calibrate.csv", "restitution.toml", "calibrate.json"});
+    report::write_atomically(out.staged("calibrate.csv"), report::calibration_csv(r));
+    report::write_atomically(out.staged("restitution.toml"), report::calibration_toml(r));
+    report::write_atomically(out.staged("calibrate.json"), report::calibration_json(r).dump(2) + "\n");
+    out.commit();
+    fmt::print("Wrote {0}/calibrate.json, {0}/calibrate.csv and {0}/restitution.toml (the law for a scenario and for `j232 uq`)\n", o.out);
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Runner add_calibrate_command(CLI::App& app) {
+  auto o = std::make_shared<CalibrateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "calibrate", "Fit the nail-on-blade restitution law to measured impact speeds (least squares, intervals, held-out errors), or "
+                   "find e from drop tests");
+  cmd->add_option("cases", o->cases,
+                  "CSV of measured impacts: columns case, scenario (an impact case file), measured_speed, and scenario keys to set per "
+                  "row (see scenarios/calibration/)");
+  cmd->add_option("--law", o->law, "The law to fit: constant (e) or power_law (e falls with approach speed)")
+      ->check(CLI::IsMember({"constant", "power_law"}))
+      ->capture_default_str();
+  cmd->add_option("--drops", o->drops, "CSV of drop tests: columns drop_height, rebound_height; e = sqrt(rebound / drop height)");
+  cmd->add_option("--out", o->out, "Also write the results into this folder (calibrate.json/.csv and restitution.toml)");
+  return [o] { return calibrate(*o); };
+}
+
+}  // namespace j232::cli
