@@ -231,3 +231,28 @@ TEST_CASE("operator zone: derived from the reach envelope of a seated operator",
   CHECK_FALSE(scene::within_arc(0.0, 3.0, -3.0));
   CHECK(scene::within_arc(1.0, 0.0, 2 * units::pi));
 }
+
+TEST_CASE("mesh: PLY headers that CGAL's reader cannot take are refused before it reads them", "[scene][mesh]") {
+  auto refused = [](const std::string& text) {
+    const std::string file = "scene-test-header.ply";
+    std::ofstream(file, std::ios::binary) << text;
+    std::string message;
+    try {
+      scene::read_mesh(file, scene::Surface::Housing, 1.0);
+    } catch (const std::runtime_error& e) {
+      message = e.what();
+    }
+    std::remove(file.c_str());
+    return message;
+  };
+  const std::string vertices = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  CHECK(refused("ply\nformat ascii 1.0\n" + vertices + faces).empty());  // sound
+  // Items of nothing: CGAL would loop over all of them (a fuzzing find: 10^13 items).
+  CHECK_THAT(refused("ply\nformat ascii 1.0\n" + vertices + "element junk 5\n" + faces), Catch::Contains("no properties"));
+  CHECK_THAT(refused("ply\nformat ascii 1.0\n" + vertices + "element junk 11111111111111\nproperty uchar a\n" + faces),
+             Catch::Contains("more than the file has bytes"));
+  CHECK_THAT(refused("ply\nformat ascii 1.0\nproperty float x\n" + vertices + faces), Catch::Contains("a property before any element"));
+  CHECK_THAT(refused("ply\nformat ascii 1.0\n" + vertices + "element face 1\nproperty list int int vertex_indices\nend_header\n"),
+             Catch::Contains("a list's count must be uchar or ushort"));
+}

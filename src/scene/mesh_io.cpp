@@ -29,21 +29,35 @@ std::string ply_header_problem(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string line;
   if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return "does not start with \"ply\"";
+  std::error_code ec;
+  const auto bytes = static_cast<long long>(std::filesystem::file_size(path, ec));
   bool element = false;
   std::string element_name;
+  long long element_count = 0, properties = 0;
+  // An element read from nothing would keep CGAL's reader looping for as many items as its
+  // count (found by fuzzing): every item takes at least a byte of the file.
+  auto element_problem = [&](int n) -> std::string {
+    if (element && element_count > 0 && properties == 0) return fmt::format("line {}: element with items but no properties", n);
+    return {};
+  };
   for (int n = 2; n < 10000 && std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string word;
     words >> word;
-    if (word == "end_header") return {};
+    if (word == "end_header") return element_problem(n);
     if (word == "element") {
+      if (auto problem = element_problem(n); !problem.empty()) return problem;
       std::string name;
       long long count = -1;
       if (!(words >> name >> count) || count < 0) return fmt::format("line {}: expected \"element NAME COUNT\"", n);
+      if (count > bytes) return fmt::format("line {}: {} items, more than the file has bytes", n, count);
       element = true;
       element_name = name;
+      element_count = count;
+      properties = 0;
     } else if (word == "property") {
+      ++properties;
       if (!element) return fmt::format("line {}: a property before any element", n);
       std::string type, name;
       words >> type;
