@@ -1,10 +1,12 @@
 // The uncertainty study of a scenario (study/uncertainty.hpp): deterministic, checked inputs,
 // and an input the simulation ignores gets no share of the variance.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <fstream>
 #include <string>
 
 #include "scenario/input_error.hpp"
+#include "scenario/scenario.hpp"
 #include "study/uncertainty.hpp"
 
 using namespace j232;
@@ -67,4 +69,43 @@ TEST_CASE("uncertainty: bad inputs are refused with the key and what was expecte
   CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad3.toml", one("\"0 deg\"", "\"80 deg\"")), 1), Contains("45 deg"));
   CHECK_THROWS_AS(scenario::read_scenario(with_uncertainty("uq-bad4.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"x\"\nlow = 1\nhigh = 2\n")),
                   scenario::InputError);  // no basis
+}
+
+TEST_CASE("uncertainty: inputs drawn uniform, triangular or normal (truncated) over their range", "[uncertainty][distribution]") {
+  using K = study::InputDistribution::Kind;
+  const study::InputDistribution uniform{K::Uniform, 2, 6, 4, 1}, triangle{K::Triangular, 0, 10, 2, 0}, normal{K::Normal, 0.5, 0.7, 0.6, 0.03};
+  CHECK(uniform.quantile(0.25) == Approx(3));
+  // Triangular: F(mode) = (mode - low) / (high - low); the quantile inverts it on both sides.
+  CHECK(triangle.quantile(0.2) == Approx(2));
+  CHECK(triangle.quantile(0.2 * 0.25) == Approx(1));                         // F(x) = x^2 / (10 * 2) below the mode
+  CHECK(triangle.quantile(1 - 16.0 / 80) == Approx(6));                      // 1 - F(x) = (10 - x)^2 / (10 * 8) above it
+  CHECK(normal.quantile(0.5) == Approx(0.6));
+  CHECK(normal.quantile(1e-9) >= 0.5);
+  CHECK(normal.quantile(1 - 1e-9) <= 0.7);
+  // Over many points, the mean and spread are the distributions' (the normal's, truncated
+  // at 3.33 sd, barely narrowed).
+  double mean_t = 0, mean_n = 0, var_n = 0;
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    const double u = (i + 0.5) / n;
+    mean_t += triangle.quantile(u) / n;
+    const double x = normal.quantile(u);
+    CHECK((x >= 0.5 && x <= 0.7));
+    mean_n += x / n, var_n += (x - 0.6) * (x - 0.6) / n;
+  }
+  CHECK(mean_t == Approx((0 + 10 + 2) / 3.0).epsilon(1e-4));
+  CHECK(mean_n == Approx(0.6).epsilon(1e-6));
+  CHECK(std::sqrt(var_n) == Approx(0.03).epsilon(0.02));
+  // Keys refused where they mean nothing, or out of range.
+  using Catch::Contains;
+  auto input = [](const std::string& extra) {
+    return "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"lift_angle\"\nlow = \"0 deg\"\nhigh = \"10 deg\"\nbasis = \"x\"\n" + extra;
+  };
+  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-dist1.toml", input("mode = \"5 deg\"\n"))),
+                    Contains("only a triangular distribution has a mode"));
+  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-dist2.toml", input("distribution = \"lognormal\"\n"))), Contains("lognormal"));
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-dist3.toml", input("distribution = \"triangular\"\nmode = \"12 deg\"\n")), 1),
+                    Contains("uncertainty.inputs[1].mode") && Contains("from low to high"));
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-dist4.toml", input("distribution = \"normal\"\nsd = \"0 deg\"\n")), 1),
+                    Contains("uncertainty.inputs[1].sd"));
 }

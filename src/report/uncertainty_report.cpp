@@ -21,7 +21,14 @@ json index_json(const study::Index& i) { return {{"estimate", i.estimate}, {"low
 json uncertainty_json(const study::UncertaintyResult& r) {
   json inputs = json::array();
   for (const auto& in : r.plan.inputs)
-    inputs.push_back({{"parameter", in.parameter}, {"low", in.low}, {"high", in.high}, {"distribution", "uniform"}, {"basis", in.basis}});
+    inputs.push_back({{"parameter", in.parameter},
+                      {"low", in.low},
+                      {"high", in.high},
+                      {"distribution", in.distribution == "triangular" ? fmt::format("triangular, mode {}", in.mode.empty() ? "midway" : in.mode)
+                                       : in.distribution == "normal"   ? fmt::format("normal about the midpoint, sd {}, truncated to the range",
+                                                                                     in.sd.empty() ? "a quarter of the range" : in.sd)
+                                                                       : "uniform"},
+                      {"basis", in.basis}});
   json outputs, sensitivity;
   for (int o = 0; o < study::kUqOutputs; ++o) {
     std::vector<double> v;
@@ -91,15 +98,16 @@ std::string uncertainty_html(const json& j) {
                    number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100),
                    number("assessments", j["assessments"], "{}"));
   o += fmt::format("<p>{} assessments of {} replicates each (Saltelli scheme, {} base draws; common random numbers, seed {}). "
-                   "Inputs, each uniform over its range{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th>"
+                   "Inputs{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th><th>distribution</th>"
                    "<th>basis of the range</th></tr></thead><tbody>\n",
                    number("assessments", j["assessments"], "{}"), number("replicates_per_assessment", j["replicates_per_assessment"], "{}"),
                    number("base_draws", j["base_draws"], "{}"), number("seed", j["seed"], "{}"),
                    j["default_inputs"].get<bool>() ? " (j232's default set of estimated inputs: the scenario has no [uncertainty])" : "");
   const auto& inputs = j["inputs"];
   for (std::size_t i = 0; i < inputs.size(); ++i)
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", i + 1, escape(inputs[i]["parameter"].get<std::string>()),
-                     escape(inputs[i]["low"].get<std::string>()), escape(inputs[i]["high"].get<std::string>()),
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", i + 1,
+                     escape(inputs[i]["parameter"].get<std::string>()), escape(inputs[i]["low"].get<std::string>()),
+                     escape(inputs[i]["high"].get<std::string>()), escape(inputs[i]["distribution"].get<std::string>()),
                      escape(inputs[i]["basis"].get<std::string>()));
   o += "</tbody></table>\n<h2>The outputs over the inputs' uncertainty</h2>\n<table class=\"numbers\"><thead><tr><th>output</th>"
        "<th>mean</th><th>5 %</th><th>median</th><th>95 %</th><th>min</th><th>max</th></tr></thead><tbody>\n";

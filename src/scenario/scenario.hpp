@@ -208,6 +208,11 @@ struct RunSpec {
 struct UncertainInput {
   std::string parameter, low, high, basis;
   std::optional<int> line;
+  // How the value is spread over [low, high] (docs/model.md §6b): "uniform"; "triangular"
+  // with its `mode` (default the midpoint); "normal" about the midpoint with `sd` (default a
+  // quarter of the range), truncated to the range. mode and sd are written like low.
+  std::string distribution = "uniform";
+  std::string mode, sd;
 };
 struct UncertaintySpec {
   std::vector<UncertainInput> inputs;

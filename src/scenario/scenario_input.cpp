@@ -161,6 +161,15 @@ void read_uncertainty(const TableReader& t, UncertaintySpec& u) {
     if (!i.has("high")) throw i.error("high", "missing; expected the range's high end as the key takes it");
     in.low = value_text(i, "low");
     in.high = value_text(i, "high");
+    in.distribution = i.string_or("distribution", "uniform", {"uniform", "triangular", "normal"});
+    if (i.has("mode")) {
+      if (in.distribution != "triangular") throw i.error("mode", "only a triangular distribution has a mode");
+      in.mode = value_text(i, "mode");
+    }
+    if (i.has("sd")) {
+      if (in.distribution != "normal") throw i.error("sd", "only a normal distribution has a standard deviation");
+      in.sd = value_text(i, "sd");
+    }
     in.basis = i.string_or("basis", "", {});
     if (in.basis.empty()) throw i.error("basis", "missing; say what the range rests on (a source, or \"estimate: ...\")");
     in.line = i.line_of("parameter");

@@ -1,6 +1,10 @@
 #include "study/uncertainty.hpp"
 
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <boost/math/distributions/normal.hpp>
+#include <cmath>
 #include <stdexcept>
 
 #include "assess/runner.hpp"
@@ -34,6 +38,23 @@ Written split(const std::string& text, const std::string& file, std::optional<in
 }
 }  // namespace
 
+double InputDistribution::quantile(double u) const {
+  switch (kind) {
+    case Kind::Uniform:
+      return low + u * (high - low);
+    case Kind::Triangular: {
+      const double split = (mode - low) / (high - low);  // F(mode)
+      return u < split ? low + std::sqrt(u * (high - low) * (mode - low)) : high - std::sqrt((1 - u) * (high - low) * (high - mode));
+    }
+    case Kind::Normal: {
+      const boost::math::normal_distribution<double> n(0.5 * (low + high), sd);
+      const double a = boost::math::cdf(n, low), b = boost::math::cdf(n, high);
+      return std::clamp(boost::math::quantile(n, a + u * (b - a)), low, high);
+    }
+  }
+  return low;
+}
+
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
   UncertaintyPlan plan;
   plan.base_draws = static_cast<std::size_t>(s.uncertainty.base_draws);
@@ -44,17 +65,23 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
   }
   // The estimated inputs (docs/model.md §8), each over a range with its basis.
   plan.defaults = true;
+  auto estimated = [](std::string parameter, std::string low, std::string high, std::string basis) {
+    scenario::UncertainInput in;
+    in.parameter = std::move(parameter), in.low = std::move(low), in.high = std::move(high), in.basis = std::move(basis);
+    return in;
+  };
   plan.inputs = {
-      {"board.puncture_energy_per_width", "80 J/m", "140 J/m", "estimate: no published value for 350# double-wall board; 110 J/m +/- ~27 %", {}},
-      {"board.hit_fraction", "0.2", "0.4", "estimate: a hit takes about a third of a puncture's energy", {}},
-      {"restitution", "0.7", "0.95", "report 445-1 measured 0.90-0.92 at ~1 m/s; lower at blade speeds", {}},
-      {"lift_angle", "0 deg", "10 deg", "estimate: no figure for industrial cutters (flat bar 0 deg to a bevelled, sailed edge)", {}},
-      {"ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2", {}},
-      {"housing.friction", "0.3", "0.6", "handbook: steel on steel, kinetic 0.42-0.57", {}},
-      {"feed.tilt_max", "0 deg", "10 deg", "estimate: SAE J232's feed tube geometry is not available", {}},
+      estimated("board.puncture_energy_per_width", "80 J/m", "140 J/m", "estimate: no published value for 350# double-wall board; 110 J/m +/- ~27 %"),
+      estimated("board.hit_fraction", "0.2", "0.4", "estimate: a hit takes about a third of a puncture's energy"),
+      estimated("restitution", "0.4", "0.95",
+                "report 445-1: drop tests 0.9-0.96 at ~1 m/s, 0.45-0.6 at ~2.3 m/s; its Table 3.1 fits 0.53-0.65 at 11 m/s (j232 calibrate)"),
+      estimated("lift_angle", "0 deg", "10 deg", "estimate: no figure for industrial cutters (flat bar 0 deg to a bevelled, sailed edge)"),
+      estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"),
+      estimated("housing.friction", "0.3", "0.6", "handbook: steel on steel, kinetic 0.42-0.57"),
+      estimated("feed.tilt_max", "0 deg", "10 deg", "estimate: SAE J232's feed tube geometry is not available"),
   };
   if (!s.housing.guards.empty())
-    plan.inputs.push_back({"housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25", {}});
+    plan.inputs.push_back(estimated("housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25"));
   return plan;
 }
 
@@ -71,6 +98,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
   // Each input's two ends, checked before anything runs.
   std::vector<ParameterInfo> info;
   std::vector<std::pair<Written, Written>> ends;
+  std::vector<InputDistribution> spread;
   for (std::size_t i = 0; i < k; ++i) {
     const UncertainInput& in = r.plan.inputs[i];
     const std::string key = r.plan.defaults ? fmt::format("(default) {}", in.parameter) : fmt::format("uncertainty.inputs[{}]", i + 1);
@@ -79,6 +107,22 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     if (lo.unit != hi.unit) throw InputError(file, in.line, key + ".high", in.high, fmt::format("expected the same unit as low (\"{}\")", lo.unit));
     if (!(hi.number > lo.number)) throw InputError(file, in.line, key + ".high", in.high, "expected a value above low");
     ends.emplace_back(lo, hi);
+    InputDistribution d{InputDistribution::Kind::Uniform, lo.number, hi.number, 0.5 * (lo.number + hi.number), 0.25 * (hi.number - lo.number)};
+    if (in.distribution == "triangular") d.kind = InputDistribution::Kind::Triangular;
+    if (in.distribution == "normal") d.kind = InputDistribution::Kind::Normal;
+    if (!in.mode.empty()) {
+      const Written m = split(in.mode, file, in.line, key + ".mode");
+      if (m.unit != lo.unit || !(m.number >= lo.number && m.number <= hi.number))
+        throw InputError(file, in.line, key + ".mode", in.mode, fmt::format("expected a value from low to high, in low's unit (\"{}\")", lo.unit));
+      d.mode = m.number;
+    }
+    if (!in.sd.empty()) {
+      const Written sd = split(in.sd, file, in.line, key + ".sd");
+      if (sd.unit != lo.unit || !(sd.number > 0))
+        throw InputError(file, in.line, key + ".sd", in.sd, fmt::format("expected a standard deviation above zero, in low's unit (\"{}\")", lo.unit));
+      d.sd = sd.number;
+    }
+    spread.push_back(d);
     // Both ends must make a scenario the reader accepts.
     for (const Written& w : {lo, hi}) {
       const std::string text = w.unit.empty() ? fmt::format("{:.17g}", w.number) : fmt::format("{:.17g} {}", w.number, w.unit);
@@ -101,7 +145,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     std::vector<Setting> settings;
     std::vector<double> values;
     for (std::size_t i = 0; i < k; ++i) {
-      const double v = ends[i].first.number + runs[run][i] * (ends[i].second.number - ends[i].first.number);
+      const double v = spread[i].quantile(runs[run][i]);
       const std::string text = ends[i].first.unit.empty() ? fmt::format("{:.17g}", v) : fmt::format("{:.17g} {}", v, ends[i].first.unit);
       settings.push_back(make_setting(info[i], text, file, r.plan.inputs[i].line, r.plan.inputs[i].parameter));
       values.push_back(v);

@@ -42,6 +42,17 @@ struct UncertaintyResult {
   std::array<SobolIndices, kUqOutputs> indices;
 };
 
+// An input's distribution over [low, high], in the numbers written (their unit aside).
+struct InputDistribution {
+  enum class Kind { Uniform, Triangular, Normal } kind = Kind::Uniform;
+  double low = 0, high = 1;
+  double mode = 0.5;  // Triangular
+  double sd = 0.25;   // Normal (truncated to [low, high], about the midpoint)
+  // The value at probability u in (0, 1): the inverse of the distribution function, so a
+  // uniform point of the Sobol' design becomes a draw from this distribution.
+  double quantile(double u) const;
+};
+
 // Runs the study of the scenario file. `on_run(i, n)` is told before run i of n.
 UncertaintyResult run_uncertainty(const std::string& scenario_file, int threads,
                                   const std::function<void(std::size_t, std::size_t)>& on_run = {});
