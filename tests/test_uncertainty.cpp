@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include "scenario/input_error.hpp"
@@ -108,4 +109,50 @@ TEST_CASE("uncertainty: inputs drawn uniform, triangular or normal (truncated) o
                     Contains("uncertainty.inputs[1].mode") && Contains("from low to high"));
   CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-dist4.toml", input("distribution = \"normal\"\nsd = \"0 deg\"\n")), 1),
                     Contains("uncertainty.inputs[1].sd"));
+}
+
+TEST_CASE("uncertainty: an interrupted study resumes from its journal to the same result, bit for bit", "[uncertainty][resume]") {
+  const auto file = with_uncertainty("uq-resume.toml", R"(
+[uncertainty]
+base_draws = 4
+replicates = 10
+[[uncertainty.inputs]]
+parameter = "lift_angle"
+low = "0 deg"
+high = "10 deg"
+basis = "test"
+[[uncertainty.inputs]]
+parameter = "restitution"
+low = 0.4
+high = 0.95
+distribution = "normal"
+basis = "test"
+)");
+  const auto whole = study::run_uncertainty(file, 2);
+  REQUIRE(whole.outputs.size() == 4 * 4);
+  // The first attempt records 6 assessments, then is interrupted.
+  struct Interrupted {};
+  std::map<std::size_t, std::array<double, study::kUqOutputs>> kept;
+  study::UncertaintyJournal first{{}, [&](std::size_t run, const std::array<double, study::kUqOutputs>& v) {
+                                    kept[run] = v;
+                                    if (kept.size() == 6) throw Interrupted{};
+                                  }};
+  CHECK_THROWS_AS(study::run_uncertainty(file, 2, {}, &first), Interrupted);
+  // The second takes them and computes only the rest.
+  std::size_t computed = 0;
+  study::UncertaintyJournal second{[&](std::size_t run) -> std::optional<std::array<double, study::kUqOutputs>> {
+                                     const auto it = kept.find(run);
+                                     if (it == kept.end()) return std::nullopt;
+                                     return it->second;
+                                   },
+                                   [&](std::size_t, const std::array<double, study::kUqOutputs>&) { ++computed; }};
+  const auto resumed = study::run_uncertainty(file, 1, {}, &second);
+  CHECK(computed == whole.outputs.size() - 6);
+  CHECK(resumed.outputs == whole.outputs);
+  CHECK(resumed.values == whole.values);
+  for (int o = 0; o < study::kUqOutputs; ++o)
+    for (std::size_t i = 0; i < 2; ++i) {
+      CHECK(resumed.indices[static_cast<std::size_t>(o)].total[i].estimate == whole.indices[static_cast<std::size_t>(o)].total[i].estimate);
+      CHECK(resumed.indices[static_cast<std::size_t>(o)].first[i].high == whole.indices[static_cast<std::size_t>(o)].first[i].high);
+    }
 }

@@ -1,9 +1,15 @@
 // `j232 uq`: how much a scenario's verdict rests on its uncertain inputs.
+#include <array>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <optional>
 #include <fmt/format.h>
 #include <memory>
 #include <unistd.h>
 
+#include "cli/assessment_files.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/output_folder.hpp"
@@ -21,20 +27,94 @@ struct UqOptions {
   std::string scenario;
   std::string out = "results/uq";
   int threads = 0;
+  bool resume = false;
+};
+
+// The study's journal, DIR/uq-journal.csv: a first line naming the inputs' digest, then a
+// line per finished assessment with its outputs written exactly (17 significant digits),
+// flushed as each finishes. An interrupted study leaves it; `--resume` takes the
+// assessments it holds when the digest matches. Removed when the study completes.
+class Journal {
+ public:
+  Journal(std::string path, std::string digest, bool resume) : path_(std::move(path)), digest_(std::move(digest)) {
+    const std::string header = "# j232 uq journal " + digest_;
+    if (resume) {
+      std::ifstream in(path_);
+      std::string line;
+      if (std::getline(in, line) && line == header) {
+        while (std::getline(in, line)) {
+          std::array<double, study::kUqOutputs> v{};
+          char* end = line.data();
+          const auto run = std::strtoull(end, &end, 10);
+          bool whole = end != line.data();
+          for (auto& x : v) {
+            whole = whole && *end == ',';
+            if (!whole) break;
+            char* start = end + 1;
+            x = std::strtod(start, &end);
+            whole = end != start;
+          }
+          if (whole && *end == '\0') kept_[run] = v;  // a line cut short by the interruption is not kept
+        }
+      } else if (in) {
+        fmt::print("{}: made from other inputs or another program: starting afresh\n", terminal_safe(path_));
+      }
+    }
+    out_ = std::fopen(path_.c_str(), kept_.empty() ? "w" : "a");
+    if (!out_) throw report::FileError(fmt::format("{}: cannot be written", path_));
+    if (kept_.empty()) std::fprintf(out_, "%s\n", header.c_str());
+    std::fflush(out_);
+  }
+  ~Journal() {
+    if (out_) std::fclose(out_);
+  }
+  Journal(const Journal&) = delete;
+  Journal& operator=(const Journal&) = delete;
+  std::size_t kept() const { return kept_.size(); }
+  study::UncertaintyJournal hooks() {
+    return {[this](std::size_t run) -> std::optional<std::array<double, study::kUqOutputs>> {
+              const auto it = kept_.find(run);
+              if (it == kept_.end()) return std::nullopt;
+              return it->second;
+            },
+            [this](std::size_t run, const std::array<double, study::kUqOutputs>& v) {
+              std::string line = fmt::format("{}", run);
+              for (double x : v) line += fmt::format(",{:.17g}", x);
+              std::fprintf(out_, "%s\n", line.c_str());
+              std::fflush(out_);
+            }};
+  }
+  void remove() {
+    std::fclose(out_);
+    out_ = nullptr;
+    std::remove(path_.c_str());
+  }
+
+ private:
+  std::string path_, digest_;
+  std::map<std::size_t, std::array<double, study::kUqOutputs>> kept_;
+  std::FILE* out_ = nullptr;
 };
 
 int uq(const UqOptions& o) {
   OutputFolder out(o.out, {"uq.csv", "uq.html", "uq.json"});
+  Journal journal(out.folder() + "/uq-journal.csv", inputs_digest(o.scenario, RunOverrides{}), o.resume);
+  if (journal.kept()) fmt::print("Resuming: {} assessments kept from the journal\n", journal.kept());
   const bool terminal = isatty(fileno(stderr)) != 0;
-  const auto r = study::run_uncertainty(o.scenario, o.threads, [&](std::size_t i, std::size_t n) {
-    if (terminal) std::fprintf(stderr, "\rassessment %zu of %zu ", i + 1, n);
-  });
+  const auto hooks = journal.hooks();
+  const auto r = study::run_uncertainty(
+      o.scenario, o.threads,
+      [&](std::size_t i, std::size_t n) {
+        if (terminal) std::fprintf(stderr, "\rassessment %zu of %zu ", i + 1, n);
+      },
+      &hooks);
   if (terminal) std::fprintf(stderr, "\r%40s\r", "");
   const auto j = report::uncertainty_json(r);
   report::write_atomically(out.staged("uq.csv"), report::uncertainty_csv(r));
   report::write_atomically(out.staged("uq.html"), report::uncertainty_html(j));
   report::write_atomically(out.staged("uq.json"), j.dump(2) + "\n");
   out.commit();
+  journal.remove();
   fmt::print("{}\n{} inputs{}, {} assessments of {} replicates\n", terminal_safe(r.title), r.plan.inputs.size(),
              r.plan.defaults ? " (default set of estimated inputs)" : "", r.outputs.size(), r.plan.replicates);
   const auto& p = j["outputs"]["p_pass"];
@@ -64,6 +144,7 @@ Runner add_uq_command(CLI::App& app) {
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML); its [uncertainty] table, or the default estimated inputs")->required();
   cmd->add_option("--out", o->out, "Output folder for uq.html, uq.json and uq.csv")->capture_default_str();
   cmd->add_option("--threads", o->threads, "Worker threads, 0 = all cores")->check(CLI::Range(0, 1024));
+  cmd->add_flag("--resume", o->resume, "Continue an interrupted study in the same folder: keep the assessments it finished");
   return [o] { return uq(*o); };
 }
 

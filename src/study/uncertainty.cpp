@@ -85,7 +85,8 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
   return plan;
 }
 
-UncertaintyResult run_uncertainty(const std::string& file, int threads, const std::function<void(std::size_t, std::size_t)>& on_run) {
+UncertaintyResult run_uncertainty(const std::string& file, int threads, const std::function<void(std::size_t, std::size_t)>& on_run,
+                                  const UncertaintyJournal* journal) {
   const toml::table base = scenario::parse_toml_file(file);
   const scenario::Scenario nominal = scenario::read_scenario(base, file);
   UncertaintyResult r;
@@ -151,6 +152,12 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
       values.push_back(v);
       apply_to_document(settings.back(), doc, file);
     }
+    r.values.push_back(values);
+    if (journal && journal->recall)
+      if (const auto kept = journal->recall(run)) {
+        r.outputs.push_back(*kept);
+        continue;
+      }
     scenario::Scenario sc = scenario::read_scenario(doc, file);
     for (const auto& st : settings) apply(st, sc);
     sc.run.replicates = r.plan.replicates;  // common random numbers: the same seed and replicates at every draw
@@ -161,9 +168,9 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     if (!sum.validity.valid)
       throw InputError(file, std::nullopt, "uncertainty", fmt::format("draw {}", run + 1),
                        "the simulated test is invalid at this draw: " + sum.validity.reasons.front());
-    r.values.push_back(values);
     r.outputs.push_back({sum.pass.estimate, sum.criteria[0].mean_share, sum.criteria[1].mean_share, sum.criteria[2].mean_share,
                          sum.criteria[3].mean_share, sum.pass.estimate >= r.required ? 1.0 : 0.0});
+    if (journal && journal->record) journal->record(run, r.outputs.back());
   }
   for (int o = 0; o < kUqOutputs; ++o) {
     std::vector<double> f;

@@ -7,6 +7,7 @@
 // passes (a robust verdict), and Sobol' indices ranking the inputs for each.
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,18 @@ struct InputDistribution {
   double quantile(double u) const;
 };
 
+// Where a study keeps the outputs of the assessments it has finished, so that an
+// interrupted study can resume (`j232 uq --resume`): `recall(i)` gives run i's outputs if
+// they were recorded, `record(i, outputs)` is told each newly finished run. Outputs are
+// kept exactly, so a resumed study gives the same result, bit for bit.
+struct UncertaintyJournal {
+  std::function<std::optional<std::array<double, kUqOutputs>>(std::size_t)> recall;
+  std::function<void(std::size_t, const std::array<double, kUqOutputs>&)> record;
+};
+
 // Runs the study of the scenario file. `on_run(i, n)` is told before run i of n.
 UncertaintyResult run_uncertainty(const std::string& scenario_file, int threads,
-                                  const std::function<void(std::size_t, std::size_t)>& on_run = {});
+                                  const std::function<void(std::size_t, std::size_t)>& on_run = {},
+                                  const UncertaintyJournal* journal = nullptr);
 
 }  // namespace j232::study
