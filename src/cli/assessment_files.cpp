@@ -19,6 +19,8 @@
 #include "report/atomic_file.hpp"
 #include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
+#include "report/uncertainty_report.hpp"
+#include "study/uncertainty.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/toml_reader.hpp"
@@ -52,6 +54,7 @@ std::string digest(const std::string& scenario_file, const std::vector<scenario:
   // Not the thread count: results do not depend on it.
   f.add(fmt::format("{} {} {} {}", o.replicates, o.seed ? std::to_string(*o.seed) : "-1", J232_VERSION, J232_GIT_REVISION));
   if (o.trajectories > 0) f.add(fmt::format(" trajectories {}", o.trajectories));
+  if (o.uncertainty) f.add(" uncertainty");
   separator();
   return f.hex();
 }
@@ -74,7 +77,9 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   const assess::Simulator simulator(s);
 
   // The folder is locked and checked before the simulation, so a bad --out costs nothing.
-  OutputFolder folder(out, {"marks.csv", "report.html", "result.json"});
+  std::vector<std::string> files = {"marks.csv", "report.html", "result.json"};
+  if (o.uncertainty) files.insert(files.begin(), {"uq.csv", "uq.html", "uq.json"});
+  OutputFolder folder(out, files);
   StreamedFile marks(folder.staged("marks.csv"));
   marks.write(report::marks_csv_header());
   std::string buffer;
@@ -102,6 +107,21 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   p.files.push_back({"marks.csv", marks.bytes(), marks.digest()});
   // The report shows result.json's numbers; its own size and digest go into result.json.
   RunOutcome outcome{report::result_json(s, a, sum, p), report::summary_text(s, sum)};
+  if (o.uncertainty) {
+    // The scenario's own uncertainty study beside the run (its [uncertainty] seed and
+    // replicates are the scenario's, not the run's overrides), summarised in the report.
+    const bool terminal = isatty(fileno(stderr)) != 0;
+    const auto study = study::run_uncertainty(scenario_file, s.run.threads, [&](std::size_t i, std::size_t n) {
+      if (terminal) std::fprintf(stderr, "\runcertainty study: assessment %zu of %zu ", i + 1, n);
+    });
+    if (terminal) std::fprintf(stderr, "\r%60s\r", "");
+    const auto uq = report::uncertainty_json(study);
+    report::write_atomically(folder.staged("uq.csv"), report::uncertainty_csv(study));
+    report::write_atomically(folder.staged("uq.html"), report::uncertainty_html(uq));
+    report::write_atomically(folder.staged("uq.json"), uq.dump(2) + "\n");
+    outcome.result["uncertainty"] = report::uncertainty_summary_json(uq);
+    outcome.summary_text += report::uncertainty_summary_text(outcome.result["uncertainty"]);
+  }
   const std::string html = report::compliance_report_html(s, a, sum, outcome.result, simulator.scene().soup());
   Fnv html_digest;
   html_digest.add(html);
@@ -117,6 +137,12 @@ void add_trajectories_option(CLI::App& cmd, RunOverrides& o) {
                  "Keep and draw the whole paths of the first K struck nails, plus every nail that marked the operator zone or "
                  "punctured the board (up to 100 of each, chosen at random)")
       ->check(CLI::Range(0, 1000));
+}
+
+void add_uncertainty_option(CLI::App& cmd, RunOverrides& o) {
+  cmd.add_flag("--uncertainty", o.uncertainty,
+               "Also run the scenario's uncertainty study (as j232 uq: its [uncertainty] inputs or the default estimated ones) and "
+               "summarise it in the report; writes uq.html, uq.json and uq.csv beside it");
 }
 
 void add_run_overrides(CLI::App& cmd, RunOverrides& o, const std::string& whose) {

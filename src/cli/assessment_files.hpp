@@ -15,12 +15,15 @@ struct RunOverrides {
   std::optional<std::uint64_t> seed;   // none: the scenario's
   int threads = -1;                    // < 0: the scenario's
   std::size_t trajectories = 0;        // sampled nail paths to keep (plus notable ones); 0: none
+  bool uncertainty = false;            // also run the scenario's uncertainty study (run --uncertainty)
 };
 
 // --replicates, --seed (any unsigned 64-bit value, or refused) and --threads on `cmd`.
 void add_run_overrides(CLI::App& cmd, RunOverrides& overrides, const std::string& whose);
 // --trajectories K (run and batch).
 void add_trajectories_option(CLI::App& cmd, RunOverrides& overrides);
+// --uncertainty (run).
+void add_uncertainty_option(CLI::App& cmd, RunOverrides& overrides);
 
 struct RunOutcome {
   nlohmann::ordered_json result;  // what result.json holds

@@ -22,9 +22,10 @@ int run(const RunOptions& o) {
   const RunOutcome outcome = assess_to_folder(o.scenario, o.overrides, o.out);
   const auto& p = outcome.result["provenance"];
   fmt::print("{}", terminal_safe(outcome.summary_text));
-  fmt::print("  {:.2f} s on {} thread(s): {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv\n",
+  fmt::print("  {:.2f} s on {} thread(s): {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv{}\n",
              p["wall_time_s"].get<double>(), p["threads"].get<int>(), p["nails_per_second"].get<double>(),
-             terminal_safe(o.out), terminal_safe(o.out), terminal_safe(o.out));
+             terminal_safe(o.out), terminal_safe(o.out), terminal_safe(o.out),
+             o.overrides.uncertainty ? fmt::format(", and the uncertainty study in {}/uq.html, uq.json and uq.csv", terminal_safe(o.out)) : "");
   const auto& verdict = outcome.result["verdict"];
   return verdict == "passes" ? kOk : verdict == "invalid" ? kInvalid : kFails;
 }
@@ -37,6 +38,7 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML); see scenarios/")->required();
   add_run_overrides(*cmd, o->overrides, "the scenario's");
   add_trajectories_option(*cmd, o->overrides);
+  add_uncertainty_option(*cmd, o->overrides);
   cmd->add_option("--out", o->out, "Output folder for report.html, result.json and marks.csv")->capture_default_str();
   return [o] { return run(*o); };
 }

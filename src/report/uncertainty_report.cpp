@@ -170,3 +170,69 @@ std::string uncertainty_html(const json& j) {
 }
 
 }  // namespace j232::report
+
+namespace j232::report {
+
+json uncertainty_summary_json(const json& study) {
+  json s;
+  s["files"] = "uq.html, uq.json, uq.csv";
+  s["inputs"] = study["inputs"].size();
+  s["default_inputs"] = study["default_inputs"];
+  s["assessments"] = study["assessments"];
+  s["replicates_per_assessment"] = study["replicates_per_assessment"];
+  s["robust_verdict"] = study["robust_verdict"];
+  s["share_of_draws_passing"] = study["share_of_draws_passing"];
+  s["p_pass"] = study["outputs"]["p_pass"];
+  // The inputs by their total index for P(pass), largest first (none when P(pass) does not vary).
+  std::vector<json> drivers;
+  for (const auto& row : study["sensitivity"]["p_pass"]["indices"])
+    drivers.push_back({{"input", row["input"]}, {"total", row["total"]}});
+  std::stable_sort(drivers.begin(), drivers.end(),
+                   [](const json& a, const json& b) { return a["total"]["estimate"].get<double>() > b["total"]["estimate"].get<double>(); });
+  s["p_pass_variance"] = study["sensitivity"]["p_pass"]["variance"];
+  s["drivers_of_p_pass"] = drivers;
+  return s;
+}
+
+std::string uncertainty_summary_text(const json& s) {
+  std::string o = fmt::format("  Uncertainty study ({} inputs, {} assessments): {}; {:.1f} % of the inputs' draws pass\n", s["inputs"].get<std::size_t>(),
+                              s["assessments"].get<std::size_t>(), s["robust_verdict"].get<std::string>(),
+                              100 * s["share_of_draws_passing"].get<double>());
+  if (s["p_pass_variance"].get<double>() > 0 && !s["drivers_of_p_pass"].empty()) {
+    const auto& top = s["drivers_of_p_pass"][0];
+    o += fmt::format("  What drives the verdict most: {} (total Sobol' index {:.2f})\n", terminal_safe(top["input"].get<std::string>()),
+                     top["total"]["estimate"].get<double>());
+  }
+  return o;
+}
+
+std::string uncertainty_summary_html(const json& r) {
+  const json& s = r["uncertainty"];
+  std::string o = "<section id=\"uncertainty\">\n<h2>How much the verdict rests on estimated inputs</h2>\n";
+  o += fmt::format("<p>The uncertain inputs ({}{}) were drawn together, {} assessments of {} replicates each with common random numbers "
+                   "(<a href=\"uq.html\">the study</a>). <strong>Robust verdict: {}</strong>: the mower passes in {} % of the draws; "
+                   "P(pass) over the inputs has median {} and 5–95 % range {} to {}.</p>\n",
+                   number("uncertainty.inputs", s["inputs"], "{}"),
+                   s["default_inputs"].get<bool>() ? ", j232's default set of estimated inputs" : ", the scenario's [uncertainty]",
+                   number("uncertainty.assessments", s["assessments"], "{}"),
+                   number("uncertainty.replicates_per_assessment", s["replicates_per_assessment"], "{}"),
+                   escape(s["robust_verdict"].get<std::string>()), number("uncertainty.share_of_draws_passing", s["share_of_draws_passing"], "{:.1f}", 100),
+                   number("uncertainty.p_pass.q50", s["p_pass"]["q50"], "{:.3f}"), number("uncertainty.p_pass.q05", s["p_pass"]["q05"], "{:.3f}"),
+                   number("uncertainty.p_pass.q95", s["p_pass"]["q95"], "{:.3f}"));
+  if (s["p_pass_variance"].get<double>() > 0) {
+    o += "<table class=\"numbers\"><thead><tr><th>input</th><th>total Sobol' index for P(pass)</th><th>95 % interval</th></tr></thead><tbody>\n";
+    for (std::size_t i = 0; i < s["drivers_of_p_pass"].size(); ++i) {
+      const auto& d = s["drivers_of_p_pass"][i];
+      const std::string key = fmt::format("uncertainty.drivers_of_p_pass.{}.total", i);
+      o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} to {}</td></tr>\n", escape(d["input"].get<std::string>()),
+                       number(key + ".estimate", d["total"]["estimate"], "{:.3f}"), number(key + ".low", d["total"]["low"], "{:.3f}"),
+                       number(key + ".high", d["total"]["high"], "{:.3f}"));
+    }
+    o += "</tbody></table>\n";
+  } else {
+    o += "<p>P(pass) is the same at every draw: no input moves the verdict over its range.</p>\n";
+  }
+  return o + "</section>\n";
+}
+
+}  // namespace j232::report

@@ -13,5 +13,11 @@ namespace j232::report {
 nlohmann::ordered_json uncertainty_json(const study::UncertaintyResult& r);
 std::string uncertainty_csv(const study::UncertaintyResult& r);
 std::string uncertainty_html(const nlohmann::ordered_json& j);
+// What a compliance report carries of a study run beside it (run --uncertainty): the robust
+// verdict, P(pass) over the inputs, and the inputs ranked by their total index for P(pass).
+nlohmann::ordered_json uncertainty_summary_json(const nlohmann::ordered_json& study);
+std::string uncertainty_summary_text(const nlohmann::ordered_json& summary);
+// Its section of report.html, from result.json's "uncertainty".
+std::string uncertainty_summary_html(const nlohmann::ordered_json& result);
 
 }  // namespace j232::report
