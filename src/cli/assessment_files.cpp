@@ -55,6 +55,7 @@ std::string digest(const std::string& scenario_file, const std::vector<scenario:
   f.add(fmt::format("{} {} {} {}", o.replicates, o.seed ? std::to_string(*o.seed) : "-1", J232_VERSION, J232_GIT_REVISION));
   if (o.trajectories > 0) f.add(fmt::format(" trajectories {}", o.trajectories));
   if (o.uncertainty) f.add(" uncertainty");
+  if (o.for_comparison) f.add(" no stop rule");
   separator();
   return f.hex();
 }
@@ -74,6 +75,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   if (o.replicates > 0) s.run.replicates = o.replicates;
   if (o.seed) s.run.seed = *o.seed;
   if (o.threads >= 0) s.run.threads = o.threads;
+  if (o.for_comparison) s.run.target_half_width.reset();  // every design runs the same replicates
   const assess::Simulator simulator(s);
 
   // The folder is locked and checked before the simulation, so a bad --out costs nothing.
@@ -91,9 +93,11 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   };
   assess::Progress progress;
   assess::Assessment a;
+  std::optional<study::DesignRecorder> recorder;
+  if (o.for_comparison) recorder.emplace(static_cast<std::uint64_t>(s.run.replicates));
   {
     ProgressBar bar(progress);
-    a = assess::run_assessment(simulator, s.run.threads, &progress, sink);
+    a = assess::run_assessment(simulator, s.run.threads, &progress, sink, recorder ? recorder->sink() : assess::ReplicateSink{});
   }
   marks.write(buffer);
   marks.close();
@@ -129,6 +133,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   report::write_atomically(folder.staged("report.html"), html);
   report::write_atomically(folder.staged("result.json"), outcome.result.dump(2) + "\n");
   folder.commit();
+  if (recorder) outcome.design = std::move(*recorder).finish(s, a);
   return outcome;
 }
 

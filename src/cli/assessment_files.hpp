@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include "study/compare.hpp"
+
 namespace j232::cli {
 
 struct RunOverrides {
@@ -16,6 +18,7 @@ struct RunOverrides {
   int threads = -1;                    // < 0: the scenario's
   std::size_t trajectories = 0;        // sampled nail paths to keep (plus notable ones); 0: none
   bool uncertainty = false;            // also run the scenario's uncertainty study (run --uncertainty)
+  bool for_comparison = false;         // keep what a comparison of designs needs; no stop rule (batch --compare)
 };
 
 // --replicates, --seed (any unsigned 64-bit value, or refused) and --threads on `cmd`.
@@ -28,6 +31,7 @@ void add_uncertainty_option(CLI::App& cmd, RunOverrides& overrides);
 struct RunOutcome {
   nlohmann::ordered_json result;  // what result.json holds
   std::string summary_text;       // the terminal summary
+  std::optional<study::DesignRecord> design;  // with RunOverrides::for_comparison
 };
 
 // A fingerprint of everything a result depends on: the scenario file's and its mesh

@@ -13,6 +13,7 @@
 #include "cli/output_folder.hpp"
 #include "report/atomic_file.hpp"
 #include "report/batch_summary.hpp"
+#include "report/comparison_report.hpp"
 #include "report/text_safety.hpp"
 #include "scenario/input_error.hpp"
 
@@ -25,7 +26,7 @@ using json = nlohmann::ordered_json;
 struct BatchOptions {
   std::vector<std::string> scenarios;
   std::string out = "results/batch";
-  bool resume = false;
+  bool resume = false, compare = false;
   RunOverrides overrides;
 };
 
@@ -67,9 +68,24 @@ std::optional<json> current_result(const fs::path& folder, const std::string& di
   return r;
 }
 
-int batch(const BatchOptions& o) {
+int batch(const BatchOptions& given) {
+  BatchOptions o = given;
+  if (o.compare) {
+    if (o.resume)
+      throw scenario::InputError("", std::nullopt, "--compare", "", "without --resume: a comparison pairs every design's replicates, which "
+                                 "kept results do not hold");
+    if (o.scenarios.size() < 2) throw scenario::InputError("", std::nullopt, "--compare", "", "at least two scenarios to compare");
+    // Common random numbers: every design runs the first's seed and replicates.
+    const scenario::Scenario first = scenario::read_scenario(o.scenarios.front());
+    if (!o.overrides.seed) o.overrides.seed = first.run.seed;
+    if (o.overrides.replicates <= 0) o.overrides.replicates = first.run.replicates;
+    o.overrides.for_comparison = true;
+  }
   // Locked and checked before the first scenario runs.
-  OutputFolder out(o.out, {"summary.csv", "summary.html", "summary.json"});
+  std::vector<std::string> files = {"summary.csv", "summary.html", "summary.json"};
+  if (o.compare) files.insert(files.begin(), {"compare.csv", "compare.html", "compare.json"});
+  OutputFolder out(o.out, files);
+  std::vector<study::DesignRecord> designs;
   const auto names = folder_names(o.scenarios);
   std::vector<report::BatchRow> rows;
   bool internal_error = false;
@@ -84,7 +100,11 @@ int batch(const BatchOptions& o) {
         row.result = current_result(folder, inputs_digest(file, o.overrides));
         row.resumed = row.result.has_value();
       }
-      if (!row.result) row.result = assess_to_folder(file, o.overrides, folder.string()).result;
+      if (!row.result) {
+        RunOutcome run = assess_to_folder(file, o.overrides, folder.string());
+        row.result = std::move(run.result);
+        if (run.design && (*row.result)["verdict"] != "invalid") designs.push_back(std::move(*run.design));
+      }
       const json& r = *row.result;
       const std::string verdict = r["verdict"].get<std::string>();
       fmt::print("{} (P(pass) {:.3f}, 95 % {:.3f} to {:.3f}){}\n",
@@ -103,14 +123,28 @@ int batch(const BatchOptions& o) {
     }
     rows.push_back(std::move(row));
   }
-  const json summary = report::batch_summary_json(rows);
+  json comparison = nullptr;
+  if (o.compare) {
+    // The designs that ran and gave a verdict, in the order given (the first is the baseline).
+    if (designs.size() < 2) {
+      fmt::print("No comparison: fewer than two scenarios gave a verdict\n");
+    } else {
+      const study::Comparison c = study::compare_records(designs, *o.overrides.seed);
+      comparison = report::comparison_json(c);
+      report::write_atomically(out.staged("compare.csv"), report::comparison_csv(c));
+      report::write_atomically(out.staged("compare.html"), report::comparison_html(comparison));
+      report::write_atomically(out.staged("compare.json"), comparison.dump(2) + "\n");
+    }
+  }
+  const json summary = report::batch_summary_json(rows, comparison);
   report::write_atomically(out.staged("summary.csv"), report::batch_summary_csv(rows));
-  report::write_atomically(out.staged("summary.html"), report::batch_summary_html(rows));
+  report::write_atomically(out.staged("summary.html"), report::batch_summary_html(rows, comparison));
   report::write_atomically(out.staged("summary.json"), summary.dump(2) + "\n");
   out.commit();
-  fmt::print("{} of {} scenarios pass, {} fail, {} invalid, {} refused. Wrote {}/summary.html, summary.json and summary.csv\n",
+  fmt::print("{} of {} scenarios pass, {} fail, {} invalid, {} refused. Wrote {}/summary.html, summary.json and summary.csv{}\n",
              summary["passed"].get<std::size_t>(), rows.size(), summary["failed"].get<std::size_t>(),
-             summary["invalid"].get<std::size_t>(), summary["refused"].get<std::size_t>(), report::terminal_safe(o.out));
+             summary["invalid"].get<std::size_t>(), summary["refused"].get<std::size_t>(), report::terminal_safe(o.out),
+             comparison.is_null() ? "" : ", and the comparison of the designs in compare.html, compare.json and compare.csv");
   if (internal_error) return kInternal;
   if (summary["refused"].get<std::size_t>() > 0) return kBadInput;
   if (summary["invalid"].get<std::size_t>() > 0) return kInvalid;
@@ -126,6 +160,9 @@ Runner add_batch_command(CLI::App& app) {
   cmd->add_option("scenarios", o->scenarios, "Scenario files (TOML); shell globs welcome: scenarios/*.toml")->required();
   cmd->add_option("--out", o->out, "Output folder: one subfolder per scenario, plus summary.html/.json/.csv")->capture_default_str();
   cmd->add_flag("--resume", o->resume, "Keep results that are complete and were made from the same inputs and program");
+  cmd->add_flag("--compare", o->compare,
+                "Also compare the scenarios as designs: all run with the first's seed and replicates (common random numbers), "
+                "each judged against the first replicate by replicate (compare.html/.json/.csv, and in the summary)");
   add_run_overrides(*cmd, o->overrides, "each scenario's");
   add_trajectories_option(*cmd, o->overrides);
   return [o] { return batch(*o); };

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "report/comparison_report.hpp"
 #include "report/html_page.hpp"
 #include "report/svg_chart.hpp"
 #include "report/text_safety.hpp"
@@ -16,7 +17,7 @@ const char* kCriteria[] = {"hits_zone", "punctures_zone", "hits_outside", "punct
 std::string verdict_of(const BatchRow& r) { return r.result ? (*r.result)["verdict"].get<std::string>() : "error"; }
 }  // namespace
 
-json batch_summary_json(const std::vector<BatchRow>& rows) {
+json batch_summary_json(const std::vector<BatchRow>& rows, const json& comparison) {
   json list = json::array();
   std::size_t passed = 0, failed = 0, invalid = 0, errors = 0;
   for (const auto& r : rows) {
@@ -43,14 +44,16 @@ json batch_summary_json(const std::vector<BatchRow>& rows) {
     }
     list.push_back(row);
   }
-  return {{"program", "j232 batch"},
-          {"scenarios", rows.size()},
-          {"passed", passed},
-          {"failed", failed},
-          {"invalid", invalid},
-          {"refused", errors},
-          {"all_passed", passed == rows.size()},
-          {"rows", list}};
+  json summary = {{"program", "j232 batch"},
+                  {"scenarios", rows.size()},
+                  {"passed", passed},
+                  {"failed", failed},
+                  {"invalid", invalid},
+                  {"refused", errors},
+                  {"all_passed", passed == rows.size()},
+                  {"rows", list}};
+  if (!comparison.is_null()) summary["comparison"] = comparison;
+  return summary;
 }
 
 std::string batch_summary_csv(const std::vector<BatchRow>& rows) {
@@ -74,8 +77,8 @@ std::string batch_summary_csv(const std::vector<BatchRow>& rows) {
   return o;
 }
 
-std::string batch_summary_html(const std::vector<BatchRow>& rows) {
-  const json summary = batch_summary_json(rows);
+std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& comparison) {
+  const json summary = batch_summary_json(rows, comparison);
   std::string o = page_head("SAE J232 batch summary");
   o += "<header><h1>SAE J232 batch summary (simulated)</h1></header>\n";
   const bool all = summary["all_passed"].get<bool>();
@@ -110,6 +113,9 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows) {
   }
   o += "</tbody></table>\n<p>Shares are the mean over replicates of each kind of mark as a share of the denominator the scenario "
        "sets; each report gives their spread and the criterion that decides its verdict.</p>\n";
+  if (!comparison.is_null())
+    o += "<section id=\"comparison\">\n<h2>The designs compared (common random numbers; <a href=\"compare.html\">compare.html</a>)</h2>\n" +
+         comparison_body_html(comparison, "comparison.") + "</section>\n";
   o += page_foot();
   return o;
 }

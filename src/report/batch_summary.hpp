@@ -17,8 +17,10 @@ struct BatchRow {
   bool resumed = false;  // results were complete and current; not rerun
 };
 
-nlohmann::ordered_json batch_summary_json(const std::vector<BatchRow>& rows);
+// `comparison`: compare.json of the scenarios run with common random numbers (batch
+// --compare), carried under "comparison" and drawn at the end of the page; null: none.
+nlohmann::ordered_json batch_summary_json(const std::vector<BatchRow>& rows, const nlohmann::ordered_json& comparison = nullptr);
 std::string batch_summary_csv(const std::vector<BatchRow>& rows);
-std::string batch_summary_html(const std::vector<BatchRow>& rows);
+std::string batch_summary_html(const std::vector<BatchRow>& rows, const nlohmann::ordered_json& comparison = nullptr);
 
 }  // namespace j232::report

@@ -74,10 +74,14 @@ std::string comparison_csv(const study::Comparison& c) {
   return out;
 }
 
-std::string comparison_html(const json& c) {
+std::string comparison_html(const json& c) { return page_head("j232 comparison of designs") + "<h1>Comparison of designs</h1>\n" + comparison_body_html(c, "") + page_foot(); }
+
+std::string comparison_body_html(const json& c, const std::string& prefix) {
   const auto& designs = c["designs"];
-  std::string o = page_head("j232 comparison of designs");
-  o += "<h1>Comparison of designs</h1>\n<ol>\n";
+  auto number = [&](const std::string& key, const json& value, const char* format, double scale = 1.0) {
+    return report::number(prefix + key, value, format, scale);
+  };
+  std::string o = "<ol>\n";
   for (const auto& d : designs)
     o += fmt::format("<li>{} ({})</li>\n", escape(d["title"].get<std::string>()),
                      escape(d["scenario"].get<std::string>()));
@@ -149,7 +153,6 @@ std::string comparison_html(const json& c) {
     chart.hline(limit, palette(5), fmt::format("limit {:g} %", limit));
     o += "<figure>" + chart.svg() + "</figure>\n";
   }
-  o += page_foot();
   return o;
 }
 

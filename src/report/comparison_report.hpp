@@ -12,5 +12,8 @@ namespace j232::report {
 nlohmann::ordered_json comparison_json(const study::Comparison& c);
 std::string comparison_csv(const study::Comparison& c);
 std::string comparison_html(const nlohmann::ordered_json& c);
+// The page's body (designs, tables, a chart per criterion), its numbers keyed `prefix` + the
+// key in `c`, for a page whose JSON holds `c` under a key (the batch summary's "comparison.").
+std::string comparison_body_html(const nlohmann::ordered_json& c, const std::string& prefix);
 
 }  // namespace j232::report

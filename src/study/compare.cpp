@@ -23,46 +23,45 @@ struct Moments {
 };
 }  // namespace
 
-Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads, assess::Progress* progress,
-                           const std::function<void(std::size_t, const scenario::Scenario&)>& on_design) {
+assess::ReplicateSink DesignRecorder::sink() {
+  return [this](std::uint64_t r, const assess::Judgement& j) {
+    auto& row = record.per_replicate.at(r);
+    for (int k = 0; k < assess::kCategories; ++k) row[static_cast<std::size_t>(k)] = j.shares[static_cast<std::size_t>(k)];
+    row[assess::kCategories] = j.pass ? 1.0 : 0.0;
+  };
+}
+
+DesignRecord DesignRecorder::finish(const scenario::Scenario& s, const assess::Assessment& a) && {
+  DesignResult& res = record.result;
+  res.file = s.file;
+  res.title = s.title;
+  res.pass = assess::wilson(a.passed, a.replicates);
+  for (int k = 0; k < assess::kCategories; ++k) {
+    Moments m;
+    for (const auto& row : record.per_replicate) m.add(row[static_cast<std::size_t>(k)]);
+    res.shares[static_cast<std::size_t>(k)] = m.interval(0.0, 1.0);
+  }
+  res.limits = {s.criteria.hits_zone, s.criteria.punctures_zone, s.criteria.hits_outside, s.criteria.punctures_outside};
+  res.marks = a.marks;
+  res.nails = a.nails;
+  return std::move(record);
+}
+
+Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned long long seed) {
   if (designs.size() < 2) throw std::invalid_argument("a comparison needs at least two designs");
   Comparison c;
-  c.seed = designs.front().run.seed;
-  c.replicates = static_cast<std::uint64_t>(designs.front().run.replicates);
-  // Per replicate, per design: the four shares and the pass (kept: 5 numbers per replicate).
-  std::vector<std::vector<std::array<double, assess::kCategories + 1>>> per(designs.size());
-  for (std::size_t d = 0; d < designs.size(); ++d) {
-    scenario::Scenario& s = designs[d];
-    s.run.seed = c.seed;
-    s.run.replicates = static_cast<long long>(c.replicates);
-    s.run.target_half_width.reset();
-    if (on_design) on_design(d, s);
-    per[d].resize(c.replicates);
-    const assess::Simulator sim(s);
-    const auto a = assess::run_assessment(sim, threads, progress, {}, [&](std::uint64_t r, const assess::Judgement& j) {
-      for (int k = 0; k < assess::kCategories; ++k) per[d][r][static_cast<std::size_t>(k)] = j.shares[static_cast<std::size_t>(k)];
-      per[d][r][assess::kCategories] = j.pass ? 1.0 : 0.0;
-    });
-    DesignResult res;
-    res.file = s.file;
-    res.title = s.title;
-    res.pass = assess::wilson(a.passed, a.replicates);
-    for (int k = 0; k < assess::kCategories; ++k) {
-      Moments m;
-      for (const auto& row : per[d]) m.add(row[static_cast<std::size_t>(k)]);
-      res.shares[static_cast<std::size_t>(k)] = m.interval(0.0, 1.0);
-    }
-    res.limits = {s.criteria.hits_zone, s.criteria.punctures_zone, s.criteria.hits_outside, s.criteria.punctures_outside};
-    res.marks = a.marks;
-    res.nails = a.nails;
-    c.designs.push_back(res);
+  c.seed = seed;
+  c.replicates = designs.front().per_replicate.size();
+  for (const auto& d : designs) {
+    if (d.per_replicate.size() != c.replicates) throw std::invalid_argument("designs compared must have run the same replicates");
+    c.designs.push_back(d.result);
   }
   for (std::size_t d = 1; d < designs.size(); ++d) {
     Difference diff;
     for (int k = 0; k <= assess::kCategories; ++k) {
       Moments paired, first, other;
       for (std::uint64_t r = 0; r < c.replicates; ++r) {
-        const double a = per[0][r][static_cast<std::size_t>(k)], b = per[d][r][static_cast<std::size_t>(k)];
+        const double a = designs[0].per_replicate[r][static_cast<std::size_t>(k)], b = designs[d].per_replicate[r][static_cast<std::size_t>(k)];
         paired.add(b - a);
         first.add(a);
         other.add(b);
@@ -80,6 +79,26 @@ Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads,
     c.versus_first.push_back(diff);
   }
   return c;
+}
+
+Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads, assess::Progress* progress,
+                           const std::function<void(std::size_t, const scenario::Scenario&)>& on_design) {
+  if (designs.size() < 2) throw std::invalid_argument("a comparison needs at least two designs");
+  const unsigned long long seed = designs.front().run.seed;
+  const auto replicates = static_cast<std::uint64_t>(designs.front().run.replicates);
+  std::vector<DesignRecord> records;
+  for (std::size_t d = 0; d < designs.size(); ++d) {
+    scenario::Scenario& s = designs[d];
+    s.run.seed = seed;
+    s.run.replicates = static_cast<long long>(replicates);
+    s.run.target_half_width.reset();
+    if (on_design) on_design(d, s);
+    DesignRecorder recorder(replicates);
+    const assess::Simulator sim(s);
+    const auto a = assess::run_assessment(sim, threads, progress, {}, recorder.sink());
+    records.push_back(std::move(recorder).finish(s, a));
+  }
+  return compare_records(records, seed);
 }
 
 }  // namespace j232::study

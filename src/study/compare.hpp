@@ -44,6 +44,22 @@ struct Comparison {
   std::vector<Difference> versus_first;  // one per design after the first
 };
 
+// One design's run as a comparison needs it: its result and, per replicate, the four shares
+// and the pass (5 numbers per replicate).
+struct DesignRecord {
+  DesignResult result;
+  std::vector<std::array<double, assess::kCategories + 1>> per_replicate;
+};
+// Collects the per-replicate numbers of a run (its replicate sink), then its result.
+struct DesignRecorder {
+  DesignRecord record;
+  explicit DesignRecorder(std::uint64_t replicates) { record.per_replicate.resize(replicates); }
+  assess::ReplicateSink sink();
+  DesignRecord finish(const scenario::Scenario& s, const assess::Assessment& a) &&;
+};
+// The comparison of designs run with the same seed and replicates (each design minus the first).
+Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned long long seed);
+
 // Runs every design with the first design's seed and replicates (each design's scenario
 // is changed to them; a stop rule is not used). `on_design` is told before each run.
 Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads, assess::Progress* progress = nullptr,
