@@ -105,7 +105,7 @@ TEST_CASE("determinism: the same result, bit for bit, on 1 and 2 threads and in 
   const assess::Simulator sim(s);
   const auto one = run_collecting(sim, 1);
   const auto two = run_collecting(sim, 2);
-  const report::Provenance p{"test", "test", "today", "digest", 0, 0, {}};
+  const report::Provenance p{"test", "test", "today", "digest", 0, 0, {}, 1};
   const auto sum_one = assess::summarise(one.a, s), sum_two = assess::summarise(two.a, s);
   const auto json_one = report::result_json(s, one.a, sum_one, p), json_two = report::result_json(s, two.a, sum_two, p);
   CHECK(json_one.dump() == json_two.dump());

@@ -75,7 +75,7 @@ TEST_CASE("scene engines: a whole assessment is the same with either engine", "[
   }
   auto s = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
   s.run.replicates = 24;
-  const report::Provenance p{"test", "test", "today", "digest", 0, 0, {}};
+  const report::Provenance p{"test", "test", "today", "digest", 0, 0, {}, 1};
   std::string dumps[2];
   for (int e = 0; e < 2; ++e) {
     const assess::Simulator sim(s, e == 0 ? scene::Engine::Cgal : scene::Engine::Embree);

@@ -1,5 +1,8 @@
 #include "assess/runner.hpp"
 
+#include "assess/chunk.hpp"
+#include "assess/cluster.hpp"
+
 #include "units/quantity.hpp"
 
 #include <algorithm>
@@ -75,15 +78,6 @@ namespace {
 
 constexpr std::uint64_t kChunk = 8;   // replicates per chunk: fixed, so the merge order is too
 constexpr std::uint64_t kWave = 128;  // chunks in flight at once: bounds memory, keeps both cores busy
-
-// What one chunk of replicates produced, before it is merged.
-struct ChunkResult : NailHistograms {
-  std::vector<ReplicateTally> tallies;
-  std::vector<MarkRow> marks;
-  std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
-
-  void clear() { *this = ChunkResult(); }
-};
 
 void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, ChunkResult& c) {
   const int nails = sim.scenario().feed.nails;
@@ -163,19 +157,43 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
 void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& into,
                     Progress* progress, const MarkSink& sink, const ReplicateSink& replicate_sink) {
   const std::uint64_t chunks = (count + kChunk - 1) / kChunk;
-  std::vector<ChunkResult> wave(static_cast<std::size_t>(std::min(chunks, kWave)));
-  for (std::uint64_t w0 = 0; w0 < chunks; w0 += kWave) {
-    const std::uint64_t in_wave = std::min(kWave, chunks - w0);
-    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, in_wave, 1), [&](const tbb::blocked_range<std::uint64_t>& range) {
-      for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
-        const std::uint64_t start = first + (w0 + c) * kChunk;
-        const std::uint64_t n = std::min(kChunk, first + count - start);
-        wave[c].clear();
-        run_chunk(sim, start, n, wave[c]);
-        if (progress) progress->done += static_cast<long long>(n);
+  const auto ranks = static_cast<std::uint64_t>(cluster::size());
+  const auto rank = static_cast<std::uint64_t>(cluster::rank());
+  // Waves of chunks; in an MPI job wave w is run by rank w mod N and merged by rank 0 in
+  // wave order. Chunks are merged in index order whatever the waves, so their size (smaller
+  // in a job, so every rank gets some) changes nothing in the result.
+  const std::uint64_t wave_size = ranks == 1 ? kWave : std::clamp<std::uint64_t>((chunks + 2 * ranks - 1) / (2 * ranks), 1, kWave);
+  std::vector<ChunkResult> wave(static_cast<std::size_t>(std::min(chunks, wave_size)));
+  const auto& criteria = sim.scenario().criteria;
+  for (std::uint64_t w = 0, w0 = 0; w0 < chunks; ++w, w0 += wave_size) {
+    const std::uint64_t in_wave = std::min(wave_size, chunks - w0);
+    const std::uint64_t owner = w % ranks;
+    if (owner == rank) {
+      tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, in_wave, 1), [&](const tbb::blocked_range<std::uint64_t>& range) {
+        for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
+          const std::uint64_t start = first + (w0 + c) * kChunk;
+          const std::uint64_t n = std::min(kChunk, first + count - start);
+          wave[c].clear();
+          run_chunk(sim, start, n, wave[c]);
+          if (progress) progress->done += static_cast<long long>(n);
+        }
+      });
+      if (rank == 0)
+        for (std::uint64_t c = 0; c < in_wave; ++c) merge(into, wave[c], criteria, sink, replicate_sink);  // deterministic
+      else
+        cluster::send(0, pack_chunks(wave, static_cast<std::size_t>(in_wave)));
+    } else if (rank == 0) {
+      for (const ChunkResult& c : unpack_chunks(cluster::receive(static_cast<int>(owner)))) {
+        merge(into, c, criteria, sink, replicate_sink);
+        if (progress) progress->done += static_cast<long long>(c.tallies.size());
       }
-    });
-    for (std::uint64_t c = 0; c < in_wave; ++c) merge(into, wave[c], sim.scenario().criteria, sink, replicate_sink);  // deterministic
+    }
+  }
+  if (ranks > 1) {
+    // Every rank continues from the merged result (the same path through whatever follows).
+    std::string merged = rank == 0 ? pack_assessment(into) : std::string();
+    cluster::broadcast_from_writer(merged);
+    if (rank != 0) unpack_assessment(merged, into);
   }
   for (const auto& [key, n] : into.exits.nails)
     if (!into.exit_names.count(key)) into.exit_names[key] = sim.exit_name(exit_of(key), exit_index(key));

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "assess/runner.hpp"
+#include "assess/cluster.hpp"
 #include "assess/summary.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/progress_bar.hpp"
@@ -107,10 +108,11 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   }
   const assess::Summary sum = assess::summarise(a, s);
 
-  report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds, {}};
+  report::Provenance p{J232_VERSION, J232_GIT_REVISION, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds, {},
+                       assess::cluster::size()};
   p.files.push_back({"marks.csv", marks.bytes(), marks.digest()});
   // The report shows result.json's numbers; its own size and digest go into result.json.
-  RunOutcome outcome{report::result_json(s, a, sum, p), report::summary_text(s, sum)};
+  RunOutcome outcome{report::result_json(s, a, sum, p), report::summary_text(s, sum), std::nullopt};
   if (o.uncertainty) {
     // The scenario's own uncertainty study beside the run (its [uncertainty] seed and
     // replicates are the scenario's, not the run's overrides), summarised in the report.

@@ -4,14 +4,20 @@
 #include <exception>
 #include <fmt/format.h>
 
+#include "assess/cluster.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
 #include "report/text_safety.hpp"
 #include "scenario/input_error.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+int run_command_line(int argc, char** argv) {
   using namespace j232::cli;
+  namespace cluster = j232::assess::cluster;
+  // In an MPI job every rank runs the command; rank 0 reports input errors (every rank sees
+  // the same input), any rank reports what only it met.
+  const bool reporter = cluster::is_writer();
   using j232::report::terminal_safe;
   CLI::App app{"j232 " J232_VERSION " — simulates the SAE J232 thrown-object test of rotary mowers"};
   app.require_subcommand(1);
@@ -27,7 +33,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
+    const int code = reporter ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 1);
     return code == 0 ? kOk : kBadInput;
   }
   try {
@@ -40,17 +46,36 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("uq")) return uq();
     if (app.got_subcommand("calibrate")) return calibrate();
   } catch (const j232::scenario::InputError& e) {
-    fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
+    if (reporter) fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
     return kBadInput;
   } catch (const j232::report::FileError& e) {
-    fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
+    if (reporter) fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
     return kBadInput;
   } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "j232: error: out of memory; reduce the scene (mesh sizes) or the replicates\n");
+    fmt::print(stderr, "j232{}: error: out of memory; reduce the scene (mesh sizes) or the replicates\n",
+               reporter ? "" : fmt::format(" (rank {})", cluster::rank()));
     return kBadInput;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "j232: internal error: {}\n(please report this with the input that caused it)\n", terminal_safe(e.what()));
+    fmt::print(stderr, "j232{}: internal error: {}\n(please report this with the input that caused it)\n",
+               reporter ? "" : fmt::format(" (rank {})", cluster::rank()), terminal_safe(e.what()));
     return kInternal;
   }
   return kInternal;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace cluster = j232::assess::cluster;
+  cluster::init(&argc, &argv);
+  // Rank 0 alone prints results; the others stay quiet but for errors of their own.
+  if (!cluster::is_writer() && !std::freopen("/dev/null", "w", stdout)) return j232::cli::kInternal;
+  const int code = run_command_line(argc, argv);
+  // A failure anywhere ends every rank now: none may wait for ever for a partner that left,
+  // and no rank writes a partial result (rank 0 writes only at the end of a command).
+  if (code != j232::cli::kOk && cluster::size() > 1 && code != j232::cli::kFails && code != j232::cli::kInvalid) {
+    std::fflush(stdout), std::fflush(stderr);
+    cluster::abort(code);
+  }
+  cluster::finalize();
+  return code;
 }

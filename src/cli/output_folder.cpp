@@ -1,5 +1,7 @@
 #include "cli/output_folder.hpp"
 
+#include "assess/cluster.hpp"
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -27,6 +29,15 @@ std::string Fnv::hex() const { return fmt::format("{:016x}", h); }
 OutputFolder::OutputFolder(std::string folder, std::vector<std::string> files)
     : folder_(std::move(folder)), files_(std::move(files)) {
   std::error_code ec;
+  if (!assess::cluster::is_writer()) {
+    // Another rank of an MPI job: it computes what rank 0 writes, and writes nothing of its
+    // own into the folder; what it stages goes to a private folder, removed at the end.
+    std::string temp = (fs::temp_directory_path(ec) / "j232-rank-XXXXXX").string();
+    if (!::mkdtemp(temp.data())) refuse(temp, fmt::format("cannot create a private folder: {}", std::strerror(errno)));
+    folder_ = staging_ = temp;
+    private_ = true;
+    return;
+  }
   if (fs::exists(folder_, ec) && !fs::is_directory(folder_, ec))
     refuse(folder_, "exists and is not a folder; expected an output folder (--out)");
   fs::create_directories(folder_, ec);
@@ -66,6 +77,7 @@ std::string OutputFolder::staged(const std::string& name) const { return (fs::pa
 
 void OutputFolder::commit() {
   std::error_code ec;
+  if (private_) return;  // removed with the object
   const fs::path complete = fs::path(folder_) / files_.back();
   fs::remove(complete, ec);  // the set is incomplete from here until the last rename
   if (ec) refuse(complete.string(), "cannot replace: " + ec.message());

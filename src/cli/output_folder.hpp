@@ -43,6 +43,7 @@ class OutputFolder {
   std::string folder_, staging_;
   std::vector<std::string> files_;
   int lock_fd_ = -1;
+  bool private_ = false;  // a rank other than 0 of an MPI job: a private folder, discarded
 };
 
 // A file written a piece at a time (marks.csv as the run goes), with its size and digest.

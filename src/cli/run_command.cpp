@@ -22,8 +22,9 @@ int run(const RunOptions& o) {
   const RunOutcome outcome = assess_to_folder(o.scenario, o.overrides, o.out);
   const auto& p = outcome.result["provenance"];
   fmt::print("{}", terminal_safe(outcome.summary_text));
-  fmt::print("  {:.2f} s on {} thread(s): {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv{}\n",
-             p["wall_time_s"].get<double>(), p["threads"].get<int>(), p["nails_per_second"].get<double>(),
+  fmt::print("  {:.2f} s on {} thread(s){}: {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv{}\n",
+             p["wall_time_s"].get<double>(), p["threads"].get<int>(),
+             p["ranks"].get<int>() > 1 ? fmt::format(" in each of {} MPI ranks", p["ranks"].get<int>()) : "", p["nails_per_second"].get<double>(),
              terminal_safe(o.out), terminal_safe(o.out), terminal_safe(o.out),
              o.overrides.uncertainty ? fmt::format(", and the uncertainty study in {}/uq.html, uq.json and uq.csv", terminal_safe(o.out)) : "");
   const auto& verdict = outcome.result["verdict"];

@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "assess/cluster.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
@@ -74,7 +75,7 @@ int run(const SceneOptions& o) {
   fmt::print("{}: {} faces\n", s.title, built->face_count());
   for (int l = 0; l < scene::kSurfaceKinds; ++l)
     if (counts[l]) fmt::print("  {:<14} {:>7} faces\n", scene::name(static_cast<scene::Surface>(l)), counts[l]);
-  if (!o.export_path.empty()) {
+  if (!o.export_path.empty() && assess::cluster::is_writer()) {
     report::write_atomically(o.export_path, scene::export_text(soup, lines, o.export_path));
     auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
     fmt::print("wrote {} (the scene, {} tip circle{}, {} feed station{}{}{})\n", o.export_path, s.spindles.size(), plural(s.spindles.size()),

@@ -6,6 +6,7 @@
 #include <memory>
 #include <unistd.h>
 
+#include "assess/cluster.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
@@ -45,6 +46,7 @@ void run_one(const study::SweepSpec& spec, const SweepOptions& o) {
     TerminalProgress progress(spec.name);
     table = study::run_sweep(spec, o.threads, &progress);
   }
+  if (!assess::cluster::is_writer()) return;  // another rank of an MPI job: rank 0 writes
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   if (ec) throw scenario::InputError("", std::nullopt, "--out", o.out, "cannot create the output folder: " + ec.message());

@@ -3,12 +3,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <map>
 #include <optional>
 #include <fmt/format.h>
 #include <memory>
 #include <unistd.h>
 
+#include "assess/cluster.hpp"
 #include "cli/assessment_files.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
@@ -38,8 +41,15 @@ class Journal {
  public:
   Journal(std::string path, std::string digest, bool resume) : path_(std::move(path)), digest_(std::move(digest)) {
     const std::string header = "# j232 uq journal " + digest_;
+    // In an MPI job rank 0 reads the journal and every rank takes the same assessments from it.
+    std::string text;
+    if (resume && assess::cluster::is_writer()) {
+      std::ifstream file(path_);
+      text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    }
+    if (assess::cluster::size() > 1) assess::cluster::broadcast_from_writer(text);
     if (resume) {
-      std::ifstream in(path_);
+      std::istringstream in(text);
       std::string line;
       if (std::getline(in, line) && line == header) {
         while (std::getline(in, line)) {
@@ -56,10 +66,11 @@ class Journal {
           }
           if (whole && *end == '\0') kept_[run] = v;  // a line cut short by the interruption is not kept
         }
-      } else if (in) {
+      } else if (!text.empty()) {
         fmt::print("{}: made from other inputs or another program: starting afresh\n", terminal_safe(path_));
       }
     }
+    if (!assess::cluster::is_writer()) return;  // rank 0 keeps the journal
     out_ = std::fopen(path_.c_str(), kept_.empty() ? "w" : "a");
     if (!out_) throw report::FileError(fmt::format("{}: cannot be written", path_));
     if (kept_.empty()) std::fprintf(out_, "%s\n", header.c_str());
@@ -78,6 +89,7 @@ class Journal {
               return it->second;
             },
             [this](std::size_t run, const std::array<double, study::kUqOutputs>& v) {
+              if (!out_) return;
               std::string line = fmt::format("{}", run);
               for (double x : v) line += fmt::format(",{:.17g}", x);
               std::fprintf(out_, "%s\n", line.c_str());
@@ -85,6 +97,7 @@ class Journal {
             }};
   }
   void remove() {
+    if (!out_) return;
     std::fclose(out_);
     out_ = nullptr;
     std::remove(path_.c_str());

@@ -185,6 +185,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
         {"inputs_digest", p.inputs_digest},
         {"seed", s.run.seed},
         {"threads", p.threads},
+        {"ranks", p.ranks},
         {"wall_time_s", p.wall_seconds},
         {"nails_per_second", p.wall_seconds > 0 ? static_cast<double>(sum.nails) / p.wall_seconds : 0.0}}},
   };

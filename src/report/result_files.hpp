@@ -18,6 +18,7 @@ struct Provenance {
     std::string fnv1a64;
   };
   std::vector<File> files;  // the run's other output files: a reader can check the set is whole
+  int ranks = 1;            // processes of an MPI job, each with `threads` threads
 };
 
 nlohmann::ordered_json result_json(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
