@@ -11,6 +11,7 @@ namespace j232::assess::cluster {
 
 namespace {
 int g_rank = 0, g_size = 1;
+#ifdef J232_HAVE_MPI
 bool g_joined = false;
 
 // Launched by mpirun/mpiexec (Open MPI, MPICH, Slurm's PMI)?
@@ -19,6 +20,7 @@ bool launched_by_mpi() {
     if (std::getenv(v)) return true;
   return false;
 }
+#endif
 }  // namespace
 
 bool available() {
