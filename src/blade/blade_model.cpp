@@ -89,11 +89,6 @@ const BladeModel::LinkCoefficients& BladeModel::coefficients(const ContactLocati
   return links_.at(where.arm).at(where.link);
 }
 
-Eigen::VectorXd BladeModel::jacobian(const ContactLocation& where) const {
-  const auto& lc = coefficients(where);
-  return lc.pin + where.distance * lc.spin;
-}
-
 double BladeModel::effective_mass(const ContactLocation& where) const {
   const auto& lc = coefficients(where);
   const double s = where.distance;

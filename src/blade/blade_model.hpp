@@ -32,9 +32,6 @@ class BladeModel {
   int dof() const { return static_cast<int>(mass_matrix_.rows()); }
   const Eigen::MatrixXd& mass_matrix() const { return mass_matrix_; }
 
-  // Tangential speed Jacobian row of a contact point (length dof()).
-  Eigen::VectorXd jacobian(const ContactLocation& where) const;
-
   // Effective blade mass at a contact, kg. Infinite when the struck body cannot
   // give way (constant-speed hub with every pin outboard of it seized, or dof() == 0).
   double effective_mass(const ContactLocation& where) const;

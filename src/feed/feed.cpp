@@ -25,7 +25,6 @@ NailDrop sample_drop(const scenario::Scenario& s, int nail_index, random::Stream
   d.length = n.length + n.length_tolerance * length_factor;
   d.mass = n.mass + n.mass_tolerance * rng.uniform(-1.0, 1.0);
   d.diameter = n.diameter;
-  d.head_diameter = n.head_diameter;
   // Outlet: uniform over the funnel's outlet disc (sqrt for area-uniform radius).
   const double rho = 0.5 * f.outlet_diameter * std::sqrt(rng.uniform());
   const double psi = kTwoPi * rng.uniform();

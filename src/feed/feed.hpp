@@ -23,7 +23,7 @@ inline constexpr double kGravity = units::standard_gravity;
 
 struct NailDrop {
   int station = 0;
-  double length = 0, mass = 0, diameter = 0, head_diameter = 0;
+  double length = 0, mass = 0, diameter = 0;
   Vec3 axis = Vec3::UnitZ();  // unit, tip -> head
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  // axis at the blade plane at t = 0, from the spindle's axis, m
   Eigen::Vector2d drift = Eigen::Vector2d::Zero();     // horizontal velocity relative to the mower, m/s

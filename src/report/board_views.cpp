@@ -13,7 +13,6 @@ namespace j232::report {
 
 namespace {
 
-constexpr double kDeg = 180.0 / units::pi;
 const std::string kHitColour = "#0072B2", kPunctureColour = "#D55E00", kZoneColour = "#E69F00", kBoardColour = "#8a8a8a",
                   kUncountedColour = "#b8b8b8";
 
@@ -115,7 +114,7 @@ std::string sample_caption(const MarkSample& m) {
 
 }  // namespace
 
-double azimuth_deg(double x, double y) { return std::atan2(y, x) * kDeg; }
+double azimuth_deg(double x, double y) { return std::atan2(y, x) / units::degree; }
 
 MarkSample sample_marks(const assess::Assessment& a, std::size_t max_marks) {
   MarkSample m;

@@ -100,7 +100,7 @@ json mark_examples_json(const assess::Assessment& a) {
                    {"path", path},
                    {"path_truncated", t.touch_count > flight::NailTrace::kMaxTouches},
                    {"exit", name != a.exit_names.end() ? name->second : std::string("unnamed")},
-                   {"exit_azimuth_deg", t.exit_azimuth * 180.0 / units::pi},
+                   {"exit_azimuth_deg", t.exit_azimuth / units::degree},
                    {"exit_height_m", t.exit_height},
                    {"flight_time_s", m.flight_time}});
   }
@@ -217,7 +217,7 @@ std::string marks_csv_header() {
 
 void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const assess::Simulator& sim) {
   const auto& p = m.mark.point;
-  double az = std::atan2(p.y(), p.x()) * 180.0 / units::pi;
+  double az = std::atan2(p.y(), p.x()) / units::degree;
   if (az < 0) az += 360.0;
   fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{},{},", m.replicate, m.nail,
                  p.x(), p.y(), p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside", m.mark.normal_energy,
@@ -228,7 +228,7 @@ void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const asse
   for (int i = 0; i < std::min(t.touch_count, flight::NailTrace::kMaxTouches); ++i)
     path += (i ? ";" : "") + std::string(flight::touch_name(t.touches[static_cast<std::size_t>(i)]));
   if (t.touch_count > flight::NailTrace::kMaxTouches) path += ";...";
-  double exit_az = t.exit_azimuth * 180.0 / units::pi;
+  double exit_az = t.exit_azimuth / units::degree;
   if (exit_az < 0) exit_az += 360.0;
   fmt::format_to(std::back_inserter(out), "{},{},{},{:.3f},{},{:.2f},{:.4f},{:.5f},{}\n", m.spindle + 1, m.station + 1, m.strikes,
                  t.last_strike_speed, csv_text_cell(sim.exit_name(t.exit, t.exit_index)), exit_az, t.exit_height, m.flight_time,

@@ -10,7 +10,6 @@ namespace j232::report {
 
 namespace {
 using json = nlohmann::ordered_json;
-constexpr double kDeg = 180.0 / units::pi;
 
 json restitution_json(const blade::Restitution& r) {
   if (r.model == blade::Restitution::Model::Constant) return {{"model", "constant"}, {"e", r.e}};
@@ -32,13 +31,13 @@ json spindle_json(const scenario::SpindleSpec& sp) {
                        {"centre_of_mass_m", l.centre()},
                        {"inertia_kg_m2", l.inertia()},
                        {"seized", l.seized}});
-    arms.push_back({{"azimuth_deg", a.azimuth * kDeg}, {"pivot_radius_m", a.pivot_radius}, {"links", links}});
+    arms.push_back({{"azimuth_deg", a.azimuth / units::degree}, {"pivot_radius_m", a.pivot_radius}, {"links", links}});
   }
   return {{"speed_rpm", b.omega / units::rpm},
           {"speed_rad_s", b.omega},
           {"height_m", sp.geometry.height},
           {"thickness_m", sp.geometry.thickness},
-          {"lift_angle_deg", sp.geometry.lift_angle * kDeg},
+          {"lift_angle_deg", sp.geometry.lift_angle / units::degree},
           {"mass_kg", b.mass()},
           {"tip_radius_m", b.tip_radius()},
           {"hub",
@@ -53,13 +52,13 @@ json spindle_json(const scenario::SpindleSpec& sp) {
           {"x_m", sp.x},
           {"y_m", sp.y},
           {"sense", sp.sense > 0 ? "ccw" : "cw"},
-          {"phase_deg", sp.phase ? json(*sp.phase * kDeg) : json("random")}};
+          {"phase_deg", sp.phase ? json(*sp.phase / units::degree) : json("random")}};
 }
 
 json guard_json(const scenario::GuardSpec& g) {
   json j = {{"name", g.name}};
   if (g.along.empty())
-    j.update({{"azimuth_from_deg", g.azimuth_from * kDeg}, {"azimuth_to_deg", g.azimuth_to * kDeg}});
+    j.update({{"azimuth_from_deg", g.azimuth_from / units::degree}, {"azimuth_to_deg", g.azimuth_to / units::degree}});
   else
     j.update({{"along_m", g.along}, {"top_m", g.top}});
   j.update({{"bottom_m", g.bottom},
@@ -73,7 +72,7 @@ json guard_json(const scenario::GuardSpec& g) {
 json deflector_json(const scenario::DeflectorSpec& d) {
   json j = {{"name", d.name}};
   if (d.along.empty())
-    j.update({{"azimuth_from_deg", d.azimuth_from * kDeg}, {"azimuth_to_deg", d.azimuth_to * kDeg}, {"radius_m", d.radius}});
+    j.update({{"azimuth_from_deg", d.azimuth_from / units::degree}, {"azimuth_to_deg", d.azimuth_to / units::degree}, {"radius_m", d.radius}});
   else
     j.update({{"along_m", d.along}});
   j.update({{"bottom_m", d.bottom}, {"top_m", d.top}});
@@ -90,7 +89,7 @@ json uncertainty_json(const scenario::UncertaintySpec& u) {
 }
 
 json opening_json(const scenario::OpeningSpec& o) {
-  json j = {{"name", o.name}, {"azimuth_from_deg", o.azimuth_from * kDeg}, {"azimuth_to_deg", o.azimuth_to * kDeg}, {"top_m", o.top}};
+  json j = {{"name", o.name}, {"azimuth_from_deg", o.azimuth_from / units::degree}, {"azimuth_to_deg", o.azimuth_to / units::degree}, {"top_m", o.top}};
   if (o.chute_length > 0) j.update({{"chute_length_m", o.chute_length}, {"chute_end_top_m", o.chute_end_top}});
   return j;
 }
@@ -104,7 +103,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
   const scene::MeshRoles roles = scene::mesh_roles(s);
   json stations = json::array();
   for (const auto& st : s.feed.stations)
-    stations.push_back({{"spindle", st.spindle + 1}, {"radius_m", st.radius}, {"azimuth_deg", st.azimuth * kDeg}});
+    stations.push_back({{"spindle", st.spindle + 1}, {"radius_m", st.radius}, {"azimuth_deg", st.azimuth / units::degree}});
   json guards = json::array(), deflectors = json::array(), meshes = json::array();
   for (const auto& g : s.housing.guards) guards.push_back(guard_json(g));
   for (const auto& d : s.housing.deflectors) deflectors.push_back(deflector_json(d));
@@ -112,8 +111,8 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
   json zone;
   if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector)
     zone = {{"kind", "sector"},
-            {"azimuth_from_deg", s.zone.azimuth_from * kDeg},
-            {"azimuth_to_deg", s.zone.azimuth_to * kDeg},
+            {"azimuth_from_deg", s.zone.azimuth_from / units::degree},
+            {"azimuth_to_deg", s.zone.azimuth_to / units::degree},
             {"bottom_m", s.zone.bottom},
             {"top_m", s.zone.top}};
   else
@@ -133,7 +132,6 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
       {"nail",
        {{"length_m", s.nail.length},
         {"diameter_m", s.nail.diameter},
-        {"head_diameter_m", s.nail.head_diameter},
         {"mass_kg", s.nail.mass},
         {"length_tolerance_m", s.nail.length_tolerance},
         {"mass_tolerance_kg", s.nail.mass_tolerance}}},
@@ -143,7 +141,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"drop_height_m", s.feed.drop_height},
         {"outlet_diameter_m", s.feed.outlet_diameter},
         {"outlet_speed_max_m_s", s.feed.outlet_speed_max},
-        {"tilt_max_deg", s.feed.tilt_max * kDeg},
+        {"tilt_max_deg", s.feed.tilt_max / units::degree},
         {"ground_speed_m_s", s.feed.ground_speed}}},
       {"housing", roles.housing ? json{{"generated", false},
                                        {"restitution", restitution_json(s.housing.restitution)},
@@ -164,7 +162,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
        {{"restitution", s.ground.restitution},
         {"angle_exponent", s.ground.angle_exponent},
         {"friction", s.ground.friction},
-        {"roughness_deg", s.ground.roughness * kDeg}}},
+        {"roughness_deg", s.ground.roughness / units::degree}}},
       {"target", roles.target ? json{{"generated", false}}
                               : json{{"generated", true},
                                      {"distance_m", s.target.distance},
@@ -212,8 +210,8 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   double lift_min = s.spindles.front().geometry.lift_angle, lift_max = lift_min;
   for (const auto& sp : s.spindles)
     lift_min = std::min(lift_min, sp.geometry.lift_angle), lift_max = std::max(lift_max, sp.geometry.lift_angle);
-  a.push_back({lift_min == lift_max ? fmt::format("Blade edge lifts struck nails {:g} deg above the blade plane", lift_min * kDeg)
-                                    : fmt::format("Blade edges lift struck nails {:g} to {:g} deg", lift_min * kDeg, lift_max * kDeg),
+  a.push_back({lift_min == lift_max ? fmt::format("Blade edge lifts struck nails {:g} deg above the blade plane", lift_min / units::degree)
+                                    : fmt::format("Blade edges lift struck nails {:g} to {:g} deg", lift_min / units::degree, lift_max / units::degree),
                fmt::format("{} (estimate; the dominant trajectory parameter per Litherland and Yoerger 1967)", params)});
   a.push_back({fmt::format("Nail: {:.1f} mm long, {:.2f} mm shank, {:.2f} g +/- {:.2f} g", s.nail.length * 1e3,
                            s.nail.diameter * 1e3, s.nail.mass * 1e3, s.nail.mass_tolerance * 1e3),
@@ -240,10 +238,10 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                fmt::format("{} (MIL-STD-1472G reach values)", params)});
   a.push_back({s.ground.angle_exponent == 0
                    ? fmt::format("Ground: restitution {:g} at any angle, friction {:g}, roughness {:.0f} deg", s.ground.restitution,
-                                 s.ground.friction, s.ground.roughness * kDeg)
+                                 s.ground.friction, s.ground.roughness / units::degree)
                    : fmt::format("Ground: normal restitution {:g} x (impact angle / 90 deg)^-{:g} (at most 1), friction {:g}, "
                                  "roughness {:.0f} deg",
-                                 s.ground.restitution, s.ground.angle_exponent, s.ground.friction, s.ground.roughness * kDeg),
+                                 s.ground.restitution, s.ground.angle_exponent, s.ground.friction, s.ground.roughness / units::degree),
                fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)});
   a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3", s.air.cd_normal,
                                         s.air.cd_axial, s.air.density)

@@ -195,9 +195,9 @@ std::string Chart::svg() const {
     ylo = cy - 0.5 * per_px * plot_h, yhi = cy + 0.5 * per_px * plot_h;
   }
   std::vector<double> xt = x_ticks_.empty() ? nice_ticks(xlo, xhi) : x_ticks_;
-  std::vector<double> yt = y_ticks_.empty() ? nice_ticks(ylo, yhi) : y_ticks_;
+  std::vector<double> yt = nice_ticks(ylo, yhi);
   if (!x_fixed_ && !equal_ && x_ticks_.empty()) xlo = std::min(xlo, xt.front()), xhi = std::max(xhi, xt.back());
-  if (!y_fixed_ && !equal_ && y_ticks_.empty()) ylo = std::min(ylo, yt.front()), yhi = std::max(yhi, yt.back());
+  if (!y_fixed_ && !equal_) ylo = std::min(ylo, yt.front()), yhi = std::max(yhi, yt.back());
   std::erase_if(xt, [&](double t) { return t < xlo - 1e-9 * (xhi - xlo) || t > xhi + 1e-9 * (xhi - xlo); });
   std::erase_if(yt, [&](double t) { return t < ylo - 1e-9 * (yhi - ylo) || t > yhi + 1e-9 * (yhi - ylo); });
 

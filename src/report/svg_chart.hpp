@@ -26,7 +26,6 @@ class Chart {
   void y_range(double lo, double hi) { y_lo_ = lo, y_hi_ = hi, y_fixed_ = true; }
   // Custom tick labels (for example azimuths); positions in data units.
   void x_ticks(std::vector<double> at) { x_ticks_ = std::move(at); }
-  void y_ticks(std::vector<double> at) { y_ticks_ = std::move(at); }
   void equal_aspect() { equal_ = true; }  // one data unit is as long on both axes (plan views)
 
   // Series. `label` empty: no legend entry.
@@ -79,7 +78,7 @@ class Chart {
   double x_lo_ = 0, x_hi_ = 0, y_lo_ = 0, y_hi_ = 0;
   bool x_fixed_ = false, y_fixed_ = false, equal_ = false, any_data_ = false;
   double dx_lo_ = 0, dx_hi_ = 0, dy_lo_ = 0, dy_hi_ = 0;
-  std::vector<double> x_ticks_, y_ticks_;
+  std::vector<double> x_ticks_;
 };
 
 }  // namespace j232::report

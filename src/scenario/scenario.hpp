@@ -24,7 +24,6 @@ namespace j232::scenario {
 struct NailSpec {  // uncoated 6d steel box nail
   double length = 0.0508;          // 2 in
   double diameter = 0.00251;       // 0.099 in shank
-  double head_diameter = 0.00676;  // 0.266 in
   double mass = 0.0020;            // 2.0 g
   double length_tolerance = 0.0008;  // +/- (uniform)
   double mass_tolerance = 0.0001;    // +/- (uniform): 1.9-2.1 g

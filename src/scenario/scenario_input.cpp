@@ -18,7 +18,6 @@ using units::Kind;
 
 namespace {
 
-constexpr double kDegree = units::pi / 180.0;
 // Azimuths may be written beyond one turn ("-90 deg", "450 deg"), but not absurdly so.
 constexpr Range kAnyAzimuth = Range::between(-4 * units::pi, 4 * units::pi);
 
@@ -26,7 +25,6 @@ void read_nail(const TableReader& t, NailSpec& n) {
   // Plausible for any nail or similar small object a J232-like test could drop.
   n.length = t.quantity_or("length", Kind::Length, n.length, Range::between(0.005, 0.3));
   n.diameter = t.quantity_or("diameter", Kind::Length, n.diameter, Range::between(0.0003, 0.03));
-  n.head_diameter = t.quantity_or("head_diameter", Kind::Length, n.head_diameter, Range::between(0.0003, 0.05));
   n.mass = t.quantity_or("mass", Kind::Mass, n.mass, Range::between(1e-5, 1.0));
   n.length_tolerance = t.quantity_or("length_tolerance", Kind::Length, n.length_tolerance, Range::NonNegative);
   n.mass_tolerance = t.quantity_or("mass_tolerance", Kind::Mass, n.mass_tolerance, Range::NonNegative);
@@ -42,7 +40,7 @@ void read_feed(const TableReader& t, FeedSpec& f, const std::vector<SpindleSpec>
   f.outlet_diameter = t.quantity_or("outlet_diameter", Kind::Length, f.outlet_diameter, Range::between(0, 0.3));
   f.outlet_speed_max = t.quantity_or("outlet_speed_max", Kind::Speed, f.outlet_speed_max, Range::between(0, 10));
   f.tilt_max = t.quantity_or("tilt_max", Kind::Angle, f.tilt_max, Range::NonNegative);
-  if (f.tilt_max > 60 * kDegree) throw t.error("tilt_max", "expected at most 60 deg: the nail drops through a tube");
+  if (f.tilt_max > 60 * units::degree) throw t.error("tilt_max", "expected at most 60 deg: the nail drops through a tube");
   f.ground_speed = t.quantity_or("ground_speed", Kind::Speed, f.ground_speed, Range::between(0, 15));
   for (const auto& s : t.array_of_tables("stations", 360)) {
     FeedStation st;
@@ -238,7 +236,7 @@ void read_blade_and_geometry(const TableReader& t, SpindleSpec& sp) {
   sp.blade = read_blade(t);
   sp.geometry.height = t.quantity_or("height", Kind::Length, sp.geometry.height, Range::between(0.005, 1));
   sp.geometry.thickness = t.quantity_or("thickness", Kind::Length, sp.geometry.thickness, Range::between(0.0005, 0.05));
-  sp.geometry.lift_angle = t.quantity_or("lift_angle", Kind::Angle, sp.geometry.lift_angle, Range::between(-45 * kDegree, 45 * kDegree));
+  sp.geometry.lift_angle = t.quantity_or("lift_angle", Kind::Angle, sp.geometry.lift_angle, Range::between(-45 * units::degree, 45 * units::degree));
   t.refuse_unknown_keys();
 }
 
@@ -383,7 +381,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     s.ground.restitution = g->quantity_or("restitution", Kind::Dimensionless, s.ground.restitution, Range::UnitInterval);
     s.ground.angle_exponent = g->quantity_or("angle_exponent", Kind::Dimensionless, s.ground.angle_exponent, Range::between(0, 3));
     s.ground.friction = g->quantity_or("friction", Kind::Dimensionless, s.ground.friction, Range::between(0, 2));
-    s.ground.roughness = g->quantity_or("roughness", Kind::Angle, s.ground.roughness, Range::between(0, 45 * kDegree));
+    s.ground.roughness = g->quantity_or("roughness", Kind::Angle, s.ground.roughness, Range::between(0, 45 * units::degree));
     g->refuse_unknown_keys();
   }
 

@@ -67,7 +67,7 @@ namespace {
 std::string bound(units::Kind kind, double v) {
   using units::Kind;
   switch (kind) {
-    case Kind::Angle: return fmt::format("{:g} deg", v * 180.0 / units::pi);
+    case Kind::Angle: return fmt::format("{:g} deg", v / units::degree);
     case Kind::AngularSpeed: return fmt::format("{:g} rpm", v / units::rpm);
     case Kind::Length: return fmt::format("{:g} m", v);
     case Kind::Mass: return fmt::format("{:g} kg", v);
