@@ -48,7 +48,7 @@ Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine)
   context_.escape_radius = scene::escape_radius(s, scene_->soup());
   context_.guards = &guards_;
   footprint_ = scene::deck_footprint(s, scene_->soup());
-  context_.deck_outline = &footprint_.outline;
+  context_.set_deck_outline(&footprint_.outline);
   context_.generated_deck = footprint_.generated;
   context_.skirt_bottom = footprint_.skirt_bottom;
   context_.deck_top = footprint_.top;

@@ -107,6 +107,10 @@ struct FlightContext {
   // The deck's outline in plan (convex, counter-clockwise) and what crossing it means: a
   // generated deck names its openings, skirt and plate heights; a mesh deck does not.
   const std::vector<Eigen::Vector2d>* deck_outline = nullptr;
+  // Squared radii about the origin within which a point is surely inside the outline and
+  // beyond which surely outside (set_deck_outline): most crossings tests end there.
+  double outline_inside_r2 = 0, outline_outside_r2 = HUGE_VAL;
+  void set_deck_outline(const std::vector<Eigen::Vector2d>* outline);
   bool generated_deck = true;
   double skirt_bottom = 0, deck_top = 0;
   // When set, the nail's centre is appended at the start and after every move (tracing
