@@ -9,7 +9,6 @@
 #include <fstream>
 #include <iterator>
 #include <thread>
-#include <unistd.h>
 
 #include "assess/runner.hpp"
 #include "assess/cluster.hpp"
@@ -116,11 +115,11 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   if (o.uncertainty) {
     // The scenario's own uncertainty study beside the run (its [uncertainty] seed and
     // replicates are the scenario's, not the run's overrides), summarised in the report.
-    const bool terminal = isatty(fileno(stderr)) != 0;
-    const auto study = study::run_uncertainty(scenario_file, s.run.threads, [&](std::size_t i, std::size_t n) {
-      if (terminal) std::fprintf(stderr, "\runcertainty study: assessment %zu of %zu ", i + 1, n);
-    });
-    if (terminal) std::fprintf(stderr, "\r%60s\r", "");
+    study::UncertaintyResult study;
+    {
+      const StepCounter counter("uncertainty study: assessment");
+      study = study::run_uncertainty(scenario_file, s.run.threads, std::cref(counter));
+    }
     const auto uq = report::uncertainty_json(study);
     report::write_atomically(folder.staged("uq.csv"), report::uncertainty_csv(study));
     report::write_atomically(folder.staged("uq.html"), report::uncertainty_html(uq));

@@ -10,6 +10,25 @@
 
 namespace j232::cli {
 
+// "LABEL i of n" on stderr, only on a terminal, rewritten in place at each step and cleared
+// at the end (studies that count whole assessments: j232 uq, run --uncertainty).
+class StepCounter {
+ public:
+  explicit StepCounter(const char* label) : label_(label), on_(isatty(fileno(stderr)) != 0) {}
+  ~StepCounter() {
+    if (on_) std::fprintf(stderr, "\r%70s\r", "");
+  }
+  StepCounter(const StepCounter&) = delete;
+  StepCounter& operator=(const StepCounter&) = delete;
+  void operator()(std::size_t i, std::size_t n) const {
+    if (on_) std::fprintf(stderr, "\r%s %zu of %zu ", label_, i + 1, n);
+  }
+
+ private:
+  const char* label_;
+  bool on_;
+};
+
 // A progress bar on stderr, redrawn from its own thread, only on a terminal.
 class ProgressBar {
  public:

@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
+#include "report/board_views.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scene/j232_setup.hpp"
@@ -39,10 +40,7 @@ std::vector<scene::Polyline> nail_paths(const std::string& result_file, const st
     if (run_title != title) refuse(fmt::format("a run of this scenario (\"{}\"), not of \"{}\"", title, run_title));
     for (const auto& path : j.at("trajectories").at("paths")) {
       const std::string why = path.at("why").get<std::string>();
-      scene::Polyline p{"nail_paths", why == "operator zone" ? std::array<std::uint8_t, 3>{230, 159, 0}
-                                      : why == "puncture"    ? std::array<std::uint8_t, 3>{213, 94, 0}
-                                                             : std::array<std::uint8_t, 3>{0, 114, 178},
-                        {}, false};
+      scene::Polyline p{"nail_paths", report::path_rgb(why), {}, false};
       for (const auto& q : path.at("points_m")) p.points.emplace_back(q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>());
       out.push_back(std::move(p));
     }

@@ -9,13 +9,13 @@
 #include <optional>
 #include <fmt/format.h>
 #include <memory>
-#include <unistd.h>
 
 #include "assess/cluster.hpp"
 #include "cli/assessment_files.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/progress_bar.hpp"
 #include "report/atomic_file.hpp"
 #include "report/text_safety.hpp"
 #include "report/uncertainty_report.hpp"
@@ -113,15 +113,12 @@ int uq(const UqOptions& o) {
   OutputFolder out(o.out, {"uq.csv", "uq.html", "uq.json"});
   Journal journal(out.folder() + "/uq-journal.csv", inputs_digest(o.scenario, RunOverrides{}), o.resume);
   if (journal.kept()) fmt::print("Resuming: {} assessments kept from the journal\n", journal.kept());
-  const bool terminal = isatty(fileno(stderr)) != 0;
   const auto hooks = journal.hooks();
-  const auto r = study::run_uncertainty(
-      o.scenario, o.threads,
-      [&](std::size_t i, std::size_t n) {
-        if (terminal) std::fprintf(stderr, "\rassessment %zu of %zu ", i + 1, n);
-      },
-      &hooks);
-  if (terminal) std::fprintf(stderr, "\r%40s\r", "");
+  study::UncertaintyResult r;
+  {
+    const StepCounter counter("assessment");
+    r = study::run_uncertainty(o.scenario, o.threads, std::cref(counter), &hooks);
+  }
   const auto j = report::uncertainty_json(r);
   report::write_atomically(out.staged("uq.csv"), report::uncertainty_csv(r));
   report::write_atomically(out.staged("uq.html"), report::uncertainty_html(j));

@@ -153,6 +153,12 @@ std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, co
   return chart.svg();
 }
 
+std::array<std::uint8_t, 3> path_rgb(const std::string& why) {
+  if (why == "operator zone") return {0xE6, 0x9F, 0x00};  // kZoneColour
+  if (why == "puncture") return {0xD5, 0x5E, 0x00};       // kPunctureColour
+  return {0x00, 0x72, 0xB2};                               // kHitColour
+}
+
 namespace {
 bool scene_has_target_mesh(const scenario::Scenario& s) {
   for (const auto& m : s.meshes)
@@ -224,10 +230,9 @@ void draw_mower_plan(Chart& chart, const scenario::Scenario& s, const scene::Sou
     chart.points({s.zone.seat_x}, {s.zone.seat_y}, "#000000", "operator seat", 4);
 }
 
-// Colour of a path by why it was kept.
-const std::string& path_colour(const std::string& why) {
-  static const std::string zone = kZoneColour, puncture = "#D55E00", sample = "#0072B2";
-  return why == "operator zone" ? zone : why == "puncture" ? puncture : sample;
+std::string path_colour(const std::string& why) {
+  const auto c = path_rgb(why);
+  return fmt::format("#{:02X}{:02X}{:02X}", c[0], c[1], c[2]);
 }
 
 std::string paths_caption(const std::vector<assess::Trajectory>& paths, std::uint64_t not_kept) {

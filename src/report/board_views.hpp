@@ -3,6 +3,8 @@
 // height) with the operator zone shaded, and a plan view of mower, guards and targets.
 // Both draw the scene's own labelled triangles, so generated set-ups and user meshes
 // look the same way.
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,10 @@ double azimuth_deg(double x, double y);
 
 std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks);
 std::string plan_view_svg(const scenario::Scenario& s, const scene::Soup& soup, const MarkSample& marks);
+// The colour of a kept nail path by why it was kept ("sample", "operator zone",
+// "puncture"): the report's pictures and the exported scene draw them alike.
+std::array<std::uint8_t, 3> path_rgb(const std::string& why);
+
 // Whole paths of chosen nails (run --trajectories) over the mower seen from above, and in
 // side elevation (distance from the origin against height) with the board and blade plane.
 std::string trajectories_plan_svg(const scenario::Scenario& s, const scene::Soup& soup, const std::vector<assess::Trajectory>& paths,
