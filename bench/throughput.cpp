@@ -20,6 +20,7 @@
 #include "assess/runner.hpp"
 #include "random/stream.hpp"
 #include "scene/j232_setup.hpp"
+#include "scenario/scenario_reader.hpp"
 
 using namespace j232;
 using Clock = std::chrono::steady_clock;

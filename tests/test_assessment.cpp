@@ -14,6 +14,7 @@
 #include "scene/j232_setup.hpp"
 #include "random/stream.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 
 using namespace j232;
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "study/compare.hpp"
 
 using namespace j232;

@@ -11,6 +11,7 @@
 #include "feed/feed.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "scene/j232_setup.hpp"
 #include "units/quantity.hpp"
 

@@ -9,6 +9,7 @@
 #include "random/stream.hpp"
 #include "report/result_files.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "scene/j232_setup.hpp"
 #include "scene/scene.hpp"
 

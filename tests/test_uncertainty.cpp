@@ -8,6 +8,7 @@
 
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "study/uncertainty.hpp"
 
 using namespace j232;

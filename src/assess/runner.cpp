@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
@@ -204,14 +205,20 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress,
   const auto& run = sim.scenario().run;
   const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
   const int used = threads > 0 ? threads : available;
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(used));
+  // The run's own arena of `used` threads, not a process-wide limit: a program embedding
+  // the library (the Python module, a GUI) keeps its other TBB work as it was. Only more
+  // threads than cores, asked for explicitly, needs the process-wide ceiling raised.
+  tbb::task_arena arena(used);
+  std::optional<tbb::global_control> oversubscribe;
+  if (used > available) oversubscribe.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(used));
   Assessment a;
   a.threads = used;
   const auto start = std::chrono::steady_clock::now();
   const auto first_batch = static_cast<std::uint64_t>(run.replicates);
   if (progress) progress->total = run.target_half_width ? run.max_replicates : run.replicates;
-  run_replicates(sim, 0, first_batch, a, progress, sink, replicate_sink);
-  if (run.target_half_width) {
+  arena.execute([&] {
+    run_replicates(sim, 0, first_batch, a, progress, sink, replicate_sink);
+    if (!run.target_half_width) return;
     // Batches of the first batch's size until the interval is narrow enough.
     for (;;) {
       const Interval i = wilson(a.passed, a.replicates);
@@ -219,7 +226,7 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress,
       run_replicates(sim, a.replicates, std::min(first_batch, static_cast<std::uint64_t>(run.max_replicates) - a.replicates), a,
                      progress, sink, replicate_sink);
     }
-  }
+  });
   a.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return a;
 }

@@ -7,15 +7,16 @@
 #include <set>
 #include <memory>
 
-#include "cli/assessment_files.hpp"
+#include "cli/run_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/output_folder.hpp"
+#include "report/output_folder.hpp"
 #include "report/atomic_file.hpp"
 #include "report/batch_summary.hpp"
 #include "report/comparison_report.hpp"
 #include "report/text_safety.hpp"
 #include "scenario/input_error.hpp"
+#include "scenario/scenario_reader.hpp"
 
 namespace j232::cli {
 namespace {
@@ -49,7 +50,7 @@ std::vector<std::string> folder_names(const std::vector<std::string>& files) {
 bool matches(const fs::path& file, const json& recorded) {
   std::ifstream in(file, std::ios::binary);
   const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  Fnv f;
+  report::Fnv f;
   f.add(bytes);
   return in.good() || in.eof() ? recorded.value("bytes", std::uint64_t{0}) == bytes.size() && recorded.value("fnv1a64", "") == f.hex()
                                : false;
@@ -84,7 +85,7 @@ int batch(const BatchOptions& given) {
   // Locked and checked before the first scenario runs.
   std::vector<std::string> files = {"summary.csv", "summary.html", "summary.json"};
   if (o.compare) files.insert(files.begin(), {"compare.csv", "compare.html", "compare.json"});
-  OutputFolder out(o.out, files);
+  report::OutputFolder out(o.out, files);
   std::vector<study::DesignRecord> designs;
   const auto names = folder_names(o.scenarios);
   std::vector<report::BatchRow> rows;
@@ -97,11 +98,11 @@ int batch(const BatchOptions& given) {
     std::fflush(stdout);
     try {
       if (o.resume) {
-        row.result = current_result(folder, inputs_digest(file, o.overrides));
+        row.result = current_result(folder, report::inputs_digest(file, o.overrides));
         row.resumed = row.result.has_value();
       }
       if (!row.result) {
-        RunOutcome run = assess_to_folder(file, o.overrides, folder.string());
+        report::RunOutcome run = report::assess_to_folder(file, o.overrides, folder.string());
         row.result = std::move(run.result);
         if (run.design && (*row.result)["verdict"] != "invalid") designs.push_back(std::move(*run.design));
       }

@@ -6,7 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/output_folder.hpp"
+#include "report/output_folder.hpp"
 #include "report/atomic_file.hpp"
 #include "report/calibration_files.hpp"
 #include "scenario/input_error.hpp"
@@ -28,7 +28,7 @@ int calibrate(const CalibrateOptions& o) {
     const auto r = study::restitution_from_drops(drops);
     fmt::print("{}", report::drop_test_table(drops, r));
     if (!o.out.empty()) {
-      OutputFolder out(o.out, {"drop-test.json"});
+      report::OutputFolder out(o.out, {"drop-test.json"});
       report::write_atomically(out.staged("drop-test.json"), report::drop_test_json(drops, r).dump(2) + "\n");
       out.commit();
       fmt::print("Wrote {}/drop-test.json\n", o.out);
@@ -40,7 +40,7 @@ int calibrate(const CalibrateOptions& o) {
   const auto r = study::calibrate(cases, law, o.cases);
   fmt::print("{}", report::calibration_table(r));
   if (!o.out.empty()) {
-    OutputFolder out(o.out, {"calibrate.csv", "restitution.toml", "calibrate.json"});
+    report::OutputFolder out(o.out, {"calibrate.csv", "restitution.toml", "calibrate.json"});
     report::write_atomically(out.staged("calibrate.csv"), report::calibration_csv(r));
     report::write_atomically(out.staged("restitution.toml"), report::calibration_toml(r));
     report::write_atomically(out.staged("calibrate.json"), report::calibration_json(r).dump(2) + "\n");

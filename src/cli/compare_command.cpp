@@ -2,15 +2,16 @@
 #include <fmt/format.h>
 #include <memory>
 
-#include "cli/assessment_files.hpp"
+#include "cli/run_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/output_folder.hpp"
-#include "cli/progress_bar.hpp"
+#include "report/output_folder.hpp"
+#include "report/terminal_progress.hpp"
 #include "report/atomic_file.hpp"
 #include "report/comparison_report.hpp"
 #include "report/text_safety.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "study/compare.hpp"
 
 namespace j232::cli {
@@ -30,11 +31,11 @@ int compare(const CompareOptions& o) {
   if (o.overrides.replicates > 0) designs.front().run.replicates = o.overrides.replicates;
   if (o.overrides.seed) designs.front().run.seed = *o.overrides.seed;
   const int threads = o.overrides.threads >= 0 ? o.overrides.threads : designs.front().run.threads;
-  OutputFolder out(o.out, {"compare.csv", "compare.html", "compare.json"});
+  report::OutputFolder out(o.out, {"compare.csv", "compare.html", "compare.json"});
   assess::Progress progress;
   study::Comparison c;
   {
-    ProgressBar bar(progress);
+    report::ProgressBar bar(progress);
     c = study::compare_designs(designs, threads, &progress, [&](std::size_t d, const scenario::Scenario& s) {
       progress.done = 0;
       fmt::print("[{}/{}] {} ({} replicates, seed {})\n", d + 1, designs.size(), terminal_safe(s.title), s.run.replicates, s.run.seed);

@@ -10,6 +10,7 @@
 #include "report/atomic_file.hpp"
 #include "report/text_safety.hpp"
 #include "scenario/input_error.hpp"
+#include "j232/version.hpp"
 
 namespace {
 int run_command_line(int argc, char** argv) {
@@ -19,9 +20,9 @@ int run_command_line(int argc, char** argv) {
   // the same input), any rank reports what only it met.
   const bool reporter = cluster::is_writer();
   using j232::report::terminal_safe;
-  CLI::App app{"j232 " J232_VERSION " — simulates the SAE J232 thrown-object test of rotary mowers"};
+  CLI::App app{std::string("j232 ") + j232::version + " — simulates the SAE J232 thrown-object test of rotary mowers"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "j232 " J232_VERSION);
+  app.set_version_flag("--version", std::string("j232 ") + j232::version);
   const Runner impact = add_impact_command(app);
   const Runner run = add_run_command(app);
   const Runner scene = add_scene_command(app);

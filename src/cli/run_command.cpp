@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 #include <memory>
 
-#include "cli/assessment_files.hpp"
+#include "cli/run_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/text_safety.hpp"
@@ -19,7 +19,7 @@ struct RunOptions {
 };
 
 int run(const RunOptions& o) {
-  const RunOutcome outcome = assess_to_folder(o.scenario, o.overrides, o.out);
+  const report::RunOutcome outcome = report::assess_to_folder(o.scenario, o.overrides, o.out);
   const auto& p = outcome.result["provenance"];
   fmt::print("{}", terminal_safe(outcome.summary_text));
   fmt::print("  {:.2f} s on {} thread(s){}: {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv{}\n",

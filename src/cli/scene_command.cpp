@@ -15,6 +15,7 @@
 #include "report/board_views.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "scene/j232_setup.hpp"
 #include "scene/markers.hpp"
 #include "scene/scene.hpp"

@@ -11,11 +11,11 @@
 #include <memory>
 
 #include "assess/cluster.hpp"
-#include "cli/assessment_files.hpp"
+#include "cli/run_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/output_folder.hpp"
-#include "cli/progress_bar.hpp"
+#include "report/output_folder.hpp"
+#include "report/terminal_progress.hpp"
 #include "report/atomic_file.hpp"
 #include "report/text_safety.hpp"
 #include "report/uncertainty_report.hpp"
@@ -110,13 +110,13 @@ class Journal {
 };
 
 int uq(const UqOptions& o) {
-  OutputFolder out(o.out, {"uq.csv", "uq.html", "uq.json"});
-  Journal journal(out.folder() + "/uq-journal.csv", inputs_digest(o.scenario, RunOverrides{}), o.resume);
+  report::OutputFolder out(o.out, {"uq.csv", "uq.html", "uq.json"});
+  Journal journal(out.folder() + "/uq-journal.csv", report::inputs_digest(o.scenario, RunOverrides{}), o.resume);
   if (journal.kept()) fmt::print("Resuming: {} assessments kept from the journal\n", journal.kept());
   const auto hooks = journal.hooks();
   study::UncertaintyResult r;
   {
-    const StepCounter counter("assessment");
+    const report::StepCounter counter("assessment");
     r = study::run_uncertainty(o.scenario, o.threads, std::cref(counter), &hooks);
   }
   const auto j = report::uncertainty_json(r);

@@ -1,4 +1,5 @@
 #include "report/impact_report.hpp"
+#include "j232/version.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -36,7 +37,7 @@ nlohmann::ordered_json impact_json(const scenario::ImpactCase& in, const blade::
                        {"rate_after_rpm", s.link_rates[a][k] / rpm}});
   return {
       {"program", "j232 impact"},
-      {"version", J232_VERSION},
+      {"version", j232::version},
       {"source", in.source},
       {"title", in.title},
       {"units", "SI (m, kg, s, rad) unless a key names another unit"},

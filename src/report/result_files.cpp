@@ -225,8 +225,10 @@ void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const asse
   const flight::NailTrace& t = m.trace;
   // The path: what it touched after the first strike, in order ("..." when longer than listed).
   std::string path;
-  for (int i = 0; i < std::min(t.touch_count, flight::NailTrace::kMaxTouches); ++i)
-    path += (i ? ";" : "") + std::string(flight::touch_name(t.touches[static_cast<std::size_t>(i)]));
+  for (int i = 0; i < std::min(t.touch_count, flight::NailTrace::kMaxTouches); ++i) {
+    if (i) path += ';';
+    path += flight::touch_name(t.touches[static_cast<std::size_t>(i)]);
+  }
   if (t.touch_count > flight::NailTrace::kMaxTouches) path += ";...";
   double exit_az = t.exit_azimuth / units::degree;
   if (exit_az < 0) exit_az += 360.0;

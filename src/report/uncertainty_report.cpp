@@ -71,7 +71,10 @@ json uncertainty_json(const study::UncertaintyResult& r) {
 
 std::string uncertainty_csv(const study::UncertaintyResult& r) {
   std::string o = "assessment,block";
-  for (const auto& in : r.plan.inputs) o += "," + csv_text_cell(in.parameter);
+  for (const auto& in : r.plan.inputs) {
+    o += ',';
+    o += csv_text_cell(in.parameter);
+  }
   for (const char* name : study::kUqOutputNames) o += std::string(",") + name;
   o += "\n";
   const std::size_t n = r.design.base;

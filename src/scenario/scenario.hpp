@@ -1,6 +1,7 @@
 #pragma once
 // A J232 assessment scenario: everything one simulated test needs, typed, checked
-// and in SI (docs/model.md §5). Defaults are sourced values (docs/model.md §8) or report
+// and in SI. Plain data: it does not know the file format (scenario/scenario_reader.hpp
+// reads a TOML file into it) (docs/model.md §5). Defaults are sourced values (docs/model.md §8) or report
 // 445-1's; docs/model.md lists them
 // with their sources, and every result echoes the values used.
 //
@@ -12,7 +13,6 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <toml++/toml.h>
 #include <string>
 #include <vector>
 
@@ -249,11 +249,5 @@ struct Scenario {
   double station_x(const FeedStation& f) const { return spindles[f.spindle].x + f.radius * std::cos(f.azimuth); }
   double station_y(const FeedStation& f) const { return spindles[f.spindle].y + f.radius * std::sin(f.azimuth); }
 };
-
-// Reads and checks a scenario file. Throws InputError naming file, line, key, value.
-Scenario read_scenario(const std::string& file);
-// The same from a parsed document (with keys set from outside, as sweeps do); `file`
-// names it in errors and anchors relative mesh paths.
-Scenario read_scenario(const toml::table& document, const std::string& file);
 
 }  // namespace j232::scenario

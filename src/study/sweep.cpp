@@ -11,6 +11,7 @@
 #include "report/svg_chart.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/toml_reader.hpp"
+#include "scenario/scenario_reader.hpp"
 
 namespace j232::study {
 

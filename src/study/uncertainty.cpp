@@ -12,6 +12,7 @@
 #include "scenario/input_error.hpp"
 #include "scenario/toml_reader.hpp"
 #include "study/parameters.hpp"
+#include "scenario/scenario_reader.hpp"
 
 namespace j232::study {
 

@@ -11,6 +11,7 @@
 #include "report/result_files.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace j232;

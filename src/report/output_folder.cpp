@@ -1,4 +1,4 @@
-#include "cli/output_folder.hpp"
+#include "report/output_folder.hpp"
 
 #include "assess/cluster.hpp"
 
@@ -11,7 +11,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
-namespace j232::cli {
+namespace j232::report {
 
 namespace fs = std::filesystem;
 
@@ -107,4 +107,4 @@ void StreamedFile::close() {
   if (std::fflush(f) != 0 || std::fclose(f) != 0) refuse(path_, fmt::format("write failed: {}", std::strerror(errno)));
 }
 
-}  // namespace j232::cli
+}  // namespace j232::report

@@ -1,4 +1,4 @@
-// Reads a J232 assessment scenario (scenario.hpp) from TOML. Every key is optional
+// Reads a J232 assessment scenario (scenario.hpp) from TOML (scenario_reader.hpp). Every key is optional
 // except the blade; each default is the documented one (docs/model.md).
 #include <cmath>
 #include <cstdint>
@@ -10,6 +10,7 @@
 #include "scenario/blade_input.hpp"
 #include "scenario/impact_input.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "scenario/toml_reader.hpp"
 
 namespace j232::scenario {

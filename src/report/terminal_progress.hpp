@@ -1,4 +1,6 @@
 #pragma once
+// Progress on a terminal: a bar for one assessment, a step counter for studies. Both draw
+// on stderr only when it is a terminal, so piped output and notebooks stay clean.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -8,7 +10,7 @@
 
 #include "assess/runner.hpp"
 
-namespace j232::cli {
+namespace j232::report {
 
 // "LABEL i of n" on stderr, only on a terminal, rewritten in place at each step and cleared
 // at the end (studies that count whole assessments: j232 uq, run --uncertainty).
@@ -64,4 +66,4 @@ class ProgressBar {
   std::thread thread_;
 };
 
-}  // namespace j232::cli
+}  // namespace j232::report

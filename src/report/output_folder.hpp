@@ -15,7 +15,7 @@
 
 #include "report/atomic_file.hpp"  // report::FileError
 
-namespace j232::cli {
+namespace j232::report {
 
 // FNV-1a, 64 bit: a change detector (inputs, output files), not a security hash.
 struct Fnv {
@@ -65,4 +65,4 @@ class StreamedFile {
   Fnv fnv_;
 };
 
-}  // namespace j232::cli
+}  // namespace j232::report

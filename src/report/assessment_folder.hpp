@@ -1,8 +1,7 @@
 #pragma once
 // One assessment from scenario file to result folder: result.json, marks.csv and
-// report.html, written as a set (cli/output_folder.hpp: result.json's presence means the
-// folder is complete). Shared by `j232 run` and `j232 batch`.
-#include <CLI/CLI.hpp>
+// report.html, written as a set (report/output_folder.hpp: result.json's presence means the
+// folder is complete). What `j232 run` and `j232 batch` do, for any program.
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -10,7 +9,7 @@
 
 #include "study/compare.hpp"
 
-namespace j232::cli {
+namespace j232::report {
 
 struct RunOverrides {
   long long replicates = 0;            // 0: the scenario's
@@ -20,13 +19,6 @@ struct RunOverrides {
   bool uncertainty = false;            // also run the scenario's uncertainty study (run --uncertainty)
   bool for_comparison = false;         // keep what a comparison of designs needs; no stop rule (batch --compare)
 };
-
-// --replicates, --seed (any unsigned 64-bit value, or refused) and --threads on `cmd`.
-void add_run_overrides(CLI::App& cmd, RunOverrides& overrides, const std::string& whose);
-// --trajectories K (run and batch).
-void add_trajectories_option(CLI::App& cmd, RunOverrides& overrides);
-// --uncertainty (run).
-void add_uncertainty_option(CLI::App& cmd, RunOverrides& overrides);
 
 struct RunOutcome {
   nlohmann::ordered_json result;  // what result.json holds
@@ -42,4 +34,4 @@ std::string inputs_digest(const std::string& scenario_file, const RunOverrides& 
 // be written (checked before simulating). Draws a progress bar when stderr is a terminal.
 RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides& overrides, const std::string& out);
 
-}  // namespace j232::cli
+}  // namespace j232::report
