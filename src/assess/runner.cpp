@@ -48,7 +48,7 @@ void ExitTable::add(const flight::FlightResult& f) {
   const int counted = f.mark_count - f.uncounted_marks;
   if (counted <= 0) return;
   const auto c = static_cast<std::uint64_t>(counted);
-  const int band = std::clamp(static_cast<int>(std::floor((t.exit_azimuth + units::pi) / (2 * units::pi / kBands))), 0, kBands - 1);
+  const int band = std::clamp(static_cast<int>(std::floor((t.exit_azimuth + units::pi) / (units::two_pi / kBands))), 0, kBands - 1);
   auto& row = marks[key];  // value-initialised to zeros when new
   row[static_cast<std::size_t>(band)] += c;
   marks_by_strikes[static_cast<std::size_t>(std::clamp(f.strikes, 1, 5) - 1)] += c;

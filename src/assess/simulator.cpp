@@ -38,7 +38,7 @@ Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine)
   }
   // Numbered as the scene numbers them: mesh guards first, then the generated ones.
   for (const auto& m : s.meshes)
-    if (m.label == "guard") guards_.push_back(m.guard);
+    if (m.label == scenario::MeshLabel::Guard) guards_.push_back(m.guard);
   guards_.insert(guards_.end(), s.housing.guards.begin(), s.housing.guards.end());  // a mesh deck keeps only polyline guards
   if (guards_.empty()) guards_.emplace_back();
   context_.scene = scene_.get();
@@ -133,7 +133,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
     else if (other.phase && spec.phase)
       phases.at_zero[k] = drop.blade_phase - *spec.phase + *other.phase;
     else
-      phases.at_zero[k] = 2 * units::pi * feed_rng.uniform();
+      phases.at_zero[k] = units::two_pi * feed_rng.uniform();
   }
   flight::FlightContext context = context_;
   context.path = path;

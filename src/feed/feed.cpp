@@ -7,10 +7,9 @@
 namespace j232::feed {
 
 namespace {
-constexpr double kTwoPi = 2.0 * units::pi;
 double wrap(double a) {  // to [0, 2 pi)
-  a = std::fmod(a, kTwoPi);
-  return a < 0 ? a + kTwoPi : a;
+  a = std::fmod(a, units::two_pi);
+  return a < 0 ? a + units::two_pi : a;
 }
 }  // namespace
 
@@ -27,18 +26,18 @@ NailDrop sample_drop(const scenario::Scenario& s, int nail_index, random::Stream
   d.diameter = n.diameter;
   // Outlet: uniform over the funnel's outlet disc (sqrt for area-uniform radius).
   const double rho = 0.5 * f.outlet_diameter * std::sqrt(rng.uniform());
-  const double psi = kTwoPi * rng.uniform();
+  const double psi = units::two_pi * rng.uniform();
   d.position = {st.radius * std::cos(st.azimuth) + rho * std::cos(psi), st.radius * std::sin(st.azimuth) + rho * std::sin(psi)};
   // Tilt: uniform over the spherical cap of half-angle tilt_max about vertical.
   const double cos_tilt = 1.0 - rng.uniform() * (1.0 - std::cos(f.tilt_max));
   const double sin_tilt = std::sqrt(std::max(0.0, 1.0 - cos_tilt * cos_tilt));
-  const double tilt_azimuth = kTwoPi * rng.uniform();
+  const double tilt_azimuth = units::two_pi * rng.uniform();
   d.axis = {sin_tilt * std::cos(tilt_azimuth), sin_tilt * std::sin(tilt_azimuth), cos_tilt};
   // Free fall from the outlet to the top of the blade slab.
   const double v0 = f.outlet_speed_max * rng.uniform();
   d.fall_speed = std::sqrt(v0 * v0 + 2.0 * kGravity * f.drop_height);
   d.drift = {-f.ground_speed, 0.0};
-  d.blade_phase = kTwoPi * rng.uniform();
+  d.blade_phase = units::two_pi * rng.uniform();
   return d;
 }
 
@@ -76,7 +75,7 @@ std::optional<Strike> find_strike(const NailDrop& d, const std::vector<Edge>& ed
     for (int it = 0; it < 4; ++it) {
       const Eigen::Vector2d p = d.position + d.drift * t;
       double dphi = std::atan2(p.y(), p.x()) - phi0;
-      dphi = std::remainder(dphi, kTwoPi);
+      dphi = std::remainder(dphi, units::two_pi);
       t = (gap + sense * dphi) / omega;
     }
     if (t < 0.0 || t > window || (best && t >= best->time)) continue;

@@ -8,7 +8,6 @@
 namespace j232::feed {
 
 namespace {
-constexpr double kTwoPi = 2.0 * units::pi;
 constexpr double kSampleAngle = 0.3;  // rad: the edge-to-nail angle is sampled at least this finely
 }  // namespace
 
@@ -68,17 +67,17 @@ std::optional<BladeHit> first_sweep(const Spindle& sp, double phase, const Eigen
       const double t = lo + (hi - lo) * k / samples;
       if (best && t_prev >= best->time) break;
       q = q_at(t);
-      const double azimuth = azimuth_prev + std::remainder(std::atan2(q.y(), q.x()) - azimuth_prev, kTwoPi);
+      const double azimuth = azimuth_prev + std::remainder(std::atan2(q.y(), q.x()) - azimuth_prev, units::two_pi);
       const double delta = edge0 + omega * t - azimuth;
-      const double turns_prev = std::floor(delta_prev / kTwoPi), turns = std::floor(delta / kTwoPi);
+      const double turns_prev = std::floor(delta_prev / units::two_pi), turns = std::floor(delta / units::two_pi);
       if (turns != turns_prev) {
         // A multiple of 2 pi lies between: bisect delta(t) - target to it.
-        const double target = kTwoPi * std::max(turns, turns_prev);
+        const double target = units::two_pi * std::max(turns, turns_prev);
         double a_t = t_prev, b_t = t, a_d = delta_prev - target;
         for (int it = 0; it < 60 && b_t - a_t > 1e-12; ++it) {
           const double m = 0.5 * (a_t + b_t);
           const Eigen::Vector2d qm = q_at(m);
-          const double am = azimuth_prev + std::remainder(std::atan2(qm.y(), qm.x()) - azimuth_prev, kTwoPi);
+          const double am = azimuth_prev + std::remainder(std::atan2(qm.y(), qm.x()) - azimuth_prev, units::two_pi);
           const double dm = edge0 + omega * m - am - target;
           if ((dm < 0) == (a_d < 0)) a_t = m, a_d = dm; else b_t = m;
         }

@@ -73,10 +73,9 @@ bool inside_deck(const FlightContext& ctx, double x, double y) {
 }
 
 bool in_arc(double a, double from, double to) {
-  const double two_pi = 2 * units::pi;
-  double span = std::fmod(to - from, two_pi);
-  if (span <= 0) span += two_pi;
-  return std::fmod(std::fmod(a - from, two_pi) + two_pi, two_pi) < span;
+  double span = units::wrap_angle(to - from);
+  if (span == 0) span = units::two_pi;  // from == to: the whole turn
+  return units::wrap_angle(a - from) < span;
 }
 
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
@@ -100,7 +99,7 @@ Vec3 rough_normal(const Vec3& n, double roughness, random::Stream& rng) {
   if (roughness <= 0) return n;
   boost::random::normal_distribution<double> tilt(0.0, roughness);
   const double angle = tilt(rng);
-  const double psi = 2 * units::pi * rng.uniform();
+  const double psi = units::two_pi * rng.uniform();
   Vec3 u = n.unitOrthogonal();
   const Vec3 w = n.cross(u);
   const Vec3 axis = std::cos(psi) * u + std::sin(psi) * w;
@@ -193,7 +192,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     double nearest = HUGE_VAL;
     for (std::size_t i = 0; i < openings.size(); ++i)
       for (double edge : {openings[i].azimuth_from, openings[i].azimuth_to}) {
-        const double d = std::abs(std::remainder(trace.exit_azimuth - edge, 2 * units::pi));
+        const double d = std::abs(std::remainder(trace.exit_azimuth - edge, units::two_pi));
         if (d < nearest) nearest = d, trace.exit = Exit::Opening, trace.exit_index = static_cast<std::uint16_t>(i);
       }
   };

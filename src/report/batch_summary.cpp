@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "assess/tally.hpp"
 #include "report/comparison_report.hpp"
 #include "report/html_page.hpp"
 #include "report/svg_chart.hpp"
@@ -12,7 +13,6 @@ namespace j232::report {
 namespace {
 using json = nlohmann::ordered_json;
 
-const char* kCriteria[] = {"hits_zone", "punctures_zone", "hits_outside", "punctures_outside"};
 
 std::string verdict_of(const BatchRow& r) { return r.result ? (*r.result)["verdict"].get<std::string>() : "error"; }
 }  // namespace
@@ -32,7 +32,7 @@ json batch_summary_json(const std::vector<BatchRow>& rows, const json& compariso
       row["required_pass_probability"] = x["required_pass_probability"];
       row["deciding_criterion"] = x["deciding_criterion"];
       json shares;
-      for (std::size_t c = 0; c < 4; ++c) shares[kCriteria[c]] = x["criteria"][c]["mean_share"];
+      for (std::size_t c = 0; c < 4; ++c) shares[assess::category_name(static_cast<int>(c))] = x["criteria"][c]["mean_share"];
       row["mean_shares"] = shares;
       row["replicates"] = x["replicates"];
       row["report"] = relative_url(r.folder + "/report.html");
@@ -107,7 +107,7 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
                      number(k + "pass_probability.high", x["pass_probability"]["high"], "{:.3f}"),
                      number(k + "required_pass_probability", x["required_pass_probability"], "{:.2f}"));
     for (std::size_t c = 0; c < 4; ++c)
-      o += fmt::format("<td>{} %</td>", number(k + "mean_shares." + kCriteria[c], x["criteria"][c]["mean_share"], "{:.2f}", 100));
+      o += fmt::format("<td>{} %</td>", number(k + "mean_shares." + assess::category_name(static_cast<int>(c)), x["criteria"][c]["mean_share"], "{:.2f}", 100));
     o += fmt::format("<td>{}</td><td><a href=\"{}\">report</a></td></tr>\n", number(k + "replicates", x["replicates"], "{}"),
                      escape(relative_url(r.folder + "/report.html")));
   }

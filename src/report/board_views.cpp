@@ -162,7 +162,7 @@ std::array<std::uint8_t, 3> path_rgb(const std::string& why) {
 namespace {
 bool scene_has_target_mesh(const scenario::Scenario& s) {
   for (const auto& m : s.meshes)
-    if (m.label == "target" || m.label == "operator_zone") return true;
+    if (scenario::is_board(m.label)) return true;
   return false;
 }
 

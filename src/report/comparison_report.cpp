@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "assess/tally.hpp"
 #include "report/html_page.hpp"
 #include "report/svg_chart.hpp"
 #include "report/text_safety.hpp"
@@ -10,7 +11,6 @@ namespace j232::report {
 
 namespace {
 using json = nlohmann::ordered_json;
-const char* kCriteria[] = {"hits_zone", "punctures_zone", "hits_outside", "punctures_outside"};
 const char* kCriterionWords[] = {"hits in the operator zone", "punctures in the operator zone", "hits outside the zone",
                                  "punctures outside the zone"};
 
@@ -22,7 +22,7 @@ json comparison_json(const study::Comparison& c) {
   for (const auto& d : c.designs) {
     json criteria = json::array();
     for (int k = 0; k < 4; ++k)
-      criteria.push_back({{"name", kCriteria[k]}, {"limit", d.limits[static_cast<std::size_t>(k)]},
+      criteria.push_back({{"name", assess::category_name(k)}, {"limit", d.limits[static_cast<std::size_t>(k)]},
                           {"share", interval(d.shares[static_cast<std::size_t>(k)])}});
     designs.push_back({{"scenario", d.file},
                        {"title", d.title},
@@ -36,7 +36,7 @@ json comparison_json(const study::Comparison& c) {
     const auto& v = c.versus_first[i];
     json criteria = json::array();
     for (int k = 0; k < 4; ++k)
-      criteria.push_back({{"name", kCriteria[k]},
+      criteria.push_back({{"name", assess::category_name(k)},
                           {"difference", interval(v.shares[static_cast<std::size_t>(k)])},
                           {"independent_runs_half_width", v.independent_half_width[static_cast<std::size_t>(k)]}});
     diffs.push_back({{"design", i + 2},
@@ -61,7 +61,7 @@ std::string comparison_csv(const study::Comparison& c) {
     for (std::size_t d = 0; d < c.designs.size(); ++d) {
       const auto& x = c.designs[d];
       const auto& s = x.shares[static_cast<std::size_t>(k)];
-      out += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},", kCriteria[k], d + 1, csv_text_cell(x.file),
+      out += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},", assess::category_name(k), d + 1, csv_text_cell(x.file),
                          x.limits[static_cast<std::size_t>(k)], s.mean, s.low, s.high);
       if (d == 0) {
         out += ",,,\n";

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "report/board_views.hpp"
 #include "report/scenario_json.hpp"
 #include "report/text_safety.hpp"
 #include "units/quantity.hpp"
@@ -217,8 +218,8 @@ std::string marks_csv_header() {
 
 void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const assess::Simulator& sim) {
   const auto& p = m.mark.point;
-  double az = std::atan2(p.y(), p.x()) / units::degree;
-  if (az < 0) az += 360.0;
+  // Azimuths from -180 to 180 deg (from +x, the direction of travel, toward +y), as the hit map and how_nails_leave give them.
+  const double az = azimuth_deg(p.x(), p.y());
   fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{},{},", m.replicate, m.nail,
                  p.x(), p.y(), p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside", m.mark.normal_energy,
                  m.mark.puncture ? "puncture" : "hit", m.mark.counted ? "yes" : "below_counted_height");
@@ -230,8 +231,7 @@ void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const asse
     path += flight::touch_name(t.touches[static_cast<std::size_t>(i)]);
   }
   if (t.touch_count > flight::NailTrace::kMaxTouches) path += ";...";
-  double exit_az = t.exit_azimuth / units::degree;
-  if (exit_az < 0) exit_az += 360.0;
+  const double exit_az = t.exit_azimuth / units::degree;
   fmt::format_to(std::back_inserter(out), "{},{},{},{:.3f},{},{:.2f},{:.4f},{:.5f},{}\n", m.spindle + 1, m.station + 1, m.strikes,
                  t.last_strike_speed, csv_text_cell(sim.exit_name(t.exit, t.exit_index)), exit_az, t.exit_height, m.flight_time,
                  csv_text_cell(path));

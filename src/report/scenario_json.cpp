@@ -107,7 +107,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
   json guards = json::array(), deflectors = json::array(), meshes = json::array();
   for (const auto& g : s.housing.guards) guards.push_back(guard_json(g));
   for (const auto& d : s.housing.deflectors) deflectors.push_back(deflector_json(d));
-  for (const auto& m : s.meshes) meshes.push_back({{"path", m.path}, {"label", m.label}, {"scale", m.scale}});
+  for (const auto& m : s.meshes) meshes.push_back({{"path", m.path}, {"label", scenario::mesh_label_name(m.label)}, {"scale", m.scale}});
   json zone;
   if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector)
     zone = {{"kind", "sector"},

@@ -177,7 +177,15 @@ void Chart::circle(double cx, double cy, double r, const std::string& stroke, co
   add_legend(label, stroke, dashed ? "dash" : "line");
 }
 
-std::string Chart::svg() const {
+// The plot area in pixels and the data ranges it shows, with their ticks.
+struct Chart::Frame {
+  double xlo = 0, xhi = 1, ylo = 0, yhi = 1, plot_w = 0, plot_h = 0;
+  std::vector<double> xt, yt;
+  double sx(double x) const { return kLeft + (x - xlo) / (xhi - xlo) * plot_w; }
+  double sy(double y) const { return kTop + (yhi - y) / (yhi - ylo) * plot_h; }
+};
+
+Chart::Frame Chart::frame() const {
   // Axis ranges: fixed, or the data's, widened to the nice ticks around it.
   double xlo = x_fixed_ ? x_lo_ : (any_data_ ? dx_lo_ : 0), xhi = x_fixed_ ? x_hi_ : (any_data_ ? dx_hi_ : 1);
   double ylo = y_fixed_ ? y_lo_ : (any_data_ ? dy_lo_ : 0), yhi = y_fixed_ ? y_hi_ : (any_data_ ? dy_hi_ : 1);
@@ -201,45 +209,33 @@ std::string Chart::svg() const {
   std::erase_if(xt, [&](double t) { return t < xlo - 1e-9 * (xhi - xlo) || t > xhi + 1e-9 * (xhi - xlo); });
   std::erase_if(yt, [&](double t) { return t < ylo - 1e-9 * (yhi - ylo) || t > yhi + 1e-9 * (yhi - ylo); });
 
-  const auto sx = [&](double x) { return kLeft + (x - xlo) / (xhi - xlo) * plot_w; };
-  const auto sy = [&](double y) { return kTop + (yhi - y) / (yhi - ylo) * plot_h; };
-  const double clip_y = [&] { return std::clamp(0.0, ylo, yhi); }();
+  return Frame{xlo, xhi, ylo, yhi, plot_w, plot_h, std::move(xt), std::move(yt)};
+}
 
-  const int legend_cols = std::max(1, static_cast<int>((width_ - kLeft) / 200));
-  const int legend_rows = static_cast<int>((legend_.size() + legend_cols - 1) / legend_cols);
-  // The caption, wrapped at about 6 px a character.
-  std::vector<std::string> caption_lines;
-  {
-    const std::size_t per_line = static_cast<std::size_t>(std::max(20.0, (width_ - kLeft) / 6.0));
-    std::string line;
-    for (std::size_t start = 0; start < caption_.size();) {
-      std::size_t end = caption_.find(' ', start);
-      if (end == std::string::npos) end = caption_.size();
-      const std::string word = caption_.substr(start, end - start);
-      if (!line.empty() && line.size() + 1 + word.size() > per_line) caption_lines.push_back(line), line.clear();
-      line += (line.empty() ? "" : " ") + word;
-      start = end + 1;
-    }
-    if (!line.empty()) caption_lines.push_back(line);
+namespace {
+// Words wrapped into lines of at most `per_line` characters.
+std::vector<std::string> wrap_words(const std::string& text, std::size_t per_line) {
+  std::vector<std::string> lines;
+  std::string line;
+  for (std::size_t start = 0; start < text.size();) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (!line.empty() && line.size() + 1 + word.size() > per_line) lines.push_back(line), line.clear();
+    line += (line.empty() ? "" : " ") + word;
+    start = end + 1;
   }
-  const double total_h = height_ + legend_rows * kLegendRow + static_cast<double>(caption_lines.size()) * 14 + (caption_lines.empty() ? 0 : 6);
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+}  // namespace
 
-  std::string o;
-  o.reserve(8192);
-  // Clip-path ids must be unique within a document: derive one from the title.
-  std::string clip = "clip-";
-  for (char c : title_) clip += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
-  fmt::format_to(std::back_inserter(o),
-                 "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart\" viewBox=\"0 0 {:.0f} {:.0f}\" width=\"{:.0f}\" "
-                 "height=\"{:.0f}\" font-family=\"sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"{}\">\n",
-                 width_, total_h, width_, total_h, escape(title_));
-  fmt::format_to(std::back_inserter(o), "<title>{}</title>\n", escape(title_));
-  fmt::format_to(std::back_inserter(o), "<defs><clipPath id=\"{}\"><rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/></clipPath></defs>\n",
-                 clip, kLeft, kTop, plot_w, plot_h);
-  // A long title is set smaller rather than cut off (about 0.58 em a character).
-  const double title_size = std::clamp((width_ - kLeft - 4) / (0.58 * static_cast<double>(std::max<std::size_t>(1, title_.size()))), 9.0, 14.0);
-  fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"20\" font-size=\"{:.1f}\" font-weight=\"bold\">{}</text>\n", kLeft,
-                 title_size, escape(title_));
+void Chart::draw_axes(std::string& o, const Frame& f) const {
+  const auto& xt = f.xt;
+  const auto& yt = f.yt;
+  const double xlo = f.xlo, xhi = f.xhi, ylo = f.ylo, yhi = f.yhi, plot_w = f.plot_w, plot_h = f.plot_h;
+  const auto sx = [&](double x) { return f.sx(x); };
+  const auto sy = [&](double y) { return f.sy(y); };
   // Grid and ticks.
   const double x_step = xt.size() > 1 ? xt[1] - xt[0] : (xhi - xlo);
   const double y_step = yt.size() > 1 ? yt[1] - yt[0] : (yhi - ylo);
@@ -262,115 +258,119 @@ std::string Chart::svg() const {
                  "<text transform=\"translate(16 {:.1f}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n", kTop + plot_h / 2,
                  escape(y_title_));
 
-  // Data, clipped to the plot area.
-  fmt::format_to(std::back_inserter(o), "<g clip-path=\"url(#{})\">\n", clip);
-  int vlines = 0;  // labels of successive vertical lines step down, so they do not overlap
-  for (const Item& it : items_) {
-    const char* dash = it.dashed ? " stroke-dasharray=\"6 4\"" : "";
-    switch (it.kind) {
-      case Item::Kind::Segments: {
-        const std::size_t n = it.y.size();
-        std::string d;
-        for (std::size_t i = 0; i < n; ++i)
-          fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}L{:.1f} {:.1f}", sx(it.x[i]), sy(it.y[i]), sx(it.x[n + i]), sy(it.y2[i]));
-        fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{:.1f}\" stroke-linecap=\"round\"/>\n", d,
-                       it.colour, it.radius);
-        break;
+}
+
+void Chart::draw_item(std::string& o, const Item& it, const Frame& f, int& vlines) const {
+  const double plot_w = f.plot_w, plot_h = f.plot_h;
+  const double clip_y = std::clamp(0.0, f.ylo, f.yhi);
+  const auto sx = [&](double x) { return f.sx(x); };
+  const auto sy = [&](double y) { return f.sy(y); };
+  const char* dash = it.dashed ? " stroke-dasharray=\"6 4\"" : "";
+  switch (it.kind) {
+    case Item::Kind::Segments: {
+      const std::size_t n = it.y.size();
+      std::string d;
+      for (std::size_t i = 0; i < n; ++i)
+        fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}L{:.1f} {:.1f}", sx(it.x[i]), sy(it.y[i]), sx(it.x[n + i]), sy(it.y2[i]));
+      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{:.1f}\" stroke-linecap=\"round\"/>\n", d,
+                     it.colour, it.radius);
+      break;
+    }
+    case Item::Kind::Triangles: {
+      std::string d;
+      for (std::size_t i = 0; i + 2 < std::min(it.x.size(), it.y.size()); i += 3)
+        fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}L{:.1f} {:.1f}L{:.1f} {:.1f}Z", sx(it.x[i]), sy(it.y[i]), sx(it.x[i + 1]),
+                       sy(it.y[i + 1]), sx(it.x[i + 2]), sy(it.y[i + 2]));
+      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"none\"/>\n", d, it.fill, it.opacity);
+      break;
+    }
+    case Item::Kind::Bars: {
+      std::string d;
+      for (std::size_t i = 0; i < it.y.size() && i + 1 < it.x.size(); ++i) {
+        if (it.y[i] <= 0) continue;
+        fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}H{:.1f}V{:.1f}H{:.1f}Z", sx(it.x[i]), sy(clip_y), sx(it.x[i + 1]),
+                       sy(it.y[i]), sx(it.x[i]));
       }
-      case Item::Kind::Triangles: {
-        std::string d;
-        for (std::size_t i = 0; i + 2 < std::min(it.x.size(), it.y.size()); i += 3)
-          fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}L{:.1f} {:.1f}L{:.1f} {:.1f}Z", sx(it.x[i]), sy(it.y[i]), sx(it.x[i + 1]),
-                         sy(it.y[i + 1]), sx(it.x[i + 2]), sy(it.y[i + 2]));
-        fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"none\"/>\n", d, it.fill, it.opacity);
-        break;
-      }
-      case Item::Kind::Bars: {
-        std::string d;
-        for (std::size_t i = 0; i < it.y.size() && i + 1 < it.x.size(); ++i) {
-          if (it.y[i] <= 0) continue;
-          fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}H{:.1f}V{:.1f}H{:.1f}Z", sx(it.x[i]), sy(clip_y), sx(it.x[i + 1]),
-                         sy(it.y[i]), sx(it.x[i]));
-        }
-        fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"{}\" fill-opacity=\"0.75\" stroke=\"{}\" stroke-width=\"0.5\"/>\n",
-                       d, it.fill, it.colour);
-        break;
-      }
-      case Item::Kind::Line: {
+      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"{}\" fill-opacity=\"0.75\" stroke=\"{}\" stroke-width=\"0.5\"/>\n",
+                     d, it.fill, it.colour);
+      break;
+    }
+    case Item::Kind::Line: {
+      std::string d;
+      for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
+        if (std::isfinite(it.y[i])) fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", d.empty() ? "M" : "L", sx(it.x[i]), sy(it.y[i]));
+      const std::string faint = it.opacity < 1 ? fmt::format(" stroke-opacity=\"{:.2f}\"", it.opacity) : std::string();
+      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{:.1f}\"{}{}/>\n", d, it.colour,
+                     it.width, dash, faint);
+      if (it.markers)
+        for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
+          if (std::isfinite(it.y[i]))
+            fmt::format_to(std::back_inserter(o), "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.8\" fill=\"{}\"/>", sx(it.x[i]), sy(it.y[i]), it.colour);
+      o += "\n";
+      break;
+    }
+    case Item::Kind::Band: {
+      std::string d;
+      for (std::size_t i = 0; i < it.x.size(); ++i) fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", i ? "L" : "M", sx(it.x[i]), sy(it.y2[i]));
+      for (std::size_t i = it.x.size(); i-- > 0;) fmt::format_to(std::back_inserter(d), "L{:.1f} {:.1f}", sx(it.x[i]), sy(it.y[i]));
+      fmt::format_to(std::back_inserter(o), "<path d=\"{}Z\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"none\"/>\n", d, it.fill, it.opacity);
+      break;
+    }
+    case Item::Kind::ErrorBars:
+      for (std::size_t i = 0; i < it.x.size(); ++i)
+        fmt::format_to(std::back_inserter(o),
+                       "<path d=\"M{0:.1f} {1:.1f}V{2:.1f}M{3:.1f} {1:.1f}H{4:.1f}M{3:.1f} {2:.1f}H{4:.1f}\" stroke=\"{5}\" stroke-width=\"1.2\"/>",
+                       sx(it.x[i]), sy(it.y[i]), sy(it.y2[i]), sx(it.x[i]) - 4, sx(it.x[i]) + 4, it.colour);
+      o += "\n";
+      break;
+    case Item::Kind::Points: {
+      if (it.filled) {  // round-capped zero-length strokes: a dot each, compactly
         std::string d;
         for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
-          if (std::isfinite(it.y[i])) fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", d.empty() ? "M" : "L", sx(it.x[i]), sy(it.y[i]));
-        const std::string faint = it.opacity < 1 ? fmt::format(" stroke-opacity=\"{:.2f}\"", it.opacity) : std::string();
-        fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{:.1f}\"{}{}/>\n", d, it.colour,
-                       it.width, dash, faint);
-        if (it.markers)
-          for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
-            if (std::isfinite(it.y[i]))
-              fmt::format_to(std::back_inserter(o), "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.8\" fill=\"{}\"/>", sx(it.x[i]), sy(it.y[i]), it.colour);
+          fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}h0", sx(it.x[i]), sy(it.y[i]));
+        fmt::format_to(std::back_inserter(o), "<path d=\"{}\" stroke=\"{}\" stroke-width=\"{:.1f}\" stroke-linecap=\"round\" stroke-opacity=\"0.85\"/>\n",
+                       d, it.colour, 2 * it.radius);
+      } else {
+        for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
+          fmt::format_to(std::back_inserter(o), "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{:.1f}\" fill=\"none\" stroke=\"{}\"/>",
+                         sx(it.x[i]), sy(it.y[i]), it.radius, it.colour);
         o += "\n";
-        break;
       }
-      case Item::Kind::Band: {
-        std::string d;
-        for (std::size_t i = 0; i < it.x.size(); ++i) fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", i ? "L" : "M", sx(it.x[i]), sy(it.y2[i]));
-        for (std::size_t i = it.x.size(); i-- > 0;) fmt::format_to(std::back_inserter(d), "L{:.1f} {:.1f}", sx(it.x[i]), sy(it.y[i]));
-        fmt::format_to(std::back_inserter(o), "<path d=\"{}Z\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"none\"/>\n", d, it.fill, it.opacity);
-        break;
-      }
-      case Item::Kind::ErrorBars:
-        for (std::size_t i = 0; i < it.x.size(); ++i)
-          fmt::format_to(std::back_inserter(o),
-                         "<path d=\"M{0:.1f} {1:.1f}V{2:.1f}M{3:.1f} {1:.1f}H{4:.1f}M{3:.1f} {2:.1f}H{4:.1f}\" stroke=\"{5}\" stroke-width=\"1.2\"/>",
-                         sx(it.x[i]), sy(it.y[i]), sy(it.y2[i]), sx(it.x[i]) - 4, sx(it.x[i]) + 4, it.colour);
-        o += "\n";
-        break;
-      case Item::Kind::Points: {
-        if (it.filled) {  // round-capped zero-length strokes: a dot each, compactly
-          std::string d;
-          for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
-            fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}h0", sx(it.x[i]), sy(it.y[i]));
-          fmt::format_to(std::back_inserter(o), "<path d=\"{}\" stroke=\"{}\" stroke-width=\"{:.1f}\" stroke-linecap=\"round\" stroke-opacity=\"0.85\"/>\n",
-                         d, it.colour, 2 * it.radius);
-        } else {
-          for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
-            fmt::format_to(std::back_inserter(o), "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{:.1f}\" fill=\"none\" stroke=\"{}\"/>",
-                           sx(it.x[i]), sy(it.y[i]), it.radius, it.colour);
-          o += "\n";
-        }
-        break;
-      }
-      case Item::Kind::Rect: {
-        const double x0 = std::min(sx(it.x[0]), sx(it.x[1])), x1 = std::max(sx(it.x[0]), sx(it.x[1]));
-        const double y0 = std::min(sy(it.y[0]), sy(it.y[1])), y1 = std::max(sy(it.y[0]), sy(it.y[1]));
-        fmt::format_to(std::back_inserter(o), "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" fill-opacity=\"{:.2f}\"/>\n",
-                       x0, y0, x1 - x0, y1 - y0, it.fill, it.opacity);
-        break;
-      }
-      case Item::Kind::VLine:
-        fmt::format_to(std::back_inserter(o), "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"{3}\" stroke-width=\"1.5\"{4}/>",
-                       sx(it.x[0]), kTop, kTop + plot_h, it.colour, dash);
-        if (!it.text.empty())
-          fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" font-size=\"11\">{}</text>", sx(it.x[0]) + 3,
-                         kTop + 12 + 13 * (vlines++ % 4), it.colour, escape(it.text));
-        o += "\n";
-        break;
-      case Item::Kind::HLine:
-        fmt::format_to(std::back_inserter(o), "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"{3}\" stroke-width=\"1.5\"{4}/>",
-                       kLeft, sy(it.y[0]), kLeft + plot_w, it.colour, dash);
-        if (!it.text.empty())
-          fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" font-size=\"11\">{}</text>", kLeft + 4,
-                         sy(it.y[0]) - 3, it.colour, escape(it.text));
-        o += "\n";
-        break;
-      case Item::Kind::Circle:
-        fmt::format_to(std::back_inserter(o), "<ellipse cx=\"{:.1f}\" cy=\"{:.1f}\" rx=\"{:.1f}\" ry=\"{:.1f}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{}/>\n",
-                       sx(it.x[0]), sy(it.y[0]), std::abs(sx(it.x[0] + it.radius) - sx(it.x[0])),
-                       std::abs(sy(it.y[0] + it.radius) - sy(it.y[0])), it.colour, dash);
-        break;
+      break;
     }
+    case Item::Kind::Rect: {
+      const double x0 = std::min(sx(it.x[0]), sx(it.x[1])), x1 = std::max(sx(it.x[0]), sx(it.x[1]));
+      const double y0 = std::min(sy(it.y[0]), sy(it.y[1])), y1 = std::max(sy(it.y[0]), sy(it.y[1]));
+      fmt::format_to(std::back_inserter(o), "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" fill-opacity=\"{:.2f}\"/>\n",
+                     x0, y0, x1 - x0, y1 - y0, it.fill, it.opacity);
+      break;
+    }
+    case Item::Kind::VLine:
+      fmt::format_to(std::back_inserter(o), "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"{3}\" stroke-width=\"1.5\"{4}/>",
+                     sx(it.x[0]), kTop, kTop + plot_h, it.colour, dash);
+      if (!it.text.empty())
+        fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" font-size=\"11\">{}</text>", sx(it.x[0]) + 3,
+                       kTop + 12 + 13 * (vlines++ % 4), it.colour, escape(it.text));
+      o += "\n";
+      break;
+    case Item::Kind::HLine:
+      fmt::format_to(std::back_inserter(o), "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"{3}\" stroke-width=\"1.5\"{4}/>",
+                     kLeft, sy(it.y[0]), kLeft + plot_w, it.colour, dash);
+      if (!it.text.empty())
+        fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" font-size=\"11\">{}</text>", kLeft + 4,
+                       sy(it.y[0]) - 3, it.colour, escape(it.text));
+      o += "\n";
+      break;
+    case Item::Kind::Circle:
+      fmt::format_to(std::back_inserter(o), "<ellipse cx=\"{:.1f}\" cy=\"{:.1f}\" rx=\"{:.1f}\" ry=\"{:.1f}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{}/>\n",
+                     sx(it.x[0]), sy(it.y[0]), std::abs(sx(it.x[0] + it.radius) - sx(it.x[0])),
+                     std::abs(sy(it.y[0] + it.radius) - sy(it.y[0])), it.colour, dash);
+      break;
   }
-  o += "</g>\n";
+}
 
+void Chart::draw_legend(std::string& o, int legend_cols, const std::vector<std::string>& caption_lines) const {
+  const int legend_rows = static_cast<int>((legend_.size() + legend_cols - 1) / legend_cols);
   // Legend below the axes.
   for (std::size_t i = 0; i < legend_.size(); ++i) {
     const double x = kLeft + static_cast<double>(i % legend_cols) * 200;
@@ -388,6 +388,41 @@ std::string Chart::svg() const {
   for (std::size_t i = 0; i < caption_lines.size(); ++i)
     fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"#444\">{}</text>\n", kLeft,
                    height_ + legend_rows * kLegendRow + 8 + 14 * static_cast<double>(i), escape(caption_lines[i]));
+}
+
+std::string Chart::svg() const {
+  const Frame f = frame();
+  const double plot_w = f.plot_w, plot_h = f.plot_h;
+  const int legend_cols = std::max(1, static_cast<int>((width_ - kLeft) / 200));
+  const int legend_rows = static_cast<int>((legend_.size() + legend_cols - 1) / legend_cols);
+  // The caption, wrapped at about 6 px a character.
+  const std::vector<std::string> caption_lines =
+      wrap_words(caption_, static_cast<std::size_t>(std::max(20.0, (width_ - kLeft) / 6.0)));
+  const double total_h = height_ + legend_rows * kLegendRow + static_cast<double>(caption_lines.size()) * 14 + (caption_lines.empty() ? 0 : 6);
+
+  std::string o;
+  o.reserve(8192);
+  // Clip-path ids must be unique within a document: derive one from the title.
+  std::string clip = "clip-";
+  for (char c : title_) clip += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
+  fmt::format_to(std::back_inserter(o),
+                 "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart\" viewBox=\"0 0 {:.0f} {:.0f}\" width=\"{:.0f}\" "
+                 "height=\"{:.0f}\" font-family=\"sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"{}\">\n",
+                 width_, total_h, width_, total_h, escape(title_));
+  fmt::format_to(std::back_inserter(o), "<title>{}</title>\n", escape(title_));
+  fmt::format_to(std::back_inserter(o), "<defs><clipPath id=\"{}\"><rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/></clipPath></defs>\n",
+                 clip, kLeft, kTop, plot_w, plot_h);
+  // A long title is set smaller rather than cut off (about 0.58 em a character).
+  const double title_size = std::clamp((width_ - kLeft - 4) / (0.58 * static_cast<double>(std::max<std::size_t>(1, title_.size()))), 9.0, 14.0);
+  fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"20\" font-size=\"{:.1f}\" font-weight=\"bold\">{}</text>\n", kLeft,
+                 title_size, escape(title_));
+  draw_axes(o, f);
+  // Data, clipped to the plot area.
+  fmt::format_to(std::back_inserter(o), "<g clip-path=\"url(#{})\">\n", clip);
+  int vlines = 0;  // labels of successive vertical lines step down, so they do not overlap
+  for (const Item& it : items_) draw_item(o, it, f, vlines);
+  o += "</g>\n";
+  draw_legend(o, legend_cols, caption_lines);
   o += "</svg>\n";
   return o;
 }

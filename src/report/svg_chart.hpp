@@ -73,6 +73,13 @@ class Chart {
   void extend(double x, double y);
   void add_legend(const std::string& label, const std::string& colour, const char* kind);
 
+  // Drawing (svg()): the axes' ranges and ticks, then each part in turn.
+  struct Frame;
+  Frame frame() const;
+  void draw_axes(std::string& o, const Frame& f) const;
+  void draw_item(std::string& o, const Item& it, const Frame& f, int& vlines) const;
+  void draw_legend(std::string& o, int columns, const std::vector<std::string>& caption_lines) const;
+
   std::string title_, x_title_, y_title_, caption_;
   double width_, height_;
   double x_lo_ = 0, x_hi_ = 0, y_lo_ = 0, y_hi_ = 0;

@@ -135,11 +135,18 @@ struct GroundSpec {  // turf
   }
 };
 
+// What a mesh file is in the scene (its `label` key).
+enum class MeshLabel { Ground, Housing, Deflector, Guard, Target, OperatorZone };
+inline constexpr std::array<const char*, 6> kMeshLabelNames = {"ground", "housing", "deflector", "guard", "target", "operator_zone"};
+inline const char* mesh_label_name(MeshLabel l) { return kMeshLabelNames[static_cast<std::size_t>(l)]; }
+// The board (either part of it: a target mesh may carry the operator zone separately).
+inline bool is_board(MeshLabel l) { return l == MeshLabel::Target || l == MeshLabel::OperatorZone; }
+
 struct MeshFile {
   std::string path;
-  std::string label;  // ground, housing, deflector, guard, target, operator_zone
+  MeshLabel label = MeshLabel::Housing;
   double scale = 1.0;  // file units to metres
-  // Guard properties when label == "guard".
+  // Guard properties when label is Guard.
   GuardSpec guard;
 };
 

@@ -301,13 +301,12 @@ void read_spindles(const TableReader& root, std::vector<SpindleSpec>& spindles) 
 
 // Keys of the generated set-up that a mesh replaces are refused, never silently ignored.
 void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshFile>& meshes) {
-  auto first = [&](std::initializer_list<const char*> labels) -> const MeshFile* {
+  auto first = [&](auto is) -> const MeshFile* {
     for (const auto& m : meshes)
-      for (const char* l : labels)
-        if (m.label == l) return &m;
+      if (is(m.label)) return &m;
     return nullptr;
   };
-  if (const MeshFile* deck = first({"housing"}))
+  if (const MeshFile* deck = first([](MeshLabel l) { return l == MeshLabel::Housing; }))
     if (auto h = root.table("housing")) {
       const std::string replaces = fmt::format("the housing mesh {} replaces the generated deck and skirt", deck->path);
       for (const char* key : {"deck_radius", "skirt_bottom", "skirt_depth", "margin", "openings"})
@@ -322,14 +321,13 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
         if (!g.has("top")) throw g.error("along", replaces + ": give the curtain's upper edge as `top`");
       }
     }
-  if (const MeshFile* board = first({"target", "operator_zone"}))
+  if (const MeshFile* board = first(is_board))
     if (auto t = root.table("target"))
       for (const char* key : {"distance", "bottom", "top", "segments"})
         if (t->has(key))
           throw t->error(key, fmt::format("the target mesh {} replaces the generated board ring; remove this key", board->path));
 }
 
-const std::vector<std::string> kMeshLabels = {"ground", "housing", "deflector", "guard", "target", "operator_zone"};
 
 }  // namespace
 
@@ -404,10 +402,11 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     const std::string path = m.string_or("path", "", {});
     if (path.empty()) throw m.error("path", "missing; expected the mesh file's path (OBJ, OFF, PLY or STL)");
     mesh.path = (base / path).string();
-    mesh.label = m.string_or("label", "", kMeshLabels);
-    if (mesh.label.empty()) throw m.error("label", "missing; expected one of ground, housing, deflector, guard, target, operator_zone");
+    const std::string label = m.string_or("label", "", {kMeshLabelNames.begin(), kMeshLabelNames.end()});
+    if (label.empty()) throw m.error("label", "missing; expected one of ground, housing, deflector, guard, target, operator_zone");
+    mesh.label = static_cast<MeshLabel>(std::find(kMeshLabelNames.begin(), kMeshLabelNames.end(), label) - kMeshLabelNames.begin());
     mesh.scale = m.quantity_or("scale", Kind::Dimensionless, 1.0, Range::between(1e-6, 1e3));
-    if (mesh.label == "guard") read_guard(m, mesh.guard, false);
+    if (mesh.label == MeshLabel::Guard) read_guard(m, mesh.guard, false);
     m.refuse_unknown_keys();
     s.meshes.push_back(mesh);
   }

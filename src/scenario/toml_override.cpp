@@ -15,8 +15,8 @@ void put(toml::table& table, const std::string& leaf, const std::string& value) 
   }
 }
 
-void set_in(toml::table& table, const std::string& key, std::size_t start, const std::string& full, const std::string& value,
-            const std::string& origin) {
+// Sets the part of `full` from `start` on inside `table` (into every table of an array of tables).
+void set_in(toml::table& table, std::size_t start, const std::string& full, const std::string& value, const std::string& origin) {
   const std::size_t dot = full.find('.', start);
   const std::string part = full.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
   if (part.empty()) throw InputError("", std::nullopt, origin, full, "expected a dotted key such as blade.speed");
@@ -25,9 +25,9 @@ void set_in(toml::table& table, const std::string& key, std::size_t start, const
     return;
   }
   auto [it, inserted] = table.insert(part, toml::table{});
-  if (auto* sub = it->second.as_table()) return set_in(*sub, key, dot + 1, full, value, origin);
+  if (auto* sub = it->second.as_table()) return set_in(*sub, dot + 1, full, value, origin);
   if (auto* array = it->second.as_array(); array && array->is_array_of_tables()) {
-    for (auto& element : *array) set_in(*element.as_table(), key, dot + 1, full, value, origin);
+    for (auto& element : *array) set_in(*element.as_table(), dot + 1, full, value, origin);
     return;
   }
   throw InputError("", std::nullopt, origin, full + " = " + value, "cannot set a key inside '" + part + "', which is not a table");
@@ -36,7 +36,7 @@ void set_in(toml::table& table, const std::string& key, std::size_t start, const
 }  // namespace
 
 void set_key(toml::table& document, const std::string& key, const std::string& value, const std::string& origin) {
-  set_in(document, key, 0, key, value, origin);
+  set_in(document, 0, key, value, origin);
 }
 
 void assign(toml::table& document, const std::string& assignment, const std::string& origin) {

@@ -14,11 +14,10 @@ namespace j232::scene {
 
 namespace {
 
-constexpr double kTwoPi = 2 * units::pi;
 
 double arc_span(double from, double to) {
-  double span = std::fmod(to - from, kTwoPi);
-  if (span <= 0) span += kTwoPi;
+  double span = std::fmod(to - from, units::two_pi);
+  if (span <= 0) span += units::two_pi;
   return span;
 }
 
@@ -44,7 +43,7 @@ std::vector<double> arc_breaks(double from, double span, double max_step, std::v
   std::vector<double> a;
   for (int i = 0; i <= n; ++i) a.push_back(from + span * i / n);
   for (double e : extra) {
-    const double rel = std::fmod(e - from + 2 * kTwoPi, kTwoPi);
+    const double rel = std::fmod(e - from + 2 * units::two_pi, units::two_pi);
     if (rel > 1e-9 && rel < span - 1e-9) a.push_back(from + rel);
   }
   std::sort(a.begin(), a.end());
@@ -67,7 +66,7 @@ void add_disc(Soup& soup, double radius, double z, int segments, Surface label) 
   const std::uint32_t centre = soup.add_point({0, 0, z});
   std::vector<std::uint32_t> rim;
   for (int i = 0; i < segments; ++i) {
-    const double a = kTwoPi * i / segments;
+    const double a = units::two_pi * i / segments;
     rim.push_back(soup.add_point({radius * std::cos(a), radius * std::sin(a), z}));
   }
   for (int i = 0; i < segments; ++i) soup.add_triangle(centre, rim[i], rim[(i + 1) % segments], label);
@@ -85,7 +84,7 @@ void add_target_ring(Soup& soup, const scenario::Scenario& s, const OperatorZone
     extra_az = {s.zone.azimuth_from, s.zone.azimuth_to};
     extra_z = {s.zone.bottom, s.zone.top};
   }
-  const auto az = arc_breaks(0.0, kTwoPi, kTwoPi / s.target.segments, extra_az);
+  const auto az = arc_breaks(0.0, units::two_pi, units::two_pi / s.target.segments, extra_az);
   const auto hz = height_breaks(s.target.bottom, s.target.top, 0.05, extra_z);
   add_wall(soup, target_radius(s), az, hz,
            [&](const Vec3& c) { return zone.contains(c) ? Surface::TargetZone : Surface::TargetOutside; });
@@ -155,7 +154,7 @@ std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
   std::vector<Eigen::Vector2d> points;
   for (const auto& sp : s.spindles)
     for (int i = 0; i < 96; ++i) {
-      const double a = kTwoPi * i / 96, r = s.spindles.size() == 1 ? s.housing.deck_radius : sp.blade.tip_radius() + s.housing.margin;
+      const double a = units::two_pi * i / 96, r = s.spindles.size() == 1 ? s.housing.deck_radius : sp.blade.tip_radius() + s.housing.margin;
       points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
     }
   return convex_hull(std::move(points));
@@ -184,7 +183,7 @@ void add_free_parts(Soup& soup, const scenario::HousingSpec& h, std::uint16_t fi
       continue;
     }
     const double span = arc_span(d.azimuth_from, d.azimuth_to);
-    add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, kTwoPi / 96), {d.bottom, d.top},
+    add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, units::two_pi / 96), {d.bottom, d.top},
              [](const Vec3&) { return Surface::Deflector; });
   }
   for (std::size_t g = 0; g < h.guards.size(); ++g)
@@ -201,7 +200,7 @@ void add_chute(Soup& soup, const scenario::OpeningSpec& o, double skirt_bottom,
   if (o.chute_length <= 0 || pieces.empty()) return;
   const double mid = o.azimuth_from + 0.5 * arc_span(o.azimuth_from, o.azimuth_to);
   const Eigen::Vector2d out = o.chute_length * Eigen::Vector2d(std::cos(mid), std::sin(mid));
-  auto rel = [&](const Eigen::Vector2d& p) { return std::fmod(std::atan2(p.y(), p.x()) - o.azimuth_from + 2 * kTwoPi, kTwoPi); };
+  auto rel = [&](const Eigen::Vector2d& p) { return std::fmod(std::atan2(p.y(), p.x()) - o.azimuth_from + 2 * units::two_pi, units::two_pi); };
   Eigen::Vector2d first = pieces.front().first, last = pieces.front().second;
   for (const auto& [a, b] : pieces) {
     if (rel(a) < rel(first)) first = a;
@@ -218,7 +217,7 @@ void add_chute(Soup& soup, const scenario::OpeningSpec& o, double skirt_bottom,
 
 // Whether azimuth a (about the origin) lies in the arc from -> to (counter-clockwise).
 bool in_arc(double a, double from, double to) {
-  return std::fmod(std::fmod(a - from, kTwoPi) + kTwoPi, kTwoPi) < arc_span(from, to);
+  return std::fmod(std::fmod(a - from, units::two_pi) + units::two_pi, units::two_pi) < arc_span(from, to);
 }
 
 // A deck whose outline is a polygon (several spindles, or openings cut in the skirt): the
@@ -269,13 +268,13 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
   if (s.spindles.size() > 1 || sp.x != 0.0 || sp.y != 0.0 || !h.openings.empty()) return add_outline_housing(soup, s, first_guard);
   const double deck_top = h.skirt_bottom + h.skirt_depth;
   add_disc(soup, h.deck_radius, deck_top, 96, Surface::Housing);
-  add_wall(soup, h.deck_radius, arc_breaks(0.0, kTwoPi, kTwoPi / 96), {h.skirt_bottom, deck_top},
+  add_wall(soup, h.deck_radius, arc_breaks(0.0, units::two_pi, units::two_pi / 96), {h.skirt_bottom, deck_top},
            [](const Vec3&) { return Surface::Housing; });
   for (std::size_t g = 0; g < h.guards.size(); ++g) {
     const auto& guard = h.guards[g];
     if (!guard.along.empty()) continue;  // hung along its own path (add_free_parts)
     const double span = arc_span(guard.azimuth_from, guard.azimuth_to);
-    add_wall(soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, kTwoPi / 96), {guard.bottom, h.skirt_bottom},
+    add_wall(soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, units::two_pi / 96), {guard.bottom, h.skirt_bottom},
              [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
   }
 }
@@ -307,9 +306,9 @@ DeckFootprint deck_footprint(const scenario::Scenario& s, const Soup& soup) {
 MeshRoles mesh_roles(const scenario::Scenario& s) {
   MeshRoles r;
   for (const auto& m : s.meshes) {
-    if (m.label == "ground") r.ground = true;
-    if (m.label == "housing") r.housing = true;
-    if (m.label == "target" || m.label == "operator_zone") r.target = true;
+    if (m.label == scenario::MeshLabel::Ground) r.ground = true;
+    if (m.label == scenario::MeshLabel::Housing) r.housing = true;
+    if (scenario::is_board(m.label)) r.target = true;
   }
   return r;
 }
@@ -334,11 +333,14 @@ Soup build_scene_soup(const scenario::Scenario& s) {
   for (std::size_t i = 0; i < s.meshes.size(); ++i) {
     const auto& m = s.meshes[i];
     Surface label = Surface::Housing;
-    if (m.label == "ground") label = Surface::Ground;
-    if (m.label == "deflector") label = Surface::Deflector;
-    if (m.label == "guard") label = Surface::Guard;
-    if (m.label == "target") label = Surface::TargetOutside;
-    if (m.label == "operator_zone") label = Surface::TargetZone;
+    switch (m.label) {
+      case scenario::MeshLabel::Ground: label = Surface::Ground; break;
+      case scenario::MeshLabel::Housing: label = Surface::Housing; break;
+      case scenario::MeshLabel::Deflector: label = Surface::Deflector; break;
+      case scenario::MeshLabel::Guard: label = Surface::Guard; break;
+      case scenario::MeshLabel::Target: label = Surface::TargetOutside; break;
+      case scenario::MeshLabel::OperatorZone: label = Surface::TargetZone; break;
+    }
     Soup part;
     try {
       part = read_mesh(m.path, label, m.scale, label == Surface::Guard ? guard++ : 0);

@@ -14,7 +14,7 @@ constexpr int kCircleSegments = 72;  // 5 degrees each
 Polyline circle(std::string group, std::array<std::uint8_t, 3> colour, const Vec3& c, double r, const Vec3& u, const Vec3& v) {
   Polyline p{std::move(group), colour, {}, true};
   for (int i = 0; i < kCircleSegments; ++i) {
-    const double a = 2 * units::pi * i / kCircleSegments;
+    const double a = units::two_pi * i / kCircleSegments;
     p.points.push_back(c + r * (std::cos(a) * u + std::sin(a) * v));
   }
   return p;

@@ -7,10 +7,8 @@
 namespace j232::scene {
 
 bool within_arc(double a, double from, double to) {
-  const double two_pi = 2 * units::pi;
-  auto wrap = [&](double x) { x = std::fmod(x, two_pi); return x < 0 ? x + two_pi : x; };
-  if (std::abs(to - from) >= two_pi - 1e-12) return true;  // a full turn
-  return wrap(a - from) <= wrap(to - from);
+  if (std::abs(to - from) >= units::two_pi - 1e-12) return true;  // a full turn
+  return units::wrap_angle(a - from) <= units::wrap_angle(to - from);
 }
 
 OperatorZone::OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_height)

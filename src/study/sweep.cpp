@@ -7,6 +7,7 @@
 
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
+#include "assess/tally.hpp"
 #include "blade/blade_model.hpp"
 #include "report/svg_chart.hpp"
 #include "scenario/input_error.hpp"
@@ -321,11 +322,10 @@ std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& s
     out.emplace_back("pass-probability", chart.svg());
     // Each criterion's share per point: the mean and the 5-95 % range of single tests, and
     // its limit, so the margin to the limit shows, not only P(pass)'s jump.
-    static const char* criteria[] = {"hits_zone", "punctures_zone", "hits_outside", "punctures_outside"};
     static const char* words[] = {"hits in the operator zone", "punctures in the operator zone", "hits outside the zone",
                                   "punctures outside the zone"};
     for (int k = 0; k < 4; ++k) {
-      const std::string name = criteria[k];
+      const std::string name = assess::category_name(k);
       const std::size_t mean = column(t, "share_" + name), q05 = column(t, "q05_" + name), q95 = column(t, "q95_" + name),
                         limit = column(t, "limit_" + name);
       report::Chart c(fmt::format("{}: {}", spec.title, words[k]), spec.x.info.axis_title, "share of the nails fed (%)");

@@ -2,6 +2,7 @@
 // Physical quantities written as text with units ("22 lb", "24 in", "1000 rpm",
 // "440 ft/min", "0.004 lb ft^2") converted to SI. Everything inside j232 is SI
 // (m, kg, s, rad); units live only at the edges: input files and reports.
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -45,6 +46,7 @@ UnitValue parse_unit(std::string_view expression);
 
 // Handy constants for code and tests.
 inline constexpr double pi = 3.14159265358979323846;
+inline constexpr double two_pi = 2 * pi;
 inline constexpr double degree = pi / 180;  // rad: x degrees is x * degree; an angle in degrees is a / degree
 inline constexpr double standard_gravity = 9.80665;  // m/s^2 (CGPM 1901), the one value of g in j232
 inline constexpr double inch = 0.0254;
@@ -54,5 +56,11 @@ inline constexpr double gram = 1e-3;
 inline constexpr double rpm = 2.0 * pi / 60.0;
 inline constexpr double ft_per_min = foot / 60.0;
 inline constexpr double mph = 0.44704;
+
+// An angle brought into [0, 2 pi).
+inline double wrap_angle(double a) {
+  a = std::fmod(a, two_pi);
+  return a < 0 ? a + two_pi : a;
+}
 
 }  // namespace j232::units
