@@ -38,8 +38,9 @@ int main(int argc, char** argv) {
   std::string engine_choice = "both";
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-      std::printf("usage: j232_bench [SCENARIO...] [--replicates N] [--engine cgal|embree|both]\n"
-                  "  defaults: highway-pivoted and the three-spindle deck, 3000 replicates, every engine built in\n");
+      std::printf(
+          "usage: j232_bench [SCENARIO...] [--replicates N] [--engine cgal|embree|both]\n"
+          "  defaults: highway-pivoted and the three-spindle deck, 3000 replicates, every engine built in\n");
       return 0;
     }
     if (!std::strcmp(argv[i], "--replicates") && i + 1 < argc) {
@@ -85,8 +86,8 @@ static void bench(const std::string& path, long long replicates, const std::vect
   auto s = scenario::read_scenario(path);
   s.run.replicates = replicates;
   s.run.target_half_width.reset();
-  std::printf("j232_bench: %s\n  %lld replicates x %d nails = %lld nails per run\n", s.title.c_str(), replicates,
-              s.feed.nails, replicates * s.feed.nails);
+  std::printf("j232_bench: %s\n  %lld replicates x %d nails = %lld nails per run\n", s.title.c_str(), replicates, s.feed.nails,
+              replicates * s.feed.nails);
   std::vector<double> two_thread_rates;
   for (const scene::Engine engine : engines) {
     const auto built = Clock::now();
@@ -102,8 +103,8 @@ static void bench(const std::string& path, long long replicates, const std::vect
         walls.push_back(a.wall_seconds);
         queries_per_nail = static_cast<double>(a.queries) / static_cast<double>(a.nails);
       }
-      std::printf("    %d thread%s: %10.0f nails/s (median of 3; %.2f s per full assessment)\n", threads,
-                  threads == 1 ? " " : "s", median(rates), median(walls));
+      std::printf("    %d thread%s: %10.0f nails/s (median of 3; %.2f s per full assessment)\n", threads, threads == 1 ? " " : "s",
+                  median(rates), median(walls));
       if (threads == 2) two_thread_rates.push_back(median(rates));
     }
     std::printf("    scene queries per nail: %.2f\n", queries_per_nail);
@@ -125,10 +126,9 @@ static void bench(const std::string& path, long long replicates, const std::vect
     for (int i = 0; i < n; ++i) hits += scene.first_hit(from[i & 1023], dir[i & 1023], 0.3).has_value();
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const double rate = n / seconds;
-    std::printf("    raw queries (0.3 m chords, 1 thread): %.0f queries/s, %.0f ns per query (%.0f%% hit), %zu faces\n", rate,
-                1e9 / rate, 100.0 * hits / n, scene.face_count());
+    std::printf("    raw queries (0.3 m chords, 1 thread): %.0f queries/s, %.0f ns per query (%.0f%% hit), %zu faces\n", rate, 1e9 / rate,
+                100.0 * static_cast<double>(hits) / static_cast<double>(n), scene.face_count());
     std::printf("    so queries alone would allow %.0f nails/s on 1 thread\n", rate / queries_per_nail);
   }
-  if (two_thread_rates.size() == 2)
-    std::printf("  embree / cgal, 2 threads: %.2fx\n", two_thread_rates[1] / two_thread_rates[0]);
+  if (two_thread_rates.size() == 2) std::printf("  embree / cgal, 2 threads: %.2fx\n", two_thread_rates[1] / two_thread_rates[0]);
 }

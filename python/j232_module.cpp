@@ -70,8 +70,7 @@ std::unique_ptr<toml::node> to_toml(const py::handle& v, const std::string& key)
     }
     return a;
   }
-  throw py::type_error("scenario key " + key + ": expected a bool, number, string, list or dict, got " +
-                       py::repr(v).cast<std::string>());
+  throw py::type_error("scenario key " + key + ": expected a bool, number, string, list or dict, got " + py::repr(v).cast<std::string>());
 }
 
 // How a setting's value is written: text as it is ("2500 rpm"), numbers in full precision.
@@ -79,8 +78,7 @@ std::string setting_text(const py::handle& v, const std::string& name) {
   if (py::isinstance<py::str>(v)) return v.cast<std::string>();
   if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v)) return py::repr(v).cast<std::string>();
-  throw py::type_error("setting " + name + ": expected a string such as \"2500 rpm\" or a number, got " +
-                       py::repr(v).cast<std::string>());
+  throw py::type_error("setting " + name + ": expected a string such as \"2500 rpm\" or a number, got " + py::repr(v).cast<std::string>());
 }
 
 std::vector<study::Setting> read_settings(const py::dict& settings, const std::string& origin) {
@@ -202,8 +200,8 @@ std::string utc_now() {
   return buf;
 }
 
-py::dict assess_scenario(const PyScenario& p, std::optional<long long> replicates, std::optional<std::uint64_t> seed,
-                         int threads, bool marks) {
+py::dict assess_scenario(const PyScenario& p, std::optional<long long> replicates, std::optional<std::uint64_t> seed, int threads,
+                         bool marks) {
   scenario::Scenario s = p.scenario;
   if (replicates) {
     if (*replicates < 1) throw py::value_error("replicates: expected at least 1, got " + std::to_string(*replicates));
@@ -285,17 +283,19 @@ PYBIND11_MODULE(_j232, m) {
            "maps dotted keys ('housing.skirt_bottom') or named parameters ('blade_speed', 'lift_angle', ...) to values "
            "('2500 rpm', 0.5); base_dir anchors a dict's relative mesh paths. Raises j232.InputError naming the key, "
            "value and what was expected.")
-      .def("with_settings",
-           [](const PyScenario& p, const py::dict& more) {
-             py::dict all = p.settings.attr("copy")();
-             for (const auto& [k, v] : more) all[k] = v;
-             return make_scenario(p.document, p.file, all);
-           },
-           py::arg("settings"), "A copy with more settings on top of this one's.")
+      .def(
+          "with_settings",
+          [](const PyScenario& p, const py::dict& more) {
+            py::dict all = p.settings.attr("copy")();
+            for (const auto& [k, v] : more) all[k] = v;
+            return make_scenario(p.document, p.file, all);
+          },
+          py::arg("settings"), "A copy with more settings on top of this one's.")
       .def_property_readonly("file", [](const PyScenario& p) { return p.file; })
       .def_property_readonly("settings", [](const PyScenario& p) { return p.settings; })
-      .def("to_dict", [](const PyScenario& p) { return from_json(report::scenario_json(p.scenario)); },
-           "The scenario as every result echoes it: every value used, in SI.")
+      .def(
+          "to_dict", [](const PyScenario& p) { return from_json(report::scenario_json(p.scenario)); },
+          "The scenario as every result echoes it: every value used, in SI.")
       .def("assess", &assess_scenario, py::arg("replicates") = py::none(), py::arg("seed") = py::none(), py::arg("threads") = 0,
            py::arg("marks") = true,
            "Runs the assessment (replicates and seed default to the scenario's; threads 0 = all cores) and returns what "

@@ -16,9 +16,7 @@ struct RandomBladeOptions {
   int max_links = 8;
 };
 
-inline double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
+inline double uniform(std::mt19937_64& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
 inline int integer(std::mt19937_64& rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
 
 inline blade::Blade random_blade(std::mt19937_64& rng, const RandomBladeOptions& o) {

@@ -4,8 +4,7 @@
 // ft/min, contact radius R in ft). The Fortran's pi is 3.1416; `pi` lets a test choose.
 namespace j232::test {
 
-inline double fortran_straight_va2(double RPM, double D1, double W2, double E, double VA1, double R, double W1,
-                                   double pi = 3.1416) {
+inline double fortran_straight_va2(double RPM, double D1, double W2, double E, double VA1, double R, double W1, double pi = 3.1416) {
   const double CW1 = RPM * 2 * pi;
   const double VI = W2 * D1 * D1 / 3.0;
   const double VB1 = R * CW1;

@@ -14,7 +14,7 @@ inline double ks_statistic(std::vector<double> x, const std::function<double(dou
   double d = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const double f = cdf(x[i]);
-    d = std::max({d, (i + 1) / n - f, f - i / n});
+    d = std::max({d, static_cast<double>(i + 1) / n - f, f - static_cast<double>(i) / n});
   }
   return d;
 }

@@ -34,10 +34,9 @@ TEST_CASE("board: mark classification table", "[board]") {
     board::Mark expected;
   };
   const Row table[] = {
-      {0.05, point_first, board::Mark::None},      {0.09, point_first, board::Mark::Hit},
-      {0.28, point_first, board::Mark::Puncture},  {1.0, broadside, board::Mark::None},
-      {1.7, broadside, board::Mark::Hit},          {5.5, broadside, board::Mark::Hit},
-      {5.6, broadside, board::Mark::Puncture},     {10.0, broadside, board::Mark::Puncture},
+      {0.05, point_first, board::Mark::None},  {0.09, point_first, board::Mark::Hit},    {0.28, point_first, board::Mark::Puncture},
+      {1.0, broadside, board::Mark::None},     {1.7, broadside, board::Mark::Hit},       {5.5, broadside, board::Mark::Hit},
+      {5.6, broadside, board::Mark::Puncture}, {10.0, broadside, board::Mark::Puncture},
   };
   for (const auto& r : table) {
     INFO(r.energy << " J over " << r.width * 1e3 << " mm");
@@ -199,9 +198,9 @@ TEST_CASE("re-strikes: in a closed deck some nails come back into the blade's di
   const assess::Simulator sim(s);
   const auto a = assess::run_assessment(sim, 2);
   CHECK(a.strikes.total == a.struck);
-  CHECK(a.strikes.mean() > 1.0);              // strikes per struck nail, the first included
-  CHECK(a.strikes.counts[1] < a.struck);      // some struck more than once
-  CHECK(a.strikes.counts[0] == 0);            // every struck nail was struck at least once
+  CHECK(a.strikes.mean() > 1.0);          // strikes per struck nail, the first included
+  CHECK(a.strikes.counts[1] < a.struck);  // some struck more than once
+  CHECK(a.strikes.counts[0] == 0);        // every struck nail was struck at least once
   const auto sum = assess::summarise(a, s);
   CHECK(sum.validity.valid);
 }
@@ -242,7 +241,7 @@ TEST_CASE("trace: every mark's trail is consistent and the ways out add up", "[a
   REQUIRE(opening != a.exits.marks.end());
   std::uint64_t through = 0;
   for (auto n : opening->second) through += n;
-  CHECK(through > 0.9 * static_cast<double>(a.marks));
+  CHECK(static_cast<double>(through) > 0.9 * static_cast<double>(a.marks));
   CHECK(a.exit_names.at(assess::exit_key(flight::Exit::Opening, 0)) == "opening: side discharge");
 
   // A chained deck with its skirt raised: nails leave through the chains, and are named so.

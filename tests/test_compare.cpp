@@ -42,8 +42,8 @@ TEST_CASE("compare: common random numbers make a small design change measurable"
     const double paired = 0.5 * (d.high - d.low);
     INFO("criterion " << k << ": difference " << d.mean << ", paired +/-" << paired << ", independent +/-"
                       << v.independent_half_width[static_cast<std::size_t>(k)]);
-    CHECK(d.mean > 0);                                                       // more open lets more out
-    CHECK(d.low > 0);                                                        // and the pairing resolves it
+    CHECK(d.mean > 0);                                                            // more open lets more out
+    CHECK(d.low > 0);                                                             // and the pairing resolves it
     CHECK(paired < 0.8 * v.independent_half_width[static_cast<std::size_t>(k)]);  // tighter than independent runs
     // The difference is the difference of the designs' means.
     CHECK(d.mean == Approx(c.designs[1].shares[static_cast<std::size_t>(k)].mean - c.designs[0].shares[static_cast<std::size_t>(k)].mean)

@@ -197,7 +197,8 @@ openness = 0
   with.run.replicates = without.run.replicates = 60;
   const auto a = assess::summarise(assess::run_assessment(assess::Simulator(with), 2), with);
   const auto b = assess::summarise(assess::run_assessment(assess::Simulator(without), 2), without);
-  INFO("hits outside: " << a.criteria[assess::HitsOutside].mean_share << " with the curtain, " << b.criteria[assess::HitsOutside].mean_share << " without");
+  INFO("hits outside: " << a.criteria[assess::HitsOutside].mean_share << " with the curtain, " << b.criteria[assess::HitsOutside].mean_share
+                        << " without");
   CHECK(a.criteria[assess::HitsOutside].mean_share < 0.5 * b.criteria[assess::HitsOutside].mean_share);
   // What a mesh deck has no use for is refused, naming the mesh.
   CHECK_THROWS_WITH(read_with("[[housing.guards]]\nazimuth_from = \"0 deg\"\nazimuth_to = \"90 deg\"\n"),
@@ -206,7 +207,8 @@ openness = 0
                     Contains("housing.guards[1].along") && Contains("`top`"));
   CHECK_THROWS_WITH(read_with("[housing]\nskirt_bottom = \"2 in\"\n"), Contains("housing.skirt_bottom") && Contains("meshes/deck.obj"));
   // A deflector panel along a polyline is a solid wall.
-  const auto d = read_with("[[housing.deflectors]]\nalong = [[\"-28 in\", \"-16 in\"], [\"-28 in\", \"16 in\"]]\nbottom = \"0 m\"\ntop = \"8 in\"\n");
+  const auto d =
+      read_with("[[housing.deflectors]]\nalong = [[\"-28 in\", \"-16 in\"], [\"-28 in\", \"16 in\"]]\nbottom = \"0 m\"\ntop = \"8 in\"\n");
   std::size_t panel = 0;
   const auto dsoup = scene::build_scene_soup(d);
   for (std::size_t t = 0; t < dsoup.triangles.size(); ++t) panel += dsoup.labels[t] == scene::Surface::Deflector;
@@ -214,8 +216,11 @@ openness = 0
   // Malformed paths name the key and the expected form.
   CHECK_THROWS_WITH(read_with("[[housing.deflectors]]\nalong = [[\"1 m\"]]\nbottom = \"0 m\"\ntop = \"8 in\"\n"),
                     Contains("housing.deflectors[1].along") && Contains("points [x, y]"));
-  CHECK_THROWS_WITH(read_with("[[housing.deflectors]]\nalong = [[\"1 m\", \"2 m\"], [\"1 kg\", \"0 m\"]]\nbottom = \"0 m\"\ntop = \"8 in\"\n"),
-                    Contains("housing.deflectors[1].along"));
-  CHECK_THROWS_WITH(read_with("[[housing.deflectors]]\nalong = [[\"1 m\", \"2 m\"], [\"1 m\", \"0 m\"]]\nradius = \"1 m\"\nbottom = \"0 m\"\ntop = \"8 in\"\n"),
-                    Contains("housing.deflectors[1].radius") && Contains("not both"));
+  CHECK_THROWS_WITH(
+      read_with("[[housing.deflectors]]\nalong = [[\"1 m\", \"2 m\"], [\"1 kg\", \"0 m\"]]\nbottom = \"0 m\"\ntop = \"8 in\"\n"),
+      Contains("housing.deflectors[1].along"));
+  CHECK_THROWS_WITH(
+      read_with(
+          "[[housing.deflectors]]\nalong = [[\"1 m\", \"2 m\"], [\"1 m\", \"0 m\"]]\nradius = \"1 m\"\nbottom = \"0 m\"\ntop = \"8 in\"\n"),
+      Contains("housing.deflectors[1].radius") && Contains("not both"));
 }

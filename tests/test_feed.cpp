@@ -241,8 +241,8 @@ TEST_CASE("blade strike: momentum, restitution and energy hold at every strike",
                               std::sin(sp.lift_angle) * Eigen::Vector3d::UnitZ();
     const Eigen::Vector3d dv = c->velocity_after - nail.velocity;
     CHECK(c->impulse > 0);
-    CHECK(dv.cross(n).norm() < 1e-9 * (1 + dv.norm()));                  // impulse along the normal only
-    CHECK(nail.mass * dv.dot(n) == Approx(c->impulse).epsilon(1e-9));    // nail's linear momentum
+    CHECK(dv.cross(n).norm() < 1e-9 * (1 + dv.norm()));                // impulse along the normal only
+    CHECK(nail.mass * dv.dot(n) == Approx(c->impulse).epsilon(1e-9));  // nail's linear momentum
     const double inertia = nail.mass * nail.length * nail.length / 12;
     const Eigen::Vector3d r = nail.offset * nail.axis;
     CHECK((inertia * (c->spin_after - nail.spin) - r.cross(n) * c->impulse).norm() < 1e-9);  // its angular momentum

@@ -95,8 +95,7 @@ TEST_CASE("flight: drag shortens a nail's flight; cross-flow drag exceeds end-on
   b.axis = Vec3::UnitX();  // flying point first
   const auto free = land(ground, b, {});
   // A 2 g, 50.8 x 2.51 mm nail in air: k = rho Cd A / (2 m).
-  flight::Drag point_first{true, 1.2 * 0.8 * (3.14159 * 0.00251 * 0.00251 / 4) / 0.004, 1.2 * 1.0 * 0.0508 * 0.00251 / 0.004,
-                           Vec3::Zero()};
+  flight::Drag point_first{true, 1.2 * 0.8 * (3.14159 * 0.00251 * 0.00251 / 4) / 0.004, 1.2 * 1.0 * 0.0508 * 0.00251 / 0.004, Vec3::Zero()};
   const auto dragged = land(ground, b, point_first);
   CHECK(dragged.end_position.x() < free.end_position.x());
   flight::Body broadside = b;

@@ -81,8 +81,7 @@ std::string with(std::string text, const std::string& from, const std::string& t
 TEST_CASE("impact input: results do not depend on the units of the input", "[input]") {
   const auto si = read(kPivotedSI), imperial = read(kPivotedImperial);
   const auto a = blade::solve_impact(blade::BladeModel(si.blade), si.location, si.object, si.restitution);
-  const auto b = blade::solve_impact(blade::BladeModel(imperial.blade), imperial.location, imperial.object,
-                                     imperial.restitution);
+  const auto b = blade::solve_impact(blade::BladeModel(imperial.blade), imperial.location, imperial.object, imperial.restitution);
   const auto& c = a;
   CHECK(c.contact.velocity_after.y() == Approx(b.contact.velocity_after.y()).epsilon(1e-12));
   CHECK(c.contact.spin_after.x() == Approx(b.contact.spin_after.x()).epsilon(1e-12));
@@ -107,10 +106,13 @@ TEST_CASE("impact input: bad input is refused with file, line, key, value and ex
   const Bad cases[] = {
       {"bar_mass = \"4.98951607 kg\"", "bar_mass = \"-3 kg\"",
        "case.toml:6: blade.hub.bar_mass = \"-3 kg\": expected a mass such as \"22 lb\" or \"170 g\", from 0 kg to 500 kg"},
-      {"\nmass = \"4.98951607 kg\"", "\nmass = \"-1 kg\"", "case.toml:14: blade.arms[1].links[1].mass = \"-1 kg\": expected a mass such as \"22 lb\" or \"170 g\", above 0 kg and at most 500 kg"},
+      {"\nmass = \"4.98951607 kg\"", "\nmass = \"-1 kg\"",
+       "case.toml:14: blade.arms[1].links[1].mass = \"-1 kg\": expected a mass such as \"22 lb\" or \"170 g\", above 0 kg and at most 500 "
+       "kg"},
       {"e = 0.9", "e = 1.2", "case.toml:24: restitution.e = 1.2: expected a plain number such as 0.9, from 0 to 1"},
       {"e = 0.9", "e = -0.1", "restitution.e = -0.1"},
-      {"radius = \"0.5588 m\"", "radius = \"0.7 m\"", "case.toml:16: contact.radius = \"0.7 m\": expected a radius on the blade: at most 0.6096 m"},
+      {"radius = \"0.5588 m\"", "radius = \"0.7 m\"",
+       "case.toml:16: contact.radius = \"0.7 m\": expected a radius on the blade: at most 0.6096 m"},
       {"speed = \"104.71975511965977 rad/s\"", "speed = \"1000 rpms\"", "blade.speed = \"1000 rpms\": unknown unit \"rpms\""},
       {"speed = \"104.71975511965977 rad/s\"", "speed = \"1000\"", "blade.speed = \"1000\": \"1000\" has no unit"},
       {"speed = \"104.71975511965977 rad/s\"", "speed = 1000", "blade.speed = 1000: a number needs a unit here"},
@@ -128,8 +130,7 @@ TEST_CASE("impact input: bad input is refused with file, line, key, value and ex
   }
   CHECK_THROWS_WITH(read("[blade]\nspeed = \"1 rpm\"\n"), Contains("blade.hub: the blade has no inertia"));
   CHECK_THROWS_WITH(read("x = 1\n"), Contains("blade: missing"));
-  CHECK_THROWS_WITH(scenario::parse_toml_file("/nonexistent/impact.toml"),
-                    Contains("/nonexistent/impact.toml: no such file"));
+  CHECK_THROWS_WITH(scenario::parse_toml_file("/nonexistent/impact.toml"), Contains("/nonexistent/impact.toml: no such file"));
 }
 
 TEST_CASE("impact input: malformed TOML is refused with its file and line", "[input][errors]") {
@@ -139,7 +140,6 @@ TEST_CASE("impact input: malformed TOML is refused with its file and line", "[in
     out << with(kPivotedSI, "[contact]", "[blade]");
   }
   CHECK_THROWS_WITH(scenario::parse_toml_file(path),
-                    Contains("impact-input-malformed.toml:15: not valid TOML") &&
-                        Contains("cannot redefine existing table 'blade'"));
+                    Contains("impact-input-malformed.toml:15: not valid TOML") && Contains("cannot redefine existing table 'blade'"));
   std::remove(path.c_str());
 }

@@ -188,8 +188,7 @@ TEST_CASE("impact: a heavy blade throws the object at (1 + e) v_p + e v_c", "[im
   CHECK(s.contact.velocity_after.y() == Approx(1.8 * 50.0 + 0.8 * 2.0).epsilon(1e-14));
 }
 
-TEST_CASE("impact: a blade whose pivots are all seized is the straight blade of the same mass distribution",
-          "[impact][property]") {
+TEST_CASE("impact: a blade whose pivots are all seized is the straight blade of the same mass distribution", "[impact][property]") {
   std::mt19937_64 rng(11);
   for (int i = 0; i < 100; ++i) {
     blade::Blade b = random_blade(rng, {.seized_probability = 1.0});

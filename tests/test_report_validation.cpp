@@ -65,8 +65,7 @@ TEST_CASE("report 445-1 Table 3.2: straight blade within 0.5 %", "[validation][r
   CHECK(checked == 4);
 }
 
-TEST_CASE("report 445-1 Case II: the solution satisfies Eqs 2.19, 2.21, 2.22 and lies within 7 % of Table 3.2",
-          "[validation][report]") {
+TEST_CASE("report 445-1 Case II: the solution satisfies Eqs 2.19, 2.21, 2.22 and lies within 7 % of Table 3.2", "[validation][report]") {
   int checked = 0;
   for (const auto& row : test::read_lab_rows()) {
     if (row.blade != "pivoted") continue;
@@ -129,8 +128,8 @@ TEST_CASE("report 445-1 Appendix C.2: its printed 3x3 systems give Table 3.2, so
 
 TEST_CASE("report 445-1 Appendix A: the Fortran straight-blade formula gives the same answer", "[validation][report]") {
   // The second program's STRAIGHT BLADE branch (report_fortran.hpp), with its pi = 3.1416.
-  const auto fortran = [](double rpm, double d1, double w2, double e, double va1, double r, double w1) {
-    return test::fortran_straight_va2(rpm, d1, w2, e, va1, r, w1);
+  const auto fortran = [](double speed_rpm, double d1, double w2, double e, double va1, double r, double w1) {
+    return test::fortran_straight_va2(speed_rpm, d1, w2, e, va1, r, w1);
   };
   struct Case {
     double rpm, length_ft, blade_lb, e, v_ftmin, r_ft, object_lb;
@@ -150,8 +149,8 @@ TEST_CASE("report 445-1 Appendix A: the Fortran straight-blade formula gives the
     blade::StruckObject o;
     o.mass = c.object_lb * pound;
     o.velocity = {0.0, -c.v_ftmin * ft_per_min, 0.0};
-    const auto s = blade::solve_impact(blade::BladeModel(b), blade::ContactLocation::hub(c.r_ft * foot), o,
-                                       blade::Restitution::constant(c.e));
+    const auto s =
+        blade::solve_impact(blade::BladeModel(b), blade::ContactLocation::hub(c.r_ft * foot), o, blade::Restitution::constant(c.e));
     const double theirs = fortran(c.rpm, c.length_ft, c.blade_lb, c.e, c.v_ftmin, c.r_ft, c.object_lb);
     // Only the program's pi = 3.1416 separates the two (2.3e-6 relative on the blade speed).
     CHECK(discharge_ftmin(s) == Approx(theirs).epsilon(1e-5));

@@ -93,8 +93,7 @@ TEST_CASE("scene: user meshes are read, scaled and labelled; bad ones are refuse
   CHECK_THROWS_WITH(scene::read_mesh(text, scene::Surface::Housing, 1.0), Catch::Contains("unknown mesh format"));
   const auto broken = write("scene-test-broken.off", "OFF\n3 1 0\n0 0 0\n1 0\n");
   CHECK_THROWS_WITH(scene::read_mesh(broken, scene::Surface::Housing, 1.0), Catch::Contains("scene-test-broken.off"));
-  for (const char* f : {"scene-test-quad.obj", "scene-test-degenerate.off", "scene-test-mesh.txt", "scene-test-broken.off"})
-    std::remove(f);
+  for (const char* f : {"scene-test-quad.obj", "scene-test-degenerate.off", "scene-test-mesh.txt", "scene-test-broken.off"}) std::remove(f);
 }
 
 TEST_CASE("scene: export writes a labelled PLY and a grouped OBJ that read back, with the mower's lines", "[scene][export]") {
@@ -171,8 +170,8 @@ TEST_CASE("scene: the operator-zone share converges to the sector's fraction of 
   for (std::size_t t = 0; t < soup.triangles.size(); ++t)
     if (scene::is_target(soup.labels[t])) {
       const auto& tri = soup.triangles[t];
-      ring.add_triangle(ring.add_point(soup.points[tri[0]]), ring.add_point(soup.points[tri[1]]),
-                        ring.add_point(soup.points[tri[2]]), soup.labels[t]);
+      ring.add_triangle(ring.add_point(soup.points[tri[0]]), ring.add_point(soup.points[tri[1]]), ring.add_point(soup.points[tri[2]]),
+                        soup.labels[t]);
     }
   const scene::Scene sc(ring);
   std::vector<scenario::GuardSpec> guards(1);

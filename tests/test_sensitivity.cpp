@@ -37,8 +37,8 @@ TEST_CASE("sensitivity: Sobol' indices of the Ishigami function", "[sensitivity]
   CHECK(s.variance == Approx(v).epsilon(0.02));
   for (int i = 0; i < 3; ++i) {
     INFO("input " << i + 1 << ": S " << s.first[i].estimate << " [" << s.first[i].low << ", " << s.first[i].high << "] exact "
-                  << exact_first[i] << "; ST " << s.total[i].estimate << " [" << s.total[i].low << ", " << s.total[i].high
-                  << "] exact " << exact_total[i]);
+                  << exact_first[i] << "; ST " << s.total[i].estimate << " [" << s.total[i].low << ", " << s.total[i].high << "] exact "
+                  << exact_total[i]);
     CHECK(s.first[i].estimate == Approx(exact_first[i]).margin(0.03));
     CHECK(s.total[i].estimate == Approx(exact_total[i]).margin(0.03));
     // The bootstrap interval covers the exact value (with a little slack for the estimator's bias).

@@ -8,6 +8,7 @@
 
 #include "report_fortran.hpp"
 #include "scenario/input_error.hpp"
+#include "report/sweep_report.hpp"
 #include "study/sweep.hpp"
 #include "units/quantity.hpp"
 
@@ -15,9 +16,7 @@ using namespace j232;
 
 namespace {
 
-std::string sweep_file(int figure) {
-  return fmt::format("{}/sweeps/report-445-1/fig-2-{:02d}.toml", J232_SOURCE_DIR, figure);
-}
+std::string sweep_file(int figure) { return fmt::format("{}/sweeps/report-445-1/fig-2-{:02d}.toml", J232_SOURCE_DIR, figure); }
 
 // Report 445-1, Appendix A, first program (report_fortran.hpp), blade length 2 ft, exact pi.
 double fortran_va2(double rpm, double blade_lb, double e, double objvel_ft_min, double r_ft, double w1_lb) {
@@ -47,8 +46,8 @@ TEST_CASE("sweep: Figs 2.8-2.15 equal the report's first program at every point"
     REQUIRE(s.table.rows.size() == curves * 8);
     for (const auto& r : s.table.rows) {
       const double w1 = s.at(r, "object_mass_kg") / units::pound, w2 = s.at(r, "blade_mass_kg") / units::pound;
-      const double expected = fortran_va2(s.at(r, "blade_speed_rpm"), w2, s.at(r, "restitution"), 440.0,
-                                          s.at(r, "contact_radius_m") / units::foot, w1);
+      const double expected =
+          fortran_va2(s.at(r, "blade_speed_rpm"), w2, s.at(r, "restitution"), 440.0, s.at(r, "contact_radius_m") / units::foot, w1);
       CHECK(s.at(r, "object_speed_after_ft_min") == Approx(expected).epsilon(1e-9));
       // The report's dimensionless velocity Z = (VA2 - 440) / (4 pi rpm).
       CHECK(s.at(r, "dimensionless_velocity") == Approx((expected - 440.0) / (4 * units::pi * s.at(r, "blade_speed_rpm"))).epsilon(1e-9));
@@ -79,8 +78,8 @@ TEST_CASE("sweep: the trends report 445-1 describes for Figs 2.8-2.15", "[sweep]
       auto spread = [&](std::size_t n) {
         return s.at(s.table.rows[24 + n], "object_speed_after_m_s") / s.at(s.table.rows[n], "object_speed_after_m_s") - 1;
       };
-      CHECK(spread(0) < 0.02);   // 0.25 lb: 22 lb vs 16 lb blade within 2 %
-      CHECK(spread(7) > 0.15);   // 22 lb object: more than 15 % apart
+      CHECK(spread(0) < 0.02);  // 0.25 lb: 22 lb vs 16 lb blade within 2 %
+      CHECK(spread(7) > 0.15);  // 22 lb object: more than 15 % apart
     }
   }
   SECTION("Figs 2.9, 2.10: in the true dimensionless form the blade-mass curves collapse") {
@@ -102,7 +101,8 @@ TEST_CASE("sweep: the trends report 445-1 describes for Figs 2.8-2.15", "[sweep]
     for (auto& x : scaled.x.values) x.si *= 16.0 / 22.0;
     const auto t = study::run_sweep(scaled, 1, nullptr);
     const std::size_t z = study::column(t, "dimensionless_velocity");
-    for (std::size_t n = 0; n < 8; ++n) CHECK(t.rows[n].values[z] == Approx(s.at(s.table.rows[7 * 8 + n], "dimensionless_velocity")).epsilon(1e-9));
+    for (std::size_t n = 0; n < 8; ++n)
+      CHECK(t.rows[n].values[z] == Approx(s.at(s.table.rows[7 * 8 + n], "dimensionless_velocity")).epsilon(1e-9));
   }
 }
 
@@ -112,7 +112,8 @@ TEST_CASE("sweep: Fig 2.16 pivot position keeps the blade's mass and tip radius"
   for (const auto& r : s.table.rows) CHECK(s.at(r, "blade_mass_kg") == Approx(20 * units::pound));
   // A 2 g nail is too light for the blade to feel: the pivot makes no difference.
   double lo = 1e9, hi = 0;
-  for (std::size_t i = 0; i < 18; ++i) lo = std::min(lo, s.at(s.table.rows[i], "dimensionless_velocity")), hi = std::max(hi, s.at(s.table.rows[i], "dimensionless_velocity"));
+  for (std::size_t i = 0; i < 18; ++i)
+    lo = std::min(lo, s.at(s.table.rows[i], "dimensionless_velocity")), hi = std::max(hi, s.at(s.table.rows[i], "dimensionless_velocity"));
   CHECK(hi / lo - 1 < 0.002);
   // A heavy object is thrown slower by a blade pinned farther out than by one pinned near
   // the spindle (the report's conclusion), with the slowest near S/L = 1/4.
@@ -163,7 +164,7 @@ TEST_CASE("sweep: over a J232 scenario, P(pass) with its interval at every point
   CHECK(t.rows[0].values[study::column(t, "p_pass")] < 0.1);
   CHECK(t.rows[1].values[study::column(t, "p_pass")] > 0.9);
   CHECK(t.rows[0].x == Approx(6 * units::inch));
-  const auto charts = study::sweep_charts(spec, t);
+  const auto charts = report::sweep_charts(spec, t);
   REQUIRE(charts.size() == 5);  // P(pass), then each criterion's share with its band and limit
   CHECK(charts[0].first == "pass-probability");
   CHECK(charts[4].first == "share-punctures_outside");

@@ -69,18 +69,20 @@ TEST_CASE("uncertainty: bad inputs are refused with the key and what was expecte
   CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad2.toml", one("\"10 deg\"", "\"5 deg\"")), 1),
                     Contains("uncertainty.inputs[1].high") && Contains("above low"));
   CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad3.toml", one("\"0 deg\"", "\"80 deg\"")), 1), Contains("45 deg"));
-  CHECK_THROWS_AS(scenario::read_scenario(with_uncertainty("uq-bad4.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"x\"\nlow = 1\nhigh = 2\n")),
+  CHECK_THROWS_AS(scenario::read_scenario(
+                      with_uncertainty("uq-bad4.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"x\"\nlow = 1\nhigh = 2\n")),
                   scenario::InputError);  // no basis
 }
 
 TEST_CASE("uncertainty: inputs drawn uniform, triangular or normal (truncated) over their range", "[uncertainty][distribution]") {
   using K = study::InputDistribution::Kind;
-  const study::InputDistribution uniform{K::Uniform, 2, 6, 4, 1}, triangle{K::Triangular, 0, 10, 2, 0}, normal{K::Normal, 0.5, 0.7, 0.6, 0.03};
+  const study::InputDistribution uniform{K::Uniform, 2, 6, 4, 1}, triangle{K::Triangular, 0, 10, 2, 0},
+      normal{K::Normal, 0.5, 0.7, 0.6, 0.03};
   CHECK(uniform.quantile(0.25) == Approx(3));
   // Triangular: F(mode) = (mode - low) / (high - low); the quantile inverts it on both sides.
   CHECK(triangle.quantile(0.2) == Approx(2));
-  CHECK(triangle.quantile(0.2 * 0.25) == Approx(1));                         // F(x) = x^2 / (10 * 2) below the mode
-  CHECK(triangle.quantile(1 - 16.0 / 80) == Approx(6));                      // 1 - F(x) = (10 - x)^2 / (10 * 8) above it
+  CHECK(triangle.quantile(0.2 * 0.25) == Approx(1));     // F(x) = x^2 / (10 * 2) below the mode
+  CHECK(triangle.quantile(1 - 16.0 / 80) == Approx(6));  // 1 - F(x) = (10 - x)^2 / (10 * 8) above it
   CHECK(normal.quantile(0.5) == Approx(0.6));
   CHECK(normal.quantile(1e-9) >= 0.5);
   CHECK(normal.quantile(1 - 1e-9) <= 0.7);
@@ -105,9 +107,11 @@ TEST_CASE("uncertainty: inputs drawn uniform, triangular or normal (truncated) o
   };
   CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-dist1.toml", input("mode = \"5 deg\"\n"))),
                     Contains("only a triangular distribution has a mode"));
-  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-dist2.toml", input("distribution = \"lognormal\"\n"))), Contains("lognormal"));
-  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-dist3.toml", input("distribution = \"triangular\"\nmode = \"12 deg\"\n")), 1),
-                    Contains("uncertainty.inputs[1].mode") && Contains("from low to high"));
+  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-dist2.toml", input("distribution = \"lognormal\"\n"))),
+                    Contains("lognormal"));
+  CHECK_THROWS_WITH(
+      study::run_uncertainty(with_uncertainty("uq-dist3.toml", input("distribution = \"triangular\"\nmode = \"12 deg\"\n")), 1),
+      Contains("uncertainty.inputs[1].mode") && Contains("from low to high"));
   CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-dist4.toml", input("distribution = \"normal\"\nsd = \"0 deg\"\n")), 1),
                     Contains("uncertainty.inputs[1].sd"));
 }

@@ -155,8 +155,8 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
 
 }  // namespace
 
-void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& into,
-                    Progress* progress, const MarkSink& sink, const ReplicateSink& replicate_sink) {
+void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& into, Progress* progress,
+                    const MarkSink& sink, const ReplicateSink& replicate_sink) {
   const std::uint64_t chunks = (count + kChunk - 1) / kChunk;
   const auto ranks = static_cast<std::uint64_t>(cluster::size());
   const auto rank = static_cast<std::uint64_t>(cluster::rank());
@@ -223,8 +223,8 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress,
     for (;;) {
       const Interval i = wilson(a.passed, a.replicates);
       if (0.5 * (i.high - i.low) <= *run.target_half_width || a.replicates >= static_cast<std::uint64_t>(run.max_replicates)) break;
-      run_replicates(sim, a.replicates, std::min(first_batch, static_cast<std::uint64_t>(run.max_replicates) - a.replicates), a,
-                     progress, sink, replicate_sink);
+      run_replicates(sim, a.replicates, std::min(first_batch, static_cast<std::uint64_t>(run.max_replicates) - a.replicates), a, progress,
+                     sink, replicate_sink);
     }
   });
   a.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -34,10 +34,10 @@ inline std::uint32_t exit_key(flight::Exit e, std::uint16_t index) { return stat
 inline flight::Exit exit_of(std::uint32_t key) { return static_cast<flight::Exit>(key >> 16); }
 inline std::uint16_t exit_index(std::uint32_t key) { return static_cast<std::uint16_t>(key & 0xFFFFu); }
 struct ExitTable {
-  static constexpr int kBands = 8;  // exit azimuth about the origin in 45 deg bands from -180 deg
-  std::map<std::uint32_t, std::uint64_t> nails;                        // struck nails by exit path
-  std::map<std::uint32_t, std::array<std::uint64_t, kBands>> marks;    // their counted marks, by exit band
-  std::array<std::uint64_t, 5> marks_by_strikes{};                     // nails struck 1, 2, 3, 4, 5+ times
+  static constexpr int kBands = 8;                                            // exit azimuth about the origin in 45 deg bands from -180 deg
+  std::map<std::uint32_t, std::uint64_t> nails;                               // struck nails by exit path
+  std::map<std::uint32_t, std::array<std::uint64_t, kBands>> marks;           // their counted marks, by exit band
+  std::array<std::uint64_t, 5> marks_by_strikes{};                            // nails struck 1, 2, 3, 4, 5+ times
   std::array<std::uint64_t, flight::kTouchKinds + 1> marks_by_first_touch{};  // the last: straight to the board
 
   void add(const flight::FlightResult& f);
@@ -66,12 +66,12 @@ struct ShareDistribution {
 // The per-nail distributions a run records: fixed bins, so merging chunks is exact and
 // order-free. A chunk's and the whole run's are the same set.
 struct NailHistograms {
-  Histogram exit_speed{0.5, 400};       // m/s, 0.5 m/s bins to 200 m/s
-  Histogram mark_energy{0.05, 600};     // J, 0.05 J bins to 30 J: marks only
-  Histogram board_energy{0.05, 600};    // J: every first arrival at the board, marked or not
+  Histogram exit_speed{0.5, 400};            // m/s, 0.5 m/s bins to 200 m/s
+  Histogram mark_energy{0.05, 600};          // J, 0.05 J bins to 30 J: marks only
+  Histogram board_energy{0.05, 600};         // J: every first arrival at the board, marked or not
   Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
-  Histogram contact_radius{0.005, 400}; // m
-  Histogram strikes{1, 52};             // blade strikes per struck nail: bin k holds k strikes
+  Histogram contact_radius{0.005, 400};      // m
+  Histogram strikes{1, 52};                  // blade strikes per struck nail: bin k holds k strikes
   ExitTable exits;
 
   void merge(const NailHistograms& other);
@@ -119,12 +119,12 @@ struct Progress {
 
 // Runs the scenario's replicates (or, with a target half-width, batches until the
 // P(pass) interval is that narrow or max_replicates is reached).
-Assessment run_assessment(const Simulator& simulator, int threads, Progress* progress = nullptr,
-                          const MarkSink& marks = {}, const ReplicateSink& replicates = {});
+Assessment run_assessment(const Simulator& simulator, int threads, Progress* progress = nullptr, const MarkSink& marks = {},
+                          const ReplicateSink& replicates = {});
 
 // Replicates [first, first + count) merged into `into`, which must hold replicates
 // [0, first) already (used by run_assessment and tests).
-void run_replicates(const Simulator& simulator, std::uint64_t first, std::uint64_t count, Assessment& into,
-                    Progress* progress, const MarkSink& marks = {}, const ReplicateSink& replicates = {});
+void run_replicates(const Simulator& simulator, std::uint64_t first, std::uint64_t count, Assessment& into, Progress* progress,
+                    const MarkSink& marks = {}, const ReplicateSink& replicates = {});
 
 }  // namespace j232::assess

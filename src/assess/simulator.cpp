@@ -29,8 +29,7 @@ std::vector<feed::Spindle> make_spindles(const scenario::Scenario& s) {
 }
 }  // namespace
 
-Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine)
-    : scenario_(s), spindles_(make_spindles(s)) {
+Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenario_(s), spindles_(make_spindles(s)) {
   try {
     scene_ = std::make_unique<scene::Scene>(scene::build_scene_soup(scenario_), engine);
   } catch (const std::invalid_argument& e) {

@@ -21,8 +21,8 @@ struct NailOutcome {
   flight::FlightResult flight;  // fate NotStruck when the blade missed it
   double exit_speed = 0;        // m/s after the first strike (0 if not struck)
   double contact_radius = 0;
-  int station = 0;              // the feed station it was dropped at (0-based)
-  int spindle = 0;              // the spindle that fed it (0-based)
+  int station = 0;  // the feed station it was dropped at (0-based)
+  int spindle = 0;  // the spindle that fed it (0-based)
 };
 
 class Simulator {

@@ -26,7 +26,7 @@ struct Histogram {
   double sum = 0;  // for the exact mean (summed per chunk, merged in chunk order)
 
   Histogram() = default;
-  Histogram(double bin_width, std::size_t bins) : bin_width(bin_width), counts(bins, 0) {}
+  Histogram(double width, std::size_t bins) : bin_width(width), counts(bins, 0) {}
   void add(double v);
   void merge(const Histogram& other);
   double mean() const { return total ? sum / static_cast<double>(total) : 0.0; }

@@ -14,20 +14,23 @@ Validity check_validity(const Assessment& a, const scenario::Scenario& s) {
   };
   if (a.replicates == 0) refuse("no replicate was run");
   if (a.struck == 0)
-    refuse(fmt::format("the blade struck none of the {} nails fed, so no test happened: check that the feed stations lie "
-                       "within their blade's tip circle and the blade's speed and height",
-                       a.nails));
+    refuse(
+        fmt::format("the blade struck none of the {} nails fed, so no test happened: check that the feed stations lie "
+                    "within their blade's tip circle and the blade's speed and height",
+                    a.nails));
   const std::uint64_t cut = a.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
   if (a.struck > 0 && static_cast<double>(cut) > kMaxCutOffShare * static_cast<double>(a.struck))
-    refuse(fmt::format("{} of {} struck nails ({:.1f} %) were cut off still moving by [run] time_limit ({:g} s), "
-                       "max_bounces ({}) or the step limit, more than the {:g} % allowed: where they would have ended "
-                       "is unknown; raise the limits",
-                       cut, a.struck, 100.0 * static_cast<double>(cut) / static_cast<double>(a.struck), s.run.time_limit,
-                       s.run.max_bounces, 100 * kMaxCutOffShare));
+    refuse(
+        fmt::format("{} of {} struck nails ({:.1f} %) were cut off still moving by [run] time_limit ({:g} s), "
+                    "max_bounces ({}) or the step limit, more than the {:g} % allowed: where they would have ended "
+                    "is unknown; raise the limits",
+                    cut, a.struck, 100.0 * static_cast<double>(cut) / static_cast<double>(a.struck), s.run.time_limit, s.run.max_bounces,
+                    100 * kMaxCutOffShare));
   if (a.non_finite > 0)
-    refuse(fmt::format("{} nails reached a non-finite state (infinite or not-a-number speed or position): the inputs "
-                       "are outside what the model can handle",
-                       a.non_finite));
+    refuse(
+        fmt::format("{} nails reached a non-finite state (infinite or not-a-number speed or position): the inputs "
+                    "are outside what the model can handle",
+                    a.non_finite));
   return v;
 }
 
@@ -60,8 +63,8 @@ Summary summarise(const Assessment& a, const scenario::Scenario& scenario) {
   }
   // The criterion least likely to pass; on a tie, the one whose mean share comes
   // closest to its limit.
-  auto tighter = [&](int a, int b) {
-    const auto &x = s.criteria[a], &y = s.criteria[b];
+  auto tighter = [&](int i, int j) {
+    const auto &x = s.criteria[i], &y = s.criteria[j];
     if (x.pass.estimate != y.pass.estimate) return x.pass.estimate < y.pass.estimate;
     const double rx = x.limit > 0 ? x.mean_share / x.limit : x.mean_share, ry = y.limit > 0 ? y.mean_share / y.limit : y.mean_share;
     return rx > ry;

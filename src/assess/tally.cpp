@@ -29,8 +29,7 @@ void ReplicateTally::add(const flight::FlightResult& nail) {
 
 Judgement judge(const ReplicateTally& t, const scenario::CriteriaSpec& criteria) {
   Judgement j;
-  const double denominator =
-      criteria.denominator == scenario::CriteriaSpec::Denominator::Marks ? t.marks : t.nails;
+  const double denominator = criteria.denominator == scenario::CriteriaSpec::Denominator::Marks ? t.marks : t.nails;
   j.pass = true;
   for (int c = 0; c < kCategories; ++c) {
     j.shares[c] = denominator > 0 ? t.counts[c] / denominator : 0.0;

@@ -15,8 +15,7 @@ double Arm::pin_radius(std::size_t k) const {
 double Arm::tip_radius() const { return pin_radius(links.size()); }
 
 double Hub::inertia() const {
-  const double bar = bar_mount == BarMount::End ? bar_mass * bar_length * bar_length / 3.0
-                                                : bar_mass * bar_length * bar_length / 12.0;
+  const double bar = bar_mount == BarMount::End ? bar_mass * bar_length * bar_length / 3.0 : bar_mass * bar_length * bar_length / 12.0;
   return bar + extra_inertia + drive_inertia;
 }
 
@@ -86,8 +85,8 @@ std::vector<std::string> problems(const Blade& blade) {
       positive(link.length, lname + " length", "m");
       positive(link.mass, lname + " mass", "kg");
       if (link.centre_of_mass && (*link.centre_of_mass < 0.0 || *link.centre_of_mass > link.length))
-        out.push_back(fmt::format("{} centre of mass must lie on the link (0 to {} m), got {} m", lname, link.length,
-                                  *link.centre_of_mass));
+        out.push_back(
+            fmt::format("{} centre of mass must lie on the link (0 to {} m), got {} m", lname, link.length, *link.centre_of_mass));
       if (link.inertia_about_centre) non_negative(*link.inertia_about_centre, lname + " inertia", "kg m^2");
     }
   }

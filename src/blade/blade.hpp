@@ -49,9 +49,9 @@ struct Hub {
   double bar_mass = 0.0;
   double bar_length = 0.0;
   BarMount bar_mount = BarMount::Centre;
-  double extra_inertia = 0.0;  // explicit hub inertia (plates, bolts) about the spindle, kg m^2
-  double drive_inertia = 0.0;  // drive line (gearbox, shaft, flywheel) seen at the spindle, kg m^2
-  bool constant_speed = false; // driven at constant speed: infinite inertia
+  double extra_inertia = 0.0;   // explicit hub inertia (plates, bolts) about the spindle, kg m^2
+  double drive_inertia = 0.0;   // drive line (gearbox, shaft, flywheel) seen at the spindle, kg m^2
+  bool constant_speed = false;  // driven at constant speed: infinite inertia
 
   double reach() const { return bar_mount == BarMount::End ? bar_length : 0.5 * bar_length; }
   double inertia() const;  // bar + extra + drive, about the spindle
@@ -75,9 +75,7 @@ struct ContactLocation {
   double distance = 0.0;  // m, from the link's inner pin; for the hub: radius from the spindle
 
   static ContactLocation hub(double radius) { return {true, 0, 0, radius}; }
-  static ContactLocation on_link(std::size_t arm, std::size_t link, double distance) {
-    return {false, arm, link, distance};
-  }
+  static ContactLocation on_link(std::size_t arm, std::size_t link, double distance) { return {false, arm, link, distance}; }
 };
 
 // Finds the body at `radius` from the spindle along arm `arm` (hub if inside the pivot

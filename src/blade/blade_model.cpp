@@ -99,9 +99,7 @@ double BladeModel::effective_mass(const ContactLocation& where) const {
   return 1.0 / compliance;
 }
 
-double BladeModel::contact_speed(const ContactLocation& where) const {
-  return blade_.omega * contact_radius(blade_, where);
-}
+double BladeModel::contact_speed(const ContactLocation& where) const { return blade_.omega * contact_radius(blade_, where); }
 
 Eigen::VectorXd BladeModel::rigid_rates() const { return Eigen::VectorXd::Constant(dof(), blade_.omega); }
 

@@ -6,8 +6,7 @@
 
 namespace j232::blade {
 
-ContactOutcome resolve_contact(const BladeAtContact& blade, const StruckObject& object,
-                               const Restitution& restitution) {
+ContactOutcome resolve_contact(const BladeAtContact& blade, const StruckObject& object, const Restitution& restitution) {
   ContactOutcome out;
   const Vec3& n = blade.normal;
   Vec3 arm = Vec3::Zero();  // contact point relative to the object's centre
@@ -54,10 +53,10 @@ ImpactSolution solve_impact(const BladeModel& model, const ContactLocation& wher
   at.normal = Vec3::UnitY();  // arm along +x turning about +z moves along +y
   s.contact = resolve_contact(at, object, restitution);
   if (!s.contact.approaching)
-    throw std::invalid_argument(fmt::format(
-        "no impact: the object's contact point moves at {:.4g} m/s along the blade's motion, not slower than the "
-        "blade's {:.4g} m/s, so the blade never catches it",
-        at.speed - s.contact.approach_speed, at.speed));
+    throw std::invalid_argument(
+        fmt::format("no impact: the object's contact point moves at {:.4g} m/s along the blade's motion, not slower than the "
+                    "blade's {:.4g} m/s, so the blade never catches it",
+                    at.speed - s.contact.approach_speed, at.speed));
 
   // The blade receives the reaction: -P along its motion.
   const Eigen::VectorXd before = model.rigid_rates();

@@ -52,10 +52,10 @@ struct ContactOutcome {
   bool approaching = false;  // false: the object outruns the blade; nothing happened
   double approach_speed = 0.0;
   double e = 0.0;
-  double impulse = 0.0;                 // on the object, along +normal, N s
-  double object_effective_mass = 0.0;   // along the normal, kg
-  double energy_lost = 0.0;             // J, >= 0
-  double blade_speed_before = 0.0;      // contact point, along the normal
+  double impulse = 0.0;                // on the object, along +normal, N s
+  double object_effective_mass = 0.0;  // along the normal, kg
+  double energy_lost = 0.0;            // J, >= 0
+  double blade_speed_before = 0.0;     // contact point, along the normal
   double blade_speed_after = 0.0;
   Vec3 velocity_after = Vec3::Zero();
   Vec3 spin_after = Vec3::Zero();
@@ -71,9 +71,9 @@ struct ImpactSolution {
   double contact_radius = 0.0;
   double blade_effective_mass = 0.0;
   ContactOutcome contact;
-  double hub_rate_after = 0.0;                   // rad/s
-  std::vector<std::vector<double>> link_rates;   // [arm][link], absolute, rad/s
-  double blade_energy_before = 0.0;              // free bodies only (a constant-speed hub's is the drive's)
+  double hub_rate_after = 0.0;                  // rad/s
+  std::vector<std::vector<double>> link_rates;  // [arm][link], absolute, rad/s
+  double blade_energy_before = 0.0;             // free bodies only (a constant-speed hub's is the drive's)
   double blade_energy_after = 0.0;
 };
 

@@ -11,11 +11,11 @@ namespace j232::blade {
 struct Restitution {
   enum class Model { Constant, PowerLaw };
   Model model = Model::Constant;
-  double e = 0.9;                 // Constant
-  double coefficient = 1.06;      // PowerLaw, at v = reference_speed
-  double exponent = -0.25;        // PowerLaw
-  double reference_speed = 1.0;   // m/s
-  double maximum = 0.9;           // PowerLaw cap (low speeds)
+  double e = 0.9;                // Constant
+  double coefficient = 1.06;     // PowerLaw, at v = reference_speed
+  double exponent = -0.25;       // PowerLaw
+  double reference_speed = 1.0;  // m/s
+  double maximum = 0.9;          // PowerLaw cap (low speeds)
 
   static Restitution constant(double e) { return {Model::Constant, e}; }
   static Restitution power_law(double coefficient, double exponent, double maximum, double reference_speed = 1.0) {

@@ -73,7 +73,8 @@ int batch(const BatchOptions& given) {
   BatchOptions o = given;
   if (o.compare) {
     if (o.resume)
-      throw scenario::InputError("", std::nullopt, "--compare", "", "without --resume: a comparison pairs every design's replicates, which "
+      throw scenario::InputError("", std::nullopt, "--compare", "",
+                                 "without --resume: a comparison pairs every design's replicates, which "
                                  "kept results do not hold");
     if (o.scenarios.size() < 2) throw scenario::InputError("", std::nullopt, "--compare", "", "at least two scenarios to compare");
     // Common random numbers: every design runs the first's seed and replicates.
@@ -109,7 +110,9 @@ int batch(const BatchOptions& given) {
       const json& r = *row.result;
       const std::string verdict = r["verdict"].get<std::string>();
       fmt::print("{} (P(pass) {:.3f}, 95 % {:.3f} to {:.3f}){}\n",
-                 verdict == "passes" ? "PASSES" : verdict == "invalid" ? "INVALID (no verdict)" : "FAILS",
+                 verdict == "passes"    ? "PASSES"
+                 : verdict == "invalid" ? "INVALID (no verdict)"
+                                        : "FAILS",
                  r["pass_probability"]["estimate"].get<double>(), r["pass_probability"]["low"].get<double>(),
                  r["pass_probability"]["high"].get<double>(), row.resumed ? "  [current results kept]" : "");
     } catch (const scenario::InputError& e) {
@@ -143,8 +146,8 @@ int batch(const BatchOptions& given) {
   report::write_atomically(out.staged("summary.json"), summary.dump(2) + "\n");
   out.commit();
   fmt::print("{} of {} scenarios pass, {} fail, {} invalid, {} refused. Wrote {}/summary.html, summary.json and summary.csv{}\n",
-             summary["passed"].get<std::size_t>(), rows.size(), summary["failed"].get<std::size_t>(),
-             summary["invalid"].get<std::size_t>(), summary["refused"].get<std::size_t>(), report::terminal_safe(o.out),
+             summary["passed"].get<std::size_t>(), rows.size(), summary["failed"].get<std::size_t>(), summary["invalid"].get<std::size_t>(),
+             summary["refused"].get<std::size_t>(), report::terminal_safe(o.out),
              comparison.is_null() ? "" : ", and the comparison of the designs in compare.html, compare.json and compare.csv");
   if (internal_error) return kInternal;
   if (summary["refused"].get<std::size_t>() > 0) return kBadInput;

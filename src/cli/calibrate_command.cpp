@@ -54,9 +54,10 @@ int calibrate(const CalibrateOptions& o) {
 
 Runner add_calibrate_command(CLI::App& app) {
   auto o = std::make_shared<CalibrateOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "calibrate", "Fit the nail-on-blade restitution law to measured impact speeds (least squares, intervals, held-out errors), or "
-                   "find e from drop tests");
+  CLI::App* cmd =
+      app.add_subcommand("calibrate",
+                         "Fit the nail-on-blade restitution law to measured impact speeds (least squares, intervals, held-out errors), or "
+                         "find e from drop tests");
   cmd->add_option("cases", o->cases,
                   "CSV of measured impacts: columns case, scenario (an impact case file), measured_speed, and scenario keys to set per "
                   "row (see scenarios/calibration/)");

@@ -74,8 +74,8 @@ int run_impact(const ImpactOptions& o) {
 
 Runner add_impact_command(CLI::App& app) {
   auto options = std::make_shared<ImpactOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "impact", "Compute one blade-object impact (report 445-1, Appendix A) from a scenario file and/or options");
+  CLI::App* cmd =
+      app.add_subcommand("impact", "Compute one blade-object impact (report 445-1, Appendix A) from a scenario file and/or options");
   cmd->add_option("scenario", options->scenario, "Impact scenario file (TOML); see scenarios/impact/");
   cmd->add_flag("--json", options->json, "Print JSON (SI units, plus ft/min for object speeds) instead of a table");
   cmd->add_option("--set", options->assignments, "Override any key: --set blade.speed=\"900 rpm\"")->type_name("KEY=VALUE");

@@ -29,7 +29,9 @@ struct SceneOptions {
 // The paths kept in a run's result.json of the scenario titled `title`, coloured as the
 // report draws them.
 std::vector<scene::Polyline> nail_paths(const std::string& result_file, const std::string& title) {
-  auto refuse = [&](const std::string& expected) { throw scenario::InputError(result_file, std::nullopt, "--paths", result_file, expected); };
+  auto refuse = [&](const std::string& expected) {
+    throw scenario::InputError(result_file, std::nullopt, "--paths", result_file, expected);
+  };
   std::ifstream in(result_file);
   if (!in) refuse("a result.json of `j232 run` that can be read");
   const auto j = nlohmann::json::parse(in, nullptr, false);
@@ -54,7 +56,8 @@ std::vector<scene::Polyline> nail_paths(const std::string& result_file, const st
 int run(const SceneOptions& o) {
   // The options first: a mistake there is reported before any work.
   if (!o.paths_from.empty() && o.export_path.empty())
-    throw scenario::InputError("", std::nullopt, "--paths", o.paths_from, "--export PATH too: the paths are written into the exported scene");
+    throw scenario::InputError("", std::nullopt, "--paths", o.paths_from,
+                               "--export PATH too: the paths are written into the exported scene");
   const std::string ext = std::filesystem::path(o.export_path).extension().string();
   if (!o.export_path.empty() && ext != ".ply" && ext != ".obj")
     throw scenario::InputError("", std::nullopt, "--export", o.export_path, "a file name ending in .ply or .obj");
@@ -77,8 +80,8 @@ int run(const SceneOptions& o) {
   if (!o.export_path.empty() && assess::cluster::is_writer()) {
     report::write_atomically(o.export_path, scene::export_text(soup, lines, o.export_path));
     auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
-    fmt::print("wrote {} (the scene, {} tip circle{}, {} feed station{}{}{})\n", o.export_path, s.spindles.size(), plural(s.spindles.size()),
-               s.feed.stations.size(), plural(s.feed.stations.size()),
+    fmt::print("wrote {} (the scene, {} tip circle{}, {} feed station{}{}{})\n", o.export_path, s.spindles.size(),
+               plural(s.spindles.size()), s.feed.stations.size(), plural(s.feed.stations.size()),
                s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived ? ", the seat and reach envelope" : "",
                paths.empty() ? "" : fmt::format(", {} nail paths", paths.size()));
   }

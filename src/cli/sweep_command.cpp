@@ -12,6 +12,7 @@
 #include "report/atomic_file.hpp"
 #include "scenario/input_error.hpp"
 #include "study/sweep.hpp"
+#include "report/sweep_report.hpp"
 
 namespace j232::cli {
 namespace {
@@ -52,13 +53,13 @@ void run_one(const study::SweepSpec& spec, const SweepOptions& o) {
   if (ec) throw scenario::InputError("", std::nullopt, "--out", o.out, "cannot create the output folder: " + ec.message());
   const std::filesystem::path dir(o.out);
   std::vector<std::string> written{(dir / (spec.name + ".csv")).string()};
-  report::write_atomically(written.front(), study::sweep_csv(spec, table));
-  for (const auto& [suffix, svg] : study::sweep_charts(spec, table)) {
+  report::write_atomically(written.front(), report::sweep_csv(spec, table));
+  for (const auto& [suffix, svg] : report::sweep_charts(spec, table)) {
     written.push_back((dir / fmt::format("{}-{}.svg", spec.name, suffix)).string());
     report::write_atomically(written.back(), svg);
   }
-  fmt::print("{}: {} points ({} of {}). Wrote {}\n", spec.title, table.rows.size(),
-             table.assessment ? "J232 assessments" : "impacts", spec.base, fmt::join(written, ", "));
+  fmt::print("{}: {} points ({} of {}). Wrote {}\n", spec.title, table.rows.size(), table.assessment ? "J232 assessments" : "impacts",
+             spec.base, fmt::join(written, ", "));
 }
 
 int sweep(const SweepOptions& o) {
@@ -89,8 +90,8 @@ int sweep(const SweepOptions& o) {
 
 Runner add_sweep_command(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "sweep", "Parameter study over an impact case (object speed) or a J232 scenario (P(pass)); CSV and SVG charts");
+  CLI::App* cmd =
+      app.add_subcommand("sweep", "Parameter study over an impact case (object speed) or a J232 scenario (P(pass)); CSV and SVG charts");
   cmd->add_option("files", o->files, "Sweep files (TOML); see sweeps/");
   cmd->add_option("--base", o->base, "Without a sweep file: the impact case or J232 scenario to vary");
   cmd->add_option("--x", o->x, "The x-axis parameter and values: blade_speed=\"700 rpm,800 rpm\"");

@@ -43,8 +43,7 @@ NailDrop sample_drop(const scenario::Scenario& s, int nail_index, random::Stream
 
 std::vector<Edge> leading_edges(const blade::Blade& blade) {
   std::vector<Edge> edges;
-  for (std::size_t a = 0; a < blade.arms.size(); ++a)
-    edges.push_back({blade.arms[a].azimuth, blade.arms[a].tip_radius(), a});
+  for (std::size_t a = 0; a < blade.arms.size(); ++a) edges.push_back({blade.arms[a].azimuth, blade.arms[a].tip_radius(), a});
   if (edges.empty()) {
     edges.push_back({0.0, blade.hub.reach(), std::nullopt});
     if (blade.hub.bar_mount == blade::BarMount::Centre) edges.push_back({units::pi, blade.hub.reach(), std::nullopt});
@@ -60,8 +59,8 @@ double slab_window(const NailDrop& d, const scenario::BladeGeometry& g) {
   return (-v + std::sqrt(v * v + 2.0 * kGravity * depth)) / kGravity;
 }
 
-std::optional<Strike> find_strike(const NailDrop& d, const std::vector<Edge>& edges, double omega,
-                                  const scenario::BladeGeometry& g, int sense) {
+std::optional<Strike> find_strike(const NailDrop& d, const std::vector<Edge>& edges, double omega, const scenario::BladeGeometry& g,
+                                  int sense) {
   const double window = slab_window(d, g);
   const double phi0 = std::atan2(d.position.y(), d.position.x());
   std::optional<Strike> best;

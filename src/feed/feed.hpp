@@ -24,7 +24,7 @@ inline constexpr double kGravity = units::standard_gravity;
 struct NailDrop {
   int station = 0;
   double length = 0, mass = 0, diameter = 0;
-  Vec3 axis = Vec3::UnitZ();  // unit, tip -> head
+  Vec3 axis = Vec3::UnitZ();                           // unit, tip -> head
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  // axis at the blade plane at t = 0, from the spindle's axis, m
   Eigen::Vector2d drift = Eigen::Vector2d::Zero();     // horizontal velocity relative to the mower, m/s
   double fall_speed = 0;                               // downward, at t = 0, m/s
@@ -35,17 +35,17 @@ NailDrop sample_drop(const scenario::Scenario& s, int nail_index, random::Stream
 
 // A leading edge of the blade: the arm (or hub bar end) that sweeps through nails.
 struct Edge {
-  double azimuth = 0;             // in the blade frame, rad
-  double reach = 0;               // m
-  std::optional<std::size_t> arm; // none: the hub bar itself
+  double azimuth = 0;              // in the blade frame, rad
+  double reach = 0;                // m
+  std::optional<std::size_t> arm;  // none: the hub bar itself
 };
 std::vector<Edge> leading_edges(const blade::Blade& blade);
 
 struct Strike {
-  double time = 0;        // s after t = 0
+  double time = 0;  // s after t = 0
   std::size_t edge = 0;
-  double radius = 0, azimuth = 0;   // of the contact, world
-  double offset = 0;      // contact point from the nail's centre along its axis (+ toward the head), m
+  double radius = 0, azimuth = 0;  // of the contact, world
+  double offset = 0;               // contact point from the nail's centre along its axis (+ toward the head), m
   Vec3 nail_velocity = Vec3::Zero();
   Vec3 contact_point = Vec3::Zero();
 };

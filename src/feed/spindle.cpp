@@ -12,13 +12,12 @@ constexpr double kSampleAngle = 0.3;  // rad: the edge-to-nail angle is sampled 
 }  // namespace
 
 Spindle::Spindle(const blade::Blade& b, const scenario::BladeGeometry& g, const blade::Restitution& e)
-    : height(g.height), thickness(g.thickness), lift_angle(g.lift_angle), blade(b), model(b), edges(leading_edges(b)),
-      restitution(e) {
+    : height(g.height), thickness(g.thickness), lift_angle(g.lift_angle), blade(b), model(b), edges(leading_edges(b)), restitution(e) {
   for (const auto& edge : edges) reach = std::max(reach, edge.reach);
 }
 
-std::optional<BladeHit> first_sweep(const Spindle& sp, double phase, const Eigen::Vector3d& p0, const Eigen::Vector3d& v,
-                                    double t0, double t1, double half_height, double after) {
+std::optional<BladeHit> first_sweep(const Spindle& sp, double phase, const Eigen::Vector3d& p0, const Eigen::Vector3d& v, double t0,
+                                    double t1, double half_height, double after) {
   double lo = std::max(t0, after), hi = t1;
   if (!(hi > lo)) return std::nullopt;
   // In the slab: |z(t) - height| <= thickness / 2 + half_height, z linear in t.
@@ -79,7 +78,10 @@ std::optional<BladeHit> first_sweep(const Spindle& sp, double phase, const Eigen
           const Eigen::Vector2d qm = q_at(m);
           const double am = azimuth_prev + std::remainder(std::atan2(qm.y(), qm.x()) - azimuth_prev, units::two_pi);
           const double dm = edge0 + omega * m - am - target;
-          if ((dm < 0) == (a_d < 0)) a_t = m, a_d = dm; else b_t = m;
+          if ((dm < 0) == (a_d < 0))
+            a_t = m, a_d = dm;
+          else
+            b_t = m;
         }
         const double ts = 0.5 * (a_t + b_t);
         const Eigen::Vector2d qs = q_at(ts);

@@ -23,14 +23,14 @@ namespace j232::feed {
 
 struct Spindle {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // m, world
-  double height = 0.076;     // blade mid-plane above ground, m
-  double thickness = 0.006;  // m
-  double lift_angle = 0.0;   // rad: the edge's bevel tilts the contact normal up
-  int sense = +1;            // +1 counter-clockwise, -1 clockwise, seen from above
+  double height = 0.076;                             // blade mid-plane above ground, m
+  double thickness = 0.006;                          // m
+  double lift_angle = 0.0;                           // rad: the edge's bevel tilts the contact normal up
+  int sense = +1;                                    // +1 counter-clockwise, -1 clockwise, seen from above
   blade::Blade blade;
   blade::BladeModel model;
   std::vector<Edge> edges;
-  double reach = 0.0;        // tip radius: no edge reaches beyond
+  double reach = 0.0;                                                  // tip radius: no edge reaches beyond
   blade::Restitution restitution = blade::Restitution::constant(0.9);  // nail on blade
 
   Spindle(const blade::Blade& blade, const scenario::BladeGeometry& geometry, const blade::Restitution& restitution);
@@ -46,23 +46,23 @@ struct BladePhases {
 // Where and when an edge meets a nail.
 struct BladeHit {
   std::size_t spindle = 0, edge = 0;
-  double time = 0;                     // s, on the nail's clock
-  double radius = 0, azimuth = 0;      // of the nail about the spindle axis, world azimuth
+  double time = 0;                 // s, on the nail's clock
+  double radius = 0, azimuth = 0;  // of the nail about the spindle axis, world azimuth
 };
 
 // The first time in (after, t1] at which an edge of `spindle` sweeps a nail whose centre
 // moves from p0 (at t0) with constant velocity v, while some part of the nail lies in
 // the blade's slab (`half_height`: the nail's vertical half-extent) and within that
 // edge's reach. A chord of a flight is short enough to be taken as straight.
-std::optional<BladeHit> first_sweep(const Spindle& spindle, double phase, const Eigen::Vector3d& p0, const Eigen::Vector3d& v,
-                                    double t0, double t1, double half_height, double after);
+std::optional<BladeHit> first_sweep(const Spindle& spindle, double phase, const Eigen::Vector3d& p0, const Eigen::Vector3d& v, double t0,
+                                    double t1, double half_height, double after);
 
 // A nail (rigid slender rod) as the blade meets it.
 struct NailAtBlade {
   double mass = 0, length = 0;
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero(), spin = Eigen::Vector3d::Zero();
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // tip -> head
-  double offset = 0;  // contact point from the nail's centre along its axis, m
+  double offset = 0;                                // contact point from the nail's centre along its axis, m
 };
 
 // The impact of the edge `hit.edge` on the nail at hit.radius / hit.azimuth: nothing when

@@ -128,8 +128,8 @@ void FlightContext::set_deck_outline(const std::vector<Eigen::Vector2d>* outline
   if (near > 0 && std::isfinite(near)) outline_inside_r2 = near * near * (1 - 1e-9);
 }
 
-FlightResult fly(const Body& start, double length, double diameter, double mass, const Drag& drag,
-                 const FlightContext& ctx, const feed::BladePhases& phases, random::Stream& rng) {
+FlightResult fly(const Body& start, double length, double diameter, double mass, const Drag& drag, const FlightContext& ctx,
+                 const feed::BladePhases& phases, random::Stream& rng) {
   const scenario::Scenario& s = *ctx.scenario;
   FlightResult r;
   Body b = start;
@@ -205,9 +205,8 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     nail.velocity = body.velocity;
     nail.spin = body.spin;
     nail.axis = body.axis;
-    nail.offset = std::abs(body.axis.z()) > 1e-6
-                      ? std::clamp((sp.height - body.position.z()) / body.axis.z(), -0.5 * length, 0.5 * length)
-                      : 0.0;
+    nail.offset =
+        std::abs(body.axis.z()) > 1e-6 ? std::clamp((sp.height - body.position.z()) / body.axis.z(), -0.5 * length, 0.5 * length) : 0.0;
     return nail;
   };
   // The earliest blade strike of the nail on the chord from `from` over dt, if any. An
@@ -243,8 +242,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
 
   auto record_mark = [&](const Vec3& point, double energy, bool zone, bool puncture) {
     const bool counted = point.z() >= ctx.counted_height;
-    if (r.mark_count < FlightResult::kMaxMarks)
-      r.marks[static_cast<std::size_t>(r.mark_count)] = {point, energy, zone, puncture, counted};
+    if (r.mark_count < FlightResult::kMaxMarks) r.marks[static_cast<std::size_t>(r.mark_count)] = {point, energy, zone, puncture, counted};
     ++r.mark_count;
     if (!counted)
       ++r.uncounted_marks;

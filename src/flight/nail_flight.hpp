@@ -31,7 +31,14 @@ namespace j232::flight {
 // off still moving by the run's limits (time, bounces, steps) or a non-finite state. A
 // cut-off nail's end is unknown, so too many of them make a run invalid.
 enum class Fate : std::uint8_t {
-  NotStruck, Contained, StoppedByGuard, ReachedBoardUnmarked, MarkedBoard, MarkedBelowCountedHeight, Escaped, CutOff
+  NotStruck,
+  Contained,
+  StoppedByGuard,
+  ReachedBoardUnmarked,
+  MarkedBoard,
+  MarkedBelowCountedHeight,
+  Escaped,
+  CutOff
 };
 inline constexpr int kFates = 8;
 // Chords per flight before the nail is cut off: a nail at rest takes a few hundred at most.
@@ -40,10 +47,10 @@ const char* fate_name(Fate f);
 
 struct MarkRecord {
   Vec3 point = Vec3::Zero();
-  double normal_energy = 0;     // J
+  double normal_energy = 0;  // J
   bool in_zone = false;
   bool puncture = false;
-  bool counted = true;          // at or above the counted height (SAE J232: the blade plane)
+  bool counted = true;  // at or above the counted height (SAE J232: the blade plane)
 };
 
 // What a thrown nail touched after its first strike, in order, and how it left the deck
@@ -86,10 +93,10 @@ struct FlightResult {
   double board_energy = -1;            // J; < 0: never reached the board
   double board_energy_per_width = -1;  // J/m
   int bounces = 0;
-  int strikes = 1;          // blade strikes, the first (the feed's) included
+  int strikes = 1;                        // blade strikes, the first (the feed's) included
   static constexpr int kMaxStrikes = 50;  // beyond: cut off (a nail caught between blade and deck)
-  bool non_finite = false;  // the state stopped being a finite number (a bug or absurd input)
-  int queries = 0;  // scene ray queries (for the benchmark)
+  bool non_finite = false;                // the state stopped being a finite number (a bug or absurd input)
+  int queries = 0;                        // scene ray queries (for the benchmark)
   double flight_time = 0;
   Vec3 end_position = Vec3::Zero();
   NailTrace trace;
@@ -101,7 +108,7 @@ struct FlightContext {
   const scenario::Scenario* scenario = nullptr;
   double escape_radius = 0;  // horizontal distance at which the nail has left the test
   double deck_radius = 0;
-  double counted_height = 0;  // marks below it are not counted (Scenario::counted_height)
+  double counted_height = 0;                                 // marks below it are not counted (Scenario::counted_height)
   const std::vector<scenario::GuardSpec>* guards = nullptr;  // indexed by the scene's guard index
   const std::vector<feed::Spindle>* spindles = nullptr;      // the turning blades; none: nothing strikes again
   // The deck's outline in plan (convex, counter-clockwise) and what crossing it means: a

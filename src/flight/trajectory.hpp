@@ -21,8 +21,8 @@ struct Body {
 
 struct Drag {
   bool on = false;
-  double k_axial = 0;   // rho C_a A_a / (2 m), 1/m
-  double k_normal = 0;  // rho C_n A_n / (2 m), 1/m
+  double k_axial = 0;       // rho C_a A_a / (2 m), 1/m
+  double k_normal = 0;      // rho C_n A_n / (2 m), 1/m
   Vec3 air = Vec3::Zero();  // air velocity in the mower's frame (still air seen from a moving mower)
 };
 

@@ -105,8 +105,8 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   }
   const assess::Summary sum = assess::summarise(a, s);
 
-  Provenance p{j232::version, j232::git_revision, utc_now(), digest(scenario_file, s.meshes, o), a.threads, a.wall_seconds, {},
-                       assess::cluster::size()};
+  Provenance p{j232::version, j232::git_revision, utc_now(), digest(scenario_file, s.meshes, o),
+               a.threads,     a.wall_seconds,     {},        assess::cluster::size()};
   p.files.push_back({"marks.csv", marks.bytes(), marks.digest()});
   // The report shows result.json's numbers; its own size and digest go into result.json.
   RunOutcome outcome{result_json(s, a, sum, p), summary_text(s, sum), std::nullopt};

@@ -12,17 +12,17 @@
 namespace j232::report {
 
 struct RunOverrides {
-  long long replicates = 0;            // 0: the scenario's
-  std::optional<std::uint64_t> seed;   // none: the scenario's
-  int threads = -1;                    // < 0: the scenario's
-  std::size_t trajectories = 0;        // sampled nail paths to keep (plus notable ones); 0: none
-  bool uncertainty = false;            // also run the scenario's uncertainty study (run --uncertainty)
-  bool for_comparison = false;         // keep what a comparison of designs needs; no stop rule (batch --compare)
+  long long replicates = 0;           // 0: the scenario's
+  std::optional<std::uint64_t> seed;  // none: the scenario's
+  int threads = -1;                   // < 0: the scenario's
+  std::size_t trajectories = 0;       // sampled nail paths to keep (plus notable ones); 0: none
+  bool uncertainty = false;           // also run the scenario's uncertainty study (run --uncertainty)
+  bool for_comparison = false;        // keep what a comparison of designs needs; no stop rule (batch --compare)
 };
 
 struct RunOutcome {
-  nlohmann::ordered_json result;  // what result.json holds
-  std::string summary_text;       // the terminal summary
+  nlohmann::ordered_json result;              // what result.json holds
+  std::string summary_text;                   // the terminal summary
   std::optional<study::DesignRecord> design;  // with RunOverrides::for_comparison
 };
 

@@ -13,7 +13,6 @@ namespace j232::report {
 namespace {
 using json = nlohmann::ordered_json;
 
-
 std::string verdict_of(const BatchRow& r) { return r.result ? (*r.result)["verdict"].get<std::string>() : "error"; }
 }  // namespace
 
@@ -57,8 +56,9 @@ json batch_summary_json(const std::vector<BatchRow>& rows, const json& compariso
 }
 
 std::string batch_summary_csv(const std::vector<BatchRow>& rows) {
-  std::string o = "scenario,title,verdict,settled,p_pass,p_pass_low,p_pass_high,required,hits_zone,punctures_zone,hits_outside,"
-                  "punctures_outside,deciding_criterion,replicates,report,error\n";
+  std::string o =
+      "scenario,title,verdict,settled,p_pass,p_pass_low,p_pass_high,required,hits_zone,punctures_zone,hits_outside,"
+      "punctures_outside,deciding_criterion,replicates,report,error\n";
   for (const auto& r : rows) {
     if (!r.result) {
       o += fmt::format("{},,error,,,,,,,,,,,,,{}\n", csv_text_cell(r.scenario), csv_text_cell(r.error));
@@ -66,9 +66,10 @@ std::string batch_summary_csv(const std::vector<BatchRow>& rows) {
     }
     const json& x = *r.result;
     const json& p = x["pass_probability"];
-    o += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:g}", csv_text_cell(r.scenario), csv_text_cell(x["scenario"]["title"].get<std::string>()),
-                     verdict_of(r), x["verdict_settled"].get<bool>(), p["estimate"].get<double>(), p["low"].get<double>(),
-                     p["high"].get<double>(), x["required_pass_probability"].get<double>());
+    o += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:g}", csv_text_cell(r.scenario),
+                     csv_text_cell(x["scenario"]["title"].get<std::string>()), verdict_of(r), x["verdict_settled"].get<bool>(),
+                     p["estimate"].get<double>(), p["low"].get<double>(), p["high"].get<double>(),
+                     x["required_pass_probability"].get<double>());
     for (std::size_t c = 0; c < 4; ++c) o += fmt::format(",{:.6g}", x["criteria"][c]["mean_share"].get<double>());
     o += fmt::format(",{},{},{},{}\n", x["deciding_criterion"].get<std::string>(), x["replicates"].get<long long>(),
                      csv_text_cell(relative_url(r.folder + "/report.html")),
@@ -82,11 +83,11 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
   std::string o = page_head("SAE J232 batch summary");
   o += "<header><h1>SAE J232 batch summary (simulated)</h1></header>\n";
   const bool all = summary["all_passed"].get<bool>();
-  o += fmt::format("<section class=\"verdict {}\"><p class=\"verdict-line\">{} of {} scenarios pass; {} fail; {} invalid (no "
-                   "verdict); {} refused as bad input.</p></section>\n",
-                   all ? "pass" : "fail", number("passed", summary["passed"], "{}"), number("scenarios", summary["scenarios"], "{}"),
-                   number("failed", summary["failed"], "{}"), number("invalid", summary["invalid"], "{}"),
-                   number("refused", summary["refused"], "{}"));
+  o += fmt::format(
+      "<section class=\"verdict {}\"><p class=\"verdict-line\">{} of {} scenarios pass; {} fail; {} invalid (no "
+      "verdict); {} refused as bad input.</p></section>\n",
+      all ? "pass" : "fail", number("passed", summary["passed"], "{}"), number("scenarios", summary["scenarios"], "{}"),
+      number("failed", summary["failed"], "{}"), number("invalid", summary["invalid"], "{}"), number("refused", summary["refused"], "{}"));
   o += "<table class=\"numbers\"><thead><tr><th>scenario</th><th>verdict</th><th>P(pass)</th><th>95 % interval</th><th>required</th>"
        "<th>hits, zone</th><th>punctures, zone</th><th>hits, outside</th><th>punctures, outside</th><th>replicates</th><th>report</th>"
        "</tr></thead><tbody>\n";
@@ -99,15 +100,17 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
     }
     const json& x = *r.result;
     const std::string k = fmt::format("rows.{}.", i);
-    o += fmt::format("<tr class=\"{}\"><td>{}<br><small>{}</small></td><td class=\"verdict-cell\">{}{}</td><td>{}</td><td>{} – {}</td><td>{}</td>",
-                     verdict_of(r), escape(x["scenario"]["title"].get<std::string>()), escape(r.scenario),
-                     verdict_of(r), verdict_of(r) != "invalid" && !x["verdict_settled"].get<bool>() ? " (not settled)" : "",
-                     number(k + "pass_probability.estimate", x["pass_probability"]["estimate"], "{:.3f}"),
-                     number(k + "pass_probability.low", x["pass_probability"]["low"], "{:.3f}"),
-                     number(k + "pass_probability.high", x["pass_probability"]["high"], "{:.3f}"),
-                     number(k + "required_pass_probability", x["required_pass_probability"], "{:.2f}"));
+    o += fmt::format(
+        "<tr class=\"{}\"><td>{}<br><small>{}</small></td><td class=\"verdict-cell\">{}{}</td><td>{}</td><td>{} – {}</td><td>{}</td>",
+        verdict_of(r), escape(x["scenario"]["title"].get<std::string>()), escape(r.scenario), verdict_of(r),
+        verdict_of(r) != "invalid" && !x["verdict_settled"].get<bool>() ? " (not settled)" : "",
+        number(k + "pass_probability.estimate", x["pass_probability"]["estimate"], "{:.3f}"),
+        number(k + "pass_probability.low", x["pass_probability"]["low"], "{:.3f}"),
+        number(k + "pass_probability.high", x["pass_probability"]["high"], "{:.3f}"),
+        number(k + "required_pass_probability", x["required_pass_probability"], "{:.2f}"));
     for (std::size_t c = 0; c < 4; ++c)
-      o += fmt::format("<td>{} %</td>", number(k + "mean_shares." + assess::category_name(static_cast<int>(c)), x["criteria"][c]["mean_share"], "{:.2f}", 100));
+      o += fmt::format("<td>{} %</td>", number(k + "mean_shares." + assess::category_name(static_cast<int>(c)),
+                                               x["criteria"][c]["mean_share"], "{:.2f}", 100));
     o += fmt::format("<td>{}</td><td><a href=\"{}\">report</a></td></tr>\n", number(k + "replicates", x["replicates"], "{}"),
                      escape(relative_url(r.folder + "/report.html")));
   }

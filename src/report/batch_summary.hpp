@@ -10,11 +10,11 @@
 namespace j232::report {
 
 struct BatchRow {
-  std::string scenario;  // file as given
-  std::string folder;    // results folder, relative to the batch folder
+  std::string scenario;                          // file as given
+  std::string folder;                            // results folder, relative to the batch folder
   std::optional<nlohmann::ordered_json> result;  // result.json; absent when the scenario was refused
-  std::string error;     // why it was refused
-  bool resumed = false;  // results were complete and current; not rerun
+  std::string error;                             // why it was refused
+  bool resumed = false;                          // results were complete and current; not rerun
 };
 
 // `comparison`: compare.json of the scenarios run with common random numbers (batch

@@ -79,8 +79,8 @@ struct BoardRaster {
           const bool zone = v == 2;
           const std::string label = labelled[v] ? "" : (zone ? "operator zone" : "target board");
           labelled[v] = true;
-          chart.rect(c - 180.0, z0 + r * kCell, e - 180.0, z0 + (r + 1) * kCell, zone ? kZoneColour : kBoardColour,
-                     zone ? 0.45 : 0.18, label);
+          chart.rect(c - 180.0, z0 + r * kCell, e - 180.0, z0 + (r + 1) * kCell, zone ? kZoneColour : kBoardColour, zone ? 0.45 : 0.18,
+                     label);
         }
         c = e;
       }
@@ -106,8 +106,7 @@ void draw_marks(Chart& chart, const MarkSample& m, bool plan) {
 }
 
 std::string sample_caption(const MarkSample& m) {
-  if (m.replicates_shown == m.replicates)
-    return fmt::format("All {} located marks of {} replicates.", m.marks, m.replicates);
+  if (m.replicates_shown == m.replicates) return fmt::format("All {} located marks of {} replicates.", m.marks, m.replicates);
   return fmt::format("Marks of the first {} of {} replicates ({} of {} located marks): a fair sample, replicates are independent.",
                      m.replicates_shown, m.replicates, m.rows.size(), m.marks);
 }
@@ -146,7 +145,8 @@ std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, co
   if (s.criteria.counted_height)
     chart.hline(s.counted_height(), "#444", fmt::format("counted from {:.0f} mm (departs from J232)", 1000 * s.counted_height()));
   for (std::size_t i = 0; i < s.feed.stations.size(); ++i)
-    chart.vline(azimuth_deg(s.station_x(s.feed.stations[i]), s.station_y(s.feed.stations[i])), "#009E73", s.feed.stations.size() > 1 ? fmt::format("feed {}", i + 1) : "feed station");
+    chart.vline(azimuth_deg(s.station_x(s.feed.stations[i]), s.station_y(s.feed.stations[i])), "#009E73",
+                s.feed.stations.size() > 1 ? fmt::format("feed {}", i + 1) : "feed station");
   chart.x_range(-180, 180);
   chart.x_ticks({-180, -135, -90, -45, 0, 45, 90, 135, 180});
   chart.caption(sample_caption(marks));
@@ -156,7 +156,7 @@ std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, co
 std::array<std::uint8_t, 3> path_rgb(const std::string& why) {
   if (why == "operator zone") return {0xE6, 0x9F, 0x00};  // kZoneColour
   if (why == "puncture") return {0xD5, 0x5E, 0x00};       // kPunctureColour
-  return {0x00, 0x72, 0xB2};                               // kHitColour
+  return {0x00, 0x72, 0xB2};                              // kHitColour
 }
 
 namespace {
@@ -221,7 +221,8 @@ void draw_mower_plan(Chart& chart, const scenario::Scenario& s, const scene::Sou
   for (std::size_t k = 0; k < s.spindles.size(); ++k) {
     const auto& sp = s.spindles[k];
     chart.circle(sp.x, sp.y, sp.blade.tip_radius(), "#000",
-                 k == 0 ? fmt::format("blade tip circle{} (r {:.3f} m)", s.spindles.size() > 1 ? "s" : "", sp.blade.tip_radius()) : "", true);
+                 k == 0 ? fmt::format("blade tip circle{} (r {:.3f} m)", s.spindles.size() > 1 ? "s" : "", sp.blade.tip_radius()) : "",
+                 true);
   }
   std::vector<double> fx, fy;
   for (const auto& f : s.feed.stations) fx.push_back(s.station_x(f)), fy.push_back(s.station_y(f));
@@ -238,11 +239,11 @@ std::string path_colour(const std::string& why) {
 std::string paths_caption(const std::vector<assess::Trajectory>& paths, std::uint64_t not_kept) {
   std::size_t n[3] = {0, 0, 0};
   for (const auto& t : paths) ++n[t.why == "sample" ? 0 : t.why == "operator zone" ? 1 : 2];
-  return fmt::format("{} sampled nails (the first struck in replicate 0), {} that marked the operator zone and {} that punctured the "
-                     "board elsewhere{}.",
-                     n[0], n[1], n[2],
-                     not_kept ? fmt::format(" (at most 100 of each, chosen at random from the whole run; {} more not drawn)", not_kept)
-                              : std::string());
+  return fmt::format(
+      "{} sampled nails (the first struck in replicate 0), {} that marked the operator zone and {} that punctured the "
+      "board elsewhere{}.",
+      n[0], n[1], n[2],
+      not_kept ? fmt::format(" (at most 100 of each, chosen at random from the whole run; {} more not drawn)", not_kept) : std::string());
 }
 }  // namespace
 
@@ -269,7 +270,8 @@ std::string trajectories_plan_svg(const scenario::Scenario& s, const scene::Soup
 }
 
 std::string trajectories_side_svg(const scenario::Scenario& s, const std::vector<assess::Trajectory>& paths, std::uint64_t not_kept) {
-  Chart chart("Paths of chosen nails, side elevation", "horizontal distance from the deck's centre (m)", "height above ground (m)", 900, 380);
+  Chart chart("Paths of chosen nails, side elevation", "horizontal distance from the deck's centre (m)", "height above ground (m)", 900,
+              380);
   std::set<std::string> labelled;
   for (const auto& t : paths) {
     std::vector<double> r, z;

@@ -22,7 +22,8 @@ json comparison_json(const study::Comparison& c) {
   for (const auto& d : c.designs) {
     json criteria = json::array();
     for (int k = 0; k < 4; ++k)
-      criteria.push_back({{"name", assess::category_name(k)}, {"limit", d.limits[static_cast<std::size_t>(k)]},
+      criteria.push_back({{"name", assess::category_name(k)},
+                          {"limit", d.limits[static_cast<std::size_t>(k)]},
                           {"share", interval(d.shares[static_cast<std::size_t>(k)])}});
     designs.push_back({{"scenario", d.file},
                        {"title", d.title},
@@ -46,8 +47,9 @@ json comparison_json(const study::Comparison& c) {
                      {"criteria", criteria}});
   }
   return {{"program", "j232 compare"},
-          {"method", "common random numbers: every design run with the same seed and replicates; differences judged "
-                     "replicate by replicate (paired), 95 % intervals mean +/- 1.96 s/sqrt(n); P(pass) per design by Wilson"},
+          {"method",
+           "common random numbers: every design run with the same seed and replicates; differences judged "
+           "replicate by replicate (paired), 95 % intervals mean +/- 1.96 s/sqrt(n); P(pass) per design by Wilson"},
           {"replicates", c.replicates},
           {"seed", c.seed},
           {"designs", designs},
@@ -55,8 +57,9 @@ json comparison_json(const study::Comparison& c) {
 }
 
 std::string comparison_csv(const study::Comparison& c) {
-  std::string out = "criterion,design,scenario,limit,share,share_low,share_high,minus_design_1,difference_low,difference_high,"
-                    "independent_runs_half_width\n";
+  std::string out =
+      "criterion,design,scenario,limit,share,share_low,share_high,minus_design_1,difference_low,difference_high,"
+      "independent_runs_half_width\n";
   for (int k = 0; k < 4; ++k)
     for (std::size_t d = 0; d < c.designs.size(); ++d) {
       const auto& x = c.designs[d];
@@ -74,7 +77,9 @@ std::string comparison_csv(const study::Comparison& c) {
   return out;
 }
 
-std::string comparison_html(const json& c) { return page_head("j232 comparison of designs") + "<h1>Comparison of designs</h1>\n" + comparison_body_html(c, "") + page_foot(); }
+std::string comparison_html(const json& c) {
+  return page_head("j232 comparison of designs") + "<h1>Comparison of designs</h1>\n" + comparison_body_html(c, "") + page_foot();
+}
 
 std::string comparison_body_html(const json& c, const std::string& prefix) {
   const auto& designs = c["designs"];
@@ -83,13 +88,13 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
   };
   std::string o = "<ol>\n";
   for (const auto& d : designs)
-    o += fmt::format("<li>{} ({})</li>\n", escape(d["title"].get<std::string>()),
-                     escape(d["scenario"].get<std::string>()));
-  o += fmt::format("</ol>\n<p>{} replicates of the whole test each, seed {}, with common random numbers: replicate r of "
-                   "every design drops its nails from the same random feed, so the differences below are judged replicate "
-                   "by replicate and their intervals are far tighter than those of independent runs (shown for "
-                   "comparison).</p>\n",
-                   number("replicates", c["replicates"], "{}"), number("seed", c["seed"], "{}"));
+    o += fmt::format("<li>{} ({})</li>\n", escape(d["title"].get<std::string>()), escape(d["scenario"].get<std::string>()));
+  o += fmt::format(
+      "</ol>\n<p>{} replicates of the whole test each, seed {}, with common random numbers: replicate r of "
+      "every design drops its nails from the same random feed, so the differences below are judged replicate "
+      "by replicate and their intervals are far tighter than those of independent runs (shown for "
+      "comparison).</p>\n",
+      number("replicates", c["replicates"], "{}"), number("seed", c["seed"], "{}"));
   // P(pass)
   o += "<h2>P(pass one test)</h2>\n<table class=\"numbers\"><thead><tr><th>design</th><th>P(pass)</th><th>95 % interval</th>"
        "<th>minus design 1</th><th>95 % interval</th><th>independent runs: &plusmn;</th></tr></thead><tbody>\n";
@@ -104,7 +109,8 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
     }
     const std::string dk = fmt::format("differences.{}", d - 1);
     const auto& v = c["differences"][d - 1];
-    o += fmt::format("<td>{}</td><td>{} to {}</td><td>{}</td></tr>\n", number(dk + ".pass_probability.mean", v["pass_probability"]["mean"], "{:+.3f}"),
+    o += fmt::format("<td>{}</td><td>{} to {}</td><td>{}</td></tr>\n",
+                     number(dk + ".pass_probability.mean", v["pass_probability"]["mean"], "{:+.3f}"),
                      number(dk + ".pass_probability.low", v["pass_probability"]["low"], "{:+.3f}"),
                      number(dk + ".pass_probability.high", v["pass_probability"]["high"], "{:+.3f}"),
                      number(dk + ".independent_runs_pass_half_width", v["independent_runs_pass_half_width"], "{:.3f}"));
@@ -112,9 +118,10 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
   o += "</tbody></table>\n";
   // Each criterion: a table row per design and a chart with the limit.
   for (int k = 0; k < 4; ++k) {
-    o += fmt::format("<h2>{}</h2>\n<table class=\"numbers\"><thead><tr><th>design</th><th>mean share</th><th>95 % interval</th>"
-                     "<th>minus design 1</th><th>95 % interval</th><th>independent runs: &plusmn;</th></tr></thead><tbody>\n",
-                     kCriterionWords[k]);
+    o += fmt::format(
+        "<h2>{}</h2>\n<table class=\"numbers\"><thead><tr><th>design</th><th>mean share</th><th>95 % interval</th>"
+        "<th>minus design 1</th><th>95 % interval</th><th>independent runs: &plusmn;</th></tr></thead><tbody>\n",
+        kCriterionWords[k]);
     Chart chart(fmt::format("{}: each design's mean share and its 95 % interval", kCriterionWords[k]), "design",
                 "mean share of the nails fed (%)", 640, 300);
     std::vector<double> x, y, lo, hi;

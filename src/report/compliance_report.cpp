@@ -28,8 +28,8 @@ Chart histogram_chart(const assess::Histogram& h, const std::string& title, cons
   }
   chart.bars(edges, heights, colour, "");
   chart.x_range(0, edges.back());
-  chart.caption(fmt::format("{} values; mean {:.3g}, median {:.3g}, 95th percentile {:.3g}.", h.total, h.mean(),
-                            h.quantile(0.5), h.quantile(0.95)));
+  chart.caption(
+      fmt::format("{} values; mean {:.3g}, median {:.3g}, 95th percentile {:.3g}.", h.total, h.mean(), h.quantile(0.5), h.quantile(0.95)));
   return chart;
 }
 
@@ -38,23 +38,22 @@ std::string verdict_section(const assess::Summary& sum, const json& r, int nails
   if (!sum.validity.valid) {
     // No verdict for a test that did not really happen: say why, and nothing else.
     std::string o = "<section class=\"verdict fail\" id=\"verdict\">\n";
-    o += fmt::format("<p class=\"verdict-line\"><span class=\"caps\">{}</span>: no SAE J232 verdict. The simulated test did not "
-                     "really happen, so its numbers below describe a broken run, not the mower.</p>\n<ul>\n",
-                     number("verdict", r["verdict"], "{}"));
-    for (std::size_t i = 0; i < sum.validity.reasons.size(); ++i)
-      o += fmt::format("<li>{}</li>\n", escape(sum.validity.reasons[i]));
+    o += fmt::format(
+        "<p class=\"verdict-line\"><span class=\"caps\">{}</span>: no SAE J232 verdict. The simulated test did not "
+        "really happen, so its numbers below describe a broken run, not the mower.</p>\n<ul>\n",
+        number("verdict", r["verdict"], "{}"));
+    for (std::size_t i = 0; i < sum.validity.reasons.size(); ++i) o += fmt::format("<li>{}</li>\n", escape(sum.validity.reasons[i]));
     return o + "</ul>\n</section>\n";
   }
   std::string o = fmt::format("<section class=\"verdict {}\" id=\"verdict\">\n", sum.passes ? "pass" : "fail");
-  o += fmt::format("<p class=\"verdict-line\"><span class=\"caps\">{}</span> SAE J232 (as simulated): "
-                   "P(pass one test) = {} (95 % interval {} to {}); required ≥ {}.</p>\n",
-                   number("verdict", r["verdict"], "{}"),
-                   number("pass_probability.estimate", p["estimate"], "{:.3f}"), number("pass_probability.low", p["low"], "{:.3f}"),
-                   number("pass_probability.high", p["high"], "{:.3f}"),
-                   number("required_pass_probability", r["required_pass_probability"], "{:.2f}"));
+  o += fmt::format(
+      "<p class=\"verdict-line\"><span class=\"caps\">{}</span> SAE J232 (as simulated): "
+      "P(pass one test) = {} (95 % interval {} to {}); required ≥ {}.</p>\n",
+      number("verdict", r["verdict"], "{}"), number("pass_probability.estimate", p["estimate"], "{:.3f}"),
+      number("pass_probability.low", p["low"], "{:.3f}"), number("pass_probability.high", p["high"], "{:.3f}"),
+      number("required_pass_probability", r["required_pass_probability"], "{:.2f}"));
   o += fmt::format("<p>{} of {} simulated tests (replicates of {}-nail feeds) met all four criteria. {}</p>\n",
-                   number("replicates_passed", r["replicates_passed"], "{}"),
-                   number("replicates", r["replicates"], "{}"), nails_per_test,
+                   number("replicates_passed", r["replicates_passed"], "{}"), number("replicates", r["replicates"], "{}"), nails_per_test,
                    sum.settled ? "The verdict is settled: the whole 95 % interval lies on one side of the required probability."
                                : "<strong>Not settled:</strong> the 95 % interval straddles the required probability; run more "
                                  "replicates (or set run.target_half_width) before filing.");
@@ -64,10 +63,11 @@ std::string verdict_section(const assess::Summary& sum, const json& r, int nails
 
 std::string criteria_section(const assess::Summary& sum, const json& r) {
   std::string o = "<section id=\"criteria\">\n<h2>1. The four criteria</h2>\n";
-  o += fmt::format("<p>Each criterion limits one kind of mark as a share of {}; a simulated test passes when all four hold. "
-                   "Shares are over replicates; P(pass) is the share of replicates in which the criterion held, with its "
-                   "Wilson 95 % interval.</p>\n",
-                   r["denominator"] == "marks" ? "all marks (hits plus punctures)" : "the nails fed");
+  o += fmt::format(
+      "<p>Each criterion limits one kind of mark as a share of {}; a simulated test passes when all four hold. "
+      "Shares are over replicates; P(pass) is the share of replicates in which the criterion held, with its "
+      "Wilson 95 % interval.</p>\n",
+      r["denominator"] == "marks" ? "all marks (hits plus punctures)" : "the nails fed");
   o += "<table class=\"numbers\"><thead><tr><th>criterion</th><th>limit</th><th>mean share</th><th>5–95 % of tests</th>"
        "<th>P(criterion passes)</th><th></th></tr></thead><tbody>\n";
   for (std::size_t c = 0; c < sum.criteria.size(); ++c) {
@@ -84,13 +84,13 @@ std::string criteria_section(const assess::Summary& sum, const json& r) {
                      deciding ? "<strong>decides the verdict</strong>" : "");
   }
   o += "</tbody></table>\n";
-  o += fmt::format("<p>Counted marks: {} in all, {} per nail fed ({} could not be located: more than four marks from one "
-                   "nail). SAE J232 counts only marks above the plane of the blade tip circle: marks from {} m up are counted; "
-                   "{} marks lower on the board were not (greyed on the hit map).</p>\n",
-                   number("marks", r["marks"], "{}"), number("marks_per_nail", r["marks_per_nail"], "{:.4f}"),
-                   number("marks_not_located", r["marks_not_located"], "{}"),
-                   number("counted_height_m", r["counted_height_m"], "{:.3f}"),
-                   number("marks_below_counted_height", r["marks_below_counted_height"], "{}"));
+  o += fmt::format(
+      "<p>Counted marks: {} in all, {} per nail fed ({} could not be located: more than four marks from one "
+      "nail). SAE J232 counts only marks above the plane of the blade tip circle: marks from {} m up are counted; "
+      "{} marks lower on the board were not (greyed on the hit map).</p>\n",
+      number("marks", r["marks"], "{}"), number("marks_per_nail", r["marks_per_nail"], "{:.4f}"),
+      number("marks_not_located", r["marks_not_located"], "{}"), number("counted_height_m", r["counted_height_m"], "{:.3f}"),
+      number("marks_below_counted_height", r["marks_below_counted_height"], "{}"));
   for (const auto& d : r["departures_from_j232"])
     o += fmt::format("<p class=\"warning\"><strong>Departs from SAE J232:</strong> {}.</p>\n", escape(d.get<std::string>()));
   o += "</section>\n";
@@ -99,20 +99,22 @@ std::string criteria_section(const assess::Summary& sum, const json& r) {
 
 std::string histogram_section(const scenario::Scenario& s, const assess::Assessment& a, const json& r) {
   std::string o = "<section id=\"energies\">\n<h2>3. Speeds and energies</h2>\n";
-  Chart speed = histogram_chart(a.exit_speed, "Nail speed leaving the blade", "speed after impact (m/s)", "m/s", "struck nails", palette(0));
+  Chart speed =
+      histogram_chart(a.exit_speed, "Nail speed leaving the blade", "speed after impact (m/s)", "m/s", "struck nails", palette(0));
   const double tip = s.tip_speed();
   speed.vline(tip, "#000", fmt::format("blade tip speed {:.1f} m/s", tip));
   o += "<figure>" + speed.svg() +
-       fmt::format("<figcaption>Thrown at {} × the blade tip speed on average (5–95 %: {} to {} ×); published speeds of "
-                   "mower-thrown objects are about 0.8 to 1.4 × tip speed (Chazen and Chamberlain, 1962, as widely "
-                   "reported).</figcaption></figure>\n",
-                   number("exit_speed_over_tip_speed.mean", r["exit_speed_over_tip_speed"]["mean"], "{:.2f}"),
-                   number("exit_speed_over_tip_speed.q05", r["exit_speed_over_tip_speed"]["q05"], "{:.2f}"),
-                   number("exit_speed_over_tip_speed.q95", r["exit_speed_over_tip_speed"]["q95"], "{:.2f}"));
+       fmt::format(
+           "<figcaption>Thrown at {} × the blade tip speed on average (5–95 %: {} to {} ×); published speeds of "
+           "mower-thrown objects are about 0.8 to 1.4 × tip speed (Chazen and Chamberlain, 1962, as widely "
+           "reported).</figcaption></figure>\n",
+           number("exit_speed_over_tip_speed.mean", r["exit_speed_over_tip_speed"]["mean"], "{:.2f}"),
+           number("exit_speed_over_tip_speed.q05", r["exit_speed_over_tip_speed"]["q05"], "{:.2f}"),
+           number("exit_speed_over_tip_speed.q95", r["exit_speed_over_tip_speed"]["q95"], "{:.2f}"));
   // Kinetic energy along the board's normal at the first arrival; the thresholds
   // depend on how the nail presents itself, so both extremes are drawn.
-  Chart energy = histogram_chart(a.board_energy, "Kinetic energy at the board (normal to it)", "normal kinetic energy at the board (J)", "J",
-                                 "nails reaching the board", palette(2));
+  Chart energy = histogram_chart(a.board_energy, "Kinetic energy at the board (normal to it)", "normal kinetic energy at the board (J)",
+                                 "J", "nails reaching the board", palette(2));
   const double kp = s.board.puncture_energy_per_width, f = s.board.hit_fraction;
   energy.vline(kp * s.nail.diameter, palette(1), fmt::format("puncture, point first {:.2f} J", kp * s.nail.diameter));
   energy.vline(f * kp * s.nail.diameter, palette(4), fmt::format("hit {:.2f} J", f * kp * s.nail.diameter));
@@ -135,9 +137,10 @@ std::string histogram_section(const scenario::Scenario& s, const assess::Assessm
 // Which way the marking nails got out, so the reader sees which path to close.
 std::string exits_section(const json& r) {
   const auto& h = r["how_nails_leave"];
-  std::string o = "<section id=\"exits\">\n<h3>How nails leave the deck</h3>\n<table class=\"numbers\"><thead><tr><th>way out</th>"
-                  "<th>struck nails</th><th>share of struck nails</th><th>counted marks</th><th>share of counted marks</th>"
-                  "<th>where most of its marks left (azimuth)</th></tr></thead><tbody>\n";
+  std::string o =
+      "<section id=\"exits\">\n<h3>How nails leave the deck</h3>\n<table class=\"numbers\"><thead><tr><th>way out</th>"
+      "<th>struck nails</th><th>share of struck nails</th><th>counted marks</th><th>share of counted marks</th>"
+      "<th>where most of its marks left (azimuth)</th></tr></thead><tbody>\n";
   for (std::size_t i = 0; i < h["by_exit"].size(); ++i) {
     const auto& e = h["by_exit"][i];
     const std::string key = fmt::format("how_nails_leave.by_exit.{}", i);
@@ -158,8 +161,9 @@ std::string exits_section(const json& r) {
   }
   o += "</tbody></table>\n<p>Counted marks by the number of blade strikes of their nail: ";
   for (std::size_t i = 0; i < h["by_strikes"].size(); ++i)
-    o += fmt::format("{}{}: {} %", i ? ", " : "", h["by_strikes"][i]["strikes"].get<std::string>(),
-                     number(fmt::format("how_nails_leave.by_strikes.{}.share_of_marks", i), h["by_strikes"][i]["share_of_marks"], "{:.1f}", 100));
+    o += fmt::format(
+        "{}{}: {} %", i ? ", " : "", h["by_strikes"][i]["strikes"].get<std::string>(),
+        number(fmt::format("how_nails_leave.by_strikes.{}.share_of_marks", i), h["by_strikes"][i]["share_of_marks"], "{:.1f}", 100));
   o += ". By the first surface touched after the first strike: ";
   bool first = true;
   for (std::size_t i = 0; i < h["by_first_surface"].size(); ++i) {
@@ -176,8 +180,9 @@ std::string exits_section(const json& r) {
 }
 
 std::string fates_section(const json& r) {
-  std::string o = "<section id=\"fates\">\n<h2>4. Where the nails went</h2>\n<table class=\"numbers\"><thead><tr><th>fate</th>"
-                  "<th>nails</th><th>share of nails fed</th><th></th></tr></thead><tbody>\n";
+  std::string o =
+      "<section id=\"fates\">\n<h2>4. Where the nails went</h2>\n<table class=\"numbers\"><thead><tr><th>fate</th>"
+      "<th>nails</th><th>share of nails fed</th><th></th></tr></thead><tbody>\n";
   static const std::vector<std::pair<std::string, std::string>> names = {
       {"not_struck", "not struck by the blade"},
       {"contained_by_housing", "contained by the housing (at rest under the deck)"},
@@ -190,18 +195,19 @@ std::string fates_section(const json& r) {
   for (const auto& [key, label] : names) {
     const auto& f = r["fates"][key];
     const double share = f["fraction"].get<double>();
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} %</td><td><span class=\"bar\" style=\"width:{:.1f}px\"></span></td></tr>\n",
-                     label, number("fates." + key + ".nails", f["nails"], "{}"),
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} %</td><td><span class=\"bar\" style=\"width:{:.1f}px\"></span></td></tr>\n", label,
+                     number("fates." + key + ".nails", f["nails"], "{}"),
                      number("fates." + key + ".fraction", f["fraction"], "{:.2f}", 100), 240 * share);
   }
   const auto& k = r["strikes_per_struck_nail"];
-  o += fmt::format("</tbody></table>\n<p>{} nails fed in all, {} struck. The turning blade is part of the scene: a nail "
-                   "that comes back into its disc is struck again. Blade strikes per struck nail: {} on average; {} % were "
-                   "struck more than once (at most {} times).</p>\n</section>\n",
-                   number("nails_fed", r["nails_fed"], "{}"), number("nails_struck", r["nails_struck"], "{}"),
-                   number("strikes_per_struck_nail.mean", k["mean"], "{:.4f}"),
-                   number("strikes_per_struck_nail.share_struck_again", k["share_struck_again"], "{:.2f}", 100),
-                   number("strikes_per_struck_nail.most", k["most"], "{}"));
+  o += fmt::format(
+      "</tbody></table>\n<p>{} nails fed in all, {} struck. The turning blade is part of the scene: a nail "
+      "that comes back into its disc is struck again. Blade strikes per struck nail: {} on average; {} % were "
+      "struck more than once (at most {} times).</p>\n</section>\n",
+      number("nails_fed", r["nails_fed"], "{}"), number("nails_struck", r["nails_struck"], "{}"),
+      number("strikes_per_struck_nail.mean", k["mean"], "{:.4f}"),
+      number("strikes_per_struck_nail.share_struck_again", k["share_struck_again"], "{:.2f}", 100),
+      number("strikes_per_struck_nail.most", k["most"], "{}"));
   return o + exits_section(r);
 }
 
@@ -223,18 +229,21 @@ void flatten(const json& j, const std::string& prefix, std::vector<std::pair<std
 std::string scenario_section(const json& r) {
   std::vector<std::pair<std::string, std::string>> rows;
   flatten(r["scenario"], "", rows);
-  std::string o = "<section id=\"scenario\">\n<h2>5. The scenario as run</h2>\n<p>Every value the run used, defaults filled in, "
-                  "SI units (the unit is in each key's name).</p>\n<table class=\"keys\"><tbody>\n";
+  std::string o =
+      "<section id=\"scenario\">\n<h2>5. The scenario as run</h2>\n<p>Every value the run used, defaults filled in, "
+      "SI units (the unit is in each key's name).</p>\n<table class=\"keys\"><tbody>\n";
   for (const auto& [k, v] : rows) o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(k), escape(v));
   o += "</tbody></table>\n</section>\n";
   return o;
 }
 
 std::string assumptions_section(const json& r) {
-  std::string o = "<section id=\"assumptions\">\n<h2>6. Assumptions and their sources</h2>\n<table><thead><tr><th>assumption</th>"
-                  "<th>source</th></tr></thead><tbody>\n";
+  std::string o =
+      "<section id=\"assumptions\">\n<h2>6. Assumptions and their sources</h2>\n<table><thead><tr><th>assumption</th>"
+      "<th>source</th></tr></thead><tbody>\n";
   for (const auto& x : r["assumptions"])
-    o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(x["assumption"].get<std::string>()), escape(x["source"].get<std::string>()));
+    o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(x["assumption"].get<std::string>()),
+                     escape(x["source"].get<std::string>()));
   o += fmt::format("</tbody></table>\n<p>Denominator of the shares: {}.</p>\n</section>\n", number("denominator", r["denominator"], "{}"));
   return o;
 }
@@ -257,8 +266,8 @@ std::string provenance_section(const json& r) {
 
 }  // namespace
 
-std::string compliance_report_html(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
-                                   const json& r, const scene::Soup& soup) {
+std::string compliance_report_html(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum, const json& r,
+                                   const scene::Soup& soup) {
   std::string o = page_head("SAE J232 assessment: " + s.title);
   o += fmt::format("<header><h1>SAE J232 thrown-object assessment (simulated)</h1>\n<p class=\"sub\">{} — <code>{}</code></p></header>\n",
                    escape(s.title), escape(s.file));

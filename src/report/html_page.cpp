@@ -38,10 +38,11 @@ footer { margin-top: 32px; font-size: 11px; color: #777; }
 }  // namespace
 
 std::string page_head(const std::string& title) {
-  return fmt::format("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                     "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{}</style>\n"
-                     "</head>\n<body>\n",
-                     escape(title), kStyle);
+  return fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{}</style>\n"
+      "</head>\n<body>\n",
+      escape(title), kStyle);
 }
 
 std::string page_foot() {

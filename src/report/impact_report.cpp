@@ -31,10 +31,8 @@ nlohmann::ordered_json impact_json(const scenario::ImpactCase& in, const blade::
   nlohmann::ordered_json links = nlohmann::ordered_json::array();
   for (std::size_t a = 0; a < s.link_rates.size(); ++a)
     for (std::size_t k = 0; k < s.link_rates[a].size(); ++k)
-      links.push_back({{"arm", a + 1},
-                       {"link", k + 1},
-                       {"rate_after_rad_s", s.link_rates[a][k]},
-                       {"rate_after_rpm", s.link_rates[a][k] / rpm}});
+      links.push_back(
+          {{"arm", a + 1}, {"link", k + 1}, {"rate_after_rad_s", s.link_rates[a][k]}, {"rate_after_rpm", s.link_rates[a][k] / rpm}});
   return {
       {"program", "j232 impact"},
       {"version", j232::version},
@@ -53,10 +51,7 @@ nlohmann::ordered_json impact_json(const scenario::ImpactCase& in, const blade::
         {"object_velocity_before_m_s", vec(in.object.velocity)},
         {"eccentric", in.object.rod.has_value()},
         {"restitution", in.restitution.describe()}}},
-      {"contact",
-       {{"body", body_name(s.location)},
-        {"radius_m", s.contact_radius},
-        {"distance_from_inner_pin_m", s.location.distance}}},
+      {"contact", {{"body", body_name(s.location)}, {"radius_m", s.contact_radius}, {"distance_from_inner_pin_m", s.location.distance}}},
       {"blade_effective_mass_kg", finite_or_null(s.blade_effective_mass)},
       {"blade_immovable_at_contact", !std::isfinite(s.blade_effective_mass)},
       {"object_effective_mass_kg", c.object_effective_mass},
@@ -84,32 +79,28 @@ std::string impact_table(const scenario::ImpactCase& in, const blade::ImpactSolu
   auto row = [&](std::string_view label, std::string value) { out += fmt::format("  {:<34} {}\n", label, value); };
   out += fmt::format("j232 impact — {}\n", in.title.empty() ? in.source : in.title);
   out += "\nInput\n";
-  row("blade speed", fmt::format("{:.1f} rpm ({:.2f} rad/s); tip speed {:.2f} m/s ({:.0f} ft/min)", in.blade.omega / rpm,
-                                 in.blade.omega, in.blade.omega * in.blade.tip_radius(),
-                                 in.blade.omega * in.blade.tip_radius() / ft_per_min));
-  row("blade mass, tip radius", fmt::format("{:.4g} kg ({:.4g} lb), {:.4g} m ({:.4g} in)", in.blade.mass(),
-                                            in.blade.mass() / units::pound, in.blade.tip_radius(),
-                                            in.blade.tip_radius() / units::inch));
+  row("blade speed", fmt::format("{:.1f} rpm ({:.2f} rad/s); tip speed {:.2f} m/s ({:.0f} ft/min)", in.blade.omega / rpm, in.blade.omega,
+                                 in.blade.omega * in.blade.tip_radius(), in.blade.omega * in.blade.tip_radius() / ft_per_min));
+  row("blade mass, tip radius", fmt::format("{:.4g} kg ({:.4g} lb), {:.4g} m ({:.4g} in)", in.blade.mass(), in.blade.mass() / units::pound,
+                                            in.blade.tip_radius(), in.blade.tip_radius() / units::inch));
   row("object", fmt::format("{}, {:.4g} kg ({:.4g} g){}", in.object_name, in.object.mass, in.object.mass / units::gram,
                             in.object.rod ? ", slender rod struck off centre" : ""));
-  row("object speed toward blade", fmt::format("{:.4g} m/s ({:.1f} ft/min)", -in.object.velocity.y(),
-                                               -in.object.velocity.y() / ft_per_min));
+  row("object speed toward blade",
+      fmt::format("{:.4g} m/s ({:.1f} ft/min)", -in.object.velocity.y(), -in.object.velocity.y() / ft_per_min));
   row("restitution", in.restitution.describe());
-  row("contact", fmt::format("{} at {:.4g} m ({:.4g} in) from the spindle", body_name(s.location), s.contact_radius,
-                             s.contact_radius / units::inch));
+  row("contact",
+      fmt::format("{} at {:.4g} m ({:.4g} in) from the spindle", body_name(s.location), s.contact_radius, s.contact_radius / units::inch));
   out += "\nResult\n";
   row("blade effective mass at contact", std::isfinite(s.blade_effective_mass)
                                              ? fmt::format("{:.5g} kg", s.blade_effective_mass)
                                              : std::string("infinite (the struck point cannot give way)"));
   row("approach speed", fmt::format("{:.4f} m/s, e = {:.4g}", c.approach_speed, c.e));
   row("impulse on object", fmt::format("{:.5g} N s", c.impulse));
-  row("OBJECT SPEED AFTER IMPACT", fmt::format("{:.4f} m/s ({:.1f} ft/min)", c.velocity_after.norm(),
-                                               c.velocity_after.norm() / ft_per_min));
+  row("OBJECT SPEED AFTER IMPACT",
+      fmt::format("{:.4f} m/s ({:.1f} ft/min)", c.velocity_after.norm(), c.velocity_after.norm() / ft_per_min));
   row("  as a multiple of tip speed", fmt::format("{:.3f}", c.velocity_after.norm() / (in.blade.omega * in.blade.tip_radius())));
-  row("  along the blade's motion", fmt::format("{:.4f} m/s ({:.1f} ft/min)", c.velocity_after.y(),
-                                                c.velocity_after.y() / ft_per_min));
-  if (in.object.rod)
-    row("object spin after", fmt::format("{:.1f} rad/s ({:.0f} rpm)", c.spin_after.norm(), c.spin_after.norm() / rpm));
+  row("  along the blade's motion", fmt::format("{:.4f} m/s ({:.1f} ft/min)", c.velocity_after.y(), c.velocity_after.y() / ft_per_min));
+  if (in.object.rod) row("object spin after", fmt::format("{:.1f} rad/s ({:.0f} rpm)", c.spin_after.norm(), c.spin_after.norm() / rpm));
   row("hub after", fmt::format("{:.4f} rad/s ({:.2f} rpm)", s.hub_rate_after, s.hub_rate_after / rpm));
   for (std::size_t a = 0; a < s.link_rates.size(); ++a)
     for (std::size_t k = 0; k < s.link_rates[a].size(); ++k)

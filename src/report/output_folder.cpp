@@ -19,15 +19,12 @@ namespace {
 constexpr const char* kLockName = ".j232.lock";
 constexpr const char* kStagingPrefix = ".j232-staging-";
 
-[[noreturn]] void refuse(const std::string& path, const std::string& why) {
-  throw report::FileError(fmt::format("{}: {}", path, why));
-}
+[[noreturn]] void refuse(const std::string& path, const std::string& why) { throw report::FileError(fmt::format("{}: {}", path, why)); }
 }  // namespace
 
 std::string Fnv::hex() const { return fmt::format("{:016x}", h); }
 
-OutputFolder::OutputFolder(std::string folder, std::vector<std::string> files)
-    : folder_(std::move(folder)), files_(std::move(files)) {
+OutputFolder::OutputFolder(std::string folder, std::vector<std::string> files) : folder_(std::move(folder)), files_(std::move(files)) {
   std::error_code ec;
   if (!assess::cluster::is_writer()) {
     // Another rank of an MPI job: it computes what rank 0 writes, and writes nothing of its

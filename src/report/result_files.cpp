@@ -25,7 +25,8 @@ json strikes_json(const assess::Histogram& h) {
   std::size_t most = 0;
   for (std::size_t k = 0; k < h.counts.size(); ++k)
     if (h.counts[k] > 0) most = k;
-  std::vector<std::uint64_t> counts(h.counts.begin() + 1, h.counts.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(most, 1)) + 1);
+  std::vector<std::uint64_t> counts(h.counts.begin() + 1,
+                                    h.counts.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(most, 1)) + 1);
   return {{"mean", h.mean()},
           {"share_struck_again", h.total ? static_cast<double>(h.total - once) / static_cast<double>(h.total) : 0.0},
           {"most", most},
@@ -33,9 +34,8 @@ json strikes_json(const assess::Histogram& h) {
 }
 
 json histogram_json(const assess::Histogram& h, const char* unit) {
-  return {{"unit", unit},     {"count", h.total},          {"mean", h.mean()},
-          {"q05", h.quantile(0.05)}, {"q50", h.quantile(0.5)}, {"q95", h.quantile(0.95)},
-          {"bin_width", h.bin_width}, {"counts", h.counts}};
+  return {{"unit", unit},           {"count", h.total},        {"mean", h.mean()},         {"q05", h.quantile(0.05)},
+          {"q50", h.quantile(0.5)}, {"q95", h.quantile(0.95)}, {"bin_width", h.bin_width}, {"counts", h.counts}};
 }
 // How the nails left the deck, for the counted marks (the table "How nails leave").
 json exits_json(const assess::Assessment& a) {
@@ -52,7 +52,9 @@ json exits_json(const assess::Assessment& a) {
     json bands = json::array();
     for (int b = 0; b < assess::ExitTable::kBands; ++b) {
       marks += row[static_cast<std::size_t>(b)];
-      bands.push_back({{"from_deg", -180 + 45 * b}, {"to_deg", -135 + 45 * b}, {"marks", row[static_cast<std::size_t>(b)]},
+      bands.push_back({{"from_deg", -180 + 45 * b},
+                       {"to_deg", -135 + 45 * b},
+                       {"marks", row[static_cast<std::size_t>(b)]},
                        {"share_of_marks", share(row[static_cast<std::size_t>(b)])}});
     }
     const auto name = a.exit_names.find(key);
@@ -121,8 +123,7 @@ std::vector<std::string> departures_from_j232(const scenario::Scenario& s) {
   return d;
 }
 
-json result_json(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
-                 const Provenance& p) {
+json result_json(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum, const Provenance& p) {
   json criteria = json::array();
   for (const auto& c : sum.criteria)
     criteria.push_back({{"name", c.name},
@@ -135,7 +136,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
   json fates;
   for (int f = 0; f < flight::kFates; ++f)
     fates[flight::fate_name(static_cast<flight::Fate>(f))] = {
-        {"nails", sum.fates[f]}, {"fraction", sum.nails ? static_cast<double>(sum.fates[f]) / sum.nails : 0.0}};
+        {"nails", sum.fates[f]}, {"fraction", sum.nails ? static_cast<double>(sum.fates[f]) / static_cast<double>(sum.nails) : 0.0}};
   json assumed = json::array();
   for (const auto& x : assumptions(s)) assumed.push_back({{"assumption", x.what}, {"source", x.source}});
   const double tip_speed = s.tip_speed();
@@ -198,14 +199,18 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
     json paths = json::array();
     for (const auto& t : a.trajectories) {
       json points = json::array();
-      for (const auto& q : t.points) points.push_back({std::round(q.x() * 1e4) / 1e4, std::round(q.y() * 1e4) / 1e4, std::round(q.z() * 1e4) / 1e4});
-      paths.push_back({{"replicate", t.replicate}, {"nail", t.nail}, {"why", t.why}, {"fate", flight::fate_name(t.fate)}, {"points_m", points}});
+      for (const auto& q : t.points)
+        points.push_back({std::round(q.x() * 1e4) / 1e4, std::round(q.y() * 1e4) / 1e4, std::round(q.z() * 1e4) / 1e4});
+      paths.push_back(
+          {{"replicate", t.replicate}, {"nail", t.nail}, {"why", t.why}, {"fate", flight::fate_name(t.fate)}, {"points_m", points}});
     }
-    result["trajectories"] = {{"kept", a.trajectories.size()},
-                              {"notable_not_kept", a.trajectories_not_kept},
-                              {"note", "whole paths of the first struck nails of replicate 0 and of every nail that marked the "
-                                       "operator zone or punctured (up to 100 of each, chosen at random), traced again after the run; points to 0.1 mm"},
-                              {"paths", paths}};
+    result["trajectories"] = {
+        {"kept", a.trajectories.size()},
+        {"notable_not_kept", a.trajectories_not_kept},
+        {"note",
+         "whole paths of the first struck nails of replicate 0 and of every nail that marked the "
+         "operator zone or punctured (up to 100 of each, chosen at random), traced again after the run; points to 0.1 mm"},
+        {"paths", paths}};
   }
   require_finite(result);
   return result;
@@ -220,9 +225,9 @@ void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const asse
   const auto& p = m.mark.point;
   // Azimuths from -180 to 180 deg (from +x, the direction of travel, toward +y), as the hit map and how_nails_leave give them.
   const double az = azimuth_deg(p.x(), p.y());
-  fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{},{},", m.replicate, m.nail,
-                 p.x(), p.y(), p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside", m.mark.normal_energy,
-                 m.mark.puncture ? "puncture" : "hit", m.mark.counted ? "yes" : "below_counted_height");
+  fmt::format_to(std::back_inserter(out), "{},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.4f},{},{:.4f},{},{},", m.replicate, m.nail, p.x(), p.y(),
+                 p.z(), az, p.z(), m.mark.in_zone ? "operator_zone" : "outside", m.mark.normal_energy, m.mark.puncture ? "puncture" : "hit",
+                 m.mark.counted ? "yes" : "below_counted_height");
   const flight::NailTrace& t = m.trace;
   // The path: what it touched after the first strike, in order ("..." when longer than listed).
   std::string path;
@@ -266,23 +271,25 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
                        sum.struck, sum.fates[static_cast<std::size_t>(flight::Fate::CutOff)]);
     return out;
   }
-  out += fmt::format("  P(pass one test) = {:.3f}  (95 % interval {:.3f} to {:.3f}; required {:.2f}; {} replicates)\n",
-                     sum.pass.estimate, sum.pass.low, sum.pass.high, sum.required, sum.replicates);
+  out += fmt::format("  P(pass one test) = {:.3f}  (95 % interval {:.3f} to {:.3f}; required {:.2f}; {} replicates)\n", sum.pass.estimate,
+                     sum.pass.low, sum.pass.high, sum.required, sum.replicates);
   out += fmt::format("  {:<20} {:>8} {:>10} {:>17} {:>10}\n", "criterion", "limit", "mean", "5-95 % range", "P(pass)");
   for (int c = 0; c < assess::kCategories; ++c) {
     const auto& cs = sum.criteria[c];
-    out += fmt::format("  {:<20} {:>7.1f}% {:>9.2f}% {:>17} {:>10.3f}{}\n", cs.name, 100 * cs.limit,
-                       100 * cs.mean_share, fmt::format("{:.2f}-{:.2f} %", 100 * cs.q05, 100 * cs.q95),
-                       cs.pass.estimate, c == sum.deciding ? "  <- decides" : "");
+    out +=
+        fmt::format("  {:<20} {:>7.1f}% {:>9.2f}% {:>17} {:>10.3f}{}\n", cs.name, 100 * cs.limit, 100 * cs.mean_share,
+                    fmt::format("{:.2f}-{:.2f} %", 100 * cs.q05, 100 * cs.q95), cs.pass.estimate, c == sum.deciding ? "  <- decides" : "");
   }
-  out += fmt::format("  nails: {} fed, {} struck ({:.1f} %), {:.3f} counted marks per nail; {} marks below the blade plane not "
-                     "counted\n",
-                     sum.nails, sum.struck, sum.nails ? 100.0 * sum.struck / sum.nails : 0.0, sum.marks_per_nail,
-                     sum.uncounted_marks);
+  out += fmt::format(
+      "  nails: {} fed, {} struck ({:.1f} %), {:.3f} counted marks per nail; {} marks below the blade plane not "
+      "counted\n",
+      sum.nails, sum.struck, sum.nails ? 100.0 * static_cast<double>(sum.struck) / static_cast<double>(sum.nails) : 0.0, sum.marks_per_nail,
+      sum.uncounted_marks);
   const double tip = s.tip_speed();
-  out += fmt::format("  thrown at {:.2f} x the blade tip speed ({:.1f} m/s) on average (published thrown-object speeds: "
-                     "0.8-1.4 x)\n",
-                     sum.exit_speed_mean / tip, tip);
+  out += fmt::format(
+      "  thrown at {:.2f} x the blade tip speed ({:.1f} m/s) on average (published thrown-object speeds: "
+      "0.8-1.4 x)\n",
+      sum.exit_speed_mean / tip, tip);
   for (const auto& d : departures_from_j232(s)) out += fmt::format("  DEPARTS FROM SAE J232: {}\n", d);
   return out;
 }

@@ -72,7 +72,8 @@ json guard_json(const scenario::GuardSpec& g) {
 json deflector_json(const scenario::DeflectorSpec& d) {
   json j = {{"name", d.name}};
   if (d.along.empty())
-    j.update({{"azimuth_from_deg", d.azimuth_from / units::degree}, {"azimuth_to_deg", d.azimuth_to / units::degree}, {"radius_m", d.radius}});
+    j.update(
+        {{"azimuth_from_deg", d.azimuth_from / units::degree}, {"azimuth_to_deg", d.azimuth_to / units::degree}, {"radius_m", d.radius}});
   else
     j.update({{"along_m", d.along}});
   j.update({{"bottom_m", d.bottom}, {"top_m", d.top}});
@@ -89,7 +90,10 @@ json uncertainty_json(const scenario::UncertaintySpec& u) {
 }
 
 json opening_json(const scenario::OpeningSpec& o) {
-  json j = {{"name", o.name}, {"azimuth_from_deg", o.azimuth_from / units::degree}, {"azimuth_to_deg", o.azimuth_to / units::degree}, {"top_m", o.top}};
+  json j = {{"name", o.name},
+            {"azimuth_from_deg", o.azimuth_from / units::degree},
+            {"azimuth_to_deg", o.azimuth_to / units::degree},
+            {"top_m", o.top}};
   if (o.chute_length > 0) j.update({{"chute_length_m", o.chute_length}, {"chute_end_top_m", o.chute_end_top}});
   return j;
 }
@@ -148,16 +152,16 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
                                        {"friction", s.housing.friction},
                                        {"guards", guards},
                                        {"deflectors", deflectors}}
-                                 : json{{"generated", true},
-                                        {"deck_radius_m", s.housing.deck_radius},
-                                        {"margin_m", s.housing.margin},
-                                        {"openings", openings},
-                                        {"skirt_bottom_m", s.housing.skirt_bottom},
-                                        {"skirt_depth_m", s.housing.skirt_depth},
-                                        {"restitution", restitution_json(s.housing.restitution)},
-                                        {"friction", s.housing.friction},
-                                        {"guards", guards},
-                                        {"deflectors", deflectors}}},
+                                : json{{"generated", true},
+                                       {"deck_radius_m", s.housing.deck_radius},
+                                       {"margin_m", s.housing.margin},
+                                       {"openings", openings},
+                                       {"skirt_bottom_m", s.housing.skirt_bottom},
+                                       {"skirt_depth_m", s.housing.skirt_depth},
+                                       {"restitution", restitution_json(s.housing.restitution)},
+                                       {"friction", s.housing.friction},
+                                       {"guards", guards},
+                                       {"deflectors", deflectors}}},
       {"ground",
        {{"restitution", s.ground.restitution},
         {"angle_exponent", s.ground.angle_exponent},
@@ -172,9 +176,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
                                      {"segments", s.target.segments}}},
       {"meshes", meshes},
       {"operator_zone", zone},
-      {"board",
-       {{"puncture_energy_per_width_J_m", s.board.puncture_energy_per_width},
-        {"hit_fraction", s.board.hit_fraction}}},
+      {"board", {{"puncture_energy_per_width_J_m", s.board.puncture_energy_per_width}, {"hit_fraction", s.board.hit_fraction}}},
       {"criteria",
        {{"hits_zone", s.criteria.hits_zone},
         {"punctures_zone", s.criteria.punctures_zone},
@@ -182,8 +184,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"punctures_outside", s.criteria.punctures_outside},
         {"denominator", s.criteria.denominator == scenario::CriteriaSpec::Denominator::Marks ? "marks" : "nails_fed"},
         {"required_pass_probability", s.criteria.required_pass_probability}}},
-      {"air",
-       {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}}},
+      {"air", {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}}},
       {"uncertainty", uncertainty_json(s.uncertainty)},
       {"run",
        {{"replicates", s.run.replicates},
@@ -200,24 +201,26 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
 std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   std::vector<Assumption> a;
   const char* params = "docs/model.md §8";
-  a.push_back({"Impact: impulse-momentum model of the blade (hub + pinned links), frictionless central-plane contact, "
-               "nail as a slender rod struck off centre; the blade is back at speed and radially aligned for every nail",
-               "report 445-1 Ch. 2, generalised (docs/model.md)"});
+  a.push_back(
+      {"Impact: impulse-momentum model of the blade (hub + pinned links), frictionless central-plane contact, "
+       "nail as a slender rod struck off centre; the blade is back at speed and radially aligned for every nail",
+       "report 445-1 Ch. 2, generalised (docs/model.md)"});
   a.push_back({fmt::format("Nail-on-blade restitution: {}", s.restitution.model == blade::Restitution::Model::Constant
-                                                                   ? fmt::format("e = {:g}", s.restitution.e)
-                                                                   : std::string("e(v) power law")),
+                                                                ? fmt::format("e = {:g}", s.restitution.e)
+                                                                : std::string("e(v) power law")),
                "report 445-1 (0.3-0.9); Johnson, Contact Mechanics 11.4 for e(v)"});
   double lift_min = s.spindles.front().geometry.lift_angle, lift_max = lift_min;
   for (const auto& sp : s.spindles)
     lift_min = std::min(lift_min, sp.geometry.lift_angle), lift_max = std::max(lift_max, sp.geometry.lift_angle);
-  a.push_back({lift_min == lift_max ? fmt::format("Blade edge lifts struck nails {:g} deg above the blade plane", lift_min / units::degree)
-                                    : fmt::format("Blade edges lift struck nails {:g} to {:g} deg", lift_min / units::degree, lift_max / units::degree),
+  a.push_back({lift_min == lift_max
+                   ? fmt::format("Blade edge lifts struck nails {:g} deg above the blade plane", lift_min / units::degree)
+                   : fmt::format("Blade edges lift struck nails {:g} to {:g} deg", lift_min / units::degree, lift_max / units::degree),
                fmt::format("{} (estimate; the dominant trajectory parameter per Litherland and Yoerger 1967)", params)});
-  a.push_back({fmt::format("Nail: {:.1f} mm long, {:.2f} mm shank, {:.2f} g +/- {:.2f} g", s.nail.length * 1e3,
-                           s.nail.diameter * 1e3, s.nail.mass * 1e3, s.nail.mass_tolerance * 1e3),
+  a.push_back({fmt::format("Nail: {:.1f} mm long, {:.2f} mm shank, {:.2f} g +/- {:.2f} g", s.nail.length * 1e3, s.nail.diameter * 1e3,
+                           s.nail.mass * 1e3, s.nail.mass_tolerance * 1e3),
                fmt::format("{} (6d box nail)", params)});
-  a.push_back({fmt::format("Feed: {} nails, dropped {:.0f} mm onto the blade at {} station(s), upright within {:.0f} deg",
-                           s.feed.nails, s.feed.drop_height * 1e3, s.feed.stations.size(), s.feed.tilt_max * 180 / units::pi),
+  a.push_back({fmt::format("Feed: {} nails, dropped {:.0f} mm onto the blade at {} station(s), upright within {:.0f} deg", s.feed.nails,
+                           s.feed.drop_height * 1e3, s.feed.stations.size(), s.feed.tilt_max * 180 / units::pi),
                "estimate: SAE J232 feed geometry not available (docs/model.md 5.1)"});
   a.push_back({fmt::format("Board: puncture at {:g} J/m of presented width, hit at {:g} of that; normal kinetic energy",
                            s.board.puncture_energy_per_width, s.board.hit_fraction),
@@ -225,11 +228,10 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   if (scene::mesh_roles(s).target)
     a.push_back({"Target board: the scenario's target mesh(es)", "scenario (user geometry)"});
   else
-    a.push_back({fmt::format("Target ring {:.0f} mm outside the tip circle, {:.0f} to {:.0f} mm above ground",
-                             s.target.distance * 1e3, s.target.bottom * 1e3, s.target.top * 1e3),
+    a.push_back({fmt::format("Target ring {:.0f} mm outside the tip circle, {:.0f} to {:.0f} mm above ground", s.target.distance * 1e3,
+                             s.target.bottom * 1e3, s.target.top * 1e3),
                  fmt::format("{} (ANSI B71.1 enclosure wording as stand-in)", params)});
-  if (scene::mesh_roles(s).housing)
-    a.push_back({"Deck and skirt: the scenario's mesh(es)", "scenario (user geometry)"});
+  if (scene::mesh_roles(s).housing) a.push_back({"Deck and skirt: the scenario's mesh(es)", "scenario (user geometry)"});
   a.push_back({s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector
                    ? std::string("Operator zone: explicit sector of the board")
                    : fmt::format("Operator zone: board seen from the blade toward the 95th-percentile reach envelope of "
@@ -243,8 +245,8 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                                  "roughness {:.0f} deg",
                                  s.ground.restitution, s.ground.angle_exponent, s.ground.friction, s.ground.roughness / units::degree),
                fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)});
-  a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3", s.air.cd_normal,
-                                        s.air.cd_axial, s.air.density)
+  a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3", s.air.cd_normal, s.air.cd_axial,
+                                        s.air.density)
                           : std::string("Air drag off (conservative: faster nails)"),
                fmt::format("{} (handbook)", params)});
   a.push_back({s.criteria.denominator == scenario::CriteriaSpec::Denominator::NailsFed

@@ -9,8 +9,7 @@
 namespace j232::report {
 
 const std::string& palette(std::size_t i) {
-  static const std::vector<std::string> colours = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
-                                                   "#E69F00", "#56B4E9", "#000000", "#F0E442"};
+  static const std::vector<std::string> colours = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"};
   return colours[i % colours.size()];
 }
 
@@ -25,8 +24,7 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
       break;
     }
   std::vector<double> ticks;
-  for (double t = std::floor(lo / step) * step; t <= hi + 1e-9 * step; t += step)
-    ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+  for (double t = std::floor(lo / step) * step; t <= hi + 1e-9 * step; t += step) ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
   if (ticks.empty() || ticks.front() > lo) ticks.insert(ticks.begin(), ticks.empty() ? lo : ticks.front() - step);
   if (ticks.back() < hi - 1e-9 * step) ticks.push_back(ticks.back() + step);
   return ticks;
@@ -85,8 +83,8 @@ void Chart::bars(const std::vector<double>& edges, const std::vector<double>& he
   add_legend(label, colour, "box");
 }
 
-void Chart::line(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour,
-                 const std::string& label, bool markers, bool dashed) {
+void Chart::line(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour, const std::string& label,
+                 bool markers, bool dashed) {
   Item it{Item::Kind::Line, x, y, {}, colour, {}, {}};
   it.markers = markers, it.dashed = dashed;
   for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) extend(x[i], y[i]);
@@ -101,8 +99,8 @@ void Chart::polyline(const std::vector<double>& x, const std::vector<double>& y,
   items_.back().opacity = opacity;
 }
 
-void Chart::band(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi,
-                 const std::string& colour, const std::string& label) {
+void Chart::band(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi, const std::string& colour,
+                 const std::string& label) {
   Item it{Item::Kind::Band, x, lo, hi, colour, colour, {}};
   it.opacity = 0.2;
   for (std::size_t i = 0; i < x.size(); ++i) extend(x[i], lo[i]), extend(x[i], hi[i]);
@@ -117,8 +115,8 @@ void Chart::error_bars(const std::vector<double>& x, const std::vector<double>& 
   items_.push_back(std::move(it));
 }
 
-void Chart::points(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour,
-                   const std::string& label, double radius, bool filled) {
+void Chart::points(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour, const std::string& label,
+                   double radius, bool filled) {
   Item it{Item::Kind::Points, x, y, {}, colour, {}, {}};
   it.radius = radius, it.filled = filled;
   for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) extend(x[i], y[i]);
@@ -146,8 +144,7 @@ void Chart::triangles(const std::vector<double>& x, const std::vector<double>& y
   add_legend(label, fill, "box");
 }
 
-void Chart::rect(double x0, double y0, double x1, double y1, const std::string& fill, double opacity,
-                 const std::string& label) {
+void Chart::rect(double x0, double y0, double x1, double y1, const std::string& fill, double opacity, const std::string& label) {
   Item it{Item::Kind::Rect, {x0, x1}, {y0, y1}, {}, fill, fill, {}};
   it.opacity = opacity;
   extend(x0, y0), extend(x1, y1);
@@ -250,14 +247,12 @@ void Chart::draw_axes(std::string& o, const Frame& f) const {
                    "<text x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
                    kLeft, sy(t), kLeft + plot_w, kLeft - 6, sy(t) + 4, tick_label(t, y_step));
   fmt::format_to(std::back_inserter(o),
-                 "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#444\"/>\n", kLeft,
-                 kTop, plot_w, plot_h);
-  fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n",
-                 kLeft + plot_w / 2, kTop + plot_h + 36, escape(x_title_));
-  fmt::format_to(std::back_inserter(o),
-                 "<text transform=\"translate(16 {:.1f}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n", kTop + plot_h / 2,
-                 escape(y_title_));
-
+                 "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#444\"/>\n", kLeft, kTop,
+                 plot_w, plot_h);
+  fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n", kLeft + plot_w / 2,
+                 kTop + plot_h + 36, escape(x_title_));
+  fmt::format_to(std::back_inserter(o), "<text transform=\"translate(16 {:.1f}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n",
+                 kTop + plot_h / 2, escape(y_title_));
 }
 
 void Chart::draw_item(std::string& o, const Item& it, const Frame& f, int& vlines) const {
@@ -272,8 +267,9 @@ void Chart::draw_item(std::string& o, const Item& it, const Frame& f, int& vline
       std::string d;
       for (std::size_t i = 0; i < n; ++i)
         fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}L{:.1f} {:.1f}", sx(it.x[i]), sy(it.y[i]), sx(it.x[n + i]), sy(it.y2[i]));
-      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{:.1f}\" stroke-linecap=\"round\"/>\n", d,
-                     it.colour, it.radius);
+      fmt::format_to(std::back_inserter(o),
+                     "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{:.1f}\" stroke-linecap=\"round\"/>\n", d, it.colour,
+                     it.radius);
       break;
     }
     case Item::Kind::Triangles: {
@@ -281,46 +277,52 @@ void Chart::draw_item(std::string& o, const Item& it, const Frame& f, int& vline
       for (std::size_t i = 0; i + 2 < std::min(it.x.size(), it.y.size()); i += 3)
         fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}L{:.1f} {:.1f}L{:.1f} {:.1f}Z", sx(it.x[i]), sy(it.y[i]), sx(it.x[i + 1]),
                        sy(it.y[i + 1]), sx(it.x[i + 2]), sy(it.y[i + 2]));
-      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"none\"/>\n", d, it.fill, it.opacity);
+      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"none\"/>\n", d, it.fill,
+                     it.opacity);
       break;
     }
     case Item::Kind::Bars: {
       std::string d;
       for (std::size_t i = 0; i < it.y.size() && i + 1 < it.x.size(); ++i) {
         if (it.y[i] <= 0) continue;
-        fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}H{:.1f}V{:.1f}H{:.1f}Z", sx(it.x[i]), sy(clip_y), sx(it.x[i + 1]),
-                       sy(it.y[i]), sx(it.x[i]));
+        fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}H{:.1f}V{:.1f}H{:.1f}Z", sx(it.x[i]), sy(clip_y), sx(it.x[i + 1]), sy(it.y[i]),
+                       sx(it.x[i]));
       }
-      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"{}\" fill-opacity=\"0.75\" stroke=\"{}\" stroke-width=\"0.5\"/>\n",
-                     d, it.fill, it.colour);
+      fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"{}\" fill-opacity=\"0.75\" stroke=\"{}\" stroke-width=\"0.5\"/>\n", d,
+                     it.fill, it.colour);
       break;
     }
     case Item::Kind::Line: {
       std::string d;
       for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
-        if (std::isfinite(it.y[i])) fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", d.empty() ? "M" : "L", sx(it.x[i]), sy(it.y[i]));
+        if (std::isfinite(it.y[i]))
+          fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", d.empty() ? "M" : "L", sx(it.x[i]), sy(it.y[i]));
       const std::string faint = it.opacity < 1 ? fmt::format(" stroke-opacity=\"{:.2f}\"", it.opacity) : std::string();
       fmt::format_to(std::back_inserter(o), "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{:.1f}\"{}{}/>\n", d, it.colour,
                      it.width, dash, faint);
       if (it.markers)
         for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
           if (std::isfinite(it.y[i]))
-            fmt::format_to(std::back_inserter(o), "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.8\" fill=\"{}\"/>", sx(it.x[i]), sy(it.y[i]), it.colour);
+            fmt::format_to(std::back_inserter(o), "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.8\" fill=\"{}\"/>", sx(it.x[i]), sy(it.y[i]),
+                           it.colour);
       o += "\n";
       break;
     }
     case Item::Kind::Band: {
       std::string d;
-      for (std::size_t i = 0; i < it.x.size(); ++i) fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", i ? "L" : "M", sx(it.x[i]), sy(it.y2[i]));
+      for (std::size_t i = 0; i < it.x.size(); ++i)
+        fmt::format_to(std::back_inserter(d), "{}{:.1f} {:.1f}", i ? "L" : "M", sx(it.x[i]), sy(it.y2[i]));
       for (std::size_t i = it.x.size(); i-- > 0;) fmt::format_to(std::back_inserter(d), "L{:.1f} {:.1f}", sx(it.x[i]), sy(it.y[i]));
-      fmt::format_to(std::back_inserter(o), "<path d=\"{}Z\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"none\"/>\n", d, it.fill, it.opacity);
+      fmt::format_to(std::back_inserter(o), "<path d=\"{}Z\" fill=\"{}\" fill-opacity=\"{:.2f}\" stroke=\"none\"/>\n", d, it.fill,
+                     it.opacity);
       break;
     }
     case Item::Kind::ErrorBars:
       for (std::size_t i = 0; i < it.x.size(); ++i)
-        fmt::format_to(std::back_inserter(o),
-                       "<path d=\"M{0:.1f} {1:.1f}V{2:.1f}M{3:.1f} {1:.1f}H{4:.1f}M{3:.1f} {2:.1f}H{4:.1f}\" stroke=\"{5}\" stroke-width=\"1.2\"/>",
-                       sx(it.x[i]), sy(it.y[i]), sy(it.y2[i]), sx(it.x[i]) - 4, sx(it.x[i]) + 4, it.colour);
+        fmt::format_to(
+            std::back_inserter(o),
+            "<path d=\"M{0:.1f} {1:.1f}V{2:.1f}M{3:.1f} {1:.1f}H{4:.1f}M{3:.1f} {2:.1f}H{4:.1f}\" stroke=\"{5}\" stroke-width=\"1.2\"/>",
+            sx(it.x[i]), sy(it.y[i]), sy(it.y2[i]), sx(it.x[i]) - 4, sx(it.x[i]) + 4, it.colour);
       o += "\n";
       break;
     case Item::Kind::Points: {
@@ -328,8 +330,9 @@ void Chart::draw_item(std::string& o, const Item& it, const Frame& f, int& vline
         std::string d;
         for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
           fmt::format_to(std::back_inserter(d), "M{:.1f} {:.1f}h0", sx(it.x[i]), sy(it.y[i]));
-        fmt::format_to(std::back_inserter(o), "<path d=\"{}\" stroke=\"{}\" stroke-width=\"{:.1f}\" stroke-linecap=\"round\" stroke-opacity=\"0.85\"/>\n",
-                       d, it.colour, 2 * it.radius);
+        fmt::format_to(std::back_inserter(o),
+                       "<path d=\"{}\" stroke=\"{}\" stroke-width=\"{:.1f}\" stroke-linecap=\"round\" stroke-opacity=\"0.85\"/>\n", d,
+                       it.colour, 2 * it.radius);
       } else {
         for (std::size_t i = 0; i < std::min(it.x.size(), it.y.size()); ++i)
           fmt::format_to(std::back_inserter(o), "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{:.1f}\" fill=\"none\" stroke=\"{}\"/>",
@@ -341,12 +344,14 @@ void Chart::draw_item(std::string& o, const Item& it, const Frame& f, int& vline
     case Item::Kind::Rect: {
       const double x0 = std::min(sx(it.x[0]), sx(it.x[1])), x1 = std::max(sx(it.x[0]), sx(it.x[1]));
       const double y0 = std::min(sy(it.y[0]), sy(it.y[1])), y1 = std::max(sy(it.y[0]), sy(it.y[1]));
-      fmt::format_to(std::back_inserter(o), "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" fill-opacity=\"{:.2f}\"/>\n",
-                     x0, y0, x1 - x0, y1 - y0, it.fill, it.opacity);
+      fmt::format_to(std::back_inserter(o),
+                     "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" fill-opacity=\"{:.2f}\"/>\n", x0, y0,
+                     x1 - x0, y1 - y0, it.fill, it.opacity);
       break;
     }
     case Item::Kind::VLine:
-      fmt::format_to(std::back_inserter(o), "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"{3}\" stroke-width=\"1.5\"{4}/>",
+      fmt::format_to(std::back_inserter(o),
+                     "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"{3}\" stroke-width=\"1.5\"{4}/>",
                      sx(it.x[0]), kTop, kTop + plot_h, it.colour, dash);
       if (!it.text.empty())
         fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" font-size=\"11\">{}</text>", sx(it.x[0]) + 3,
@@ -354,17 +359,20 @@ void Chart::draw_item(std::string& o, const Item& it, const Frame& f, int& vline
       o += "\n";
       break;
     case Item::Kind::HLine:
-      fmt::format_to(std::back_inserter(o), "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"{3}\" stroke-width=\"1.5\"{4}/>",
-                     kLeft, sy(it.y[0]), kLeft + plot_w, it.colour, dash);
+      fmt::format_to(std::back_inserter(o),
+                     "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"{3}\" stroke-width=\"1.5\"{4}/>", kLeft,
+                     sy(it.y[0]), kLeft + plot_w, it.colour, dash);
       if (!it.text.empty())
         fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" font-size=\"11\">{}</text>", kLeft + 4,
                        sy(it.y[0]) - 3, it.colour, escape(it.text));
       o += "\n";
       break;
     case Item::Kind::Circle:
-      fmt::format_to(std::back_inserter(o), "<ellipse cx=\"{:.1f}\" cy=\"{:.1f}\" rx=\"{:.1f}\" ry=\"{:.1f}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{}/>\n",
-                     sx(it.x[0]), sy(it.y[0]), std::abs(sx(it.x[0] + it.radius) - sx(it.x[0])),
-                     std::abs(sy(it.y[0] + it.radius) - sy(it.y[0])), it.colour, dash);
+      fmt::format_to(
+          std::back_inserter(o),
+          "<ellipse cx=\"{:.1f}\" cy=\"{:.1f}\" rx=\"{:.1f}\" ry=\"{:.1f}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{}/>\n",
+          sx(it.x[0]), sy(it.y[0]), std::abs(sx(it.x[0] + it.radius) - sx(it.x[0])), std::abs(sy(it.y[0] + it.radius) - sy(it.y[0])),
+          it.colour, dash);
       break;
   }
 }
@@ -377,12 +385,14 @@ void Chart::draw_legend(std::string& o, int legend_cols, const std::vector<std::
     const double y = height_ + static_cast<double>(i / legend_cols) * kLegendRow + 2;
     const auto& e = legend_[i];
     if (e.kind == "box")
-      fmt::format_to(std::back_inserter(o), "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"16\" height=\"10\" fill=\"{}\" fill-opacity=\"0.6\"/>", x, y - 9, e.colour);
+      fmt::format_to(std::back_inserter(o), "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"16\" height=\"10\" fill=\"{}\" fill-opacity=\"0.6\"/>",
+                     x, y - 9, e.colour);
     else if (e.kind == "dot")
       fmt::format_to(std::back_inserter(o), "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/>", x + 8, y - 4, e.colour);
     else
-      fmt::format_to(std::back_inserter(o), "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" stroke-width=\"2\"{}/>", x,
-                     y - 4, x + 16, y - 4, e.colour, e.kind == "dash" ? " stroke-dasharray=\"5 3\"" : "");
+      fmt::format_to(std::back_inserter(o),
+                     "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" stroke-width=\"2\"{}/>", x, y - 4, x + 16,
+                     y - 4, e.colour, e.kind == "dash" ? " stroke-dasharray=\"5 3\"" : "");
     fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"{:.1f}\">{}</text>\n", x + 21, y, escape(e.label));
   }
   for (std::size_t i = 0; i < caption_lines.size(); ++i)
@@ -396,9 +406,9 @@ std::string Chart::svg() const {
   const int legend_cols = std::max(1, static_cast<int>((width_ - kLeft) / 200));
   const int legend_rows = static_cast<int>((legend_.size() + legend_cols - 1) / legend_cols);
   // The caption, wrapped at about 6 px a character.
-  const std::vector<std::string> caption_lines =
-      wrap_words(caption_, static_cast<std::size_t>(std::max(20.0, (width_ - kLeft) / 6.0)));
-  const double total_h = height_ + legend_rows * kLegendRow + static_cast<double>(caption_lines.size()) * 14 + (caption_lines.empty() ? 0 : 6);
+  const std::vector<std::string> caption_lines = wrap_words(caption_, static_cast<std::size_t>(std::max(20.0, (width_ - kLeft) / 6.0)));
+  const double total_h =
+      height_ + legend_rows * kLegendRow + static_cast<double>(caption_lines.size()) * 14 + (caption_lines.empty() ? 0 : 6);
 
   std::string o;
   o.reserve(8192);
@@ -410,10 +420,12 @@ std::string Chart::svg() const {
                  "height=\"{:.0f}\" font-family=\"sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"{}\">\n",
                  width_, total_h, width_, total_h, escape(title_));
   fmt::format_to(std::back_inserter(o), "<title>{}</title>\n", escape(title_));
-  fmt::format_to(std::back_inserter(o), "<defs><clipPath id=\"{}\"><rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/></clipPath></defs>\n",
-                 clip, kLeft, kTop, plot_w, plot_h);
+  fmt::format_to(std::back_inserter(o),
+                 "<defs><clipPath id=\"{}\"><rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/></clipPath></defs>\n", clip,
+                 kLeft, kTop, plot_w, plot_h);
   // A long title is set smaller rather than cut off (about 0.58 em a character).
-  const double title_size = std::clamp((width_ - kLeft - 4) / (0.58 * static_cast<double>(std::max<std::size_t>(1, title_.size()))), 9.0, 14.0);
+  const double title_size =
+      std::clamp((width_ - kLeft - 4) / (0.58 * static_cast<double>(std::max<std::size_t>(1, title_.size()))), 9.0, 14.0);
   fmt::format_to(std::back_inserter(o), "<text x=\"{:.1f}\" y=\"20\" font-size=\"{:.1f}\" font-weight=\"bold\">{}</text>\n", kLeft,
                  title_size, escape(title_));
   draw_axes(o, f);

@@ -29,23 +29,21 @@ class Chart {
   void equal_aspect() { equal_ = true; }  // one data unit is as long on both axes (plan views)
 
   // Series. `label` empty: no legend entry.
-  void bars(const std::vector<double>& edges, const std::vector<double>& heights, const std::string& colour,
-            const std::string& label);
-  void line(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour,
-            const std::string& label, bool markers = true, bool dashed = false);
+  void bars(const std::vector<double>& edges, const std::vector<double>& heights, const std::string& colour, const std::string& label);
+  void line(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour, const std::string& label,
+            bool markers = true, bool dashed = false);
   // A thin, see-through line without markers: many paths over one another.
   void polyline(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour, const std::string& label,
                 double width, double opacity);
-  void band(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi,
-            const std::string& colour, const std::string& label);
-  void error_bars(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi,
-                  const std::string& colour);
-  void points(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour,
-              const std::string& label, double radius = 2.5, bool filled = true);
+  void band(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi, const std::string& colour,
+            const std::string& label);
+  void error_bars(const std::vector<double>& x, const std::vector<double>& lo, const std::vector<double>& hi, const std::string& colour);
+  void points(const std::vector<double>& x, const std::vector<double>& y, const std::string& colour, const std::string& label,
+              double radius = 2.5, bool filled = true);
   // Many straight segments (x0[i],y0[i])-(x1[i],y1[i]) as one path; many triangles as one
   // filled path (painted once, so overlaps do not darken).
-  void segments(const std::vector<double>& x0, const std::vector<double>& y0, const std::vector<double>& x1,
-                const std::vector<double>& y1, const std::string& colour, const std::string& label, double width = 1.2);
+  void segments(const std::vector<double>& x0, const std::vector<double>& y0, const std::vector<double>& x1, const std::vector<double>& y1,
+                const std::string& colour, const std::string& label, double width = 1.2);
   void triangles(const std::vector<double>& x, const std::vector<double>& y, const std::string& fill, double opacity,
                  const std::string& label);  // vertices 3 by 3
   void rect(double x0, double y0, double x1, double y1, const std::string& fill, double opacity, const std::string& label);

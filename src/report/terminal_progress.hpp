@@ -52,9 +52,9 @@ class ProgressBar {
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
       const long long done = progress_.done, total = std::max(1LL, progress_.total.load());
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const double frac = std::min(1.0, static_cast<double>(done) / total);
+      const double frac = std::min(1.0, static_cast<double>(done) / static_cast<double>(total));
       const int width = 30, filled = static_cast<int>(frac * width);
-      const double eta = done > 0 ? elapsed * (total - done) / done : 0;
+      const double eta = done > 0 ? elapsed * static_cast<double>(total - done) / static_cast<double>(done) : 0;
       std::fprintf(stderr, "\r[%s%s] %3.0f%%  %lld/%lld replicates  %.1f s  ETA %.0f s ", std::string(filled, '#').c_str(),
                    std::string(width - filled, ' ').c_str(), 100 * frac, done, total, elapsed, eta);
       std::fflush(stderr);

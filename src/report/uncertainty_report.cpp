@@ -12,8 +12,8 @@ namespace j232::report {
 
 namespace {
 using json = nlohmann::ordered_json;
-const char* kWords[study::kUqOutputs] = {"P(pass one test)", "hits in the operator zone", "punctures in the operator zone",
-                                        "hits outside the zone", "punctures outside the zone", "passes (P(pass) at least the required)"};
+const char* kWords[study::kUqOutputs] = {"P(pass one test)",      "hits in the operator zone",  "punctures in the operator zone",
+                                         "hits outside the zone", "punctures outside the zone", "passes (P(pass) at least the required)"};
 
 json index_json(const study::Index& i) { return {{"estimate", i.estimate}, {"low", i.low}, {"high", i.high}}; }
 }  // namespace
@@ -21,14 +21,15 @@ json index_json(const study::Index& i) { return {{"estimate", i.estimate}, {"low
 json uncertainty_json(const study::UncertaintyResult& r) {
   json inputs = json::array();
   for (const auto& in : r.plan.inputs)
-    inputs.push_back({{"parameter", in.parameter},
-                      {"low", in.low},
-                      {"high", in.high},
-                      {"distribution", in.distribution == "triangular" ? fmt::format("triangular, mode {}", in.mode.empty() ? "midway" : in.mode)
-                                       : in.distribution == "normal"   ? fmt::format("normal about the midpoint, sd {}, truncated to the range",
-                                                                                     in.sd.empty() ? "a quarter of the range" : in.sd)
-                                                                       : "uniform"},
-                      {"basis", in.basis}});
+    inputs.push_back(
+        {{"parameter", in.parameter},
+         {"low", in.low},
+         {"high", in.high},
+         {"distribution", in.distribution == "triangular" ? fmt::format("triangular, mode {}", in.mode.empty() ? "midway" : in.mode)
+                          : in.distribution == "normal"   ? fmt::format("normal about the midpoint, sd {}, truncated to the range",
+                                                                      in.sd.empty() ? "a quarter of the range" : in.sd)
+                                                          : "uniform"},
+         {"basis", in.basis}});
   json outputs, sensitivity;
   for (int o = 0; o < study::kUqOutputs; ++o) {
     std::vector<double> v;
@@ -46,16 +47,18 @@ json uncertainty_json(const study::UncertaintyResult& r) {
     const auto& idx = r.indices[static_cast<std::size_t>(o)];
     json rows = json::array();
     for (std::size_t i = 0; i < r.plan.inputs.size(); ++i)
-      rows.push_back({{"input", r.plan.inputs[i].parameter}, {"first_order", index_json(idx.first[i])}, {"total", index_json(idx.total[i])}});
+      rows.push_back(
+          {{"input", r.plan.inputs[i].parameter}, {"first_order", index_json(idx.first[i])}, {"total", index_json(idx.total[i])}});
     sensitivity[study::kUqOutputNames[o]] = {{"variance", idx.variance}, {"indices", rows}};
   }
   const double passing = outputs["passes"]["mean"].get<double>();
   return {{"program", "j232 uq"},
           {"scenario", r.scenario_file},
           {"title", r.title},
-          {"method", "Saltelli scheme on a Sobol' sequence (Boost.Random), N (k + 2) assessments with common random numbers; "
-                     "first-order indices by Saltelli et al. (2010), total by Jansen (1999); 95 % bootstrap intervals (500 "
-                     "resamples of the base draws)"},
+          {"method",
+           "Saltelli scheme on a Sobol' sequence (Boost.Random), N (k + 2) assessments with common random numbers; "
+           "first-order indices by Saltelli et al. (2010), total by Jansen (1999); 95 % bootstrap intervals (500 "
+           "resamples of the base draws)"},
           {"inputs", inputs},
           {"default_inputs", r.plan.defaults},
           {"base_draws", r.plan.base_draws},
@@ -64,7 +67,9 @@ json uncertainty_json(const study::UncertaintyResult& r) {
           {"seed", r.seed},
           {"required_pass_probability", r.required},
           {"share_of_draws_passing", passing},
-          {"robust_verdict", passing == 1.0 ? "passes at every draw" : passing == 0.0 ? "fails at every draw" : "depends on the inputs"},
+          {"robust_verdict", passing == 1.0   ? "passes at every draw"
+                             : passing == 0.0 ? "fails at every draw"
+                                              : "depends on the inputs"},
           {"outputs", outputs},
           {"sensitivity", sensitivity}};
 }
@@ -94,18 +99,21 @@ std::string uncertainty_html(const json& j) {
   o += fmt::format("<h1>How much the verdict rests on uncertain inputs</h1>\n<p>{} ({})</p>\n", escape(j["title"].get<std::string>()),
                    escape(j["scenario"].get<std::string>()));
   const double passing = j["share_of_draws_passing"].get<double>();
-  o += fmt::format("<p class=\"verdict {}\"><strong>Robust verdict: the mower {}</strong> &mdash; it passes (P(pass) at least {}) in "
-                   "{} % of {} assessments drawn over the inputs' ranges.</p>\n",
-                   passing == 1.0 ? "pass" : passing == 0.0 ? "fail" : "invalid", escape(j["robust_verdict"].get<std::string>()),
-                   number("required_pass_probability", j["required_pass_probability"], "{:g}"),
-                   number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100),
-                   number("assessments", j["assessments"], "{}"));
-  o += fmt::format("<p>{} assessments of {} replicates each (Saltelli scheme, {} base draws; common random numbers, seed {}). "
-                   "Inputs{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th><th>distribution</th>"
-                   "<th>basis of the range</th></tr></thead><tbody>\n",
-                   number("assessments", j["assessments"], "{}"), number("replicates_per_assessment", j["replicates_per_assessment"], "{}"),
-                   number("base_draws", j["base_draws"], "{}"), number("seed", j["seed"], "{}"),
-                   j["default_inputs"].get<bool>() ? " (j232's default set of estimated inputs: the scenario has no [uncertainty])" : "");
+  o += fmt::format(
+      "<p class=\"verdict {}\"><strong>Robust verdict: the mower {}</strong> &mdash; it passes (P(pass) at least {}) in "
+      "{} % of {} assessments drawn over the inputs' ranges.</p>\n",
+      passing == 1.0   ? "pass"
+      : passing == 0.0 ? "fail"
+                       : "invalid",
+      escape(j["robust_verdict"].get<std::string>()), number("required_pass_probability", j["required_pass_probability"], "{:g}"),
+      number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
+  o += fmt::format(
+      "<p>{} assessments of {} replicates each (Saltelli scheme, {} base draws; common random numbers, seed {}). "
+      "Inputs{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th><th>distribution</th>"
+      "<th>basis of the range</th></tr></thead><tbody>\n",
+      number("assessments", j["assessments"], "{}"), number("replicates_per_assessment", j["replicates_per_assessment"], "{}"),
+      number("base_draws", j["base_draws"], "{}"), number("seed", j["seed"], "{}"),
+      j["default_inputs"].get<bool>() ? " (j232's default set of estimated inputs: the scenario has no [uncertainty])" : "");
   const auto& inputs = j["inputs"];
   for (std::size_t i = 0; i < inputs.size(); ++i)
     o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", i + 1,
@@ -137,21 +145,24 @@ std::string uncertainty_html(const json& j) {
     }
     Chart chart(fmt::format("Sobol' indices: {}", kWords[k]), "input (numbered as in the table above)", "index", 640, 300);
     std::vector<double> x1, y1, l1, h1, x2, y2, l2, h2;
-    o += fmt::format("<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>"
-                     "</tr></thead><tbody>\n", kWords[k]);
+    o += fmt::format(
+        "<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>"
+        "</tr></thead><tbody>\n",
+        kWords[k]);
     for (std::size_t i = 0; i < s["indices"].size(); ++i) {
       const auto& row = s["indices"][i];
       const std::string key = fmt::format("sensitivity.{}.indices.{}", name, i);
-      x1.push_back(static_cast<double>(i + 1) - 0.12), y1.push_back(row["first_order"]["estimate"]), l1.push_back(row["first_order"]["low"]),
-          h1.push_back(row["first_order"]["high"]);
+      x1.push_back(static_cast<double>(i + 1) - 0.12), y1.push_back(row["first_order"]["estimate"]),
+          l1.push_back(row["first_order"]["low"]), h1.push_back(row["first_order"]["high"]);
       x2.push_back(static_cast<double>(i + 1) + 0.12), y2.push_back(row["total"]["estimate"]), l2.push_back(row["total"]["low"]),
           h2.push_back(row["total"]["high"]);
-      o += fmt::format("<tr><td>{} {}</td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} to {}</td></tr>\n", i + 1,
-                       escape(row["input"].get<std::string>()), number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
-                       number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
-                       number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}"),
-                       number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"),
-                       number(key + ".total.low", row["total"]["low"], "{:.3f}"), number(key + ".total.high", row["total"]["high"], "{:.3f}"));
+      o += fmt::format(
+          "<tr><td>{} {}</td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} to {}</td></tr>\n", i + 1,
+          escape(row["input"].get<std::string>()), number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
+          number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
+          number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}"),
+          number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"), number(key + ".total.low", row["total"]["low"], "{:.3f}"),
+          number(key + ".total.high", row["total"]["high"], "{:.3f}"));
     }
     o += "</tbody></table>\n";
     std::vector<double> ticks;
@@ -188,18 +199,18 @@ json uncertainty_summary_json(const json& study) {
   s["p_pass"] = study["outputs"]["p_pass"];
   // The inputs by their total index for P(pass), largest first (none when P(pass) does not vary).
   std::vector<json> drivers;
-  for (const auto& row : study["sensitivity"]["p_pass"]["indices"])
-    drivers.push_back({{"input", row["input"]}, {"total", row["total"]}});
-  std::stable_sort(drivers.begin(), drivers.end(),
-                   [](const json& a, const json& b) { return a["total"]["estimate"].get<double>() > b["total"]["estimate"].get<double>(); });
+  for (const auto& row : study["sensitivity"]["p_pass"]["indices"]) drivers.push_back({{"input", row["input"]}, {"total", row["total"]}});
+  std::stable_sort(drivers.begin(), drivers.end(), [](const json& a, const json& b) {
+    return a["total"]["estimate"].get<double>() > b["total"]["estimate"].get<double>();
+  });
   s["p_pass_variance"] = study["sensitivity"]["p_pass"]["variance"];
   s["drivers_of_p_pass"] = drivers;
   return s;
 }
 
 std::string uncertainty_summary_text(const json& s) {
-  std::string o = fmt::format("  Uncertainty study ({} inputs, {} assessments): {}; {:.1f} % of the inputs' draws pass\n", s["inputs"].get<std::size_t>(),
-                              s["assessments"].get<std::size_t>(), s["robust_verdict"].get<std::string>(),
+  std::string o = fmt::format("  Uncertainty study ({} inputs, {} assessments): {}; {:.1f} % of the inputs' draws pass\n",
+                              s["inputs"].get<std::size_t>(), s["assessments"].get<std::size_t>(), s["robust_verdict"].get<std::string>(),
                               100 * s["share_of_draws_passing"].get<double>());
   if (s["p_pass_variance"].get<double>() > 0 && !s["drivers_of_p_pass"].empty()) {
     const auto& top = s["drivers_of_p_pass"][0];
@@ -212,18 +223,20 @@ std::string uncertainty_summary_text(const json& s) {
 std::string uncertainty_summary_html(const json& r) {
   const json& s = r["uncertainty"];
   std::string o = "<section id=\"uncertainty\">\n<h2>How much the verdict rests on estimated inputs</h2>\n";
-  o += fmt::format("<p>The uncertain inputs ({}{}) were drawn together, {} assessments of {} replicates each with common random numbers "
-                   "(<a href=\"uq.html\">the study</a>). <strong>Robust verdict: {}</strong>: the mower passes in {} % of the draws; "
-                   "P(pass) over the inputs has median {} and 5–95 % range {} to {}.</p>\n",
-                   number("uncertainty.inputs", s["inputs"], "{}"),
-                   s["default_inputs"].get<bool>() ? ", j232's default set of estimated inputs" : ", the scenario's [uncertainty]",
-                   number("uncertainty.assessments", s["assessments"], "{}"),
-                   number("uncertainty.replicates_per_assessment", s["replicates_per_assessment"], "{}"),
-                   escape(s["robust_verdict"].get<std::string>()), number("uncertainty.share_of_draws_passing", s["share_of_draws_passing"], "{:.1f}", 100),
-                   number("uncertainty.p_pass.q50", s["p_pass"]["q50"], "{:.3f}"), number("uncertainty.p_pass.q05", s["p_pass"]["q05"], "{:.3f}"),
-                   number("uncertainty.p_pass.q95", s["p_pass"]["q95"], "{:.3f}"));
+  o += fmt::format(
+      "<p>The uncertain inputs ({}{}) were drawn together, {} assessments of {} replicates each with common random numbers "
+      "(<a href=\"uq.html\">the study</a>). <strong>Robust verdict: {}</strong>: the mower passes in {} % of the draws; "
+      "P(pass) over the inputs has median {} and 5–95 % range {} to {}.</p>\n",
+      number("uncertainty.inputs", s["inputs"], "{}"),
+      s["default_inputs"].get<bool>() ? ", j232's default set of estimated inputs" : ", the scenario's [uncertainty]",
+      number("uncertainty.assessments", s["assessments"], "{}"),
+      number("uncertainty.replicates_per_assessment", s["replicates_per_assessment"], "{}"), escape(s["robust_verdict"].get<std::string>()),
+      number("uncertainty.share_of_draws_passing", s["share_of_draws_passing"], "{:.1f}", 100),
+      number("uncertainty.p_pass.q50", s["p_pass"]["q50"], "{:.3f}"), number("uncertainty.p_pass.q05", s["p_pass"]["q05"], "{:.3f}"),
+      number("uncertainty.p_pass.q95", s["p_pass"]["q95"], "{:.3f}"));
   if (s["p_pass_variance"].get<double>() > 0) {
-    o += "<table class=\"numbers\"><thead><tr><th>input</th><th>total Sobol' index for P(pass)</th><th>95 % interval</th></tr></thead><tbody>\n";
+    o += "<table class=\"numbers\"><thead><tr><th>input</th><th>total Sobol' index for P(pass)</th><th>95 % "
+         "interval</th></tr></thead><tbody>\n";
     for (std::size_t i = 0; i < s["drivers_of_p_pass"].size(); ++i) {
       const auto& d = s["drivers_of_p_pass"][i];
       const std::string key = fmt::format("uncertainty.drivers_of_p_pass.{}.total", i);

@@ -11,9 +11,9 @@ namespace {
 // Plausibility limits for any rotary cutter blade, the report's lab rigs included (its
 // Figs 2.8-2.15 strike objects up to the blade's own 22 lb): generous, but they refuse a
 // slip of unit ("24 km") before it becomes a meaningless simulation.
-constexpr double kMaxLength = 3.0;             // m, one link or a pivot radius
-constexpr double kMaxMass = 500.0;             // kg
-constexpr double kMaxInertia = 1000.0;         // kg m^2
+constexpr double kMaxLength = 3.0;      // m, one link or a pivot radius
+constexpr double kMaxMass = 500.0;      // kg
+constexpr double kMaxInertia = 1000.0;  // kg m^2
 constexpr double kMaxSpeed = 20000 * units::rpm;
 
 blade::Link read_link(const TableReader& t) {
@@ -22,8 +22,7 @@ blade::Link read_link(const TableReader& t) {
   link.mass = t.quantity("mass", Kind::Mass, Range::positive_up_to(kMaxMass));
   link.centre_of_mass = t.optional_quantity("centre_of_mass", Kind::Length, Range::NonNegative);
   if (link.centre_of_mass && *link.centre_of_mass > link.length)
-    throw t.error("centre_of_mass", fmt::format("expected a distance from the inner pin within the link's length ({} m)",
-                                                link.length));
+    throw t.error("centre_of_mass", fmt::format("expected a distance from the inner pin within the link's length ({} m)", link.length));
   link.inertia_about_centre = t.optional_quantity("inertia", Kind::Inertia, Range::between(0, kMaxInertia));
   link.seized = t.boolean_or("seized", false);
   t.refuse_unknown_keys();
@@ -40,10 +39,8 @@ blade::Blade read_blade(const TableReader& t) {
     b.hub.bar_mass = hub->quantity_or("bar_mass", Kind::Mass, 0.0, Range::between(0, kMaxMass));
     b.hub.bar_length = hub->quantity_or("bar_length", Kind::Length, 0.0, Range::between(0, 2 * kMaxLength));
     if ((b.hub.bar_mass > 0.0) != (b.hub.bar_length > 0.0))
-      throw hub->error(b.hub.bar_mass > 0.0 ? "bar_length" : "bar_mass",
-                       "a hub bar needs both bar_mass and bar_length (or neither)");
-    b.hub.bar_mount = hub->string_or("bar_mount", "centre", {"centre", "end"}) == "end" ? blade::BarMount::End
-                                                                                       : blade::BarMount::Centre;
+      throw hub->error(b.hub.bar_mass > 0.0 ? "bar_length" : "bar_mass", "a hub bar needs both bar_mass and bar_length (or neither)");
+    b.hub.bar_mount = hub->string_or("bar_mount", "centre", {"centre", "end"}) == "end" ? blade::BarMount::End : blade::BarMount::Centre;
     b.hub.extra_inertia = hub->quantity_or("inertia", Kind::Inertia, 0.0, Range::between(0, kMaxInertia));
     b.hub.drive_inertia = hub->quantity_or("drive_inertia", Kind::Inertia, 0.0, Range::between(0, kMaxInertia));
     b.hub.constant_speed = hub->string_or("drive", "free", {"free", "constant_speed"}) == "constant_speed";
@@ -61,8 +58,9 @@ blade::Blade read_blade(const TableReader& t) {
   }
 
   if (!b.hub.constant_speed && b.hub.inertia() <= 0.0 && b.arms.empty())
-    throw t.error("hub", "the blade has no inertia: give [blade.hub] a bar_mass and bar_length or an inertia, "
-                         "or add [[blade.arms]]");
+    throw t.error("hub",
+                  "the blade has no inertia: give [blade.hub] a bar_mass and bar_length or an inertia, "
+                  "or add [[blade.arms]]");
   return b;
 }
 

@@ -31,9 +31,12 @@ std::vector<std::string> split(const std::string& line, const std::string& file,
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') field += '"', ++i;
-      else if (c == '"') quoted = false;
-      else field += c;
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+        field += '"', ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        field += c;
     } else if (c == '"' && trim(field).empty()) {
       quoted = was_quoted = true;
       field.clear();
@@ -66,8 +69,9 @@ CsvTable parse_csv(const std::string& text, const std::string& file) {
       continue;
     }
     if (fields.size() != t.header.size())
-      throw InputError::file_problem(file, number, fmt::format("{} fields; expected {}, one per column of the header ({})", fields.size(),
-                                                               t.header.size(), fmt::join(t.header, ", ")));
+      throw InputError::file_problem(file, number,
+                                     fmt::format("{} fields; expected {}, one per column of the header ({})", fields.size(),
+                                                 t.header.size(), fmt::join(t.header, ", ")));
     t.rows.push_back({number, std::move(fields)});
   }
   if (t.header.empty() || t.rows.empty()) throw InputError::file_problem(file, std::nullopt, "expected a header line and at least one row");

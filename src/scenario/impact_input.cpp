@@ -33,11 +33,11 @@ blade::StruckObject read_object(const TableReader& t, std::string& name) {
   o.mass = t.quantity("mass", Kind::Mass, Range::Positive);
   const bool scalar = t.has("speed_toward_blade");
   const bool vector = t.has("velocity");
-  if (scalar && vector)
-    throw t.error("velocity", "give either speed_toward_blade or [object.velocity], not both");
+  if (scalar && vector) throw t.error("velocity", "give either speed_toward_blade or [object.velocity], not both");
   if (!scalar && !vector)
-    throw t.error("speed_toward_blade", "missing; expected the object's speed toward the blade such as \"440 ft/min\" "
-                                        "(or an [object.velocity] table)");
+    throw t.error("speed_toward_blade",
+                  "missing; expected the object's speed toward the blade such as \"440 ft/min\" "
+                  "(or an [object.velocity] table)");
   if (scalar) {
     // The report's convention: the object moves against the blade's motion.
     o.velocity = {0.0, -t.quantity("speed_toward_blade", Kind::Speed), 0.0};
@@ -54,10 +54,8 @@ blade::StruckObject read_object(const TableReader& t, std::string& name) {
     r.length = rod->quantity("length", Kind::Length, Range::Positive);
     r.offset = rod->quantity_or("offset", Kind::Length, 0.0);
     if (std::abs(r.offset) > 0.5 * r.length)
-      throw rod->error("offset", fmt::format("expected a contact point on the rod: |offset| <= half its length ({:g} m)",
-                                             0.5 * r.length));
-    r.transverse_inertia =
-        rod->quantity_or("inertia", Kind::Inertia, o.mass * r.length * r.length / 12.0, Range::Positive);
+      throw rod->error("offset", fmt::format("expected a contact point on the rod: |offset| <= half its length ({:g} m)", 0.5 * r.length));
+    r.transverse_inertia = rod->quantity_or("inertia", Kind::Inertia, o.mass * r.length * r.length / 12.0, Range::Positive);
     r.axis = blade::Vec3::UnitZ();  // the falling nail stands upright
     rod->refuse_unknown_keys();
     o.rod = r;

@@ -21,12 +21,12 @@
 namespace j232::scenario {
 
 struct ImpactCase {
-  std::string source;       // file it came from, or "command line"
+  std::string source;  // file it came from, or "command line"
   std::string title;
   std::string object_name;
   blade::Blade blade;
-  std::size_t arm = 0;      // 0-based
-  double radius = 0.0;      // m from the spindle
+  std::size_t arm = 0;  // 0-based
+  double radius = 0.0;  // m from the spindle
   blade::ContactLocation location;
   blade::StruckObject object;  // velocity in the struck arm's frame: x radial, y tangential, z up
   blade::Restitution restitution;

@@ -9,16 +9,15 @@ std::string where(const std::string& file, std::optional<int> line) {
   return line ? fmt::format("{}:{}", file, *line) : file;
 }
 
-std::string message(const std::string& file, std::optional<int> line, const std::string& key,
-                    const std::string& value, const std::string& expected) {
+std::string message(const std::string& file, std::optional<int> line, const std::string& key, const std::string& value,
+                    const std::string& expected) {
   return value.empty() ? fmt::format("{}: {}: {}", where(file, line), key, expected)
                        : fmt::format("{}: {} = {}: {}", where(file, line), key, value, expected);
 }
 }  // namespace
 
 // The message is built before any argument is moved into a member.
-InputError::InputError(std::string file, std::optional<int> line, std::string key, std::string value,
-                       std::string expected)
+InputError::InputError(std::string file, std::optional<int> line, std::string key, std::string value, std::string expected)
     : InputError(message(file, line, key, value, expected), file, line, key) {}
 
 InputError::InputError(std::string message, std::string file, std::optional<int> line, std::string key)

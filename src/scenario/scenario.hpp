@@ -21,10 +21,10 @@
 
 namespace j232::scenario {
 
-struct NailSpec {  // uncoated 6d steel box nail
-  double length = 0.0508;          // 2 in
-  double diameter = 0.00251;       // 0.099 in shank
-  double mass = 0.0020;            // 2.0 g
+struct NailSpec {                    // uncoated 6d steel box nail
+  double length = 0.0508;            // 2 in
+  double diameter = 0.00251;         // 0.099 in shank
+  double mass = 0.0020;              // 2.0 g
   double length_tolerance = 0.0008;  // +/- (uniform)
   double mass_tolerance = 0.0001;    // +/- (uniform): 1.9-2.1 g
 };
@@ -46,8 +46,8 @@ struct FeedSpec {
 };
 
 struct BladeGeometry {
-  double height = 0.076;      // blade plane above ground, m (3 in)
-  double thickness = 0.006;   // m; a nail is struck while it spans this slab
+  double height = 0.076;     // blade plane above ground, m (3 in)
+  double thickness = 0.006;  // m; a nail is struck while it spans this slab
   // Edge bevel / lift: the contact normal tilts up out of the blade plane by this angle,
   // rad. Litherland and Yoerger (1967) found it the parameter that most decides where
   // struck material goes; no figure for industrial cutters is published, so the default
@@ -89,11 +89,11 @@ struct GuardSpec {  // chain or belting curtain
   // `top` down to `bottom` (a curtain on its own bracket; any deck, meshes included).
   double azimuth_from = 0.0, azimuth_to = 0.0;
   PlanPath along;
-  double top = 0.0;                             // upper edge along a polyline, m
-  double bottom = 0.010;                        // lower edge above ground, m
-  double openness = 0.35;                       // probability a nail passes between the links
-  double pass_speed_factor = 0.7;               // speed kept when passing
-  double restitution = 0.2;                     // bounce off the curtain
+  double top = 0.0;                // upper edge along a polyline, m
+  double bottom = 0.010;           // lower edge above ground, m
+  double openness = 0.35;          // probability a nail passes between the links
+  double pass_speed_factor = 0.7;  // speed kept when passing
+  double restitution = 0.2;        // bounce off the curtain
   double friction = 0.5;
 };
 
@@ -107,12 +107,12 @@ struct DeflectorSpec {  // a solid vertical panel inside or outside the skirt
 };
 
 struct HousingSpec {
-  double deck_radius = 0.0;           // default (0 here): the blades' reach + margin
-  double skirt_bottom = 0.038;        // above ground (skid shoes 1.5 in below the blade)
-  double skirt_depth = 0.175;         // skirt bottom to deck plate
+  double deck_radius = 0.0;                                                          // default (0 here): the blades' reach + margin
+  double skirt_bottom = 0.038;                                                       // above ground (skid shoes 1.5 in below the blade)
+  double skirt_depth = 0.175;                                                        // skirt bottom to deck plate
   blade::Restitution restitution = blade::Restitution::power_law(1.06, -0.25, 0.9);  // steel on steel
   double friction = 0.4;
-  double margin = 0.050;              // deck outline outside every tip circle (several spindles)
+  double margin = 0.050;  // deck outline outside every tip circle (several spindles)
   std::vector<OpeningSpec> openings;
   std::vector<GuardSpec> guards;
   std::vector<DeflectorSpec> deflectors;
@@ -123,8 +123,8 @@ struct GroundSpec {  // turf
   // data (Wyllie 2014) fit e_n = 19.5 theta^-1.03 (theta in degrees between the path and
   // the surface), so shallow impacts keep more of their normal speed. j232 keeps the
   // exponent and scales the law to `restitution` at a perpendicular impact, capped at 1.
-  double restitution = 0.15;        // e_n at a 90 deg (perpendicular) impact
-  double angle_exponent = 1.03;     // 0: one constant e_n at every angle
+  double restitution = 0.15;     // e_n at a 90 deg (perpendicular) impact
+  double angle_exponent = 1.03;  // 0: one constant e_n at every angle
   double friction = 0.5;
   double roughness = 0.1745;  // std. dev. of the local surface normal's tilt, rad (10 deg)
   // e_n for an impact whose path makes `angle` (rad, 0-pi/2) with the surface.
@@ -163,13 +163,13 @@ struct OperatorZoneSpec {
   double azimuth_from = 0.0, azimuth_to = 0.0, bottom = 0.0, top = 0.0;
   // Derived (docs/model.md §5.4): seated operator; seat index point position.
   double seat_x = 2.0, seat_y = 0.0, seat_z = 0.90;
-  double shoulder_height = 0.646;   // above the seat
+  double shoulder_height = 0.646;  // above the seat
   double shoulder_half_width = 0.20;
-  double reach = 0.942;             // extended reach, 95th-percentile male
+  double reach = 0.942;  // extended reach, 95th-percentile male
   double knee_height = 0.604;
 };
 
-struct BoardSpec {  // double-wall 350# corrugated board
+struct BoardSpec {                           // double-wall 350# corrugated board
   double puncture_energy_per_width = 110.0;  // J/m
   double hit_fraction = 0.3;                 // hit threshold / puncture threshold
 };
@@ -197,13 +197,13 @@ struct AirSpec {
 struct RunSpec {
   long long replicates = 1000;
   unsigned long long seed = 1;
-  int threads = 0;                      // 0: all cores
+  int threads = 0;                          // 0: all cores
   std::optional<double> target_half_width;  // stop rule on the P(pass) interval
   long long max_replicates = 100000;
-  double chord_tolerance = 0.001;       // max sag of a flight chord, m
-  double time_limit = 3.0;              // s of flight per nail
+  double chord_tolerance = 0.001;  // max sag of a flight chord, m
+  double time_limit = 3.0;         // s of flight per nail
   int max_bounces = 100;
-  double rest_speed = 0.3;              // m/s: slower after a bounce is at rest
+  double rest_speed = 0.3;  // m/s: slower after a bounce is at rest
 };
 
 // An uncertainty study of the scenario (`j232 uq`, docs/model.md §6b): inputs varied
@@ -229,7 +229,7 @@ struct UncertaintySpec {
 struct Scenario {
   std::string file;
   std::string title;
-  std::vector<SpindleSpec> spindles = std::vector<SpindleSpec>(1);  // at least one; [blade]: one at the origin
+  std::vector<SpindleSpec> spindles = std::vector<SpindleSpec>(1);     // at least one; [blade]: one at the origin
   blade::Restitution restitution = blade::Restitution::constant(0.9);  // nail on blade
   NailSpec nail;
   FeedSpec feed;

@@ -207,9 +207,8 @@ void read_criteria(const TableReader& t, CriteriaSpec& c) {
   c.hits_outside = t.percentage_or("hits_outside", c.hits_outside);
   c.punctures_outside = t.percentage_or("punctures_outside", c.punctures_outside);
   c.counted_height = t.optional_quantity("counted_height", Kind::Length, Range::between(0, 5));
-  c.denominator = t.string_or("denominator", "nails_fed", {"nails_fed", "marks"}) == "marks"
-                      ? CriteriaSpec::Denominator::Marks
-                      : CriteriaSpec::Denominator::NailsFed;
+  c.denominator = t.string_or("denominator", "nails_fed", {"nails_fed", "marks"}) == "marks" ? CriteriaSpec::Denominator::Marks
+                                                                                             : CriteriaSpec::Denominator::NailsFed;
   c.required_pass_probability =
       t.quantity_or("required_pass_probability", Kind::Dimensionless, c.required_pass_probability, Range::UnitInterval);
   t.refuse_unknown_keys();
@@ -237,7 +236,8 @@ void read_blade_and_geometry(const TableReader& t, SpindleSpec& sp) {
   sp.blade = read_blade(t);
   sp.geometry.height = t.quantity_or("height", Kind::Length, sp.geometry.height, Range::between(0.005, 1));
   sp.geometry.thickness = t.quantity_or("thickness", Kind::Length, sp.geometry.thickness, Range::between(0.0005, 0.05));
-  sp.geometry.lift_angle = t.quantity_or("lift_angle", Kind::Angle, sp.geometry.lift_angle, Range::between(-45 * units::degree, 45 * units::degree));
+  sp.geometry.lift_angle =
+      t.quantity_or("lift_angle", Kind::Angle, sp.geometry.lift_angle, Range::between(-45 * units::degree, 45 * units::degree));
   t.refuse_unknown_keys();
 }
 
@@ -292,7 +292,8 @@ void read_spindles(const TableReader& root, std::vector<SpindleSpec>& spindles) 
     for (std::size_t j = i + 1; j < spindles.size(); ++j) {
       const double d = std::hypot(spindles[i].x - spindles[j].x, spindles[i].y - spindles[j].y);
       if (d < spindles[i].blade.tip_radius() + spindles[j].blade.tip_radius() &&
-          std::abs(spindles[i].geometry.height - spindles[j].geometry.height) < 0.5 * (spindles[i].geometry.thickness + spindles[j].geometry.thickness))
+          std::abs(spindles[i].geometry.height - spindles[j].geometry.height) <
+              0.5 * (spindles[i].geometry.thickness + spindles[j].geometry.thickness))
         throw tables[j].error("x", fmt::format("spindle {}'s tip circle overlaps spindle {}'s in the same plane ({:.3f} m apart, "
                                                "radii {:.3f} and {:.3f} m): stagger their heights or move them apart",
                                                j + 1, i + 1, d, spindles[i].blade.tip_radius(), spindles[j].blade.tip_radius()));
@@ -310,14 +311,14 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
     if (auto h = root.table("housing")) {
       const std::string replaces = fmt::format("the housing mesh {} replaces the generated deck and skirt", deck->path);
       for (const char* key : {"deck_radius", "skirt_bottom", "skirt_depth", "margin", "openings"})
-        if (h->has(key))
-          throw h->error(key, replaces + "; remove this key (housing.restitution and housing.friction still apply)");
+        if (h->has(key)) throw h->error(key, replaces + "; remove this key (housing.restitution and housing.friction still apply)");
       // Guards along the generated outline have no outline to follow; along a polyline
       // (with its own top) they hang anywhere. Deflectors stand on their own.
       for (const auto& g : h->array_of_tables("guards")) {
         if (!g.has("along"))
-          throw g.error("azimuth_from", replaces + ", so a guard cannot follow its outline: give the curtain's "
-                                        "path as `along = [[x, y], ...]` with `top`, or as a mesh with label = \"guard\"");
+          throw g.error("azimuth_from", replaces +
+                                            ", so a guard cannot follow its outline: give the curtain's "
+                                            "path as `along = [[x, y], ...]` with `top`, or as a mesh with label = \"guard\"");
         if (!g.has("top")) throw g.error("along", replaces + ": give the curtain's upper edge as `top`");
       }
     }
@@ -327,7 +328,6 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
         if (t->has(key))
           throw t->error(key, fmt::format("the target mesh {} replaces the generated board ring; remove this key", board->path));
 }
-
 
 }  // namespace
 
@@ -391,8 +391,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     s.target.top = t->quantity_or("top", Kind::Length, s.target.top, Range::positive_up_to(10));
     s.target.segments = static_cast<int>(t->integer_or("segments", s.target.segments, 16, 3600));
     if (s.target.top <= s.target.bottom) throw t->error("top", "expected the board's top above its bottom");
-    if (reach + s.target.distance <= s.housing.deck_radius)
-      throw t->error("distance", "expected the board outside the mower deck");
+    if (reach + s.target.distance <= s.housing.deck_radius) throw t->error("distance", "expected the board outside the mower deck");
     t->refuse_unknown_keys();
   }
 

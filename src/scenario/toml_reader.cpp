@@ -12,9 +12,7 @@ namespace j232::scenario {
 TableReader::TableReader(const toml::table& table, std::string file, std::string path)
     : table_(&table), file_(std::move(file)), path_(std::move(path)), used_(std::make_shared<std::set<std::string, std::less<>>>()) {}
 
-std::string TableReader::full(std::string_view key) const {
-  return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
-}
+std::string TableReader::full(std::string_view key) const { return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key); }
 
 const toml::node* TableReader::node(std::string_view key) const {
   used_->insert(std::string(key));
@@ -45,8 +43,8 @@ InputError TableReader::error(std::string_view key, std::string expected) const 
   // Values set from command-line options carry no source position: blame the command line.
   const bool from_command_line = n && !n->source().path;
   return InputError(from_command_line ? std::string() : file_, from_command_line ? std::nullopt : line_of(key),
-                    from_command_line ? fmt::format("option for {}", full(key)) : full(key),
-                    n ? shown(*n) : std::string(), std::move(expected));
+                    from_command_line ? fmt::format("option for {}", full(key)) : full(key), n ? shown(*n) : std::string(),
+                    std::move(expected));
 }
 
 // The value as the user wrote it: strings in double quotes, numbers in shortest form.
@@ -107,8 +105,7 @@ std::optional<double> TableReader::optional_quantity(std::string_view key, units
       throw error(key, e.what());
     }
   } else if (auto d = n->value<double>(); d && (n->is_floating_point() || n->is_integer())) {
-    if (kind != units::Kind::Dimensionless)
-      throw error(key, fmt::format("a number needs a unit here; {}", expected));
+    if (kind != units::Kind::Dimensionless) throw error(key, fmt::format("a number needs a unit here; {}", expected));
     value = *d;
   } else {
     throw error(key, expected);
@@ -117,12 +114,13 @@ std::optional<double> TableReader::optional_quantity(std::string_view key, units
   return value;
 }
 
-std::vector<std::array<double, 2>> TableReader::points(std::string_view key, units::Kind kind, Range range,
-                                                        std::size_t min_points, std::size_t max_points) const {
+std::vector<std::array<double, 2>> TableReader::points(std::string_view key, units::Kind kind, Range range, std::size_t min_points,
+                                                       std::size_t max_points) const {
   const toml::node* n = node(key);
-  const std::string expected = fmt::format("expected {} to {} points [x, y] such as [[\"30 in\", \"-12 in\"], [\"30 in\", "
-                                           "\"12 in\"]], each coordinate {}",
-                                           min_points, max_points, expected_words(kind, range).substr(std::string("expected ").size()));
+  const std::string expected = fmt::format(
+      "expected {} to {} points [x, y] such as [[\"30 in\", \"-12 in\"], [\"30 in\", "
+      "\"12 in\"]], each coordinate {}",
+      min_points, max_points, expected_words(kind, range).substr(std::string("expected ").size()));
   if (!n) throw error(key, "missing; " + expected);
   const toml::array* list = n->as_array();
   if (!list || list->size() < min_points || list->size() > max_points) throw error(key, expected);
@@ -155,8 +153,7 @@ double TableReader::quantity_or(std::string_view key, units::Kind kind, double f
   return optional_quantity(key, kind, range).value_or(fallback);
 }
 
-std::string TableReader::string_or(std::string_view key, std::string fallback,
-                                   const std::vector<std::string>& allowed) const {
+std::string TableReader::string_or(std::string_view key, std::string fallback, const std::vector<std::string>& allowed) const {
   const toml::node* n = node(key);
   if (!n) return fallback;
   std::string choices;
@@ -234,8 +231,7 @@ std::vector<TableReader> TableReader::array_of_tables(std::string_view key, std:
   if (!n) return out;
   const toml::array* array = n->as_array();
   if (!array) throw error(key, "expected an array of tables ([[" + full(key) + "]])");
-  if (array->size() > max)
-    throw error(key, fmt::format("{} tables; expected at most {} [[{}]] tables", array->size(), max, full(key)));
+  if (array->size() > max) throw error(key, fmt::format("{} tables; expected at most {} [[{}]] tables", array->size(), max, full(key)));
   for (std::size_t i = 0; i < array->size(); ++i) {
     const toml::table* t = (*array)[i].as_table();
     if (!t) throw error(key, "expected an array of tables ([[" + full(key) + "]])");
@@ -251,11 +247,11 @@ void TableReader::refuse_unknown_keys() const {
     for (const auto& u : *used_) known += (known.empty() ? "" : ", ") + u;
     // A key set from the command line (--set) has no place in the file: blame the option.
     const bool from_command_line = !v.source().path;
-    throw InputError(from_command_line ? std::string() : file_,
-                     from_command_line ? std::nullopt : std::optional<int>(static_cast<int>(v.source().begin.line)),
-                     from_command_line ? fmt::format("option for {}", full(k.str())) : full(k.str()), "",
-                     known.empty() ? std::string("unknown key (this table takes no keys)")
-                                   : fmt::format("unknown key; this table takes: {}", known));
+    throw InputError(
+        from_command_line ? std::string() : file_,
+        from_command_line ? std::nullopt : std::optional<int>(static_cast<int>(v.source().begin.line)),
+        from_command_line ? fmt::format("option for {}", full(k.str())) : full(k.str()), "",
+        known.empty() ? std::string("unknown key (this table takes no keys)") : fmt::format("unknown key; this table takes: {}", known));
   }
 }
 
@@ -276,8 +272,7 @@ toml::table parse_toml_file(const std::string& file) {
   try {
     return toml::parse(buffer.str(), file);
   } catch (const toml::parse_error& e) {
-    throw InputError::file_problem(file, static_cast<int>(e.source().begin.line),
-                                   fmt::format("not valid TOML: {}", e.description()));
+    throw InputError::file_problem(file, static_cast<int>(e.source().begin.line), fmt::format("not valid TOML: {}", e.description()));
   }
 }
 

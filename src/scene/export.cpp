@@ -33,8 +33,10 @@ std::string ply(const Soup& soup, const std::vector<Polyline>& lines) {
                  "property uchar red\nproperty uchar green\nproperty uchar blue\n",
                  points, soup.triangles.size());
   if (edges)
-    fmt::format_to(out, "element edge {}\nproperty int vertex1\nproperty int vertex2\nproperty uchar red\nproperty uchar green\n"
-                        "property uchar blue\n", edges);
+    fmt::format_to(out,
+                   "element edge {}\nproperty int vertex1\nproperty int vertex2\nproperty uchar red\nproperty uchar green\n"
+                   "property uchar blue\n",
+                   edges);
   fmt::format_to(out, "end_header\n");
   for (const auto& p : soup.points) fmt::format_to(out, "{} {} {}\n", p.x(), p.y(), p.z());
   for (const auto& l : lines)

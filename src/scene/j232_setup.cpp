@@ -14,7 +14,6 @@ namespace j232::scene {
 
 namespace {
 
-
 double arc_span(double from, double to) {
   double span = std::fmod(to - from, units::two_pi);
   if (span <= 0) span += units::two_pi;
@@ -25,16 +24,16 @@ double arc_span(double from, double to) {
 // between heights z0 and z1, cut at the given azimuths and heights; each quad labelled
 // by `label(centre)`.
 template <class Label>
-void add_wall(Soup& soup, double radius, const std::vector<double>& azimuths, const std::vector<double>& heights,
-              Label label, std::uint16_t guard = 0) {
+void add_wall(Soup& soup, double radius, const std::vector<double>& azimuths, const std::vector<double>& heights, Label label,
+              std::uint16_t guard = 0) {
   std::vector<std::vector<std::uint32_t>> ids(azimuths.size());
   for (std::size_t i = 0; i < azimuths.size(); ++i)
     for (double z : heights) ids[i].push_back(soup.add_point({radius * std::cos(azimuths[i]), radius * std::sin(azimuths[i]), z}));
   for (std::size_t i = 0; i + 1 < azimuths.size(); ++i)
     for (std::size_t k = 0; k + 1 < heights.size(); ++k) {
       const double a = 0.5 * (azimuths[i] + azimuths[i + 1]), z = 0.5 * (heights[k] + heights[k + 1]);
-      soup.add_quad(ids[i][k], ids[i + 1][k], ids[i + 1][k + 1], ids[i][k + 1],
-                    label(Vec3(radius * std::cos(a), radius * std::sin(a), z)), guard);
+      soup.add_quad(ids[i][k], ids[i + 1][k], ids[i + 1][k + 1], ids[i][k + 1], label(Vec3(radius * std::cos(a), radius * std::sin(a), z)),
+                    guard);
     }
 }
 
@@ -86,8 +85,7 @@ void add_target_ring(Soup& soup, const scenario::Scenario& s, const OperatorZone
   }
   const auto az = arc_breaks(0.0, units::two_pi, units::two_pi / s.target.segments, extra_az);
   const auto hz = height_breaks(s.target.bottom, s.target.top, 0.05, extra_z);
-  add_wall(soup, target_radius(s), az, hz,
-           [&](const Vec3& c) { return zone.contains(c) ? Surface::TargetZone : Surface::TargetOutside; });
+  add_wall(soup, target_radius(s), az, hz, [&](const Vec3& c) { return zone.contains(c) ? Surface::TargetZone : Surface::TargetOutside; });
 }
 
 // Splits triangles in four until no edge is longer than max_edge, so that a target
@@ -101,9 +99,10 @@ Soup subdivide(const Soup& in, double max_edge, std::size_t max_triangles) {
     count += longest <= max_edge ? 1.0 : std::pow(4.0, std::ceil(std::log2(longest / max_edge)));
   }
   if (count > static_cast<double>(max_triangles))
-    throw std::runtime_error(fmt::format("subdividing this target mesh to {:g} m faces (to carry the operator zone) would "
-                                         "make {:.3g} triangles, more than {}: is `scale` right for the file's units?",
-                                         max_edge, count, max_triangles));
+    throw std::runtime_error(
+        fmt::format("subdividing this target mesh to {:g} m faces (to carry the operator zone) would "
+                    "make {:.3g} triangles, more than {}: is `scale` right for the file's units?",
+                    max_edge, count, max_triangles));
   Soup out;
   std::vector<std::array<Vec3, 3>> work;
   for (std::size_t t = 0; t < in.triangles.size(); ++t) {
@@ -154,7 +153,8 @@ std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
   std::vector<Eigen::Vector2d> points;
   for (const auto& sp : s.spindles)
     for (int i = 0; i < 96; ++i) {
-      const double a = units::two_pi * i / 96, r = s.spindles.size() == 1 ? s.housing.deck_radius : sp.blade.tip_radius() + s.housing.margin;
+      const double a = units::two_pi * i / 96,
+                   r = s.spindles.size() == 1 ? s.housing.deck_radius : sp.blade.tip_radius() + s.housing.margin;
       points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
     }
   return convex_hull(std::move(points));
@@ -200,7 +200,9 @@ void add_chute(Soup& soup, const scenario::OpeningSpec& o, double skirt_bottom,
   if (o.chute_length <= 0 || pieces.empty()) return;
   const double mid = o.azimuth_from + 0.5 * arc_span(o.azimuth_from, o.azimuth_to);
   const Eigen::Vector2d out = o.chute_length * Eigen::Vector2d(std::cos(mid), std::sin(mid));
-  auto rel = [&](const Eigen::Vector2d& p) { return std::fmod(std::atan2(p.y(), p.x()) - o.azimuth_from + 2 * units::two_pi, units::two_pi); };
+  auto rel = [&](const Eigen::Vector2d& p) {
+    return std::fmod(std::atan2(p.y(), p.x()) - o.azimuth_from + 2 * units::two_pi, units::two_pi);
+  };
   Eigen::Vector2d first = pieces.front().first, last = pieces.front().second;
   for (const auto& [a, b] : pieces) {
     if (rel(a) < rel(first)) first = a;
@@ -274,8 +276,9 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
     const auto& guard = h.guards[g];
     if (!guard.along.empty()) continue;  // hung along its own path (add_free_parts)
     const double span = arc_span(guard.azimuth_from, guard.azimuth_to);
-    add_wall(soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, units::two_pi / 96), {guard.bottom, h.skirt_bottom},
-             [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
+    add_wall(
+        soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, units::two_pi / 96), {guard.bottom, h.skirt_bottom},
+        [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
   }
 }
 
@@ -354,8 +357,7 @@ Soup build_scene_soup(const scenario::Scenario& s) {
     if (label == Surface::TargetOutside)
       for (std::size_t t = 0; t < part.triangles.size(); ++t) {
         const auto& tri = part.triangles[t];
-        if (zone.contains((part.points[tri[0]] + part.points[tri[1]] + part.points[tri[2]]) / 3.0))
-          part.labels[t] = Surface::TargetZone;
+        if (zone.contains((part.points[tri[0]] + part.points[tri[1]] + part.points[tri[2]]) / 3.0)) part.labels[t] = Surface::TargetZone;
       }
     if (label != Surface::Ground)
       for (const auto& p : part.points) mesh_reach = std::max(mesh_reach, std::hypot(p.x(), p.y()));

@@ -22,9 +22,8 @@ constexpr std::size_t kMaxMeshFaces = 2'000'000;
 // allocate gigabytes; all found by fuzzing): the header is checked here first. Empty when
 // sound.
 std::string ply_header_problem(const std::string& path) {
-  static const std::set<std::string> kTypes = {"char",  "uchar",  "short",  "ushort",  "int",     "uint",
-                                               "float", "double", "int8",   "uint8",   "int16",   "uint16",
-                                               "int32", "uint32", "float32", "float64"};
+  static const std::set<std::string> kTypes = {"char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
+                                               "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
   static const std::set<std::string> kReal = {"float", "double", "float32", "float64"};
   std::ifstream in(path, std::ios::binary);
   std::string line;
@@ -134,8 +133,10 @@ Soup read_mesh(const std::string& path, Surface label, double scale, std::uint16
   if (!std::filesystem::is_regular_file(status))
     throw std::runtime_error(fmt::format("{}: not a regular file (a mesh must be an OBJ, OFF, PLY or STL file)", path));
   if (std::filesystem::file_size(path, ec) > kMaxMeshBytes)
-    throw std::runtime_error(fmt::format("{}: larger than {} MB; simplify the mesh (a mower deck needs thousands of "
-                                         "triangles, not millions)", path, kMaxMeshBytes >> 20));
+    throw std::runtime_error(
+        fmt::format("{}: larger than {} MB; simplify the mesh (a mower deck needs thousands of "
+                    "triangles, not millions)",
+                    path, kMaxMeshBytes >> 20));
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
     throw std::runtime_error(fmt::format("{}: unknown mesh format \"{}\" (expected .obj, .off, .ply or .stl)", path, ext));
@@ -176,9 +177,10 @@ Soup read_mesh(const std::string& path, Surface label, double scale, std::uint16
     const Vec3 v(p.x() * scale, p.y() * scale, p.z() * scale);
     if (!v.allFinite()) throw std::runtime_error(fmt::format("{}: a vertex has a non-finite coordinate", path));
     if (v.norm() > kMaxSceneRadius)
-      throw std::runtime_error(fmt::format("{}: vertex {} lies {:.3g} m from the spindle after scaling by {:g}; expected a "
-                                           "mower-sized scene within {:g} m (is `scale` right for the file's units?)",
-                                           path, soup.points.size() + 1, v.norm(), scale, kMaxSceneRadius));
+      throw std::runtime_error(
+          fmt::format("{}: vertex {} lies {:.3g} m from the spindle after scaling by {:g}; expected a "
+                      "mower-sized scene within {:g} m (is `scale` right for the file's units?)",
+                      path, soup.points.size() + 1, v.norm(), scale, kMaxSceneRadius));
     soup.add_point(v);
   }
   for (std::size_t f = 0; f < polygons.size(); ++f) {
@@ -186,8 +188,8 @@ Soup read_mesh(const std::string& path, Surface label, double scale, std::uint16
     if (poly.size() < 3) throw std::runtime_error(fmt::format("{}: face {} has {} corners (need 3 or more)", path, f + 1, poly.size()));
     for (std::size_t i : poly)
       if (i >= points.size())
-        throw std::runtime_error(fmt::format("{}: face {} names a vertex that does not exist (the file has vertices 1 to {})",
-                                             path, f + 1, points.size()));
+        throw std::runtime_error(
+            fmt::format("{}: face {} names a vertex that does not exist (the file has vertices 1 to {})", path, f + 1, points.size()));
     // Fan triangulation; every triangle must have area.
     for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
       const Vec3& a = soup.points[poly[0]];
@@ -196,8 +198,8 @@ Soup read_mesh(const std::string& path, Surface label, double scale, std::uint16
       const double size2 = (b - a).squaredNorm() + (c - a).squaredNorm();
       if (!((b - a).cross(c - a).norm() > 1e-12 * size2) || size2 == 0.0)
         throw std::runtime_error(fmt::format("{}: face {} is degenerate (zero area)", path, f + 1));
-      soup.add_triangle(static_cast<std::uint32_t>(poly[0]), static_cast<std::uint32_t>(poly[k]),
-                        static_cast<std::uint32_t>(poly[k + 1]), label, guard);
+      soup.add_triangle(static_cast<std::uint32_t>(poly[0]), static_cast<std::uint32_t>(poly[k]), static_cast<std::uint32_t>(poly[k + 1]),
+                        label, guard);
     }
   }
   return soup;

@@ -11,8 +11,7 @@ bool within_arc(double a, double from, double to) {
   return units::wrap_angle(a - from) <= units::wrap_angle(to - from);
 }
 
-OperatorZone::OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_height)
-    : spec_(spec), blade_centre_(0, 0, blade_height) {
+OperatorZone::OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_height) : spec_(spec), blade_centre_(0, 0, blade_height) {
   if (spec.kind == scenario::OperatorZoneSpec::Kind::Derived) {
     const double shoulder_z = spec.seat_z + spec.shoulder_height;
     spheres_.push_back({{spec.seat_x, spec.seat_y + spec.shoulder_half_width, shoulder_z}, spec.reach});
@@ -24,8 +23,7 @@ OperatorZone::OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_
 
 bool OperatorZone::contains(const Vec3& p) const {
   if (spec_.kind == scenario::OperatorZoneSpec::Kind::Sector)
-    return within_arc(std::atan2(p.y(), p.x()), spec_.azimuth_from, spec_.azimuth_to) && p.z() >= spec_.bottom &&
-           p.z() <= spec_.top;
+    return within_arc(std::atan2(p.y(), p.x()), spec_.azimuth_from, spec_.azimuth_to) && p.z() >= spec_.bottom && p.z() <= spec_.top;
   // A nail crossing the board at p on a straight line from the blade: does that line,
   // continued beyond the board, enter the envelope?
   const Vec3 d = (p - blade_centre_).normalized();
@@ -33,7 +31,7 @@ bool OperatorZone::contains(const Vec3& p) const {
     const Vec3 m = p - s.centre;
     const double b = m.dot(d);
     const double c = m.squaredNorm() - s.radius * s.radius;
-    if (c <= 0.0) return true;  // the board point is inside the envelope
+    if (c <= 0.0) return true;                     // the board point is inside the envelope
     if (b < 0.0 && b * b - c >= 0.0) return true;  // the sphere lies ahead and the line meets it
   }
   return false;

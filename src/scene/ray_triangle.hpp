@@ -22,7 +22,7 @@ using TriangleEdges = std::array<Vec3, 3>;
 
 // The nearest accepted hit so far along a ray.
 struct NearestHit {
-  double distance;                  // the search's reach at first, then the best hit's distance
+  double distance;  // the search's reach at first, then the best hit's distance
   std::uint32_t face = Skip::kNone;
 
   // Tests triangle f (Moller-Trumbore, edges widened by 1e-12 so that a ray through a

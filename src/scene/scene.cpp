@@ -139,13 +139,12 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
   for (std::uint32_t t = 0; t < m.soup.triangles.size(); ++t) {
     const auto& tri = m.soup.triangles[t];
     const Vec3 n = (m.soup.points[tri[1]] - m.soup.points[tri[0]]).cross(m.soup.points[tri[2]] - m.soup.points[tri[0]]);
-    const double scale = (m.soup.points[tri[1]] - m.soup.points[tri[0]]).squaredNorm() +
-                         (m.soup.points[tri[2]] - m.soup.points[tri[0]]).squaredNorm();
-    if (!(n.norm() > 1e-12 * scale) || !(scale > 0))
-      throw std::invalid_argument(fmt::format("face {} is degenerate (zero area)", t + 1));
+    const double scale =
+        (m.soup.points[tri[1]] - m.soup.points[tri[0]]).squaredNorm() + (m.soup.points[tri[2]] - m.soup.points[tri[0]]).squaredNorm();
+    if (!(n.norm() > 1e-12 * scale) || !(scale > 0)) throw std::invalid_argument(fmt::format("face {} is degenerate (zero area)", t + 1));
     m.normals.push_back(n.normalized());
-    m.triangles.push_back({m.soup.points[tri[0]], m.soup.points[tri[1]] - m.soup.points[tri[0]],
-                           m.soup.points[tri[2]] - m.soup.points[tri[0]]});
+    m.triangles.push_back(
+        {m.soup.points[tri[0]], m.soup.points[tri[1]] - m.soup.points[tri[0]], m.soup.points[tri[2]] - m.soup.points[tri[0]]});
   }
 #ifdef J232_HAVE_EMBREE
   if (engine == Engine::Embree) {

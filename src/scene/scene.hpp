@@ -12,7 +12,7 @@
 namespace j232::scene {
 
 struct Hit {
-  double distance = 0;   // along the ray, m
+  double distance = 0;  // along the ray, m
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();  // unit, facing back against the ray
   Surface surface = Surface::Ground;
@@ -27,7 +27,10 @@ struct Skip {
   bool contains(std::uint32_t f) const { return f == faces[0] || f == faces[1] || f == faces[2] || f == faces[3]; }
   void add(std::uint32_t f) {
     for (auto& slot : faces)
-      if (slot == kNone) { slot = f; return; }
+      if (slot == kNone) {
+        slot = f;
+        return;
+      }
     faces[3] = f;
   }
 };
@@ -37,7 +40,7 @@ struct Skip {
 // exact double-precision test decides every hit, so both give the same answers.
 enum class Engine { Cgal, Embree };
 bool engine_available(Engine e);
-Engine default_engine();  // Embree when built in
+Engine default_engine();            // Embree when built in
 const char* engine_name(Engine e);  // "cgal", "embree"
 
 class Scene {

@@ -24,14 +24,14 @@ struct Polyline {
   std::string group;                   // "tip_circles", "feed_stations", "seat", "reach_envelope", "nail_paths"
   std::array<std::uint8_t, 3> colour;  // for a viewer
   std::vector<Vec3> points;
-  bool closed = false;                 // the last point joins the first
+  bool closed = false;  // the last point joins the first
 };
 
 struct Soup {
   std::vector<Vec3> points;
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<Surface> labels;            // per triangle
-  std::vector<std::uint16_t> guard_index; // per triangle: which guard's properties (guards only)
+  std::vector<Surface> labels;             // per triangle
+  std::vector<std::uint16_t> guard_index;  // per triangle: which guard's properties (guards only)
 
   std::uint32_t add_point(const Vec3& p) {
     points.push_back(p);

@@ -38,9 +38,7 @@ int require_column(const scenario::CsvTable& t, const std::string& name, const s
   return c;
 }
 
-double t_quantile(int dof) {
-  return boost::math::quantile(boost::math::students_t(static_cast<double>(dof)), 0.975);
-}
+double t_quantile(int dof) { return boost::math::quantile(boost::math::students_t(static_cast<double>(dof)), 0.975); }
 
 // The impact core for each case, built once.
 struct Cases {
@@ -173,8 +171,8 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, LawKind k
   const std::size_t parameters = kind == LawKind::Constant ? 1 : 2;
   if (n < parameters + 2)
     throw InputError::file_problem(cases_file, std::nullopt,
-                                   fmt::format("{} cases; fitting {} parameter{} with intervals and held-out predictions needs at least {}", n,
-                                               parameters, parameters == 1 ? "" : "s", parameters + 2));
+                                   fmt::format("{} cases; fitting {} parameter{} with intervals and held-out predictions needs at least {}",
+                                               n, parameters, parameters == 1 ? "" : "s", parameters + 2));
   CalibrationResult result;
   result.cases_file = cases_file;
   result.law = kind;

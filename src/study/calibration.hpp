@@ -31,18 +31,18 @@ std::vector<CalibrationCase> read_calibration_cases(const std::string& csv_file)
 enum class LawKind { Constant, PowerLaw };
 
 struct FittedParameter {
-  std::string name;  // "e", or "coefficient" and "exponent"
+  std::string name;                                         // "e", or "coefficient" and "exponent"
   double value = 0, standard_error = 0, low = 0, high = 0;  // 95 % interval
 };
 
 struct CasePrediction {
   std::string name;
-  double measured = 0;       // m/s
-  double approach_speed = 0; // normal approach speed at the contact, m/s
-  double as_given = 0;       // with the case's own restitution
-  double fitted = 0;         // with the law fitted to all cases
-  double held_out = 0;       // with the law fitted to all other cases
-  double e_fitted = 0;       // the fitted law's e at this case
+  double measured = 0;        // m/s
+  double approach_speed = 0;  // normal approach speed at the contact, m/s
+  double as_given = 0;        // with the case's own restitution
+  double fitted = 0;          // with the law fitted to all cases
+  double held_out = 0;        // with the law fitted to all other cases
+  double e_fitted = 0;        // the fitted law's e at this case
 };
 
 struct CalibrationResult {
@@ -67,7 +67,7 @@ struct DropTest {
   int line = 0;
 };
 struct DropTestResult {
-  std::vector<double> e, impact_speed;  // per drop
+  std::vector<double> e, impact_speed;                         // per drop
   double mean = 0, standard_deviation = 0, low = 0, high = 0;  // 95 % interval of the mean
 };
 // Reads a CSV with columns drop_height and rebound_height (with units). Throws InputError.

@@ -61,7 +61,8 @@ Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned lo
     for (int k = 0; k <= assess::kCategories; ++k) {
       Moments paired, first, other;
       for (std::uint64_t r = 0; r < c.replicates; ++r) {
-        const double a = designs[0].per_replicate[r][static_cast<std::size_t>(k)], b = designs[d].per_replicate[r][static_cast<std::size_t>(k)];
+        const double a = designs[0].per_replicate[r][static_cast<std::size_t>(k)],
+                     b = designs[d].per_replicate[r][static_cast<std::size_t>(k)];
         paired.add(b - a);
         first.add(a);
         other.add(b);

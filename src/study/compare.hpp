@@ -21,7 +21,7 @@ struct MeanInterval {
 
 struct DesignResult {
   std::string file, title;
-  assess::Interval pass;                          // P(pass), Wilson
+  assess::Interval pass;  // P(pass), Wilson
   std::array<MeanInterval, assess::kCategories> shares;
   std::array<double, assess::kCategories> limits{};
   std::uint64_t marks = 0, nails = 0;

@@ -99,8 +99,7 @@ void scale_blade_mass(blade::Blade& b, double mass) {
 void set_pivot_position(blade::Blade& b, double s_over_l) {
   for (const auto& arm : b.arms)
     if (arm.links.size() != 1 || std::abs(arm.pivot_radius - b.hub.reach()) > 1e-9)
-      throw std::invalid_argument(
-          "pivot_position: expected a blade of one hub bar and one link per arm, pinned at the bar's end");
+      throw std::invalid_argument("pivot_position: expected a blade of one hub bar and one link per arm, pinned at the bar's end");
   if (b.arms.empty()) throw std::invalid_argument("pivot_position: the base blade has no pivoted arm");
   const double tip = b.tip_radius(), mass = b.mass();
   const double bar_share = b.hub.bar_mount == blade::BarMount::End ? 1.0 : 2.0;  // bar lengths per unit reach

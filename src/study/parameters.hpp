@@ -33,10 +33,10 @@ enum class Parameter { BladeSpeed, BladeMass, Restitution, ContactRadius, PivotP
 
 struct ParameterInfo {
   Parameter parameter;
-  std::string name;       // as written
-  units::Kind kind;       // for named parameters
-  std::string axis_title; // "blade speed (rpm)"
-  double display_factor;  // SI value / factor = the number on the axis
+  std::string name;        // as written
+  units::Kind kind;        // for named parameters
+  std::string axis_title;  // "blade speed (rpm)"
+  double display_factor;   // SI value / factor = the number on the axis
 };
 
 // Named parameters, or FileKey for anything else.

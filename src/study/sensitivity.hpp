@@ -33,7 +33,6 @@ struct SobolIndices {
 
 // `outputs` in the order of SaltelliDesign::runs(). Bootstrap: `resamples` resamplings of
 // the N base rows, from a fixed `seed`.
-SobolIndices sobol_indices(const SaltelliDesign& design, const std::vector<double>& outputs, int resamples = 500,
-                           std::uint64_t seed = 1);
+SobolIndices sobol_indices(const SaltelliDesign& design, const std::vector<double>& outputs, int resamples = 500, std::uint64_t seed = 1);
 
 }  // namespace j232::study

@@ -37,7 +37,7 @@ struct SweepSpec {
   std::string source;  // the sweep file, or "command line"
   std::string name;    // stem of the output files
   std::string title;
-  std::string base;    // base file, as a path from the working directory
+  std::string base;            // base file, as a path from the working directory
   std::vector<Setting> fixed;  // applied first, at every point
   Axis x;
   std::vector<Axis> series;
@@ -58,7 +58,7 @@ struct SweepTable {
     std::size_t series = 0;
     std::string series_label;  // "700 rpm, 16 lb" ("" with no series)
     std::string x_text;
-    double x = 0;              // in the axis' display unit
+    double x = 0;  // in the axis' display unit
     std::vector<double> values;
   };
   std::vector<Row> rows;
@@ -77,9 +77,6 @@ SweepTable run_sweep(const SweepSpec& spec, int threads, SweepProgress* progress
 // Column index by name (for charts and tests); throws std::out_of_range.
 std::size_t column(const SweepTable& t, const std::string& name);
 
-std::string sweep_csv(const SweepSpec& spec, const SweepTable& t);
-// The charts: for impact cases "dimensional" and "dimensionless"; for J232 scenarios
-// "pass-probability". Each as (suffix, svg).
-std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& spec, const SweepTable& t);
+// Its CSV and charts: report/sweep_report.hpp.
 
 }  // namespace j232::study

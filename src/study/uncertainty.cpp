@@ -41,8 +41,7 @@ Written split(const std::string& text, const std::string& file, std::optional<in
 
 double InputDistribution::quantile(double u) const {
   switch (kind) {
-    case Kind::Uniform:
-      return low + u * (high - low);
+    case Kind::Uniform: return low + u * (high - low);
     case Kind::Triangular: {
       const double split = (mode - low) / (high - low);  // F(mode)
       return u < split ? low + std::sqrt(u * (high - low) * (mode - low)) : high - std::sqrt((1 - u) * (high - low) * (high - mode));
@@ -72,10 +71,12 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
     return in;
   };
   plan.inputs = {
-      estimated("board.puncture_energy_per_width", "80 J/m", "140 J/m", "estimate: no published value for 350# double-wall board; 110 J/m +/- ~27 %"),
+      estimated("board.puncture_energy_per_width", "80 J/m", "140 J/m",
+                "estimate: no published value for 350# double-wall board; 110 J/m +/- ~27 %"),
       estimated("board.hit_fraction", "0.2", "0.4", "estimate: a hit takes about a third of a puncture's energy"),
-      estimated("restitution", "0.4", "0.95",
-                "report 445-1: drop tests 0.9-0.96 at ~1 m/s, 0.45-0.6 at ~2.3 m/s; its Table 3.1 fits 0.53-0.65 at 11 m/s (j232 calibrate)"),
+      estimated(
+          "restitution", "0.4", "0.95",
+          "report 445-1: drop tests 0.9-0.96 at ~1 m/s, 0.45-0.6 at ~2.3 m/s; its Table 3.1 fits 0.53-0.65 at 11 m/s (j232 calibrate)"),
       estimated("lift_angle", "0 deg", "10 deg", "estimate: no figure for industrial cutters (flat bar 0 deg to a bevelled, sailed edge)"),
       estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"),
       estimated("housing.friction", "0.3", "0.6", "handbook: steel on steel, kinetic 0.42-0.57"),
@@ -106,22 +107,26 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     const std::string key = r.plan.defaults ? fmt::format("(default) {}", in.parameter) : fmt::format("uncertainty.inputs[{}]", i + 1);
     info.push_back(parameter_info(in.parameter));
     const Written lo = split(in.low, file, in.line, key + ".low"), hi = split(in.high, file, in.line, key + ".high");
-    if (lo.unit != hi.unit) throw InputError(file, in.line, key + ".high", in.high, fmt::format("expected the same unit as low (\"{}\")", lo.unit));
+    if (lo.unit != hi.unit)
+      throw InputError(file, in.line, key + ".high", in.high, fmt::format("expected the same unit as low (\"{}\")", lo.unit));
     if (!(hi.number > lo.number)) throw InputError(file, in.line, key + ".high", in.high, "expected a value above low");
     ends.emplace_back(lo, hi);
-    InputDistribution d{InputDistribution::Kind::Uniform, lo.number, hi.number, 0.5 * (lo.number + hi.number), 0.25 * (hi.number - lo.number)};
+    InputDistribution d{InputDistribution::Kind::Uniform, lo.number, hi.number, 0.5 * (lo.number + hi.number),
+                        0.25 * (hi.number - lo.number)};
     if (in.distribution == "triangular") d.kind = InputDistribution::Kind::Triangular;
     if (in.distribution == "normal") d.kind = InputDistribution::Kind::Normal;
     if (!in.mode.empty()) {
       const Written m = split(in.mode, file, in.line, key + ".mode");
       if (m.unit != lo.unit || !(m.number >= lo.number && m.number <= hi.number))
-        throw InputError(file, in.line, key + ".mode", in.mode, fmt::format("expected a value from low to high, in low's unit (\"{}\")", lo.unit));
+        throw InputError(file, in.line, key + ".mode", in.mode,
+                         fmt::format("expected a value from low to high, in low's unit (\"{}\")", lo.unit));
       d.mode = m.number;
     }
     if (!in.sd.empty()) {
       const Written sd = split(in.sd, file, in.line, key + ".sd");
       if (sd.unit != lo.unit || !(sd.number > 0))
-        throw InputError(file, in.line, key + ".sd", in.sd, fmt::format("expected a standard deviation above zero, in low's unit (\"{}\")", lo.unit));
+        throw InputError(file, in.line, key + ".sd", in.sd,
+                         fmt::format("expected a standard deviation above zero, in low's unit (\"{}\")", lo.unit));
       d.sd = sd.number;
     }
     spread.push_back(d);

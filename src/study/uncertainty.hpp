@@ -29,8 +29,8 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s);
 
 // The outputs judged at each draw: P(pass), the four mean shares, and whether it passes.
 inline constexpr int kUqOutputs = 6;
-inline constexpr const char* kUqOutputNames[kUqOutputs] = {"p_pass", "hits_zone", "punctures_zone", "hits_outside",
-                                                          "punctures_outside", "passes"};
+inline constexpr const char* kUqOutputNames[kUqOutputs] = {"p_pass",       "hits_zone",         "punctures_zone",
+                                                           "hits_outside", "punctures_outside", "passes"};
 
 struct UncertaintyResult {
   UncertaintyPlan plan;
@@ -38,8 +38,8 @@ struct UncertaintyResult {
   unsigned long long seed = 0;
   double required = 0.9;
   SaltelliDesign design;
-  std::vector<std::vector<double>> values;               // per run, per input: the value set (SI or the number written)
-  std::vector<std::array<double, kUqOutputs>> outputs;   // per run
+  std::vector<std::vector<double>> values;              // per run, per input: the value set (SI or the number written)
+  std::vector<std::array<double, kUqOutputs>> outputs;  // per run
   std::array<SobolIndices, kUqOutputs> indices;
 };
 

@@ -22,19 +22,32 @@ constexpr Dimension kAngularSpeed{0, 0, -1, 1};
 // The table is small on purpose: the units that mower data sheets, the report and
 // handbooks use. An unknown unit is an error, never a guess.
 constexpr std::array kUnits{
-    NamedUnit{"m", 1.0, kLength},        NamedUnit{"mm", 1e-3, kLength},
-    NamedUnit{"cm", 1e-2, kLength},      NamedUnit{"km", 1e3, kLength},
-    NamedUnit{"in", inch, kLength},      NamedUnit{"ft", foot, kLength},
-    NamedUnit{"yd", 0.9144, kLength},    NamedUnit{"mi", 1609.344, kLength},
-    NamedUnit{"kg", 1.0, kMass},         NamedUnit{"g", gram, kMass},
-    NamedUnit{"mg", 1e-6, kMass},        NamedUnit{"lb", pound, kMass},
-    NamedUnit{"oz", pound / 16.0, kMass}, NamedUnit{"gr", pound / 7000.0, kMass},
-    NamedUnit{"s", 1.0, kTime},          NamedUnit{"ms", 1e-3, kTime},
-    NamedUnit{"min", 60.0, kTime},       NamedUnit{"h", 3600.0, kTime},
-    NamedUnit{"rad", 1.0, kAngle},       NamedUnit{"deg", pi / 180.0, kAngle},
-    NamedUnit{"rev", 2.0 * pi, kAngle},  NamedUnit{"rpm", rpm, kAngularSpeed},
-    NamedUnit{"mph", mph, kSpeed},       NamedUnit{"N", 1.0, kForce},
-    NamedUnit{"lbf", 4.4482216152605, kForce}, NamedUnit{"J", 1.0, kEnergy},
+    NamedUnit{"m", 1.0, kLength},
+    NamedUnit{"mm", 1e-3, kLength},
+    NamedUnit{"cm", 1e-2, kLength},
+    NamedUnit{"km", 1e3, kLength},
+    NamedUnit{"in", inch, kLength},
+    NamedUnit{"ft", foot, kLength},
+    NamedUnit{"yd", 0.9144, kLength},
+    NamedUnit{"mi", 1609.344, kLength},
+    NamedUnit{"kg", 1.0, kMass},
+    NamedUnit{"g", gram, kMass},
+    NamedUnit{"mg", 1e-6, kMass},
+    NamedUnit{"lb", pound, kMass},
+    NamedUnit{"oz", pound / 16.0, kMass},
+    NamedUnit{"gr", pound / 7000.0, kMass},
+    NamedUnit{"s", 1.0, kTime},
+    NamedUnit{"ms", 1e-3, kTime},
+    NamedUnit{"min", 60.0, kTime},
+    NamedUnit{"h", 3600.0, kTime},
+    NamedUnit{"rad", 1.0, kAngle},
+    NamedUnit{"deg", pi / 180.0, kAngle},
+    NamedUnit{"rev", 2.0 * pi, kAngle},
+    NamedUnit{"rpm", rpm, kAngularSpeed},
+    NamedUnit{"mph", mph, kSpeed},
+    NamedUnit{"N", 1.0, kForce},
+    NamedUnit{"lbf", 4.4482216152605, kForce},
+    NamedUnit{"J", 1.0, kEnergy},
     NamedUnit{"%", 0.01, kNone},
 };
 
@@ -48,12 +61,8 @@ std::string_view trim(std::string_view s) {
 // them keeps the dimension arithmetic far from integer overflow and the factor finite.
 constexpr int kMaxExponent = 12;
 
-Dimension scaled(Dimension d, int power) {
-  return {d.mass * power, d.length * power, d.time * power, d.angle * power};
-}
-Dimension plus(Dimension a, Dimension b) {
-  return {a.mass + b.mass, a.length + b.length, a.time + b.time, a.angle + b.angle};
-}
+Dimension scaled(Dimension d, int power) { return {d.mass * power, d.length * power, d.time * power, d.angle * power}; }
+Dimension plus(Dimension a, Dimension b) { return {a.mass + b.mass, a.length + b.length, a.time + b.time, a.angle + b.angle}; }
 bool bounded(Dimension d) {
   for (int e : {d.mass, d.length, d.time, d.angle})
     if (e < -kMaxExponent * 4 || e > kMaxExponent * 4) return false;
@@ -63,10 +72,10 @@ bool bounded(Dimension d) {
 UnitValue named(std::string_view name, std::string_view whole) {
   for (const auto& u : kUnits)
     if (u.name == name) return {u.factor, u.dimension};
-  throw UnitError(fmt::format(
-      "unknown unit \"{}\" in \"{}\" (known: m mm cm km in ft yd mi, kg g mg lb oz gr, s ms min h, "
-      "rad deg rev rpm, mph, N lbf J, %)",
-      name, whole));
+  throw UnitError(
+      fmt::format("unknown unit \"{}\" in \"{}\" (known: m mm cm km in ft yd mi, kg g mg lb oz gr, s ms min h, "
+                  "rad deg rev rpm, mph, N lbf J, %)",
+                  name, whole));
 }
 
 }  // namespace
@@ -115,7 +124,10 @@ UnitValue parse_unit(std::string_view expression) {
   std::size_t i = 0;
   while (i < expression.size()) {
     const char c = expression[i];
-    if (c == ' ' || c == '\t') { ++i; continue; }
+    if (c == ' ' || c == '\t') {
+      ++i;
+      continue;
+    }
     if (c == '*' || c == '/') {
       if (expect_factor) throw UnitError(fmt::format("misplaced '{}' in unit \"{}\"", c, whole));
       divide = (c == '/');
@@ -135,8 +147,8 @@ UnitValue parse_unit(std::string_view expression) {
       const char* last = expression.data() + expression.size();
       auto [ptr, ec] = std::from_chars(first, last, power);
       if (ec != std::errc() || power == 0 || power < -kMaxExponent || power > kMaxExponent)
-        throw UnitError(fmt::format("bad exponent in unit \"{}\" (expected a non-zero whole number from -{} to {} after '^')",
-                                    whole, kMaxExponent, kMaxExponent));
+        throw UnitError(fmt::format("bad exponent in unit \"{}\" (expected a non-zero whole number from -{} to {} after '^')", whole,
+                                    kMaxExponent, kMaxExponent));
       j = static_cast<std::size_t>(ptr - expression.data());
     }
     if (divide) power = -power;

@@ -47,7 +47,7 @@ UnitValue parse_unit(std::string_view expression);
 // Handy constants for code and tests.
 inline constexpr double pi = 3.14159265358979323846;
 inline constexpr double two_pi = 2 * pi;
-inline constexpr double degree = pi / 180;  // rad: x degrees is x * degree; an angle in degrees is a / degree
+inline constexpr double degree = pi / 180;           // rad: x degrees is x * degree; an angle in degrees is a / degree
 inline constexpr double standard_gravity = 9.80665;  // m/s^2 (CGPM 1901), the one value of g in j232
 inline constexpr double inch = 0.0254;
 inline constexpr double foot = 0.3048;

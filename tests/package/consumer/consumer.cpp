@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
   const j232::assess::Simulator simulator(s);
   const j232::assess::Assessment a = j232::assess::run_assessment(simulator, 2);
   const j232::assess::Summary sum = j232::assess::summarise(a, s);
-  nlohmann::json out = {{"version", j232::version},      {"replicates", a.replicates}, {"replicates_passed", a.passed},
-                        {"nails_fed", a.nails},          {"nails_struck", a.struck},   {"marks", a.marks},
-                        {"pass_probability", sum.pass.estimate}};
+  nlohmann::json out = {
+      {"version", j232::version}, {"replicates", a.replicates}, {"replicates_passed", a.passed},        {"nails_fed", a.nails},
+      {"nails_struck", a.struck}, {"marks", a.marks},           {"pass_probability", sum.pass.estimate}};
   std::cout << out.dump() << "\n";
 }

@@ -1,0 +1,107 @@
+#include "report/sweep_report.hpp"
+
+#include <fmt/format.h>
+
+#include "assess/tally.hpp"
+#include "report/svg_chart.hpp"
+
+namespace j232::report {
+
+using study::column;
+using study::SweepSpec;
+using study::SweepTable;
+using study::Parameter;
+
+std::string sweep_csv(const SweepSpec& spec, const SweepTable& t) {
+  std::string o = fmt::format("series,{},{}", spec.x.info.name, spec.x.info.name + "_value");
+  for (const auto& c : t.columns) o += "," + c;
+  o += "\n";
+  for (const auto& r : t.rows) {
+    o += fmt::format("\"{}\",\"{}\",{:.8g}", r.series_label, r.x_text, r.x);
+    for (double v : r.values) o += fmt::format(",{:.8g}", v);
+    o += "\n";
+  }
+  return o;
+}
+
+std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& spec, const SweepTable& t) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const std::size_t n_series = t.series_labels.size();
+  auto series_rows = [&](std::size_t s) {
+    std::vector<const SweepTable::Row*> rows;
+    for (const auto& r : t.rows)
+      if (r.series == s) rows.push_back(&r);
+    return rows;
+  };
+  if (t.assessment) {
+    report::Chart chart(spec.title, spec.x.info.axis_title, "P(pass one J232 test)");
+    const std::size_t p = column(t, "p_pass"), lo = column(t, "p_pass_low"), hi = column(t, "p_pass_high");
+    for (std::size_t s = 0; s < n_series; ++s) {
+      std::vector<double> x, y, yl, yh;
+      for (const auto* r : series_rows(s))
+        x.push_back(r->x), y.push_back(r->values[p]), yl.push_back(r->values[lo]), yh.push_back(r->values[hi]);
+      const std::string label = t.series_labels[s].empty() ? "P(pass)" : t.series_labels[s];
+      chart.band(x, yl, yh, report::palette(s), "");
+      chart.error_bars(x, yl, yh, report::palette(s));
+      chart.line(x, y, report::palette(s), label);
+    }
+    chart.hline(t.required_pass_probability, "#c62828", fmt::format("required {:g}", t.required_pass_probability));
+    chart.y_range(0, 1.05);
+    chart.caption(fmt::format("Bands and bars: Wilson 95 % intervals, {} replicates per point.",
+                              t.rows.empty() ? 0 : static_cast<long long>(t.rows.front().values[0])));
+    out.emplace_back("pass-probability", chart.svg());
+    // Each criterion's share per point: the mean and the 5-95 % range of single tests, and
+    // its limit, so the margin to the limit shows, not only P(pass)'s jump.
+    static const char* words[] = {"hits in the operator zone", "punctures in the operator zone", "hits outside the zone",
+                                  "punctures outside the zone"};
+    for (int k = 0; k < 4; ++k) {
+      const std::string name = assess::category_name(k);
+      const std::size_t mean = column(t, "share_" + name), q05 = column(t, "q05_" + name), q95 = column(t, "q95_" + name),
+                        limit = column(t, "limit_" + name);
+      report::Chart c(fmt::format("{}: {}", spec.title, words[k]), spec.x.info.axis_title, "share of the nails fed (%)");
+      double top = 0;
+      for (std::size_t s = 0; s < n_series; ++s) {
+        std::vector<double> x, y, yl, yh;
+        for (const auto* r : series_rows(s)) {
+          x.push_back(r->x), y.push_back(100 * r->values[mean]), yl.push_back(100 * r->values[q05]), yh.push_back(100 * r->values[q95]);
+          top = std::max(top, 100 * r->values[q95]);
+        }
+        const std::string label = t.series_labels[s].empty() ? "mean share" : t.series_labels[s];
+        c.band(x, yl, yh, report::palette(s), "");
+        c.line(x, y, report::palette(s), label);
+      }
+      const double lim = t.rows.empty() ? 0 : 100 * t.rows.front().values[limit];
+      c.hline(lim, "#c62828", fmt::format("limit {:g} %", lim));
+      c.y_range(0, 1.1 * std::max(top, lim) + 1e-9);
+      c.caption(
+          "Line: mean share over the replicates; band: 5-95 % range of the share in single "
+          "tests; dashed: the criterion's limit.");
+      out.emplace_back("share-" + name, c.svg());
+    }
+    return out;
+  }
+  const std::size_t speed = column(t, "object_speed_after_m_s"), ratio = column(t, "mass_ratio"),
+                    dimless = column(t, "dimensionless_velocity");
+  const bool x_is_object_mass = spec.x.info.parameter == Parameter::ObjectMass;
+  report::Chart dim(spec.title, spec.x.info.axis_title, "object speed after impact (m/s)");
+  report::Chart nondim(spec.title + " (dimensionless)", x_is_object_mass ? "object mass / blade mass" : spec.x.info.axis_title,
+                       "(v' - v0) / (tip speed)");
+  for (std::size_t s = 0; s < n_series; ++s) {
+    std::vector<double> x, xd, y, yd;
+    for (const auto* r : series_rows(s)) {
+      x.push_back(r->x), y.push_back(r->values[speed]);
+      xd.push_back(x_is_object_mass ? r->values[ratio] : r->x), yd.push_back(r->values[dimless]);
+    }
+    const std::string label = t.series_labels[s];
+    dim.line(x, y, report::palette(s), label, true, s >= 8);
+    nondim.line(xd, yd, report::palette(s), label, true, s >= 8);
+  }
+  dim.caption("v': the object's speed after impact along the blade's motion. Computed by j232's impact core.");
+  nondim.caption(
+      "v0: the object's speed toward the blade before impact; tip speed: omega times the tip radius (report 445-1 Figs 2.8-2.11, 2.16).");
+  out.emplace_back("dimensional", dim.svg());
+  out.emplace_back("dimensionless", nondim.svg());
+  return out;
+}
+
+}  // namespace j232::report
