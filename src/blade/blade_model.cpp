@@ -12,9 +12,15 @@ BladeModel::BladeModel(Blade blade) : blade_(std::move(blade)) {
     for (const auto& issue : issues) text += "\n  " + issue;
     throw std::invalid_argument(text);
   }
-
-  // 1. Number the free bodies. A seized link takes its parent's coordinate.
   int n = 0;
+  const std::vector<std::vector<int>> coordinate = number_coordinates(n);
+  assemble(coordinate, n);
+  factor_and_prepare(n);
+}
+
+std::vector<std::vector<int>> BladeModel::number_coordinates(int& n) {
+  // 1. Number the free bodies. A seized link takes its parent's coordinate.
+  n = 0;
   if (!blade_.hub.constant_speed) hub_coordinate_ = n++;
   std::vector<std::vector<int>> coordinate(blade_.arms.size());
   for (std::size_t a = 0; a < blade_.arms.size(); ++a) {
@@ -25,7 +31,10 @@ BladeModel::BladeModel(Blade blade) : blade_(std::move(blade)) {
       parent = c;
     }
   }
+  return coordinate;
+}
 
+void BladeModel::assemble(const std::vector<std::vector<int>>& coordinate, int n) {
   auto unit = [n](int c) {
     Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
     if (c != kPrescribed) v[c] = 1.0;
@@ -57,7 +66,9 @@ BladeModel::BladeModel(Blade blade) : blade_(std::move(blade)) {
       links_[a].push_back(std::move(lc));
     }
   }
+}
 
+void BladeModel::factor_and_prepare(int n) {
   // 3. Factor once; every contact's coefficients follow from M^-1 a and M^-1 b.
   if (n > 0) {
     factor_.compute(mass_matrix_);

@@ -64,6 +64,12 @@ class BladeModel {
   };
 
   const LinkCoefficients& coefficients(const ContactLocation& where) const;
+  // The constructor's steps: number the free bodies (returns each link's coordinate and
+  // the count), assemble kinematics and the mass matrix, factor it and derive each body's
+  // contact coefficients.
+  std::vector<std::vector<int>> number_coordinates(int& n);
+  void assemble(const std::vector<std::vector<int>>& coordinate, int n);
+  void factor_and_prepare(int n);
 
   Blade blade_;
   int hub_coordinate_ = kPrescribed;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "assess/tally.hpp"
 #include "scene/j232_setup.hpp"
 #include "units/quantity.hpp"
 
@@ -97,37 +98,94 @@ json opening_json(const scenario::OpeningSpec& o) {
   if (o.chute_length > 0) j.update({{"chute_length_m", o.chute_length}, {"chute_end_top_m", o.chute_end_top}});
   return j;
 }
+
+json zone_json(const scenario::OperatorZoneSpec& z) {
+  if (z.kind == scenario::OperatorZoneSpec::Kind::Sector)
+    return {{"kind", "sector"},
+            {"azimuth_from_deg", z.azimuth_from / units::degree},
+            {"azimuth_to_deg", z.azimuth_to / units::degree},
+            {"bottom_m", z.bottom},
+            {"top_m", z.top}};
+  return {{"kind", "derived"},
+          {"seat_x_m", z.seat_x},
+          {"seat_y_m", z.seat_y},
+          {"seat_z_m", z.seat_z},
+          {"shoulder_height_m", z.shoulder_height},
+          {"shoulder_half_width_m", z.shoulder_half_width},
+          {"reach_m", z.reach},
+          {"knee_height_m", z.knee_height}};
+}
+
+json feed_json(const scenario::FeedSpec& f) {
+  json stations = json::array();
+  for (const auto& st : f.stations)
+    stations.push_back({{"spindle", st.spindle + 1}, {"radius_m", st.radius}, {"azimuth_deg", st.azimuth / units::degree}});
+  return {{"nails", f.nails},
+          {"stations", stations},
+          {"drop_height_m", f.drop_height},
+          {"outlet_diameter_m", f.outlet_diameter},
+          {"outlet_speed_max_m_s", f.outlet_speed_max},
+          {"tilt_max_deg", f.tilt_max / units::degree},
+          {"ground_speed_m_s", f.ground_speed}};
+}
+
+// A housing mesh replaces the generated deck, its skirt and openings: only what still
+// applies is echoed.
+json housing_json(const scenario::HousingSpec& h, bool from_mesh) {
+  json guards = json::array(), deflectors = json::array(), openings = json::array();
+  for (const auto& g : h.guards) guards.push_back(guard_json(g));
+  for (const auto& d : h.deflectors) deflectors.push_back(deflector_json(d));
+  for (const auto& o : h.openings) openings.push_back(opening_json(o));
+  if (from_mesh)
+    return {{"generated", false},
+            {"restitution", restitution_json(h.restitution)},
+            {"friction", h.friction},
+            {"guards", guards},
+            {"deflectors", deflectors}};
+  return {{"generated", true},
+          {"deck_radius_m", h.deck_radius},
+          {"margin_m", h.margin},
+          {"openings", openings},
+          {"skirt_bottom_m", h.skirt_bottom},
+          {"skirt_depth_m", h.skirt_depth},
+          {"restitution", restitution_json(h.restitution)},
+          {"friction", h.friction},
+          {"guards", guards},
+          {"deflectors", deflectors}};
+}
+
+json target_json(const scenario::Scenario& s, bool from_mesh) {
+  if (from_mesh) return {{"generated", false}};
+  return {{"generated", true},           {"distance_m", s.target.distance}, {"radius_m", s.reach() + s.target.distance},
+          {"bottom_m", s.target.bottom}, {"top_m", s.target.top},           {"segments", s.target.segments}};
+}
+
+json criteria_json(const scenario::CriteriaSpec& c) {
+  json j;
+  for (int k = 0; k < assess::kCategories; ++k) j[assess::category_name(k)] = assess::category_limit(c, k);
+  j["denominator"] = c.denominator == scenario::CriteriaSpec::Denominator::Marks ? "marks" : "nails_fed";
+  j["required_pass_probability"] = c.required_pass_probability;
+  return j;
+}
+
+json run_json(const scenario::RunSpec& r) {
+  return {{"replicates", r.replicates},
+          {"seed", r.seed},
+          {"target_half_width", r.target_half_width ? json(*r.target_half_width) : json(nullptr)},
+          {"max_replicates", r.max_replicates},
+          {"chord_tolerance_m", r.chord_tolerance},
+          {"time_limit_s", r.time_limit},
+          {"max_bounces", r.max_bounces},
+          {"rest_speed_m_s", r.rest_speed}};
+}
+
 }  // namespace
 
 nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
-  json openings = json::array();
-  for (const auto& o : s.housing.openings) openings.push_back(opening_json(o));
-  json spindles = json::array();
+  json spindles = json::array(), meshes = json::array();
   for (const auto& sp : s.spindles) spindles.push_back(spindle_json(sp));
-  const scene::MeshRoles roles = scene::mesh_roles(s);
-  json stations = json::array();
-  for (const auto& st : s.feed.stations)
-    stations.push_back({{"spindle", st.spindle + 1}, {"radius_m", st.radius}, {"azimuth_deg", st.azimuth / units::degree}});
-  json guards = json::array(), deflectors = json::array(), meshes = json::array();
-  for (const auto& g : s.housing.guards) guards.push_back(guard_json(g));
-  for (const auto& d : s.housing.deflectors) deflectors.push_back(deflector_json(d));
   for (const auto& m : s.meshes) meshes.push_back({{"path", m.path}, {"label", scenario::mesh_label_name(m.label)}, {"scale", m.scale}});
-  json zone;
-  if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector)
-    zone = {{"kind", "sector"},
-            {"azimuth_from_deg", s.zone.azimuth_from / units::degree},
-            {"azimuth_to_deg", s.zone.azimuth_to / units::degree},
-            {"bottom_m", s.zone.bottom},
-            {"top_m", s.zone.top}};
-  else
-    zone = {{"kind", "derived"},
-            {"seat_x_m", s.zone.seat_x},
-            {"seat_y_m", s.zone.seat_y},
-            {"seat_z_m", s.zone.seat_z},
-            {"shoulder_height_m", s.zone.shoulder_height},
-            {"shoulder_half_width_m", s.zone.shoulder_half_width},
-            {"reach_m", s.zone.reach},
-            {"knee_height_m", s.zone.knee_height}};
+  const scene::MeshRoles roles = scene::mesh_roles(s);
   return {
       {"file", s.file},
       {"title", s.title},
@@ -139,62 +197,21 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"mass_kg", s.nail.mass},
         {"length_tolerance_m", s.nail.length_tolerance},
         {"mass_tolerance_kg", s.nail.mass_tolerance}}},
-      {"feed",
-       {{"nails", s.feed.nails},
-        {"stations", stations},
-        {"drop_height_m", s.feed.drop_height},
-        {"outlet_diameter_m", s.feed.outlet_diameter},
-        {"outlet_speed_max_m_s", s.feed.outlet_speed_max},
-        {"tilt_max_deg", s.feed.tilt_max / units::degree},
-        {"ground_speed_m_s", s.feed.ground_speed}}},
-      {"housing", roles.housing ? json{{"generated", false},
-                                       {"restitution", restitution_json(s.housing.restitution)},
-                                       {"friction", s.housing.friction},
-                                       {"guards", guards},
-                                       {"deflectors", deflectors}}
-                                : json{{"generated", true},
-                                       {"deck_radius_m", s.housing.deck_radius},
-                                       {"margin_m", s.housing.margin},
-                                       {"openings", openings},
-                                       {"skirt_bottom_m", s.housing.skirt_bottom},
-                                       {"skirt_depth_m", s.housing.skirt_depth},
-                                       {"restitution", restitution_json(s.housing.restitution)},
-                                       {"friction", s.housing.friction},
-                                       {"guards", guards},
-                                       {"deflectors", deflectors}}},
+      {"feed", feed_json(s.feed)},
+      {"housing", housing_json(s.housing, roles.housing)},
       {"ground",
        {{"restitution", s.ground.restitution},
         {"angle_exponent", s.ground.angle_exponent},
         {"friction", s.ground.friction},
         {"roughness_deg", s.ground.roughness / units::degree}}},
-      {"target", roles.target ? json{{"generated", false}}
-                              : json{{"generated", true},
-                                     {"distance_m", s.target.distance},
-                                     {"radius_m", s.reach() + s.target.distance},
-                                     {"bottom_m", s.target.bottom},
-                                     {"top_m", s.target.top},
-                                     {"segments", s.target.segments}}},
+      {"target", target_json(s, roles.target)},
       {"meshes", meshes},
-      {"operator_zone", zone},
+      {"operator_zone", zone_json(s.zone)},
       {"board", {{"puncture_energy_per_width_J_m", s.board.puncture_energy_per_width}, {"hit_fraction", s.board.hit_fraction}}},
-      {"criteria",
-       {{"hits_zone", s.criteria.hits_zone},
-        {"punctures_zone", s.criteria.punctures_zone},
-        {"hits_outside", s.criteria.hits_outside},
-        {"punctures_outside", s.criteria.punctures_outside},
-        {"denominator", s.criteria.denominator == scenario::CriteriaSpec::Denominator::Marks ? "marks" : "nails_fed"},
-        {"required_pass_probability", s.criteria.required_pass_probability}}},
+      {"criteria", criteria_json(s.criteria)},
       {"air", {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}}},
       {"uncertainty", uncertainty_json(s.uncertainty)},
-      {"run",
-       {{"replicates", s.run.replicates},
-        {"seed", s.run.seed},
-        {"target_half_width", s.run.target_half_width ? json(*s.run.target_half_width) : json(nullptr)},
-        {"max_replicates", s.run.max_replicates},
-        {"chord_tolerance_m", s.run.chord_tolerance},
-        {"time_limit_s", s.run.time_limit},
-        {"max_bounces", s.run.max_bounces},
-        {"rest_speed_m_s", s.run.rest_speed}}},
+      {"run", run_json(s.run)},
   };
 }
 

@@ -329,6 +329,57 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
           throw t->error(key, fmt::format("the target mesh {} replaces the generated board ring; remove this key", board->path));
 }
 
+// The scenario's parts, each from its table (keys checked, unknown ones refused).
+void read_ground(const TableReader& g, GroundSpec& ground) {
+  ground.restitution = g.quantity_or("restitution", Kind::Dimensionless, ground.restitution, Range::UnitInterval);
+  ground.angle_exponent = g.quantity_or("angle_exponent", Kind::Dimensionless, ground.angle_exponent, Range::between(0, 3));
+  ground.friction = g.quantity_or("friction", Kind::Dimensionless, ground.friction, Range::between(0, 2));
+  ground.roughness = g.quantity_or("roughness", Kind::Angle, ground.roughness, Range::between(0, 45 * units::degree));
+  g.refuse_unknown_keys();
+}
+
+// `reach`: the blades' reach, for the check that the board stands outside the deck.
+void read_target(const TableReader& t, TargetSpec& target, double reach, double deck_radius) {
+  target.distance = t.quantity_or("distance", Kind::Length, target.distance, Range::between(0.05, 10));
+  target.bottom = t.quantity_or("bottom", Kind::Length, target.bottom, Range::between(0, 5));
+  target.top = t.quantity_or("top", Kind::Length, target.top, Range::positive_up_to(10));
+  target.segments = static_cast<int>(t.integer_or("segments", target.segments, 16, 3600));
+  if (target.top <= target.bottom) throw t.error("top", "expected the board's top above its bottom");
+  if (reach + target.distance <= deck_radius) throw t.error("distance", "expected the board outside the mower deck");
+  t.refuse_unknown_keys();
+}
+
+// A mesh file's path is relative to the scenario's folder (`base`).
+MeshFile read_mesh_file(const TableReader& m, const std::filesystem::path& base) {
+  MeshFile mesh;
+  const std::string path = m.string_or("path", "", {});
+  if (path.empty()) throw m.error("path", "missing; expected the mesh file's path (OBJ, OFF, PLY or STL)");
+  mesh.path = (base / path).string();
+  const std::string label = m.string_or("label", "", {kMeshLabelNames.begin(), kMeshLabelNames.end()});
+  if (label.empty()) throw m.error("label", "missing; expected one of ground, housing, deflector, guard, target, operator_zone");
+  mesh.label = static_cast<MeshLabel>(std::find(kMeshLabelNames.begin(), kMeshLabelNames.end(), label) - kMeshLabelNames.begin());
+  mesh.scale = m.quantity_or("scale", Kind::Dimensionless, 1.0, Range::between(1e-6, 1e3));
+  if (mesh.label == MeshLabel::Guard) read_guard(m, mesh.guard, false);
+  m.refuse_unknown_keys();
+  return mesh;
+}
+
+void read_board(const TableReader& b, BoardSpec& board) {
+  board.puncture_energy_per_width =
+      b.quantity_or("puncture_energy_per_width", Kind::EnergyPerLength, board.puncture_energy_per_width, Range::between(1, 1e4));
+  board.hit_fraction = b.quantity_or("hit_fraction", Kind::Dimensionless, board.hit_fraction, Range::UnitInterval);
+  b.refuse_unknown_keys();
+}
+
+void read_air(const TableReader& a, AirSpec& air) {
+  air.drag = a.boolean_or("drag", air.drag);
+  // Air at any altitude or temperature a mower meets is 0.9-1.4 kg/m^3; water is 1000.
+  air.density = a.quantity_or("density", Kind::Density, air.density, Range::between(0, 5));
+  air.cd_normal = a.quantity_or("cd_normal", Kind::Dimensionless, air.cd_normal, Range::between(0, 3));
+  air.cd_axial = a.quantity_or("cd_axial", Kind::Dimensionless, air.cd_axial, Range::between(0, 3));
+  a.refuse_unknown_keys();
+}
+
 }  // namespace
 
 double Scenario::blade_plane() const {
@@ -376,58 +427,20 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (s.housing.deck_radius <= reach)
     throw root.table("housing")->error("deck_radius", fmt::format("expected a deck wider than the blade's tip circle ({:.4g} m)", reach));
 
-  if (auto g = root.table("ground")) {
-    s.ground.restitution = g->quantity_or("restitution", Kind::Dimensionless, s.ground.restitution, Range::UnitInterval);
-    s.ground.angle_exponent = g->quantity_or("angle_exponent", Kind::Dimensionless, s.ground.angle_exponent, Range::between(0, 3));
-    s.ground.friction = g->quantity_or("friction", Kind::Dimensionless, s.ground.friction, Range::between(0, 2));
-    s.ground.roughness = g->quantity_or("roughness", Kind::Angle, s.ground.roughness, Range::between(0, 45 * units::degree));
-    g->refuse_unknown_keys();
-  }
+  if (auto g = root.table("ground")) read_ground(*g, s.ground);
 
   s.target.top = s.blade_plane() + 0.610;
-  if (auto t = root.table("target")) {
-    s.target.distance = t->quantity_or("distance", Kind::Length, s.target.distance, Range::between(0.05, 10));
-    s.target.bottom = t->quantity_or("bottom", Kind::Length, s.target.bottom, Range::between(0, 5));
-    s.target.top = t->quantity_or("top", Kind::Length, s.target.top, Range::positive_up_to(10));
-    s.target.segments = static_cast<int>(t->integer_or("segments", s.target.segments, 16, 3600));
-    if (s.target.top <= s.target.bottom) throw t->error("top", "expected the board's top above its bottom");
-    if (reach + s.target.distance <= s.housing.deck_radius) throw t->error("distance", "expected the board outside the mower deck");
-    t->refuse_unknown_keys();
-  }
+  if (auto t = root.table("target")) read_target(*t, s.target, reach, s.housing.deck_radius);
 
   const auto base = std::filesystem::path(file).parent_path();
-  for (const auto& m : root.array_of_tables("meshes", 32)) {
-    MeshFile mesh;
-    const std::string path = m.string_or("path", "", {});
-    if (path.empty()) throw m.error("path", "missing; expected the mesh file's path (OBJ, OFF, PLY or STL)");
-    mesh.path = (base / path).string();
-    const std::string label = m.string_or("label", "", {kMeshLabelNames.begin(), kMeshLabelNames.end()});
-    if (label.empty()) throw m.error("label", "missing; expected one of ground, housing, deflector, guard, target, operator_zone");
-    mesh.label = static_cast<MeshLabel>(std::find(kMeshLabelNames.begin(), kMeshLabelNames.end(), label) - kMeshLabelNames.begin());
-    mesh.scale = m.quantity_or("scale", Kind::Dimensionless, 1.0, Range::between(1e-6, 1e3));
-    if (mesh.label == MeshLabel::Guard) read_guard(m, mesh.guard, false);
-    m.refuse_unknown_keys();
-    s.meshes.push_back(mesh);
-  }
+  for (const auto& m : root.array_of_tables("meshes", 32)) s.meshes.push_back(read_mesh_file(m, base));
 
   refuse_what_meshes_replace(root, s.meshes);
 
   if (auto z = root.table("operator_zone")) read_zone(*z, s.zone);
-  if (auto b = root.table("board")) {
-    s.board.puncture_energy_per_width =
-        b->quantity_or("puncture_energy_per_width", Kind::EnergyPerLength, s.board.puncture_energy_per_width, Range::between(1, 1e4));
-    s.board.hit_fraction = b->quantity_or("hit_fraction", Kind::Dimensionless, s.board.hit_fraction, Range::UnitInterval);
-    b->refuse_unknown_keys();
-  }
+  if (auto b = root.table("board")) read_board(*b, s.board);
   if (auto c = root.table("criteria")) read_criteria(*c, s.criteria);
-  if (auto a = root.table("air")) {
-    s.air.drag = a->boolean_or("drag", s.air.drag);
-    // Air at any altitude or temperature a mower meets is 0.9-1.4 kg/m^3; water is 1000.
-    s.air.density = a->quantity_or("density", Kind::Density, s.air.density, Range::between(0, 5));
-    s.air.cd_normal = a->quantity_or("cd_normal", Kind::Dimensionless, s.air.cd_normal, Range::between(0, 3));
-    s.air.cd_axial = a->quantity_or("cd_axial", Kind::Dimensionless, s.air.cd_axial, Range::between(0, 3));
-    a->refuse_unknown_keys();
-  }
+  if (auto a = root.table("air")) read_air(*a, s.air);
   if (auto r = root.table("run")) read_run(*r, s.run);
   if (auto u = root.table("uncertainty")) read_uncertainty(*u, s.uncertainty);
   root.refuse_unknown_keys();
