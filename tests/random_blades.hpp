@@ -2,6 +2,7 @@
 // Random blades, contacts and objects for property tests: every shape the impact core
 // accepts (Case I, II, III up to 8 links, several arms, hub and drive inertia, seized
 // pins, explicit link inertia and centre of mass, eccentric rods).
+#include <cstdint>
 #include <random>
 
 #include "blade/blade.hpp"
@@ -16,8 +17,17 @@ struct RandomBladeOptions {
   int max_links = 8;
 };
 
-inline double uniform(std::mt19937_64& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-inline int integer(std::mt19937_64& rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+// Drawn from the engine's raw 64-bit output by fixed formulas, not by std::
+// distributions (whose algorithms each standard library chooses): the same blades on
+// every compiler, as the program's own random streams are.
+inline double uniform(std::mt19937_64& rng, double lo, double hi) {
+  const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;  // [0, 1), 53 random bits
+  return lo + (hi - lo) * u;
+}
+inline int integer(std::mt19937_64& rng, int lo, int hi) {
+  const auto span = static_cast<std::uint64_t>(hi - lo) + 1;  // small: the modulo's bias is below 2^-58
+  return lo + static_cast<int>(rng() % span);
+}
 
 inline blade::Blade random_blade(std::mt19937_64& rng, const RandomBladeOptions& o) {
   blade::Blade b;

@@ -21,6 +21,12 @@ struct Restitution {
   static Restitution power_law(double coefficient, double exponent, double maximum, double reference_speed = 1.0) {
     return {Model::PowerLaw, 0.0, coefficient, exponent, reference_speed, maximum};
   }
+  // The default law, steel nail on steel blade (docs/model.md §3): the members' defaults above.
+  static Restitution default_power_law() {
+    Restitution r;
+    r.model = Model::PowerLaw;
+    return r;
+  }
 
   // e at a normal approach speed v > 0 (m/s); always within [0, 1].
   double at(double approach_speed) const;

@@ -15,10 +15,11 @@ blade::Restitution read_restitution(const TableReader& t) {
   if (model == "constant") {
     r = blade::Restitution::constant(t.quantity("e", Kind::Dimensionless, Range::UnitInterval));
   } else {
-    r = blade::Restitution::power_law(t.quantity_or("coefficient", Kind::Dimensionless, 1.06, Range::Positive),
-                                      t.quantity_or("exponent", Kind::Dimensionless, -0.25),
-                                      t.quantity_or("maximum", Kind::Dimensionless, 0.9, Range::UnitInterval),
-                                      t.quantity_or("reference_speed", Kind::Speed, 1.0, Range::Positive));
+    const blade::Restitution d = blade::Restitution::default_power_law();
+    r = blade::Restitution::power_law(t.quantity_or("coefficient", Kind::Dimensionless, d.coefficient, Range::Positive),
+                                      t.quantity_or("exponent", Kind::Dimensionless, d.exponent),
+                                      t.quantity_or("maximum", Kind::Dimensionless, d.maximum, Range::UnitInterval),
+                                      t.quantity_or("reference_speed", Kind::Speed, d.reference_speed, Range::Positive));
     if (r.exponent > 0.0) throw t.error("exponent", "expected zero or a negative number: e falls as speed rises");
   }
   t.refuse_unknown_keys();

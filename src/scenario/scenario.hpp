@@ -107,10 +107,10 @@ struct DeflectorSpec {  // a solid vertical panel inside or outside the skirt
 };
 
 struct HousingSpec {
-  double deck_radius = 0.0;                                                          // default (0 here): the blades' reach + margin
-  double skirt_bottom = 0.038;                                                       // above ground (skid shoes 1.5 in below the blade)
-  double skirt_depth = 0.175;                                                        // skirt bottom to deck plate
-  blade::Restitution restitution = blade::Restitution::power_law(1.06, -0.25, 0.9);  // steel on steel
+  double deck_radius = 0.0;                                                  // default (0 here): the blades' reach + margin
+  double skirt_bottom = 0.038;                                               // above ground (skid shoes 1.5 in below the blade)
+  double skirt_depth = 0.175;                                                // skirt bottom to deck plate
+  blade::Restitution restitution = blade::Restitution::default_power_law();  // steel on steel
   double friction = 0.4;
   double margin = 0.050;  // deck outline outside every tip circle (several spindles)
   std::vector<OpeningSpec> openings;
