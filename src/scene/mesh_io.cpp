@@ -104,10 +104,12 @@ std::string off_problem(const std::string& path) {
     counts = lines[++k];
   }
   ++k;
+  // All three counts, on one line: CGAL reads a missing edge count from the next line and
+  // doubles it in an int (undefined behaviour for a large one; found by fuzzing).
   unsigned long long nv = 0, nf = 0, ne = 0;
-  if (counts.size() < 2 || !whole(counts[0], nv) || !whole(counts[1], nf) || (counts.size() > 2 && !whole(counts[2], ne)))
-    return "expected the vertex, face and edge counts as whole numbers";
-  if (nv > 10'000'000 || nf > kMaxMeshFaces) return "too many vertices or faces";
+  if (counts.size() != 3 || !whole(counts[0], nv) || !whole(counts[1], nf) || !whole(counts[2], ne))
+    return "expected the vertex, face and edge counts as three whole numbers on one line";
+  if (nv > 10'000'000 || nf > kMaxMeshFaces || ne > 100'000'000) return "too many vertices, faces or edges";
   if (lines.size() < k + nv + nf) return "fewer vertex or face lines than the header says";
   for (unsigned long long v = 0; v < nv; ++v)
     if (lines[k + v].size() < 3) return fmt::format("vertex {}: expected three coordinates", v + 1);
