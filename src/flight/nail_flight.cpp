@@ -128,181 +128,269 @@ void FlightContext::set_deck_outline(const std::vector<Eigen::Vector2d>* outline
   if (near > 0 && std::isfinite(near)) outline_inside_r2 = near * near * (1 - 1e-9);
 }
 
-FlightResult fly(const Body& start, double length, double diameter, double mass, const Drag& drag, const FlightContext& ctx,
-                 const feed::BladePhases& phases, random::Stream& rng) {
+namespace {
+
+// One nail's flight from its first strike to its end: the state its steps share. The
+// steps are the chord (advance, blades, scene), what a surface does (respond), sliding on
+// the ground (slide), where it left the deck (moved) and its fate.
+struct NailFlight {
+  const Body& start;
+  double length, diameter, mass;
+  const Drag& drag;
+  const FlightContext& ctx;
+  const feed::BladePhases& phases;
+  random::Stream& rng;
   const scenario::Scenario& s = *ctx.scenario;
-  FlightResult r;
+
+  FlightResult r{};
   Body b = start;
-  scene::Skip skip;
+  scene::Skip skip{};
   bool last_contact_guard = false;
   bool ended_at_rest = false;
   bool at_board = false;
   bool cut_off = false;
-  int steps = 0;
-  const double t_end = start.time + s.run.time_limit;
   double last_strike = start.time;
-  NailTrace& trace = r.trace;
-  trace.last_strike_speed = start.velocity.norm();
   Touch last_touch = Touch::Blade;
   std::uint16_t last_guard_passed = 0;
-  const std::vector<Eigen::Vector2d>* outline = ctx.deck_outline;
-  bool in_deck = outline && inside_deck(ctx, b.position.x(), b.position.y());
-  auto touch = [&](Touch t) {
-    trace.touch(t);
+  bool in_deck = ctx.deck_outline && inside_deck(ctx, b.position.x(), b.position.y());
+
+  FlightResult run();
+  void touch(Touch t) {
+    r.trace.touch(t);
     last_touch = t;
-  };
-  // The nail moved straight from `from` to `to`: if that took it out of the deck's outline
-  // for the first time, where and how (a guard it had just passed, an opening, under the
-  // skirt, over the deck).
-  if (ctx.path) ctx.path->push_back(b.position);
-  auto moved = [&](const Vec3& from, const Vec3& to) {
-    if (ctx.path) ctx.path->push_back(to);
-    if (!in_deck || inside_deck(ctx, to.x(), to.y())) return;
-    in_deck = false;
-    const Vec3 c = from + exit_fraction(*outline, from, to) * (to - from);
-    trace.exit_azimuth = std::atan2(c.y(), c.x());
-    trace.exit_height = c.z();
-    if (last_touch == Touch::GuardPass) {
-      trace.exit = Exit::Guard;
-      trace.exit_index = last_guard_passed;
-      return;
-    }
-    if (c.z() >= ctx.deck_top) {
-      trace.exit = Exit::OverDeck;
-      return;
-    }
-    if (!ctx.generated_deck) {
-      trace.exit = Exit::DeckEdge;
-      return;
-    }
-    const auto& openings = s.housing.openings;
-    for (std::size_t i = 0; i < openings.size(); ++i)
-      if (c.z() < openings[i].top && in_arc(trace.exit_azimuth, openings[i].azimuth_from, openings[i].azimuth_to)) {
-        trace.exit = Exit::Opening;
-        trace.exit_index = static_cast<std::uint16_t>(i);
-        return;
-      }
-    if (c.z() < ctx.skirt_bottom + 1e-9) {
-      trace.exit = Exit::UnderSkirt;
-      return;
-    }
-    // Through the skirt's height: a gap in it, which is an opening's (the skirt is cut by
-    // whole pieces, so an opening reaches a little past its azimuths): the nearest one.
+  }
+  void moved(const Vec3& from, const Vec3& to);
+  feed::NailAtBlade at_blade(const feed::Spindle& sp, const Body& body) const;
+  std::optional<feed::BladeHit> blade_sweep(const Body& from, const Vec3& velocity, double dt) const;
+  void restrike(const feed::BladeHit& h);
+  void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
+  bool respond(const scene::Hit& hit);
+  bool slide(const scene::Hit& hit);
+  Fate fate() const;
+};
+
+// The nail moved straight from `from` to `to`: if that took it out of the deck's outline
+// for the first time, where and how (a guard it had just passed, an opening, under the
+// skirt, over the deck).
+void NailFlight::moved(const Vec3& from, const Vec3& to) {
+  NailTrace& trace = r.trace;
+  const std::vector<Eigen::Vector2d>* outline = ctx.deck_outline;
+  if (ctx.path) ctx.path->push_back(to);
+  if (!in_deck || inside_deck(ctx, to.x(), to.y())) return;
+  in_deck = false;
+  const Vec3 c = from + exit_fraction(*outline, from, to) * (to - from);
+  trace.exit_azimuth = std::atan2(c.y(), c.x());
+  trace.exit_height = c.z();
+  if (last_touch == Touch::GuardPass) {
+    trace.exit = Exit::Guard;
+    trace.exit_index = last_guard_passed;
+    return;
+  }
+  if (c.z() >= ctx.deck_top) {
+    trace.exit = Exit::OverDeck;
+    return;
+  }
+  if (!ctx.generated_deck) {
     trace.exit = Exit::DeckEdge;
-    double nearest = HUGE_VAL;
-    for (std::size_t i = 0; i < openings.size(); ++i)
-      for (double edge : {openings[i].azimuth_from, openings[i].azimuth_to}) {
-        const double d = std::abs(std::remainder(trace.exit_azimuth - edge, units::two_pi));
-        if (d < nearest) nearest = d, trace.exit = Exit::Opening, trace.exit_index = static_cast<std::uint16_t>(i);
-      }
-  };
-
-  // The nail as spindle `sp` would meet it, were it at `body`.
-  auto at_blade = [&](const feed::Spindle& sp, const Body& body) {
-    feed::NailAtBlade nail;
-    nail.mass = mass;
-    nail.length = length;
-    nail.velocity = body.velocity;
-    nail.spin = body.spin;
-    nail.axis = body.axis;
-    nail.offset =
-        std::abs(body.axis.z()) > 1e-6 ? std::clamp((sp.height - body.position.z()) / body.axis.z(), -0.5 * length, 0.5 * length) : 0.0;
-    return nail;
-  };
-  // The earliest blade strike of the nail on the chord from `from` over dt, if any. An
-  // edge that sweeps a nail moving away from it faster than it (the nail it has just
-  // thrown, spinning) passes it: only approaching contacts count.
-  auto blade_sweep = [&](const Body& from, const Vec3& velocity, double dt) -> std::optional<feed::BladeHit> {
-    std::optional<feed::BladeHit> best;
-    if (!ctx.spindles) return best;
-    const double half_height = 0.5 * length * std::abs(from.axis.z());
-    for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
-      const feed::Spindle& sp = (*ctx.spindles)[k];
-      auto h = feed::first_sweep(sp, phases.at_zero[k], from.position, velocity, from.time, from.time + dt, half_height,
-                                 last_strike + kStrikeGap);
-      if (!h || (best && h->time >= best->time) || !feed::strike(sp, *h, at_blade(sp, from))) continue;
-      h->spindle = k;
-      best = h;
+    return;
+  }
+  const auto& openings = s.housing.openings;
+  for (std::size_t i = 0; i < openings.size(); ++i)
+    if (c.z() < openings[i].top && in_arc(trace.exit_azimuth, openings[i].azimuth_from, openings[i].azimuth_to)) {
+      trace.exit = Exit::Opening;
+      trace.exit_index = static_cast<std::uint16_t>(i);
+      return;
     }
-    return best;
-  };
-  // Struck again: the blade's impact core gives the new velocity and spin.
-  auto restrike = [&](const feed::BladeHit& h) {
-    const feed::Spindle& sp = (*ctx.spindles)[h.spindle];
-    last_strike = h.time;
-    const auto contact = feed::strike(sp, h, at_blade(sp, b));
-    if (!contact) return;  // the nail outruns the edge there: it passes
-    b.velocity = contact->velocity_after;
-    b.spin = contact->spin_after;
-    ++r.strikes;
-    touch(Touch::Blade);
-    trace.last_strike_speed = b.velocity.norm();
-    last_contact_guard = false;
-  };
-
-  auto record_mark = [&](const Vec3& point, double energy, bool zone, bool puncture) {
-    const bool counted = point.z() >= ctx.counted_height;
-    if (r.mark_count < FlightResult::kMaxMarks) r.marks[static_cast<std::size_t>(r.mark_count)] = {point, energy, zone, puncture, counted};
-    ++r.mark_count;
-    if (!counted)
-      ++r.uncounted_marks;
-    else
-      (zone ? (puncture ? r.punctures_zone : r.hits_zone) : (puncture ? r.punctures_outside : r.hits_outside)) += 1;
-  };
-
-  // What the surface at `hit` does to the nail arriving as `b`. Returns false when the nail stops.
-  auto respond = [&](const scene::Hit& hit) -> bool {
-    const Vec3 n = hit.normal;
-    const double vn = b.velocity.dot(n);
-    switch (hit.surface) {
-      case scene::Surface::TargetZone:
-      case scene::Surface::TargetOutside: {
-        const double energy = 0.5 * mass * vn * vn;
-        const double width = board::presented_width(length, diameter, b.axis.dot(n));
-        const board::Mark mark = board::classify(energy, width, s.board);
-        if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
-        if (mark != board::Mark::None)
-          record_mark(hit.point, energy, hit.surface == scene::Surface::TargetZone, mark == board::Mark::Puncture);
-        // The board is the test's catcher: a nail that does not go through it drops at its foot.
-        touch(Touch::Board);
-        at_board = true;
-        return false;
-      }
-      case scene::Surface::Housing:
-      case scene::Surface::Deflector:
-        b.velocity = bounce(b.velocity, n, s.housing.restitution.at(-vn), s.housing.friction);
-        touch(hit.surface == scene::Surface::Housing ? Touch::Housing : Touch::Deflector);
-        last_contact_guard = false;
-        break;
-      case scene::Surface::Guard: {
-        const auto& g = ctx.guards->at(hit.guard);
-        if (rng.uniform() < g.openness) {
-          b.velocity *= g.pass_speed_factor;  // slips between the links, losing speed
-          touch(Touch::GuardPass);
-          last_guard_passed = hit.guard;
-          return true;
-        }
-        b.velocity = bounce(b.velocity, n, g.restitution, g.friction);
-        touch(Touch::GuardBounce);
-        last_contact_guard = true;
-        break;
-      }
-      case scene::Surface::Ground: {
-        const Vec3 rough = rough_normal(n, s.ground.roughness, rng);
-        // The impact angle against the local (rough) surface sets the normal restitution.
-        const double speed = b.velocity.norm();
-        const double angle = speed > 0 ? std::asin(std::clamp(-b.velocity.dot(rough) / speed, 0.0, 1.0)) : 0.5 * units::pi;
-        b.velocity = bounce(b.velocity, rough, s.ground.restitution_at(angle), s.ground.friction);
-        const double out = b.velocity.dot(n);
-        if (out < 0) b.velocity -= 2 * out * n;  // a rough facet cannot send it into the ground
-        touch(Touch::Ground);
-        break;
-      }
+  if (c.z() < ctx.skirt_bottom + 1e-9) {
+    trace.exit = Exit::UnderSkirt;
+    return;
+  }
+  // Through the skirt's height: a gap in it, which is an opening's (the skirt is cut by
+  // whole pieces, so an opening reaches a little past its azimuths): the nearest one.
+  trace.exit = Exit::DeckEdge;
+  double nearest = HUGE_VAL;
+  for (std::size_t i = 0; i < openings.size(); ++i)
+    for (double edge : {openings[i].azimuth_from, openings[i].azimuth_to}) {
+      const double d = std::abs(std::remainder(trace.exit_azimuth - edge, units::two_pi));
+      if (d < nearest) nearest = d, trace.exit = Exit::Opening, trace.exit_index = static_cast<std::uint16_t>(i);
     }
-    ++r.bounces;
-    return true;
-  };
+}
 
+// The nail as spindle `sp` would meet it, were it at `body`.
+feed::NailAtBlade NailFlight::at_blade(const feed::Spindle& sp, const Body& body) const {
+  feed::NailAtBlade nail;
+  nail.mass = mass;
+  nail.length = length;
+  nail.velocity = body.velocity;
+  nail.spin = body.spin;
+  nail.axis = body.axis;
+  nail.offset =
+      std::abs(body.axis.z()) > 1e-6 ? std::clamp((sp.height - body.position.z()) / body.axis.z(), -0.5 * length, 0.5 * length) : 0.0;
+  return nail;
+}
+
+// The earliest blade strike of the nail on the chord from `from` over dt, if any. An
+// edge that sweeps a nail moving away from it faster than it (the nail it has just
+// thrown, spinning) passes it: only approaching contacts count.
+std::optional<feed::BladeHit> NailFlight::blade_sweep(const Body& from, const Vec3& velocity, double dt) const {
+  std::optional<feed::BladeHit> best;
+  if (!ctx.spindles) return best;
+  const double half_height = 0.5 * length * std::abs(from.axis.z());
+  for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
+    const feed::Spindle& sp = (*ctx.spindles)[k];
+    auto h =
+        feed::first_sweep(sp, phases.at_zero[k], from.position, velocity, from.time, from.time + dt, half_height, last_strike + kStrikeGap);
+    if (!h || (best && h->time >= best->time) || !feed::strike(sp, *h, at_blade(sp, from))) continue;
+    h->spindle = k;
+    best = h;
+  }
+  return best;
+}
+
+// Struck again: the blade's impact core gives the new velocity and spin.
+void NailFlight::restrike(const feed::BladeHit& h) {
+  NailTrace& trace = r.trace;
+  const feed::Spindle& sp = (*ctx.spindles)[h.spindle];
+  last_strike = h.time;
+  const auto contact = feed::strike(sp, h, at_blade(sp, b));
+  if (!contact) return;  // the nail outruns the edge there: it passes
+  b.velocity = contact->velocity_after;
+  b.spin = contact->spin_after;
+  ++r.strikes;
+  touch(Touch::Blade);
+  trace.last_strike_speed = b.velocity.norm();
+  last_contact_guard = false;
+}
+
+void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool puncture) {
+  const bool counted = point.z() >= ctx.counted_height;
+  if (r.mark_count < FlightResult::kMaxMarks) r.marks[static_cast<std::size_t>(r.mark_count)] = {point, energy, zone, puncture, counted};
+  ++r.mark_count;
+  if (!counted)
+    ++r.uncounted_marks;
+  else
+    (zone ? (puncture ? r.punctures_zone : r.hits_zone) : (puncture ? r.punctures_outside : r.hits_outside)) += 1;
+}
+
+// What the surface at `hit` does to the nail arriving as `b`. Returns false when the nail stops.
+bool NailFlight::respond(const scene::Hit& hit) {
+  const Vec3 n = hit.normal;
+  const double vn = b.velocity.dot(n);
+  switch (hit.surface) {
+    case scene::Surface::TargetZone:
+    case scene::Surface::TargetOutside: {
+      const double energy = 0.5 * mass * vn * vn;
+      const double width = board::presented_width(length, diameter, b.axis.dot(n));
+      const board::Mark mark = board::classify(energy, width, s.board);
+      if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
+      if (mark != board::Mark::None)
+        record_mark(hit.point, energy, hit.surface == scene::Surface::TargetZone, mark == board::Mark::Puncture);
+      // The board is the test's catcher: a nail that does not go through it drops at its foot.
+      touch(Touch::Board);
+      at_board = true;
+      return false;
+    }
+    case scene::Surface::Housing:
+    case scene::Surface::Deflector:
+      b.velocity = bounce(b.velocity, n, s.housing.restitution.at(-vn), s.housing.friction);
+      touch(hit.surface == scene::Surface::Housing ? Touch::Housing : Touch::Deflector);
+      last_contact_guard = false;
+      break;
+    case scene::Surface::Guard: {
+      const auto& g = ctx.guards->at(hit.guard);
+      if (rng.uniform() < g.openness) {
+        b.velocity *= g.pass_speed_factor;  // slips between the links, losing speed
+        touch(Touch::GuardPass);
+        last_guard_passed = hit.guard;
+        return true;
+      }
+      b.velocity = bounce(b.velocity, n, g.restitution, g.friction);
+      touch(Touch::GuardBounce);
+      last_contact_guard = true;
+      break;
+    }
+    case scene::Surface::Ground: {
+      const Vec3 rough = rough_normal(n, s.ground.roughness, rng);
+      // The impact angle against the local (rough) surface sets the normal restitution.
+      const double speed = b.velocity.norm();
+      const double angle = speed > 0 ? std::asin(std::clamp(-b.velocity.dot(rough) / speed, 0.0, 1.0)) : 0.5 * units::pi;
+      b.velocity = bounce(b.velocity, rough, s.ground.restitution_at(angle), s.ground.friction);
+      const double out = b.velocity.dot(n);
+      if (out < 0) b.velocity -= 2 * out * n;  // a rough facet cannot send it into the ground
+      touch(Touch::Ground);
+      break;
+    }
+  }
+  ++r.bounces;
+  return true;
+}
+
+// On the ground after `hit` with too little rebound to fly: slides to rest, or into a wall
+// and on. Returns false when the flight has ended (at rest, stopped, cut off).
+bool NailFlight::slide(const scene::Hit& hit) {
+  const Vec3 up = hit.normal;
+  const double decel = s.ground.friction * -kGravity.z();
+  bool stopped = false;
+  while (!stopped) {
+    Vec3 slide = b.velocity - b.velocity.dot(up) * up;
+    const double speed = slide.norm();
+    if (r.bounces > s.run.max_bounces || !std::isfinite(speed)) {
+      cut_off = true;
+      break;
+    }
+    if (speed < s.run.rest_speed || decel <= 0) {
+      ended_at_rest = true;
+      break;
+    }
+    slide /= speed;
+    const double distance = speed * speed / (2 * decel);
+    const Vec3 from = b.position + kLift * up;
+    ++r.queries;
+    const auto wall = ctx.scene->first_hit(from, slide, distance, skip);
+    if (!wall) {
+      moved(from, from + distance * slide);
+      b.position = from + distance * slide;
+      b.time += speed / decel;
+      b.velocity = Vec3::Zero();
+      ended_at_rest = true;
+      break;
+    }
+    const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
+    b.time += (speed - arrive) / decel;
+    moved(from, wall->point);
+    b.position = wall->point;
+    b.velocity = arrive * slide;
+    skip = {};
+    skip.add(wall->face);
+    stopped = !respond(*wall);
+    if (wall->surface == scene::Surface::Ground) break;  // slid onto another ground face: fly on from there
+  }
+  return !(stopped || ended_at_rest || cut_off);
+}
+
+// How the flight ended, in the tally's words.
+Fate NailFlight::fate() const {
+  const double horizontal = std::hypot(b.position.x(), b.position.y());
+  if (r.mark_count > r.uncounted_marks)
+    return Fate::MarkedBoard;
+  else if (r.mark_count > 0)
+    return Fate::MarkedBelowCountedHeight;
+  else if (r.non_finite || (cut_off && !at_board))
+    return Fate::CutOff;
+  else if (at_board)
+    return Fate::ReachedBoardUnmarked;
+  else if (horizontal <= ctx.deck_radius && b.position.z() > -1.0)
+    return last_contact_guard ? Fate::StoppedByGuard : Fate::Contained;
+  else
+    return Fate::Escaped;
+}
+
+FlightResult NailFlight::run() {
+  NailTrace& trace = r.trace;
+  trace.last_strike_speed = start.velocity.norm();
+  const double t_end = start.time + s.run.time_limit;
+  int steps = 0;
+  if (ctx.path) ctx.path->push_back(b.position);
   for (;;) {
     if (!b.position.allFinite() || !b.velocity.allFinite() || !std::isfinite(b.time)) {
       r.non_finite = true;
@@ -351,46 +439,7 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
     if (!respond(*hit)) break;  // stopped by the board
 
     // On the ground with too little rebound to fly: slide to rest, or into a wall and on.
-    if (hit->surface == scene::Surface::Ground && b.velocity.dot(hit->normal) < kSlideBelow) {
-      const Vec3 up = hit->normal;
-      const double decel = s.ground.friction * -kGravity.z();
-      bool stopped = false;
-      while (!stopped) {
-        Vec3 slide = b.velocity - b.velocity.dot(up) * up;
-        const double speed = slide.norm();
-        if (r.bounces > s.run.max_bounces || !std::isfinite(speed)) {
-          cut_off = true;
-          break;
-        }
-        if (speed < s.run.rest_speed || decel <= 0) {
-          ended_at_rest = true;
-          break;
-        }
-        slide /= speed;
-        const double distance = speed * speed / (2 * decel);
-        const Vec3 from = b.position + kLift * up;
-        ++r.queries;
-        const auto wall = ctx.scene->first_hit(from, slide, distance, skip);
-        if (!wall) {
-          moved(from, from + distance * slide);
-          b.position = from + distance * slide;
-          b.time += speed / decel;
-          b.velocity = Vec3::Zero();
-          ended_at_rest = true;
-          break;
-        }
-        const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
-        b.time += (speed - arrive) / decel;
-        moved(from, wall->point);
-        b.position = wall->point;
-        b.velocity = arrive * slide;
-        skip = {};
-        skip.add(wall->face);
-        stopped = !respond(*wall);
-        if (wall->surface == scene::Surface::Ground) break;  // slid onto another ground face: fly on from there
-      }
-      if (stopped || ended_at_rest || cut_off) break;
-    }
+    if (hit->surface == scene::Surface::Ground && b.velocity.dot(hit->normal) < kSlideBelow && !slide(*hit)) break;
     if (b.velocity.norm() < s.run.rest_speed) {
       ended_at_rest = true;
       break;
@@ -398,20 +447,15 @@ FlightResult fly(const Body& start, double length, double diameter, double mass,
   }
   r.flight_time = b.time - start.time;
   r.end_position = b.position;
-  const double horizontal = std::hypot(b.position.x(), b.position.y());
-  if (r.mark_count > r.uncounted_marks)
-    r.fate = Fate::MarkedBoard;
-  else if (r.mark_count > 0)
-    r.fate = Fate::MarkedBelowCountedHeight;
-  else if (r.non_finite || (cut_off && !at_board))
-    r.fate = Fate::CutOff;
-  else if (at_board)
-    r.fate = Fate::ReachedBoardUnmarked;
-  else if (horizontal <= ctx.deck_radius && b.position.z() > -1.0)
-    r.fate = last_contact_guard ? Fate::StoppedByGuard : Fate::Contained;
-  else
-    r.fate = Fate::Escaped;
-  return r;
+  r.fate = fate();
+  return std::move(r);
+}
+
+}  // namespace
+
+FlightResult fly(const Body& start, double length, double diameter, double mass, const Drag& drag, const FlightContext& ctx,
+                 const feed::BladePhases& phases, random::Stream& rng) {
+  return NailFlight{start, length, diameter, mass, drag, ctx, phases, rng}.run();
 }
 
 }  // namespace j232::flight
