@@ -1,25 +1,33 @@
 #!/usr/bin/env bash
 # The installed package works for a program outside the tree: `cmake --install` into a
 # temporary prefix, a consumer built against it with find_package(j232) runs an assessment,
-# and its counts equal those of `j232 run` on the same scenario and seed.
+# and its counts equal those of `j232 run` on the same scenario and seed. With --embed, the
+# same consumer in a project that adds the source tree by add_subdirectory instead.
 set -euo pipefail
-build=${1:?usage: package_check.sh BUILD_DIR SOURCE_DIR J232}
+embed=0
+if [ "${1:-}" = --embed ]; then embed=1; shift; fi
+build=${1:?usage: package_check.sh [--embed] BUILD_DIR SOURCE_DIR J232}
 source=${2:?}
 j232=${3:?}
 work=$(mktemp -d "${TMPDIR:-/tmp}/j232-package.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-cmake --install "$build" --prefix "$work/prefix" >/dev/null
-for header in include/j232/assess/runner.hpp include/j232/scenario/scenario_reader.hpp include/j232/version.hpp \
-              lib/cmake/j232/j232Config.cmake bin/j232; do
-  [ -e "$work/prefix/$header" ] || { echo "package_check: $header not installed" >&2; exit 1; }
-done
-if [ -e "$work/prefix/include/j232/cli" ]; then echo "package_check: the program's own headers were installed" >&2; exit 1; fi
-cmake -S "$source/tests/package/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+if [ $embed -eq 1 ]; then
+  cmake -S "$source/tests/package/embed" -B "$work/consumer" -DJ232_SOURCE_DIR="$source" -DCMAKE_BUILD_TYPE=Release >/dev/null
+else
+  cmake --install "$build" --prefix "$work/prefix" >/dev/null
+  for header in include/j232/assess/runner.hpp include/j232/scenario/scenario_reader.hpp include/j232/version.hpp \
+                lib/cmake/j232/j232Config.cmake bin/j232; do
+    [ -e "$work/prefix/$header" ] || { echo "package_check: $header not installed" >&2; exit 1; }
+  done
+  if [ -e "$work/prefix/include/j232/cli" ]; then echo "package_check: the program's own headers were installed" >&2; exit 1; fi
+  cmake -S "$source/tests/package/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
 cmake --build "$work/consumer" -j 2 >/dev/null
 scenario=$source/scenarios/highway-pivoted-raised-skirt.toml
 "$work/consumer/consumer" "$scenario" 20 7 > "$work/consumer.json"
 "$j232" run "$scenario" --replicates 20 --seed 7 --out "$work/run" >/dev/null || [ $? -eq 1 ]  # 1: the mower fails
-python3 - "$work/consumer.json" "$work/run/result.json" <<'PY'
+how=$([ $embed -eq 1 ] && echo "add_subdirectory" || echo "find_package")
+python3 - "$work/consumer.json" "$work/run/result.json" "$how" <<'PY'
 import json, sys
 mine, run = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
 keys = ["replicates", "replicates_passed", "nails_fed", "nails_struck", "marks"]
@@ -28,5 +36,5 @@ if mine["pass_probability"] != run["pass_probability"]["estimate"]:
     diff.append("pass_probability")
 if diff or mine["nails_struck"] == 0 or mine["version"] != run["provenance"]["version"]:
     sys.exit(f"package_check: the installed library disagrees with j232 run on {diff}: {mine}")
-print(f"package_check: ok: find_package(j232) consumer = j232 run ({mine['nails_struck']} nails struck, {mine['marks']} marks)")
+print(f"package_check: ok: the consumer ({sys.argv[3]}) = j232 run ({mine['nails_struck']} nails struck, {mine['marks']} marks)")
 PY
