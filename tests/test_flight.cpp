@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "flight/deck_outline.hpp"
 #include "flight/nail_flight.hpp"
 #include "flight/trajectory.hpp"
 #include "scene/scene.hpp"
@@ -132,4 +133,53 @@ TEST_CASE("turf: normal restitution follows the impact-angle law, never above 1"
   CHECK(turf.restitution_at(1 * deg) == 1.0);
   turf.angle_exponent = 0;  // the constant law
   CHECK(turf.restitution_at(5 * deg) == 0.15);
+}
+
+namespace {
+// Every edge, as the flight tested before the outline had its table of sectors.
+bool inside_every_edge(const std::vector<Eigen::Vector2d>& v, double x, double y) {
+  for (std::size_t i = 0, n = v.size(), j = n - 1; i < n; j = i++)
+    if ((v[i].x() - v[j].x()) * (y - v[j].y()) - (v[i].y() - v[j].y()) * (x - v[j].x()) < -1e-9) return false;
+  return true;
+}
+
+std::vector<Eigen::Vector2d> regular_polygon(int n, double r, double cx, double cy, double turn) {
+  std::vector<Eigen::Vector2d> v;
+  for (int i = 0; i < n; ++i) v.emplace_back(cx + r * std::cos(turn + 2 * M_PI * i / n), cy + r * std::sin(turn + 2 * M_PI * i / n));
+  return v;
+}
+}  // namespace
+
+TEST_CASE("deck outline: the sector table answers as a test of every edge", "[flight][outline]") {
+  const std::vector<std::vector<Eigen::Vector2d>> outlines = {
+      regular_polygon(96, 0.711, 0, 0, 0),           // a round deck
+      regular_polygon(3, 1.0, 0.1, -0.2, 0.3),       // few long edges, origin off centre
+      regular_polygon(7, 0.5, 0.45, 0.0, 0.0),       // the origin near an edge
+      regular_polygon(5, 0.4, 2.0, 1.0, 0.0),        // the origin outside: no sectors, every edge
+      {{-1.2, -0.5}, {1.3, -0.5}, {1.3, 0.5}, {-1.2, 0.5}},  // a rectangle (a three-spindle deck's hull is near one)
+  };
+  std::uint64_t state = 12345;
+  const auto uniform = [&state] {  // a fixed small generator: the test needs no distribution
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  for (const auto& v : outlines) {
+    const flight::DeckOutline outline(v);
+    int checked = 0;
+    for (int k = 0; k < 200000; ++k) {
+      double x = 6 * uniform() - 3, y = 6 * uniform() - 3;
+      if (k % 2) {  // on and about the outline itself, where the table decides
+        const std::size_t i = static_cast<std::size_t>(uniform() * static_cast<double>(v.size())) % v.size();
+        const auto& a = v[i];
+        const auto& b = v[(i + 1) % v.size()];
+        const double t = uniform(), off = (uniform() - 0.5) * 1e-6 * (k % 4 == 1 ? 1.0 : 1e-3);
+        const Eigen::Vector2d p = a + t * (b - a), n = Eigen::Vector2d(b.y() - a.y(), a.x() - b.x()).normalized();
+        x = p.x() + off * n.x(), y = p.y() + off * n.y();
+      }
+      REQUIRE(outline.contains(x, y) == inside_every_edge(v, x, y));
+      ++checked;
+    }
+    CHECK(checked == 200000);
+  }
+  CHECK(flight::DeckOutline({{0, 0}, {1, 0}}).empty());
 }

@@ -47,7 +47,8 @@ Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenar
   context_.escape_radius = scene::escape_radius(s, scene_->soup());
   context_.guards = &guards_;
   footprint_ = scene::deck_footprint(s, scene_->soup());
-  context_.set_deck_outline(&footprint_.outline);
+  deck_outline_ = flight::DeckOutline(footprint_.outline);
+  context_.deck_outline = &deck_outline_;
   context_.generated_deck = footprint_.generated;
   context_.skirt_bottom = footprint_.skirt_bottom;
   context_.deck_top = footprint_.top;

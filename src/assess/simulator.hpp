@@ -52,6 +52,7 @@ class Simulator {
   std::unique_ptr<scene::Scene> scene_;
   std::vector<scenario::GuardSpec> guards_;
   scene::DeckFootprint footprint_;
+  flight::DeckOutline deck_outline_;  // footprint_.outline, indexed for the flight
   flight::FlightContext context_;
 };
 

@@ -38,40 +38,6 @@ const char* touch_name(Touch t) {
 
 namespace {
 
-// Whether p lies inside the convex counter-clockwise outline (on it counts as inside).
-bool inside_outline(const std::vector<Eigen::Vector2d>& outline, double x, double y) {
-  for (std::size_t i = 0, n = outline.size(), j = n - 1; i < n; j = i++) {  // edge j -> i
-    const Eigen::Vector2d& a = outline[j];
-    const Eigen::Vector2d& b = outline[i];
-    if ((b.x() - a.x()) * (y - a.y()) - (b.y() - a.y()) * (x - a.x()) < -1e-9) return false;
-  }
-  return true;
-}
-
-// Where the straight move from `from` (inside) to `to` (outside) leaves the convex outline,
-// as a fraction of the move: the first crossing of an edge's line outward (Cyrus-Beck
-// clipping; one pass over the edges instead of a bisection of point tests).
-double exit_fraction(const std::vector<Eigen::Vector2d>& outline, const Vec3& from, const Vec3& to) {
-  double t = 1;
-  for (std::size_t i = 0, n = outline.size(), j = n - 1; i < n; j = i++) {
-    const Eigen::Vector2d& a = outline[j];
-    const Eigen::Vector2d& b = outline[i];
-    const double ex = b.x() - a.x(), ey = b.y() - a.y();
-    const double d_from = ex * (from.y() - a.y()) - ey * (from.x() - a.x());  // > 0: inside this edge
-    const double d_to = ex * (to.y() - a.y()) - ey * (to.x() - a.x());
-    if (d_to < 0 && d_from > d_to) t = std::min(t, std::max(0.0, d_from) / (d_from - d_to));
-  }
-  return t;
-}
-
-// inside_outline, answered at once for the points that are clearly in or out.
-bool inside_deck(const FlightContext& ctx, double x, double y) {
-  const double r2 = x * x + y * y;
-  if (r2 < ctx.outline_inside_r2) return true;
-  if (r2 > ctx.outline_outside_r2) return false;
-  return inside_outline(*ctx.deck_outline, x, y);
-}
-
 bool in_arc(double a, double from, double to) {
   double span = units::wrap_angle(to - from);
   if (span == 0) span = units::two_pi;  // from == to: the whole turn
@@ -108,26 +74,6 @@ Vec3 rough_normal(const Vec3& n, double roughness, random::Stream& rng) {
 
 }  // namespace
 
-void FlightContext::set_deck_outline(const std::vector<Eigen::Vector2d>* outline) {
-  deck_outline = outline;
-  outline_inside_r2 = 0, outline_outside_r2 = HUGE_VAL;
-  if (!outline || outline->size() < 3) return;
-  // Beyond the farthest corner (with a margin for the test's tolerance): outside.
-  double far = 0;
-  for (const auto& v : *outline) far = std::max(far, v.norm());
-  outline_outside_r2 = (far + 1e-6) * (far + 1e-6);
-  // Nearer the origin than every edge's line, the origin being inside: inside.
-  if (!inside_outline(*outline, 0, 0)) return;
-  double near = HUGE_VAL;
-  for (std::size_t i = 0, n = outline->size(); i < n; ++i) {
-    const Eigen::Vector2d& a = (*outline)[i];
-    const Eigen::Vector2d& b = (*outline)[(i + 1) % n];
-    const double length = (b - a).norm();
-    if (length > 0) near = std::min(near, ((b.x() - a.x()) * (-a.y()) - (b.y() - a.y()) * (-a.x())) / length);
-  }
-  if (near > 0 && std::isfinite(near)) outline_inside_r2 = near * near * (1 - 1e-9);
-}
-
 namespace {
 
 // One nail's flight from its first strike to its end: the state its steps share. The
@@ -152,7 +98,7 @@ struct NailFlight {
   double last_strike = start.time;
   Touch last_touch = Touch::Blade;
   std::uint16_t last_guard_passed = 0;
-  bool in_deck = ctx.deck_outline && inside_deck(ctx, b.position.x(), b.position.y());
+  bool in_deck = ctx.deck_outline && !ctx.deck_outline->empty() && ctx.deck_outline->contains(b.position.x(), b.position.y());
 
   FlightResult run();
   void touch(Touch t) {
@@ -174,11 +120,10 @@ struct NailFlight {
 // skirt, over the deck).
 void NailFlight::moved(const Vec3& from, const Vec3& to) {
   NailTrace& trace = r.trace;
-  const std::vector<Eigen::Vector2d>* outline = ctx.deck_outline;
   if (ctx.path) ctx.path->push_back(to);
-  if (!in_deck || inside_deck(ctx, to.x(), to.y())) return;
+  if (!in_deck || ctx.deck_outline->contains(to.x(), to.y())) return;
   in_deck = false;
-  const Vec3 c = from + exit_fraction(*outline, from, to) * (to - from);
+  const Vec3 c = from + ctx.deck_outline->exit_fraction(from, to) * (to - from);
   trace.exit_azimuth = std::atan2(c.y(), c.x());
   trace.exit_height = c.z();
   if (last_touch == Touch::GuardPass) {

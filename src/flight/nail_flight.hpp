@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "feed/spindle.hpp"
+#include "flight/deck_outline.hpp"
 #include "flight/trajectory.hpp"
 #include "random/stream.hpp"
 #include "scenario/scenario.hpp"
@@ -111,13 +112,9 @@ struct FlightContext {
   double counted_height = 0;                                 // marks below it are not counted (Scenario::counted_height)
   const std::vector<scenario::GuardSpec>* guards = nullptr;  // indexed by the scene's guard index
   const std::vector<feed::Spindle>* spindles = nullptr;      // the turning blades; none: nothing strikes again
-  // The deck's outline in plan (convex, counter-clockwise) and what crossing it means: a
-  // generated deck names its openings, skirt and plate heights; a mesh deck does not.
-  const std::vector<Eigen::Vector2d>* deck_outline = nullptr;
-  // Squared radii about the origin within which a point is surely inside the outline and
-  // beyond which surely outside (set_deck_outline): most crossings tests end there.
-  double outline_inside_r2 = 0, outline_outside_r2 = HUGE_VAL;
-  void set_deck_outline(const std::vector<Eigen::Vector2d>* outline);
+  // The deck's outline in plan and what crossing it means: a generated deck names its
+  // openings, skirt and plate heights; a mesh deck does not.
+  const DeckOutline* deck_outline = nullptr;
   bool generated_deck = true;
   double skirt_bottom = 0, deck_top = 0;
   // When set, the nail's centre is appended at the start and after every move (tracing
