@@ -377,7 +377,7 @@ FlightResult NailFlight::run() {
       continue;
     }
     moved(b.position, hit->point);
-    b = part_way(b, next, dt, drag, accel, hit->distance / len);
+    b = advance(b, dt * hit->distance / len, drag, accel);
     b.position = hit->point;
     skip = {};
     skip.add(hit->face);

@@ -58,22 +58,6 @@ Body advance(const Body& b, double dt, const Drag& drag, const Vec3& acceleratio
   return out;
 }
 
-Body part_way(const Body& b, const Body& next, double dt, const Drag& drag, const Vec3& acceleration_at_start, double fraction) {
-  Body out = b;
-  const double h = fraction * dt;
-  out.time = b.time + h;
-  out.axis = rotate_axis(b.axis, b.spin, h);
-  // v(s) = v0 + a0 s + c2 s^2 + c3 s^3 with v(dt) = v1, v'(dt) = a1; x(s) its integral.
-  const Vec3& a0 = acceleration_at_start;
-  const Vec3 a1 = acceleration(next, drag);
-  const Vec3 d = next.velocity - b.velocity - dt * a0;
-  const Vec3 c3 = (dt * (a1 - a0) - 2 * d) / (dt * dt * dt);
-  const Vec3 c2 = (3 * d - dt * (a1 - a0)) / (dt * dt);
-  out.velocity = b.velocity + h * (a0 + h * (c2 + h * c3));
-  out.position = b.position + h * (b.velocity + h * (0.5 * a0 + h * (c2 / 3.0 + h * c3 / 4.0)));
-  return out;
-}
-
 double chord_step(const Body& b, const Vec3& a, double tolerance, double max_length) {
   // Sag of a chord over dt under a transverse acceleration a: a dt^2 / 8.
   const double speed = b.velocity.norm();

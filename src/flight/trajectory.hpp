@@ -43,15 +43,6 @@ Vec3 acceleration(const Body& body, const Drag& drag);
 Body advance(const Body& body, double dt, const Drag& drag);
 Body advance(const Body& body, double dt, const Drag& drag, const Vec3& acceleration_at_start);
 
-// The body a fraction of the way through the step from `b` to `next` (over dt, which
-// started with acceleration `acceleration_at_start`) without integrating it again: the
-// velocity on the cubic in time that has both ends' velocities and accelerations (one
-// drag evaluation, at `next`, instead of the three of an RK4 step), the position on its
-// integral, the axis turned exactly. Exact without drag. With drag its error stays within
-// a few times the step's own RK4 error, and equals it for a nail spinning through radians
-// within a step, as struck nails do (docs/model.md §5.3; tests/test_flight.cpp).
-Body part_way(const Body& b, const Body& next, double dt, const Drag& drag, const Vec3& acceleration_at_start, double fraction);
-
 // The longest step whose chord sags less than `tolerance` and runs at most `max_length`,
 // for a body with the given acceleration().
 double chord_step(const Body& body, const Vec3& acceleration, double tolerance, double max_length);
