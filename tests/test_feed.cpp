@@ -155,21 +155,21 @@ TEST_CASE("blade sweep: a nail in the disc is struck when an edge reaches its az
     // Moving slowly outward along azimuth sense * 1 rad: edge 0 gets there at t = 1 / omega.
     const double az = sense * 1.0;
     const Eigen::Vector3d p0(0.3 * std::cos(az), 0.3 * std::sin(az), sp.height), v(std::cos(az), std::sin(az), 0.0);
-    const auto h = feed::first_sweep(sp, 0.0, p0, v, 0.0, 0.05, 0.0, -1.0);
+    const auto h = feed::first_sweep(sp, 0.0, p0, v, 0.0, 0.05, feed::SweptRod{}, -1.0);
     REQUIRE(h);
     CHECK(h->edge == 0);
     CHECK(h->time == Approx(0.01).margin(1e-9));
     CHECK(h->radius == Approx(0.31).margin(1e-9));
     CHECK(std::remainder(h->azimuth - az, 2 * units::pi) == Approx(0).margin(1e-9));
     // Starting at phase 0.5 rad, the same edge gets there 5 ms sooner.
-    CHECK(feed::first_sweep(sp, sense * 0.5, p0, v, 0.0, 0.05, 0.0, -1.0)->time == Approx(0.005).margin(1e-9));
+    CHECK(feed::first_sweep(sp, sense * 0.5, p0, v, 0.0, 0.05, feed::SweptRod{}, -1.0)->time == Approx(0.005).margin(1e-9));
     // Between edges: leaving the window before the edge arrives, the nail is not struck.
-    CHECK_FALSE(feed::first_sweep(sp, 0.0, p0, v, 0.0, 0.009, 0.0, -1.0));
+    CHECK_FALSE(feed::first_sweep(sp, 0.0, p0, v, 0.0, 0.009, feed::SweptRod{}, -1.0));
     // Above the slab, or beyond the tip circle, nothing strikes it.
-    CHECK_FALSE(feed::first_sweep(sp, 0.0, p0 + Eigen::Vector3d(0, 0, 0.01), v, 0.0, 0.05, 0.0, -1.0));
-    CHECK_FALSE(feed::first_sweep(sp, 0.0, 2.1 * p0, v, 0.0, 0.05, 0.0, -1.0));
+    CHECK_FALSE(feed::first_sweep(sp, 0.0, p0 + Eigen::Vector3d(0, 0, 0.01), v, 0.0, 0.05, feed::SweptRod{}, -1.0));
+    CHECK_FALSE(feed::first_sweep(sp, 0.0, 2.1 * p0, v, 0.0, 0.05, feed::SweptRod{}, -1.0));
     // ...unless the nail's own height reaches into the slab.
-    CHECK(feed::first_sweep(sp, 0.0, p0 + Eigen::Vector3d(0, 0, 0.01), v, 0.0, 0.05, 0.02, -1.0));
+    CHECK(feed::first_sweep(sp, 0.0, p0 + Eigen::Vector3d(0, 0, 0.01), v, 0.0, 0.05, feed::SweptRod{0.04, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()}, -1.0));
   }
 }
 
@@ -184,7 +184,7 @@ TEST_CASE("blade sweep: a nail crossing the disc fast is met where the edge and 
     const Eigen::Vector3d p0(0.7 * std::cos(a), 0.7 * std::sin(a), sp.height);
     const double heading = a + units::pi + rng.uniform(-0.6, 0.6);
     const Eigen::Vector3d v(20 * std::cos(heading), 20 * std::sin(heading), 0);
-    const auto h = feed::first_sweep(sp, phase, p0, v, 0.0, 0.07, 0.0, -1.0);
+    const auto h = feed::first_sweep(sp, phase, p0, v, 0.0, 0.07, feed::SweptRod{}, -1.0);
     // Brute force: scan the edge-to-nail angle for its first sign change (not the jump at
     // +/-pi), where the edge is faster than the nail along its motion.
     double brute = -1;
@@ -253,4 +253,31 @@ TEST_CASE("blade strike: momentum, restitution and energy hold at every strike",
     CHECK(after == Approx(0.9 * before).epsilon(1e-9));
   }
   CHECK(struck > 500);
+}
+
+TEST_CASE("blade sweep: a spinning nail is met only at a pass when its turning axis reaches into the slab", "[feed][restrike]") {
+  const auto sp = bar_spindle(+1);
+  // Centre 12 mm above the blade's mid-plane, a 50 mm nail: lying flat it clears the slab,
+  // tilted enough it reaches in. Moving slowly outward, the edges pass it every half turn.
+  const double lift = 0.012, length = 0.05;
+  const Eigen::Vector3d p0(0.3, 0.0, sp.height + lift), v(1.0, 0.0, 0.0);
+  const double needed = (lift - 0.5 * sp.thickness) / (0.5 * length);  // |axis_z| that reaches the slab
+  REQUIRE(needed > 0.1);
+  REQUIRE(needed < 0.9);
+  // Flat and not turning: never struck. Flat, turning slowly about y: struck once tilted enough.
+  const feed::SweptRod flat{length, Eigen::Vector3d::UnitX(), Eigen::Vector3d::Zero()};
+  CHECK_FALSE(feed::first_sweep(sp, 0.3, p0, v, 0.0, 0.2, flat, -1.0));
+  for (double spin : {3.0, 40.0, 900.0, 6000.0}) {
+    const feed::SweptRod turning{length, Eigen::Vector3d::UnitX(), Eigen::Vector3d(0, spin, 0)};
+    const auto h = feed::first_sweep(sp, 0.3, p0, v, 0.0, 0.2, turning, -1.0);
+    INFO("spin " << spin << " rad/s");
+    REQUIRE(h);
+    // At the strike the axis (turned about y by spin * t: z component -sin) reaches the slab ...
+    CHECK(std::abs(std::sin(spin * h->time)) >= needed - 1e-9);
+    // ... and at every earlier pass of an edge it did not: the edges stand at
+    // 0.3 + omega t and 0.3 + omega t + pi, the nail at azimuth 0.
+    const double omega = sp.omega();
+    for (double t_pass = (units::pi - 0.3) / omega; t_pass < h->time - 1e-9; t_pass += units::pi / omega)
+      CHECK(std::abs(std::sin(spin * t_pass)) < needed);
+  }
 }

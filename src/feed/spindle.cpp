@@ -18,9 +18,22 @@ Spindle::Spindle(const blade::Blade& b, const scenario::BladeGeometry& g, const 
 }
 
 std::optional<BladeHit> first_sweep(const Spindle& sp, double phase, const Eigen::Vector3d& p0, const Eigen::Vector3d& v, double t0,
-                                    double t1, double half_height, double after) {
+                                    double t1, const SweptRod& rod, double after) {
   double lo = std::max(t0, after), hi = t1;
   if (!(hi > lo)) return std::nullopt;
+  // The window is found with the most the turning nail reaches up or down (the amplitude
+  // of its axis' vertical component over a turn); each edge pass is then checked with the
+  // axis at that instant.
+  const double rate = rod.spin.norm();
+  const Eigen::Vector3d spin_unit = rate > 0 ? Eigen::Vector3d(rod.spin / rate) : Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d across = spin_unit.cross(rod.axis);  // the axis a quarter turn on
+  const double reach_up = rate > 0 ? std::min(1.0, std::hypot(rod.axis.z(), across.z())) : std::abs(rod.axis.z());
+  const double half_height = 0.5 * rod.length * reach_up;
+  const auto in_slab_at = [&](double t) {
+    const double turn = rate * (t - t0);
+    const double axis_z = rate > 0 ? rod.axis.z() * std::cos(turn) + across.z() * std::sin(turn) : rod.axis.z();
+    return std::abs(p0.z() + v.z() * (t - t0) - sp.height) <= 0.5 * sp.thickness + 0.5 * rod.length * std::abs(axis_z) + 1e-12;
+  };
   // In the slab: |z(t) - height| <= thickness / 2 + half_height, z linear in t.
   const double band = 0.5 * sp.thickness + half_height;
   const double dz = p0.z() - sp.height;
@@ -109,6 +122,10 @@ std::optional<BladeHit> first_sweep(const Spindle& sp, double phase, const Eigen
           const bool converged = std::abs(next - ts) <= 1e-13 || b_t - a_t <= 1e-12;
           ts = next;
           if (converged) break;
+        }
+        if (!in_slab_at(ts)) {  // the turning nail lay clear of the slab as this edge passed
+          t_prev = t, azimuth_prev = azimuth, delta_prev = delta;
+          continue;
         }
         const Eigen::Vector2d qs = q_at(ts);
         const double r = qs.norm();

@@ -50,12 +50,23 @@ struct BladeHit {
   double radius = 0, azimuth = 0;  // of the nail about the spindle axis, world azimuth
 };
 
+// What decides whether a nail reaches into the blade's slab: its length, its axis at the
+// chord's start and its spin, about which the axis turns (perpendicular to it: a slender
+// rod). A struck nail's axis turns through many radians within a chord.
+struct SweptRod {
+  double length = 0;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // at t0
+  Eigen::Vector3d spin = Eigen::Vector3d::Zero();   // rad/s
+};
+
 // The first time in (after, t1] at which an edge of `spindle` sweeps a nail whose centre
-// moves from p0 (at t0) with constant velocity v, while some part of the nail lies in
-// the blade's slab (`half_height`: the nail's vertical half-extent) and within that
-// edge's reach. A chord of a flight is short enough to be taken as straight.
+// moves from p0 (at t0) with constant velocity v, while some part of the nail lies in the
+// blade's slab and within that edge's reach. The slab test is made with the nail's axis
+// as it stands at that instant (an edge that passes while the turning nail lies flat
+// enough to clear the slab misses it, and a later pass may not). A chord of a flight is
+// short enough to be taken as straight.
 std::optional<BladeHit> first_sweep(const Spindle& spindle, double phase, const Eigen::Vector3d& p0, const Eigen::Vector3d& v, double t0,
-                                    double t1, double half_height, double after);
+                                    double t1, const SweptRod& rod, double after);
 
 // A nail (rigid slender rod) as the blade meets it.
 struct NailAtBlade {

@@ -180,12 +180,17 @@ feed::NailAtBlade NailFlight::at_blade(const feed::Spindle& sp, const Body& body
 std::optional<feed::BladeHit> NailFlight::blade_sweep(const Body& from, const Vec3& velocity, double dt) const {
   std::optional<feed::BladeHit> best;
   if (!ctx.spindles) return best;
-  const double half_height = 0.5 * length * std::abs(from.axis.z());
+  const feed::SweptRod rod{length, from.axis, from.spin};
   for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
     const feed::Spindle& sp = (*ctx.spindles)[k];
-    auto h =
-        feed::first_sweep(sp, phases.at_zero[k], from.position, velocity, from.time, from.time + dt, half_height, last_strike + kStrikeGap);
-    if (!h || (best && h->time >= best->time) || !feed::strike(sp, *h, at_blade(sp, from))) continue;
+    auto h = feed::first_sweep(sp, phases.at_zero[k], from.position, velocity, from.time, from.time + dt, rod, last_strike + kStrikeGap);
+    if (!h || (best && h->time >= best->time)) continue;
+    // Would it strike? The nail there and then: on the chord, its axis turned to that time.
+    Body there = from;
+    there.position = from.position + velocity * (h->time - from.time);
+    there.velocity = velocity;
+    there.axis = rotate_axis(from.axis, from.spin, h->time - from.time);
+    if (!feed::strike(sp, *h, at_blade(sp, there))) continue;
     h->spindle = k;
     best = h;
   }
@@ -348,9 +353,11 @@ FlightResult NailFlight::run() {
     const double horizontal = std::hypot(b.position.x(), b.position.y());
     if (horizontal > ctx.escape_radius || b.position.z() < -1.0) break;
 
-    const Vec3 accel = acceleration(b, drag);  // shared by the chord's length, its step and a step to a hit on it
-    const double dt = std::min(chord_step(b, accel, s.run.chord_tolerance, kMaxChord), t_end - b.time);
-    const Body next = advance(b, dt, drag, accel);
+    // The drag and acceleration shared by the chord's length, its step and a step to a hit on it.
+    const DragOverStep step_drag(drag, b);
+    const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
+    const double dt = std::min(chord_step(b, accel, s.run.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
+    const Body next = advance(b, dt, step_drag, accel);
     const Vec3 chord = next.position - b.position;
     const double len = chord.norm();
     if (!(len > 1e-12)) {
@@ -364,7 +371,7 @@ FlightResult NailFlight::run() {
     const auto hit = ctx.scene->first_hit(b.position, chord / len, reach, skip);
     if (!hit && sweep) {
       const Vec3 from = b.position;
-      b = advance(b, sweep->time - b.time, drag, accel);
+      b = advance(b, sweep->time - b.time, step_drag, accel);
       moved(from, b.position);
       skip = {};
       restrike(*sweep);
@@ -377,7 +384,7 @@ FlightResult NailFlight::run() {
       continue;
     }
     moved(b.position, hit->point);
-    b = advance(b, dt * hit->distance / len, drag, accel);
+    b = advance(b, dt * hit->distance / len, step_drag, accel);
     b.position = hit->point;
     skip = {};
     skip.add(hit->face);

@@ -262,7 +262,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                                  "roughness {:.0f} deg",
                                  s.ground.restitution, s.ground.angle_exponent, s.ground.friction, s.ground.roughness / units::degree),
                fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)});
-  a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3", s.air.cd_normal, s.air.cd_axial,
+  a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3; averaged over the axis's turn for a fast-spinning nail", s.air.cd_normal, s.air.cd_axial,
                                         s.air.density)
                           : std::string("Air drag off (conservative: faster nails)"),
                fmt::format("{} (handbook)", params)});
