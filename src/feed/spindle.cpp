@@ -17,22 +17,28 @@ Spindle::Spindle(const blade::Blade& b, const scenario::BladeGeometry& g, const 
   for (const auto& edge : edges) reach = std::max(reach, edge.reach);
 }
 
+SweptRod::SweptRod(double length, const Eigen::Vector3d& axis, const Eigen::Vector3d& spin)
+    : length_(length), rate_(spin.norm()), axis_(axis) {
+  if (rate_ > 0) across_ = (spin / rate_).cross(axis);
+  const double reach_up = rate_ > 0 ? std::min(1.0, std::sqrt(axis.z() * axis.z() + across_.z() * across_.z())) : std::abs(axis.z());
+  max_half_height_ = 0.5 * length * reach_up;
+}
+
+double SweptRod::axis_z_after(double dt) const {
+  if (rate_ == 0) return axis_.z();
+  const double turn = rate_ * dt;
+  return axis_.z() * std::cos(turn) + across_.z() * std::sin(turn);
+}
+
 std::optional<BladeHit> first_sweep(const Spindle& sp, double phase, const Eigen::Vector3d& p0, const Eigen::Vector3d& v, double t0,
                                     double t1, const SweptRod& rod, double after) {
   double lo = std::max(t0, after), hi = t1;
   if (!(hi > lo)) return std::nullopt;
-  // The window is found with the most the turning nail reaches up or down (the amplitude
-  // of its axis' vertical component over a turn); each edge pass is then checked with the
-  // axis at that instant.
-  const double rate = rod.spin.norm();
-  const Eigen::Vector3d spin_unit = rate > 0 ? Eigen::Vector3d(rod.spin / rate) : Eigen::Vector3d::UnitZ();
-  const Eigen::Vector3d across = spin_unit.cross(rod.axis);  // the axis a quarter turn on
-  const double reach_up = rate > 0 ? std::min(1.0, std::hypot(rod.axis.z(), across.z())) : std::abs(rod.axis.z());
-  const double half_height = 0.5 * rod.length * reach_up;
+  // The window is found with the most the turning nail reaches up or down; each edge pass
+  // is then checked with the axis at that instant.
+  const double half_height = rod.max_half_height();
   const auto in_slab_at = [&](double t) {
-    const double turn = rate * (t - t0);
-    const double axis_z = rate > 0 ? rod.axis.z() * std::cos(turn) + across.z() * std::sin(turn) : rod.axis.z();
-    return std::abs(p0.z() + v.z() * (t - t0) - sp.height) <= 0.5 * sp.thickness + 0.5 * rod.length * std::abs(axis_z) + 1e-12;
+    return std::abs(p0.z() + v.z() * (t - t0) - sp.height) <= 0.5 * sp.thickness + 0.5 * rod.length() * std::abs(rod.axis_z_after(t - t0)) + 1e-12;
   };
   // In the slab: |z(t) - height| <= thickness / 2 + half_height, z linear in t.
   const double band = 0.5 * sp.thickness + half_height;

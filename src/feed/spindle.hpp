@@ -53,10 +53,20 @@ struct BladeHit {
 // What decides whether a nail reaches into the blade's slab: its length, its axis at the
 // chord's start and its spin, about which the axis turns (perpendicular to it: a slender
 // rod). A struck nail's axis turns through many radians within a chord.
-struct SweptRod {
-  double length = 0;
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // at t0
-  Eigen::Vector3d spin = Eigen::Vector3d::Zero();   // rad/s
+class SweptRod {
+ public:
+  SweptRod() = default;
+  SweptRod(double length, const Eigen::Vector3d& axis, const Eigen::Vector3d& spin);
+  double length() const { return length_; }
+  // The most the turning rod reaches up or down from its centre (the amplitude of its
+  // axis' vertical component over a turn, times half its length).
+  double max_half_height() const { return max_half_height_; }
+  // The vertical component of the axis dt after t0.
+  double axis_z_after(double dt) const;
+
+ private:
+  double length_ = 0, rate_ = 0, max_half_height_ = 0;
+  Eigen::Vector3d axis_ = Eigen::Vector3d::UnitZ(), across_ = Eigen::Vector3d::Zero();  // across: the axis a quarter turn on
 };
 
 // The first time in (after, t1] at which an edge of `spindle` sweeps a nail whose centre

@@ -350,8 +350,8 @@ FlightResult NailFlight::run() {
       cut_off = true;
       break;
     }
-    const double horizontal = std::hypot(b.position.x(), b.position.y());
-    if (horizontal > ctx.escape_radius || b.position.z() < -1.0) break;
+    const double horizontal2 = b.position.x() * b.position.x() + b.position.y() * b.position.y();
+    if (horizontal2 > ctx.escape_radius * ctx.escape_radius || b.position.z() < -1.0) break;
 
     // The drag and acceleration shared by the chord's length, its step and a step to a hit on it.
     const DragOverStep step_drag(drag, b);
