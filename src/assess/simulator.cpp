@@ -121,6 +121,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   drag.k_axial = s.air.density * s.air.cd_axial * (0.25 * units::pi * drop.diameter * drop.diameter) / (2 * drop.mass);
   drag.k_normal = s.air.density * s.air.cd_normal * (drop.length * drop.diameter) / (2 * drop.mass);
   drag.air = {-s.feed.ground_speed, 0.0, 0.0};  // still air, seen from the moving mower
+  drag.spin_average = s.air.spin_average;
 
   random::Stream flight_rng(s.run.seed, replicate, static_cast<std::uint64_t>(nail), random::Purpose::Flight);
   // The other blades' angles at time 0: locked to the feeding one on a timed deck, else

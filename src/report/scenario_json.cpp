@@ -209,7 +209,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
       {"operator_zone", zone_json(s.zone)},
       {"board", {{"puncture_energy_per_width_J_m", s.board.puncture_energy_per_width}, {"hit_fraction", s.board.hit_fraction}}},
       {"criteria", criteria_json(s.criteria)},
-      {"air", {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}}},
+      {"air", {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}, {"spin_average", s.air.spin_average}}},
       {"uncertainty", uncertainty_json(s.uncertainty)},
       {"run", run_json(s.run)},
   };
@@ -262,8 +262,9 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                                  "roughness {:.0f} deg",
                                  s.ground.restitution, s.ground.angle_exponent, s.ground.friction, s.ground.roughness / units::degree),
                fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)});
-  a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3; averaged over the axis's turn for a fast-spinning nail", s.air.cd_normal, s.air.cd_axial,
-                                        s.air.density)
+  a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3; {}", s.air.cd_normal, s.air.cd_axial, s.air.density,
+                                        s.air.spin_average ? "averaged over the axis's turn for a fast-spinning nail"
+                                                           : "as the axis stands, in steps of at most 0.3 rad of its turn (reference)")
                           : std::string("Air drag off (conservative: faster nails)"),
                fmt::format("{} (handbook)", params)});
   a.push_back({s.criteria.denominator == scenario::CriteriaSpec::Denominator::NailsFed

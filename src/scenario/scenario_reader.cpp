@@ -377,6 +377,7 @@ void read_air(const TableReader& a, AirSpec& air) {
   air.density = a.quantity_or("density", Kind::Density, air.density, Range::between(0, 5));
   air.cd_normal = a.quantity_or("cd_normal", Kind::Dimensionless, air.cd_normal, Range::between(0, 3));
   air.cd_axial = a.quantity_or("cd_axial", Kind::Dimensionless, air.cd_axial, Range::between(0, 3));
+  air.spin_average = a.boolean_or("spin_average", air.spin_average);
   a.refuse_unknown_keys();
 }
 
