@@ -30,6 +30,12 @@ Elliptic elliptic(double m) {
 // (k ~ 0.05 1/m) when omega > 100 k v.
 constexpr double kAveragingSpin = 100;
 
+// Whether a nail spinning at `spin_rate` (rad/s) with `velocity` turns so fast that its
+// drag is its average over the turn (kAveragingSpin).
+bool spin_averaged(const Drag& drag, const Vec3& velocity, double spin_rate) {
+  return drag.spin_average && spin_rate > kAveragingSpin * std::max(drag.k_axial, drag.k_normal) * (velocity - drag.air).norm();
+}
+
 // Rodrigues' rotation of `axis` about the unit vector k by the angle whose cosine and sine are c, s.
 Vec3 rotate(const Vec3& axis, const Vec3& k, double c, double s) { return axis * c + k.cross(axis) * s + k * (k.dot(axis)) * (1 - c); }
 }  // namespace
@@ -46,10 +52,6 @@ Vec3 drag_acceleration(const Drag& drag, const Vec3& velocity, const Vec3& axis)
   const double va = v.dot(axis);
   const Vec3 vn = v - va * axis;
   return -(drag.k_axial * std::abs(va) * va) * axis - (drag.k_normal * vn.norm()) * vn;
-}
-
-bool spin_averaged(const Drag& drag, const Vec3& velocity, double spin_rate) {
-  return drag.spin_average && spin_rate > kAveragingSpin * std::max(drag.k_axial, drag.k_normal) * (velocity - drag.air).norm();
 }
 
 TurnAveragedDrag::TurnAveragedDrag(const Drag& drag, const Vec3& velocity, const Vec3& spin_unit)

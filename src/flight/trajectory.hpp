@@ -27,7 +27,7 @@ struct Drag {
   double k_axial = 0;       // rho C_a A_a / (2 m), 1/m
   double k_normal = 0;      // rho C_n A_n / (2 m), 1/m
   Vec3 air = Vec3::Zero();  // air velocity in the mower's frame (still air seen from a moving mower)
-  bool spin_average = true;  // false: always the drag as the axis stands (tests' resolved reference)
+  bool spin_average = true;  // false: always the drag as the axis stands ([air] spin_average: the resolved reference)
 };
 
 inline const Vec3 kGravity(0.0, 0.0, -units::standard_gravity);
@@ -37,11 +37,6 @@ Vec3 rotate_axis(const Vec3& axis, const Vec3& spin, double dt);
 
 // Drag acceleration at velocity v with the nail's axis along `axis`.
 Vec3 drag_acceleration(const Drag& drag, const Vec3& velocity, const Vec3& axis);
-
-// Whether a nail spinning at `spin_rate` (rad/s) with `velocity` turns so fast that its
-// drag is its average over the turn: the drag's ripple about that average is then under
-// 1 % of the speed in velocity and a fraction of a millimetre in position.
-bool spin_averaged(const Drag& drag, const Vec3& velocity, double spin_rate);
 
 // Drag acceleration averaged over a turn of the axis about `spin_unit` (the axis
 // perpendicular to it, a slender rod's case), at velocity v.
