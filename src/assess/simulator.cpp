@@ -6,17 +6,20 @@
 
 #include "scenario/input_error.hpp"
 #include "scene/j232_setup.hpp"
+#include "strike/impulse.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::assess {
 
+using Vec3 = Eigen::Vector3d;
+
 namespace {
-std::vector<feed::Spindle> make_spindles(const scenario::Scenario& s) {
-  std::vector<feed::Spindle> out;
+std::vector<strike::Spindle> make_spindles(const scenario::Scenario& s) {
+  std::vector<strike::Spindle> out;
   for (std::size_t k = 0; k < s.spindles.size(); ++k) {
     const auto& spec = s.spindles[k];
     try {
-      feed::Spindle sp(spec.blade, spec.geometry, s.restitution);
+      strike::Spindle sp(spec.blade, spec.geometry, s.restitution);
       sp.centre = {spec.x, spec.y};
       sp.sense = spec.sense;
       out.push_back(std::move(sp));
@@ -83,50 +86,46 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   const feed::NailDrop drop = feed::sample_drop(s, nail, feed_rng);
   // The spindle this nail's station feeds strikes it (drop and strike are about its axis).
   const std::size_t k0 = s.feed.stations[static_cast<std::size_t>(drop.station)].spindle;
-  const feed::Spindle& spindle = spindles_[k0];
+  const strike::Spindle& spindle = spindles_[k0];
   const scenario::SpindleSpec& spec = s.spindles[k0];
   out.station = drop.station;
   out.spindle = static_cast<int>(k0);
-  const auto strike = feed::find_strike(drop, spindle.edges, spindle.omega(), spec.geometry, spindle.sense);
-  if (!strike) return out;
-
-  feed::BladeHit hit;
-  hit.time = strike->time;
-  hit.edge = strike->edge;
-  hit.radius = strike->radius;
-  hit.azimuth = strike->azimuth;
-  feed::NailAtBlade struck;
-  struck.mass = drop.mass;
-  struck.length = drop.length;
-  struck.velocity = strike->nail_velocity;
-  struck.axis = drop.axis;
-  struck.offset = strike->offset;
-  const auto hit_outcome = feed::strike(spindle, hit, struck);
-  if (!hit_outcome) return out;
-  const blade::ContactOutcome& contact = *hit_outcome;
-  if (!contact.velocity_after.allFinite() || !contact.spin_after.allFinite()) {
+  // The strike: the blade's first touch on the falling capsule, and its impulse.
+  const feed::FallThrough fall = feed::fall_through(drop, spindle);
+  strike::SearchStats search;
+  auto contact = strike::first_contact(spindle, drop.blade_phase, drop.nail, fall.motion, fall.until, search);
+  if (search.gave_up) {
+    out.flight.fate = flight::Fate::CutOff;
+    return out;
+  }
+  if (!contact) return out;
+  contact->spindle = k0;
+  const strike::StrikeOutcome hit = strike::strike(spindle, *contact, drop.nail, fall.motion.velocity(contact->time), Vec3::Zero());
+  if (!hit.approaching) return out;
+  if (!hit.velocity_after.allFinite() || !hit.spin_after.allFinite()) {
     out.flight.fate = flight::Fate::CutOff;
     out.flight.non_finite = true;
     return out;
   }
 
   flight::Body body;
-  body.position = strike->contact_point - strike->offset * drop.axis + blade::Vec3(spindle.centre.x(), spindle.centre.y(), 0.0);
-  body.velocity = contact.velocity_after;
-  body.spin = contact.spin_after;
-  body.axis = drop.axis;
-  body.time = strike->time;  // the blades' clock: re-strikes are timed against it
+  body.position = contact->centre;
+  body.velocity = hit.velocity_after;
+  body.axis = contact->axis;
+  body.spin = hit.spin_after - hit.spin_after.dot(body.axis) * body.axis;  // flight follows the axis (nail_flight.cpp)
+  body.time = contact->time;  // the blades' clock: later contacts are timed against it
   flight::Drag drag;
   drag.on = s.air.drag;
-  drag.k_axial = s.air.density * s.air.cd_axial * (0.25 * units::pi * drop.diameter * drop.diameter) / (2 * drop.mass);
-  drag.k_normal = s.air.density * s.air.cd_normal * (drop.length * drop.diameter) / (2 * drop.mass);
+  const projectile::Projectile& rod = drop.nail;
+  drag.k_axial = s.air.density * s.air.cd_axial * (0.25 * units::pi * rod.diameter * rod.diameter) / (2 * rod.mass);
+  drag.k_normal = s.air.density * s.air.cd_normal * (rod.length * rod.diameter) / (2 * rod.mass);
   drag.air = {-s.feed.ground_speed, 0.0, 0.0};  // still air, seen from the moving mower
   drag.spin_average = s.air.spin_average;
 
   random::Stream flight_rng(s.run.seed, replicate, static_cast<std::uint64_t>(nail), random::Purpose::Flight);
   // The other blades' angles at time 0: locked to the feeding one on a timed deck, else
   // independent and random (belt-driven spindles drift apart).
-  feed::BladePhases phases;
+  strike::BladePhases phases;
   for (std::size_t k = 0; k < spindles_.size(); ++k) {
     const auto& other = s.spindles[k];
     if (k == k0)
@@ -138,9 +137,11 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   }
   flight::FlightContext context = context_;
   context.path = path;
-  out.flight = flight::fly(body, drop.length, drop.diameter, drop.mass, drag, context, phases, flight_rng);
-  out.exit_speed = contact.velocity_after.norm();
-  out.contact_radius = strike->radius;
+  out.flight = flight::fly(body, rod, drag, context, phases, {k0, contact->edge}, flight_rng);
+  const Vec3& launch = out.flight.launch_velocity;
+  out.exit_speed = launch.norm();
+  out.launch_elevation = std::atan2(launch.z(), std::hypot(launch.x(), launch.y()));
+  out.contact_radius = contact->radius;
   return out;
 }
 

@@ -9,7 +9,7 @@
 #include "blade/blade_model.hpp"
 #include "blade/impact.hpp"
 #include "feed/feed.hpp"
-#include "feed/spindle.hpp"
+#include "strike/spindle.hpp"
 #include "flight/nail_flight.hpp"
 #include "scenario/scenario.hpp"
 #include "scene/j232_setup.hpp"
@@ -19,8 +19,9 @@ namespace j232::assess {
 
 struct NailOutcome {
   flight::FlightResult flight;  // fate NotStruck when the blade missed it
-  double exit_speed = 0;        // m/s after the first strike (0 if not struck)
-  double contact_radius = 0;
+  double exit_speed = 0;        // m/s as it leaves the blade: after its last contact before it touches anything else (0 if not struck)
+  double launch_elevation = 0;  // rad: its velocity's elevation then
+  double contact_radius = 0;    // of the first contact, from the spindle's axis, m
   int station = 0;  // the feed station it was dropped at (0-based)
   int spindle = 0;  // the spindle that fed it (0-based)
 };
@@ -48,7 +49,7 @@ class Simulator {
  private:
   NailOutcome run_nail(std::uint64_t replicate, int nail, std::vector<flight::Vec3>* path) const;
   scenario::Scenario scenario_;
-  std::vector<feed::Spindle> spindles_;
+  std::vector<strike::Spindle> spindles_;
   std::unique_ptr<scene::Scene> scene_;
   std::vector<scenario::GuardSpec> guards_;
   scene::DeckFootprint footprint_;

@@ -110,6 +110,29 @@ double BladeModel::effective_mass(const ContactLocation& where) const {
   return 1.0 / compliance;
 }
 
+Eigen::Matrix2d BladeModel::planar_compliance(const ContactLocation& where, double forward_offset) const {
+  // A point s along the body and `forward_offset` off its line (along the motion) moves at (a + s b) q' along the motion
+  // and -forward_offset (b q') radially, so the
+  // impulse's generalised force is J_t^T P_t + J_r^T P_r with J_r = -forward_offset b.
+  const auto& lc = coefficients(where);
+  const double s = where.distance;
+  Eigen::Matrix2d c = Eigen::Matrix2d::Zero();
+  if (dof() == 0) return c;
+  c(0, 0) = lc.c0 + 2.0 * s * lc.c1 + s * s * lc.c2;
+  c(0, 1) = c(1, 0) = -forward_offset * (lc.c1 + s * lc.c2);
+  c(1, 1) = forward_offset * forward_offset * lc.c2;
+  const double scale = lc.c0 + 2.0 * std::abs(s * lc.c1) + s * s * lc.c2;
+  if (!(c(0, 0) > 1e-14 * scale)) c(0, 0) = 0.0, c(0, 1) = c(1, 0) = 0.0;
+  return c;
+}
+
+Eigen::VectorXd BladeModel::rates_after(const ContactLocation& where, double forward_offset, double tangential, double radial) const {
+  const auto& lc = coefficients(where);
+  Eigen::VectorXd rates = rigid_rates();
+  if (dof() > 0) rates += tangential * (lc.minv_pin + where.distance * lc.minv_spin) - forward_offset * radial * lc.minv_spin;
+  return rates;
+}
+
 double BladeModel::contact_speed(const ContactLocation& where) const { return blade_.omega * contact_radius(blade_, where); }
 
 Eigen::VectorXd BladeModel::rigid_rates() const { return Eigen::VectorXd::Constant(dof(), blade_.omega); }

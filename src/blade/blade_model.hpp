@@ -36,6 +36,16 @@ class BladeModel {
   // give way (constant-speed hub with every pin outboard of it seized, or dof() == 0).
   double effective_mass(const ContactLocation& where) const;
 
+  // The blade's compliance at a contact `forward_offset` metres off the arm's line along the
+  // blade's motion (negative: behind it), for an impulse in the blade plane: the 2x2 matrix C in the basis
+  // (tangential, radial) such that the contact point's velocity changes by C P for an
+  // impulse P on the blade there. The tangential-tangential entry is 1 / effective_mass at
+  // forward_offset = 0; a radial impulse acts through the offset on the body's rotation. Zero for
+  // a body that cannot give way.
+  Eigen::Matrix2d planar_compliance(const ContactLocation& where, double forward_offset) const;
+  // Rates after an impulse (tangential, radial) at `where`, `forward_offset` off the arm's line.
+  Eigen::VectorXd rates_after(const ContactLocation& where, double forward_offset, double tangential, double radial) const;
+
   // Tangential speed of the contact point before impact: omega * radius.
   double contact_speed(const ContactLocation& where) const;
 

@@ -6,13 +6,6 @@
 
 namespace j232::feed {
 
-namespace {
-double wrap(double a) {  // to [0, 2 pi)
-  a = std::fmod(a, units::two_pi);
-  return a < 0 ? a + units::two_pi : a;
-}
-}  // namespace
-
 NailDrop sample_drop(const scenario::Scenario& s, int nail_index, random::Stream& rng) {
   const auto& f = s.feed;
   const auto& n = s.nail;
@@ -21,9 +14,8 @@ NailDrop sample_drop(const scenario::Scenario& s, int nail_index, random::Stream
   const auto& st = f.stations[static_cast<std::size_t>(d.station)];
   // Nail as made: uniform within tolerance; mass follows length.
   const double length_factor = rng.uniform(-1.0, 1.0);
-  d.length = n.length + n.length_tolerance * length_factor;
-  d.mass = n.mass + n.mass_tolerance * rng.uniform(-1.0, 1.0);
-  d.diameter = n.diameter;
+  d.nail = projectile::Projectile::capsule(n.length + n.length_tolerance * length_factor, n.diameter,
+                                           n.mass + n.mass_tolerance * rng.uniform(-1.0, 1.0));
   // Outlet: uniform over the funnel's outlet disc (sqrt for area-uniform radius).
   const double rho = 0.5 * f.outlet_diameter * std::sqrt(rng.uniform());
   const double psi = units::two_pi * rng.uniform();
@@ -41,61 +33,27 @@ NailDrop sample_drop(const scenario::Scenario& s, int nail_index, random::Stream
   return d;
 }
 
-std::vector<Edge> leading_edges(const blade::Blade& blade) {
-  std::vector<Edge> edges;
-  for (std::size_t a = 0; a < blade.arms.size(); ++a) edges.push_back({blade.arms[a].azimuth, blade.arms[a].tip_radius(), a});
-  if (edges.empty()) {
-    edges.push_back({0.0, blade.hub.reach(), std::nullopt});
-    if (blade.hub.bar_mount == blade::BarMount::Centre) edges.push_back({units::pi, blade.hub.reach(), std::nullopt});
-  }
-  return edges;
-}
-
-double slab_window(const NailDrop& d, const scenario::BladeGeometry& g) {
-  // Tip falls from the slab's top until the head clears its bottom: a drop of
-  // thickness + vertical length of the nail, under gravity from fall_speed.
-  const double depth = g.thickness + d.length * d.axis.z();
+FallThrough fall_through(const NailDrop& d, const strike::Spindle& sp) {
+  FallThrough f;
+  const double thickness = sp.section.shape().thickness, half = 0.5 * thickness;
+  // The tip (the end of the capsule) at the top face at t = 0.
+  const Vec3 tip(sp.centre.x() + d.position.x(), sp.centre.y() + d.position.y(), sp.height + half);
+  const Vec3 centre0 = tip + (0.5 * d.nail.length) * d.axis;
+  // Back in time until the tip stands a millimetre above the section's top (the sail).
+  const double above = sp.section.top() - half + 1e-3;
   const double v = d.fall_speed;
-  return (-v + std::sqrt(v * v + 2.0 * kGravity * depth)) / kGravity;
-}
-
-std::optional<Strike> find_strike(const NailDrop& d, const std::vector<Edge>& edges, double omega, const scenario::BladeGeometry& g,
-                                  int sense) {
-  const double window = slab_window(d, g);
-  const double phi0 = std::atan2(d.position.y(), d.position.x());
-  std::optional<Strike> best;
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    // The edge's angle is blade_phase + azimuth + omega t; the nail's azimuth phi(t)
-    // drifts slowly. Solve edge(t) = phi(t) (mod 2 pi) by fixed-point iteration: it
-    // contracts because the nail's angular drift is far slower than the blade.
-    // Turning clockwise (sense -1) the edge closes the gap the other way round.
-    const double gap = wrap(sense * (phi0 - d.blade_phase - edges[e].azimuth));
-    double t = gap / omega;
-    for (int it = 0; it < 4; ++it) {
-      const Eigen::Vector2d p = d.position + d.drift * t;
-      double dphi = std::atan2(p.y(), p.x()) - phi0;
-      dphi = std::remainder(dphi, units::two_pi);
-      t = (gap + sense * dphi) / omega;
-    }
-    if (t < 0.0 || t > window || (best && t >= best->time)) continue;
-    const Eigen::Vector2d p = d.position + d.drift * t;
-    const double r = p.norm();
-    if (r > edges[e].reach || r <= 0.0) continue;
-    Strike s;
-    s.time = t;
-    s.edge = e;
-    s.radius = r;
-    s.azimuth = std::atan2(p.y(), p.x());
-    const double fall = d.fall_speed * t + 0.5 * kGravity * t * t;
-    // Distance along the axis from the tip to the blade's mid-plane.
-    const double tip_z = g.height + 0.5 * g.thickness - fall;
-    const double along = std::clamp((g.height - tip_z) / d.axis.z(), 0.0, d.length);
-    s.offset = along - 0.5 * d.length;
-    s.nail_velocity = {d.drift.x(), d.drift.y(), -(d.fall_speed + kGravity * t)};
-    s.contact_point = {p.x(), p.y(), g.height};
-    best = s;
-  }
-  return best;
+  const double before = std::max(0.0, v * v - 2 * kGravity * above) > 0 ? (v - std::sqrt(v * v - 2 * kGravity * above)) / kGravity
+                                                                         : v / kGravity;
+  f.motion.t0 = -before;
+  f.motion.a = {0.0, 0.0, -kGravity};
+  f.motion.v0 = {d.drift.x(), d.drift.y(), -(v - kGravity * before)};
+  f.motion.p0 = centre0 - before * Vec3(d.drift.x(), d.drift.y(), -v) + 0.5 * before * before * f.motion.a;
+  f.motion.axis0 = d.axis;
+  f.motion.spin = Vec3::Zero();
+  // Until the head is a diameter below the bottom face.
+  const double depth = thickness + d.nail.length * d.axis.z() + d.nail.diameter;
+  f.until = (-v + std::sqrt(v * v + 2.0 * kGravity * depth)) / kGravity;
+  return f;
 }
 
 }  // namespace j232::feed

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "board/board.hpp"
+#include "strike/impulse.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::flight {
@@ -47,7 +48,6 @@ bool in_arc(double a, double from, double to) {
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
 constexpr double kMaxChord = 0.5;    // m
 constexpr double kLift = 0.002;      // m: a sliding nail's centre above the ground
-constexpr double kStrikeGap = 1e-7;  // s: an edge that has just struck cannot strike again at once
 
 // Restitution along the normal n (facing the incoming nail), Coulomb friction along the surface.
 Vec3 bounce(const Vec3& v, const Vec3& n, double e, double mu) {
@@ -81,11 +81,13 @@ namespace {
 // the ground (slide), where it left the deck (moved) and its fate.
 struct NailFlight {
   const Body& start;
-  double length, diameter, mass;
+  const projectile::Projectile& nail;
   const Drag& drag;
   const FlightContext& ctx;
-  const feed::BladePhases& phases;
+  const strike::BladePhases& phases;
+  const FirstContact& first;
   random::Stream& rng;
+  const double length = nail.length, diameter = nail.diameter, mass = nail.mass;
   const scenario::Scenario& s = *ctx.scenario;
 
   FlightResult r{};
@@ -95,7 +97,12 @@ struct NailFlight {
   bool ended_at_rest = false;
   bool at_board = false;
   bool cut_off = false;
-  double last_strike = start.time;
+  // The pass under way: its spindle and edge, when it last touched, its contacts; and
+  // whether the nail has yet to leave the blade (it has touched nothing else since it was fed).
+  std::size_t pass_spindle = first.spindle, pass_edge = first.edge;
+  double last_contact = start.time;
+  int pass_contacts = 1;
+  bool on_blade = true;
   Touch last_touch = Touch::Blade;
   std::uint16_t last_guard_passed = 0;
   bool in_deck = ctx.deck_outline && !ctx.deck_outline->empty() && ctx.deck_outline->contains(b.position.x(), b.position.y());
@@ -106,9 +113,9 @@ struct NailFlight {
     last_touch = t;
   }
   void moved(const Vec3& from, const Vec3& to);
-  feed::NailAtBlade at_blade(const feed::Spindle& sp, const Body& body) const;
-  std::optional<feed::BladeHit> blade_sweep(const Body& from, const Vec3& velocity, double dt) const;
-  void restrike(const feed::BladeHit& h);
+  std::optional<strike::Contact> blade_contact(const Body& from, const Vec3& acceleration, double dt);
+  void restrike(const strike::Contact& k);
+  void touched_scene() { on_blade = false; }
   void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
   bool respond(const scene::Hit& hit);
   bool slide(const scene::Hit& hit);
@@ -161,51 +168,50 @@ void NailFlight::moved(const Vec3& from, const Vec3& to) {
     }
 }
 
-// The nail as spindle `sp` would meet it, were it at `body`.
-feed::NailAtBlade NailFlight::at_blade(const feed::Spindle& sp, const Body& body) const {
-  feed::NailAtBlade nail;
-  nail.mass = mass;
-  nail.length = length;
-  nail.velocity = body.velocity;
-  nail.spin = body.spin;
-  nail.axis = body.axis;
-  nail.offset =
-      std::abs(body.axis.z()) > 1e-6 ? std::clamp((sp.height - body.position.z()) / body.axis.z(), -0.5 * length, 0.5 * length) : 0.0;
-  return nail;
-}
-
-// The earliest blade strike of the nail on the chord from `from` over dt, if any. An
-// edge that sweeps a nail moving away from it faster than it (the nail it has just
-// thrown, spinning) passes it: only approaching contacts count.
-std::optional<feed::BladeHit> NailFlight::blade_sweep(const Body& from, const Vec3& velocity, double dt) const {
-  std::optional<feed::BladeHit> best;
+// The earliest blade contact of the nail over the step from `from` of dt, its centre
+// moving with the step's starting velocity and acceleration, its axis turning with its spin.
+std::optional<strike::Contact> NailFlight::blade_contact(const Body& from, const Vec3& acceleration, double dt) {
+  std::optional<strike::Contact> best;
   if (!ctx.spindles) return best;
-  const feed::SweptRod rod{length, from.axis, from.spin};
+  strike::Motion m;
+  m.p0 = from.position, m.v0 = from.velocity, m.a = acceleration, m.t0 = from.time, m.axis0 = from.axis, m.spin = from.spin;
+  strike::SearchStats stats;
   for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
-    const feed::Spindle& sp = (*ctx.spindles)[k];
-    auto h = feed::first_sweep(sp, phases.at_zero[k], from.position, velocity, from.time, from.time + dt, rod, last_strike + kStrikeGap);
-    if (!h || (best && h->time >= best->time)) continue;
-    // Would it strike? The nail there and then: on the chord, its axis turned to that time.
-    Body there = from;
-    there.position = from.position + velocity * (h->time - from.time);
-    there.velocity = velocity;
-    there.axis = rotate_axis(from.axis, from.spin, h->time - from.time);
-    if (!feed::strike(sp, *h, at_blade(sp, there))) continue;
-    h->spindle = k;
-    best = h;
+    auto c = strike::first_contact((*ctx.spindles)[k], phases.at_zero[k], nail, m, best ? best->time : from.time + dt, stats);
+    if (c && (!best || c->time < best->time)) best = c, best->spindle = k;
   }
+  r.search_steps += stats.steps;
+  if (stats.gave_up) cut_off = true;
   return best;
 }
 
-// Struck again: the blade's impact core gives the new velocity and spin.
-void NailFlight::restrike(const feed::BladeHit& h) {
+// Struck again: the contact's impulse gives the new velocity and spin.
+void NailFlight::restrike(const strike::Contact& k) {
   NailTrace& trace = r.trace;
-  const feed::Spindle& sp = (*ctx.spindles)[h.spindle];
-  last_strike = h.time;
-  const auto contact = feed::strike(sp, h, at_blade(sp, b));
-  if (!contact) return;  // the nail outruns the edge there: it passes
-  b.velocity = contact->velocity_after;
-  b.spin = contact->spin_after;
+  const strike::Spindle& sp = (*ctx.spindles)[k.spindle];
+  const strike::StrikeOutcome out = strike::strike(sp, k, nail, b.velocity, b.spin);
+  if (!out.approaching) {  // the search found a touch the impulse cannot resolve: never loop on it
+    cut_off = true;
+    return;
+  }
+  // The same pass while the same edge touches again within a quarter turn and nothing else
+  // came between.
+  const bool same_pass = k.spindle == pass_spindle && k.edge == pass_edge && last_touch == Touch::Blade &&
+                         (k.time - last_contact) * sp.omega() < 0.5 * units::pi;
+  if (same_pass) {
+    ++pass_contacts;
+  } else {
+    pass_contacts = 1;
+    ++r.passes;
+  }
+  r.most_contacts_in_pass = std::max(r.most_contacts_in_pass, pass_contacts);
+  if (pass_contacts > FlightResult::kMaxContactsPerPass) cut_off = true;
+  pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time;
+  b.velocity = out.velocity_after;
+  // The spin about the nail's own axis (from friction at its surface) is left out: it
+  // holds under 1/200 of the energy of its tumbling, and flight follows the axis only.
+  b.spin = out.spin_after - out.spin_after.dot(b.axis) * b.axis;
+  if (on_blade) r.launch_velocity = b.velocity;  // its launch: the last contact before it touches anything else
   ++r.strikes;
   touch(Touch::Blade);
   trace.last_strike_speed = b.velocity.norm();
@@ -338,6 +344,7 @@ Fate NailFlight::fate() const {
 FlightResult NailFlight::run() {
   NailTrace& trace = r.trace;
   trace.last_strike_speed = start.velocity.norm();
+  r.launch_velocity = start.velocity;
   const double t_end = start.time + s.run.time_limit;
   int steps = 0;
   if (ctx.path) ctx.path->push_back(b.position);
@@ -364,17 +371,22 @@ FlightResult NailFlight::run() {
       b = next;
       continue;
     }
-    // The blades first: a sweep on this chord cuts the scene query short.
-    const auto sweep = blade_sweep(b, chord / dt, dt);
-    const double reach = sweep ? len * (sweep->time - b.time) / dt : len;
+    // The blades first: a contact on this chord cuts the scene query short.
+    const auto contact = blade_contact(b, accel, dt);
+    if (cut_off) break;
+    const double reach = contact ? len * (contact->time - b.time) / dt : len;
     ++r.queries;
     const auto hit = ctx.scene->first_hit(b.position, chord / len, reach, skip);
-    if (!hit && sweep) {
+    if (!hit && contact) {
       const Vec3 from = b.position;
-      b = advance(b, sweep->time - b.time, step_drag, accel);
+      b.position = contact->centre;
+      b.velocity += accel * (contact->time - b.time);
+      b.axis = contact->axis;
+      b.time = contact->time;
       moved(from, b.position);
       skip = {};
-      restrike(*sweep);
+      restrike(*contact);
+      if (cut_off) break;
       continue;
     }
     if (!hit) {
@@ -383,6 +395,7 @@ FlightResult NailFlight::run() {
       skip = {};
       continue;
     }
+    touched_scene();
     moved(b.position, hit->point);
     b = advance(b, dt * hit->distance / len, step_drag, accel);
     b.position = hit->point;
@@ -405,9 +418,9 @@ FlightResult NailFlight::run() {
 
 }  // namespace
 
-FlightResult fly(const Body& start, double length, double diameter, double mass, const Drag& drag, const FlightContext& ctx,
-                 const feed::BladePhases& phases, random::Stream& rng) {
-  return NailFlight{start, length, diameter, mass, drag, ctx, phases, rng}.run();
+FlightResult fly(const Body& start, const projectile::Projectile& nail, const Drag& drag, const FlightContext& ctx,
+                 const strike::BladePhases& phases, const FirstContact& first, random::Stream& rng) {
+  return NailFlight{start, nail, drag, ctx, phases, first, rng}.run();
 }
 
 }  // namespace j232::flight

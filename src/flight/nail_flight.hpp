@@ -6,8 +6,8 @@
 //   housing, deflector: bounce with restitution e(v) and Coulomb friction;
 //   guard (chain or belting): passes between the links with probability `openness`,
 //       keeping `pass_speed_factor` of its speed, or bounces;
-//   blade (a spindle's turning disc): struck again by an edge that sweeps it there, with
-//       the same impact core as the feed's strike (feed/spindle.hpp);
+//   blade (a spindle's turning plate): struck again wherever the capsule touches it, by
+//       the same contact search and impulse as the feed's strike (strike/);
 //   ground: bounce with restitution, friction and a random tilt of the local normal
 //       (roughness); once the rebound is too weak to leave the ground (< 0.5 m/s) it
 //       slides to rest under friction, still able to strike a wall on the way.
@@ -16,7 +16,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "feed/spindle.hpp"
+#include "projectile/projectile.hpp"
+#include "strike/contact_search.hpp"
+#include "strike/spindle.hpp"
 #include "flight/deck_outline.hpp"
 #include "flight/trajectory.hpp"
 #include "random/stream.hpp"
@@ -94,8 +96,15 @@ struct FlightResult {
   double board_energy = -1;            // J; < 0: never reached the board
   double board_energy_per_width = -1;  // J/m
   int bounces = 0;
-  int strikes = 1;                        // blade strikes, the first (the feed's) included
+  int strikes = 1;                        // blade contacts, the first (the feed's) included
   static constexpr int kMaxStrikes = 50;  // beyond: cut off (a nail caught between blade and deck)
+  // Passes: an edge's contacts with the nail until they part (docs/model.md §5.1b). A pass
+  // with more than kMaxContactsPerPass contacts cuts the nail off (counted, never silent).
+  int passes = 1;
+  int most_contacts_in_pass = 1;
+  static constexpr int kMaxContactsPerPass = 20;
+  Vec3 launch_velocity = Vec3::Zero();  // as the nail leaves the blade (its last contact before it touches anything else)
+  int search_steps = 0;                 // contact-search steps (for the benchmark)
   bool non_finite = false;                // the state stopped being a finite number (a bug or absurd input)
   int queries = 0;                        // scene ray queries (for the benchmark)
   double flight_time = 0;
@@ -111,7 +120,7 @@ struct FlightContext {
   double deck_radius = 0;
   double counted_height = 0;                                 // marks below it are not counted (Scenario::counted_height)
   const std::vector<scenario::GuardSpec>* guards = nullptr;  // indexed by the scene's guard index
-  const std::vector<feed::Spindle>* spindles = nullptr;      // the turning blades; none: nothing strikes again
+  const std::vector<strike::Spindle>* spindles = nullptr;    // the turning blades; none: nothing strikes again
   // The deck's outline in plan and what crossing it means: a generated deck names its
   // openings, skirt and plate heights; a mesh deck does not.
   const DeckOutline* deck_outline = nullptr;
@@ -122,9 +131,14 @@ struct FlightContext {
   std::vector<Vec3>* path = nullptr;
 };
 
-// `nail_length`, `nail_diameter` for the board model; `drag` already scaled to this nail's
-// mass; `phases`: the blades' angles at time 0 of the nail's clock (start.time is on it).
-FlightResult fly(const Body& start, double nail_length, double nail_diameter, double nail_mass, const Drag& drag,
-                 const FlightContext& context, const feed::BladePhases& phases, random::Stream& rng);
+// The blade contact the flight starts from (the feed's strike): its pass goes on.
+struct FirstContact {
+  std::size_t spindle = 0, edge = 0;
+};
+
+// `drag` already scaled to this nail's mass; `phases`: the blades' angles at time 0 of the
+// nail's clock (start.time is on it).
+FlightResult fly(const Body& start, const projectile::Projectile& nail, const Drag& drag, const FlightContext& context,
+                 const strike::BladePhases& phases, const FirstContact& first, random::Stream& rng);
 
 }  // namespace j232::flight

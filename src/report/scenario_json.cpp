@@ -38,7 +38,13 @@ json spindle_json(const scenario::SpindleSpec& sp) {
           {"speed_rad_s", b.omega},
           {"height_m", sp.geometry.height},
           {"thickness_m", sp.geometry.thickness},
-          {"lift_angle_deg", sp.geometry.lift_angle / units::degree},
+          {"edge",
+           {{"bevel_angle_deg", sp.geometry.edge.bevel_angle / units::degree},
+            {"bevel_side", sp.geometry.edge.bevel_side == scenario::EdgeSpec::Side::Top ? "top" : "bottom"},
+            {"width_m", sp.geometry.edge.width},
+            {"sail_height_m", sp.geometry.edge.sail_height},
+            {"sail_angle_deg", sp.geometry.edge.sail_angle / units::degree},
+            {"friction", sp.geometry.edge.friction}}},
           {"mass_kg", b.mass()},
           {"tip_radius_m", b.tip_radius()},
           {"hub",
@@ -219,20 +225,37 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   std::vector<Assumption> a;
   const char* params = "docs/model.md §8";
   a.push_back(
-      {"Impact: impulse-momentum model of the blade (hub + pinned links), frictionless central-plane contact, "
-       "nail as a slender rod struck off centre; the blade is back at speed and radially aligned for every nail",
-       "report 445-1 Ch. 2, generalised (docs/model.md)"});
+      {"Impact: impulse-momentum model of the blade (hub + pinned links); the nail a rigid capsule struck where the blade's edge, "
+       "bevel, faces or sail first touch it (continuous contact search), along the geometric normal there, with Coulomb friction "
+       "(stick or slip) and restitution checked to create no energy; every contact of a pass is resolved; the blade is back at "
+       "speed and radially aligned between passes",
+       "report 445-1 Ch. 2, generalised (docs/model.md §5.1)"});
   a.push_back({fmt::format("Nail-on-blade restitution: {}", s.restitution.model == blade::Restitution::Model::Constant
                                                                 ? fmt::format("e = {:g}", s.restitution.e)
                                                                 : std::string("e(v) power law")),
                "report 445-1 (0.3-0.9); Johnson, Contact Mechanics 11.4 for e(v)"});
-  double lift_min = s.spindles.front().geometry.lift_angle, lift_max = lift_min;
-  for (const auto& sp : s.spindles)
-    lift_min = std::min(lift_min, sp.geometry.lift_angle), lift_max = std::max(lift_max, sp.geometry.lift_angle);
-  a.push_back({lift_min == lift_max
-                   ? fmt::format("Blade edge lifts struck nails {:g} deg above the blade plane", lift_min / units::degree)
-                   : fmt::format("Blade edges lift struck nails {:g} to {:g} deg", lift_min / units::degree, lift_max / units::degree),
-               fmt::format("{} (estimate; the dominant trajectory parameter per Litherland and Yoerger 1967)", params)});
+  for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+    const auto& sp = s.spindles[k];
+    const auto& e = sp.geometry.edge;
+    bool same_as_earlier = false;
+    for (std::size_t j = 0; j < k; ++j) {
+      const auto& o = s.spindles[j].geometry;
+      same_as_earlier |= o.thickness == sp.geometry.thickness && o.edge.bevel_angle == e.bevel_angle &&
+                         o.edge.bevel_side == e.bevel_side && o.edge.width == e.width && o.edge.sail_height == e.sail_height &&
+                         o.edge.sail_angle == e.sail_angle && o.edge.friction == e.friction;
+    }
+    if (same_as_earlier) continue;
+    const std::string which = s.spindles.size() == 1 ? "Blade edge" : fmt::format("Blade edge (spindle {})", k + 1);
+    a.push_back({fmt::format("{}: {:.1f} mm plate, {:g} deg bevel on the {} face, {:.0f} mm wide, {}; nail-on-blade friction {:g}", which,
+                             sp.geometry.thickness * 1e3, e.bevel_angle / units::degree,
+                             e.bevel_side == scenario::EdgeSpec::Side::Top ? "top" : "bottom", e.width * 1e3,
+                             e.sail_height > 0 ? fmt::format("a {:.0f} mm sail at {:g} deg", e.sail_height * 1e3, e.sail_angle / units::degree)
+                                               : std::string("no sail"),
+                             e.friction),
+                 fmt::format("{} (estimates: mower blades are ground to about 30 deg; friction steel on steel, handbook 0.42-0.57 "
+                             "kinetic; no figure for industrial cutters)",
+                             params)});
+  }
   a.push_back({fmt::format("Nail: {:.1f} mm long, {:.2f} mm shank, {:.2f} g +/- {:.2f} g", s.nail.length * 1e3, s.nail.diameter * 1e3,
                            s.nail.mass * 1e3, s.nail.mass_tolerance * 1e3),
                fmt::format("{} (6d box nail)", params)});

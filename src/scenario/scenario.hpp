@@ -45,14 +45,22 @@ struct FeedSpec {
   double ground_speed = 0.0;          // mower travel speed; the nail drifts backward relative to the mower, m/s
 };
 
+// The blade near its cutting edge (docs/model.md §5.1a): what decides the direction of
+// the impulse on a nail. Defaults are estimates (docs/model.md §8).
+struct EdgeSpec {
+  enum class Side { Top, Bottom };
+  double bevel_angle = 0.5236;  // between the bevel face and the blade plane, rad (30 deg); 90 deg: square edge
+  Side bevel_side = Side::Top;  // the face the bevel is ground on (top: the sharp edge on the bottom face)
+  double width = 0.100;         // the plate behind the edge, m
+  double sail_height = 0.0;     // the turned-up trailing strip, m above the top face (0: none)
+  double sail_angle = 0.7854;   // the sail against the blade plane, rad (45 deg)
+  double friction = 0.4;        // nail on blade, Coulomb (steel on steel)
+};
+
 struct BladeGeometry {
   double height = 0.076;     // blade plane above ground, m (3 in)
-  double thickness = 0.006;  // m; a nail is struck while it spans this slab
-  // Edge bevel / lift: the contact normal tilts up out of the blade plane by this angle,
-  // rad. Litherland and Yoerger (1967) found it the parameter that most decides where
-  // struck material goes; no figure for industrial cutters is published, so the default
-  // is an estimate (5 deg: a bevelled edge), stated in every report (docs/model.md §8).
-  double lift_angle = 0.0873;
+  double thickness = 0.006;  // m
+  EdgeSpec edge;
 };
 
 // One spindle of the deck and its blade. A scenario with [blade] has one, at the origin.

@@ -231,13 +231,35 @@ void read_run(const TableReader& t, RunSpec& r) {
   t.refuse_unknown_keys();
 }
 
-// A blade with its geometry (height, thickness, lift) from a [blade]-like table.
+// The cutting edge's shape and the nail-on-blade friction ([blade.edge]).
+void read_edge(const TableReader& t, EdgeSpec& e, double thickness) {
+  e.bevel_angle = t.quantity_or("bevel_angle", Kind::Angle, e.bevel_angle, Range::between(5 * units::degree, 90 * units::degree));
+  e.bevel_side = t.string_or("bevel_side", "top", {"top", "bottom"}) == "bottom" ? EdgeSpec::Side::Bottom : EdgeSpec::Side::Top;
+  e.width = t.quantity_or("width", Kind::Length, e.width, Range::between(0.005, 0.5));
+  const double run = e.bevel_angle < 0.5 * units::pi ? thickness / std::tan(e.bevel_angle) : 0.0;
+  if (run > e.width)
+    throw t.error("bevel_angle", fmt::format("a {:.4g} deg bevel on a {:.4g} mm blade runs {:.4g} mm back, beyond the edge's width "
+                                             "({:.4g} mm): give a steeper bevel or a wider blade",
+                                             e.bevel_angle / units::degree, thickness * 1e3, run * 1e3, e.width * 1e3));
+  e.sail_height = t.quantity_or("sail_height", Kind::Length, e.sail_height, Range::between(0, 0.2));
+  e.sail_angle = t.quantity_or("sail_angle", Kind::Angle, e.sail_angle, Range::between(10 * units::degree, 90 * units::degree));
+  e.friction = t.quantity_or("friction", Kind::Dimensionless, e.friction, Range::between(0, 2));
+  t.refuse_unknown_keys();
+}
+
+// A blade with its geometry (height, thickness, edge) from a [blade]-like table.
 void read_blade_and_geometry(const TableReader& t, SpindleSpec& sp) {
+  if (t.has("lift_angle"))
+    throw t.error("lift_angle",
+                  "no longer a key: the blade's lift now follows from its edge's geometry and the nail-on-blade friction; give "
+                  "[blade.edge] bevel_angle, bevel_side, width, sail_height, sail_angle and friction instead (docs/model.md §5.1)");
   sp.blade = read_blade(t);
   sp.geometry.height = t.quantity_or("height", Kind::Length, sp.geometry.height, Range::between(0.005, 1));
   sp.geometry.thickness = t.quantity_or("thickness", Kind::Length, sp.geometry.thickness, Range::between(0.0005, 0.05));
-  sp.geometry.lift_angle =
-      t.quantity_or("lift_angle", Kind::Angle, sp.geometry.lift_angle, Range::between(-45 * units::degree, 45 * units::degree));
+  if (const auto edge = t.table("edge"))
+    read_edge(*edge, sp.geometry.edge, sp.geometry.thickness);
+  else
+    read_edge(TableReader(toml::table{}, t.file(), t.path() + ".edge"), sp.geometry.edge, sp.geometry.thickness);
   t.refuse_unknown_keys();
 }
 

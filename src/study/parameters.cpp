@@ -17,7 +17,9 @@ ParameterInfo parameter_info(const std::string& name) {
   if (name == "contact_radius") return {Parameter::ContactRadius, name, Kind::Length, "contact radius (m)", 1.0};
   if (name == "pivot_position") return {Parameter::PivotPosition, name, Kind::Dimensionless, "pivot position S/L", 1.0};
   if (name == "object_mass") return {Parameter::ObjectMass, name, Kind::Mass, "object mass (kg)", 1.0};
-  if (name == "lift_angle") return {Parameter::LiftAngle, name, Kind::Angle, "blade lift angle (deg)", units::pi / 180};
+  if (name == "bevel_angle") return {Parameter::BevelAngle, name, Kind::Angle, "edge bevel angle (deg)", units::degree};
+  if (name == "edge_friction") return {Parameter::EdgeFriction, name, Kind::Dimensionless, "nail-on-blade friction", 1.0};
+  if (name == "sail_height") return {Parameter::SailHeight, name, Kind::Length, "sail height (mm)", 0.001};
   if (name == "object_speed") return {Parameter::ObjectSpeed, name, Kind::Speed, "object speed toward the blade (m/s)", 1.0};
   return {Parameter::FileKey, name, Kind::Dimensionless, name, 1.0};
 }
@@ -40,6 +42,10 @@ Setting make_setting(const ParameterInfo& info, const std::string& text, const s
                      const std::string& key) {
   Setting s{info, text, 0.0};
   const auto refuse = [&](const std::string& expected) { return scenario::InputError(file, line, key, text, expected); };
+  if (info.name == "lift_angle")
+    throw refuse(
+        "lift_angle is no longer a parameter: the lift follows from the blade edge's geometry and friction; vary bevel_angle, "
+        "edge_friction or sail_height (or a [blade.edge] key) instead");
   if (info.parameter == Parameter::FileKey) {
     // A number or quantity gives the chart a numeric axis (SI); anything else is still set.
     try {
@@ -70,8 +76,14 @@ Setting make_setting(const ParameterInfo& info, const std::string& text, const s
     case Parameter::PivotPosition:
       if (s.si <= 0 || s.si >= 1) throw refuse("expected S/L strictly between 0 and 1");
       break;
-    case Parameter::LiftAngle:
-      if (std::abs(s.si) > units::pi / 4) throw refuse("expected a lift angle from -45 deg to 45 deg");
+    case Parameter::BevelAngle:
+      if (s.si < 5 * units::degree || s.si > 90 * units::degree) throw refuse("expected a bevel angle from 5 deg to 90 deg");
+      break;
+    case Parameter::EdgeFriction:
+      if (s.si < 0 || s.si > 2) throw refuse("expected a friction coefficient from 0 to 2");
+      break;
+    case Parameter::SailHeight:
+      if (s.si < 0 || s.si > 0.2) throw refuse("expected a sail height from 0 to 200 mm");
       break;
     default:
       if (!(s.si > 0)) throw refuse(fmt::format("expected a positive {}", units::describe(info.kind)));
@@ -131,7 +143,10 @@ void apply(const Setting& s, scenario::ImpactCase& c) {
       c.object.mass = s.si;
       break;
     case Parameter::ObjectSpeed: c.object.velocity = {0.0, -s.si, 0.0}; break;
-    case Parameter::LiftAngle: throw std::invalid_argument("lift_angle: an impact case has no blade edge geometry; it is a J232 parameter");
+    case Parameter::BevelAngle:
+    case Parameter::EdgeFriction:
+    case Parameter::SailHeight:
+      throw std::invalid_argument(s.info.name + ": an impact case has no blade edge geometry; it is a J232 parameter");
     case Parameter::FileKey: break;
   }
 }
@@ -155,8 +170,14 @@ void apply(const Setting& s, scenario::Scenario& sc) {
     case Parameter::ObjectMass: sc.nail.mass = s.si; break;
     case Parameter::ObjectSpeed:
       throw std::invalid_argument("object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead");
-    case Parameter::LiftAngle:
-      for (auto& sp : sc.spindles) sp.geometry.lift_angle = s.si;
+    case Parameter::BevelAngle:
+      for (auto& sp : sc.spindles) sp.geometry.edge.bevel_angle = s.si;
+      break;
+    case Parameter::EdgeFriction:
+      for (auto& sp : sc.spindles) sp.geometry.edge.friction = s.si;
+      break;
+    case Parameter::SailHeight:
+      for (auto& sp : sc.spindles) sp.geometry.edge.sail_height = s.si;
       break;
     case Parameter::FileKey: break;
   }

@@ -15,7 +15,11 @@
 //                                radius and the blade's mass are kept
 //   object_mass      "2 g"       impact: the object; J232: the nail
 //   object_speed     "440 ft/min" impact only: the object's speed toward the blade
-//   lift_angle       "5 deg"     J232 only: every blade edge's lift (a deck's blades alike)
+//   bevel_angle      "30 deg"    J232 only: every blade edge's bevel (a deck's blades alike)
+//   edge_friction    0.4         J232 only: nail-on-blade Coulomb friction, every blade
+//   sail_height      "20 mm"     J232 only: every blade's sail (0: none)
+// (`lift_angle`, a tilt of the contact normal in earlier versions, is refused: the lift
+// now follows from the edge's geometry and friction.)
 //
 // Any other name is a dotted key of the base file itself (`housing.guards.openness`),
 // set before the file is read, so every input can be swept.
@@ -29,7 +33,7 @@
 
 namespace j232::study {
 
-enum class Parameter { BladeSpeed, BladeMass, Restitution, ContactRadius, PivotPosition, ObjectMass, ObjectSpeed, LiftAngle, FileKey };
+enum class Parameter { BladeSpeed, BladeMass, Restitution, ContactRadius, PivotPosition, ObjectMass, ObjectSpeed, BevelAngle, EdgeFriction, SailHeight, FileKey };
 
 struct ParameterInfo {
   Parameter parameter;

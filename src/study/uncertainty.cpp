@@ -77,7 +77,8 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
       estimated(
           "restitution", "0.4", "0.95",
           "report 445-1: drop tests 0.9-0.96 at ~1 m/s, 0.45-0.6 at ~2.3 m/s; its Table 3.1 fits 0.53-0.65 at 11 m/s (j232 calibrate)"),
-      estimated("lift_angle", "0 deg", "10 deg", "estimate: no figure for industrial cutters (flat bar 0 deg to a bevelled, sailed edge)"),
+      estimated("bevel_angle", "20 deg", "45 deg", "estimate: mower blades are ground to about 30 deg; no figure for industrial cutters"),
+      estimated("edge_friction", "0.2", "0.6", "handbook: steel on steel, kinetic 0.42-0.57; lower for an oily, worn edge"),
       estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"),
       estimated("housing.friction", "0.3", "0.6", "handbook: steel on steel, kinetic 0.42-0.57"),
       estimated("feed.tilt_max", "0 deg", "10 deg", "estimate: SAE J232's feed tube geometry is not available"),

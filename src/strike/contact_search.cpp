@@ -1,0 +1,209 @@
+#include "strike/contact_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "units/quantity.hpp"
+
+namespace j232::strike {
+
+Vec3 Motion::axis(double t) const { return turned(axis0, spin, t - t0); }
+
+Vec3 turned(const Vec3& axis, const Vec3& spin, double dt) {
+  const double rate = spin.norm();
+  if (rate * dt == 0.0) return axis;
+  const Vec3 k = spin / rate;
+  const double c = std::cos(rate * dt), s = std::sin(rate * dt);
+  return axis * c + k.cross(axis) * s + k * (k.dot(axis)) * (1 - c);
+}
+
+namespace {
+
+// Time for a gap closing at speed v0 with acceleration up to a to close: v0 s + a s^2 / 2 = gap.
+double time_to_close(double gap, double v0, double a) {
+  if (a <= 1e-12) return v0 > 0 ? gap / v0 : HUGE_VAL;
+  return (-v0 + std::sqrt(v0 * v0 + 2 * a * gap)) / a;
+}
+
+// The capsule against one edge's section at one instant.
+struct Probe {
+  double distance = 0;  // capsule surface to section, m (< 0: overlapping)
+  SectionApproach approach;
+  Vec3 radial, forward, centre, axis, a3, b3;  // a3-b3: the part of the core over the arm
+  bool off_arm = false;                       // no part of it is
+  bool a_at_tip = false, b_at_tip = false;    // that end cut at the tip radius
+};
+
+class EdgeSearch {
+ public:
+  EdgeSearch(const Spindle& sp, std::size_t e, double phase, const projectile::Projectile& nail, const Motion& m)
+      : sp_(sp), e_(e), phase_(phase), m_(m), hs_(nail.half_segment()), rad_(nail.radius()), rho_(hs_ + rad_) {}
+
+  std::optional<Contact> run(double t1, SearchStats& stats) {
+    const BladeSection& sec = sp_.section;
+    const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
+    const double omega = sp_.omega(), spin_rate = m_.spin.norm(), accel = m_.a.norm();
+    const double accel_h = std::hypot(m_.a.x(), m_.a.y());
+    double t = m_.t0, t_safe = m_.t0;
+    bool known_apart = false;  // at t_safe the capsule overlapped the section by less than the tolerance
+    for (int step = 0; step < kMaxSearchSteps; ++step, ++stats.steps) {
+      if (t > t1) return std::nullopt;
+      const Vec3 c = m_.centre(t), v = m_.velocity(t);
+      const double qx = c.x() - C.x(), qy = c.y() - C.y(), z = c.z() - C.z();
+      const double r = std::hypot(qx, qy), vh = std::hypot(v.x(), v.y());
+      // Lower bounds on the time before any touch: height, radius, angle.
+      double far = 0;
+      const double gap_z = std::max(z - rho_ - sec.top(), sec.bottom() - z - rho_);
+      if (gap_z > 0) far = std::max(far, time_to_close(gap_z, std::abs(v.z()), accel));
+      const double gap_r = r - rho_ - sp_.edges[e_].reach;
+      if (gap_r > 0) far = std::max(far, time_to_close(gap_r, vh, accel_h));
+      // The angle from the arm forward to the nail's centre, in (-pi, pi]; the arm can
+      // touch the capsule only while the centre is less than alpha_f ahead of it or
+      // alpha_b behind. Steps are kept short enough that the nail stays beyond 3/4 of r.
+      const double cap = vh > 0 ? 0.25 * r / (vh + 1e-12) : HUGE_VAL;
+      const double r_low = 0.75 * r;
+      const double alpha_f = r_low > rho_ + 1e-4 ? std::asin((rho_ + 1e-4) / r_low) : 0.5 * units::pi;
+      const double behind = rho_ - sec.back() + 1e-4;
+      const double alpha_b = r_low > behind ? std::asin(behind / r_low) : 0.5 * units::pi;
+      const double arm = phase_ + sp_.sense * omega * t + sp_.edges[e_].azimuth;
+      const double ahead = std::remainder(sp_.sense * (std::atan2(qy, qx) - arm), units::two_pi);
+      const bool in_window = ahead <= alpha_f && ahead >= -alpha_b;
+      if (!in_window) {
+        const double gap = ahead > alpha_f ? ahead - alpha_f : ahead + units::two_pi - alpha_f;
+        const double rate = omega + (vh + accel_h * std::min(cap, 1.0)) / std::max(r_low, 1e-9);
+        far = std::max(far, std::min(gap / rate, cap));
+      }
+      if (far > 0) {
+        t_safe = t, known_apart = true;
+        t += std::max(far, 1e-10);
+        continue;
+      }
+      // Near the arm: the distance between the capsule and the section.
+      Probe p = probe(t);
+      if (p.off_arm) {
+        // Wholly beyond the tip (or behind the axis): its ends must cross the tip radius
+        // first, which they do no faster than this. A nail hovering at the tip radius is
+        // looked at 64 times a pass (a step into the plate is bisected back).
+        const double radial_rate = v.norm() + spin_rate * hs_ + omega * (rho_ - sec.back()) + 1e-9;
+        t_safe = t, known_apart = true;
+        t += std::max(p.distance / radial_rate, (alpha_f + alpha_b) / (64 * omega));
+        continue;
+      }
+      if (p.distance > kContactTolerance) {
+        const Vec3 v_rel = v - sp_.velocity_at(c);
+        const double bound = v_rel.norm() + (omega + spin_rate) * rho_ + 1e-9;
+        t_safe = t, known_apart = true;
+        t += std::max(p.distance / bound, 1e-10);
+        continue;
+      }
+      if (p.distance < -kContactTolerance && known_apart) {
+        // Stepped into the blade (a bound that did not hold, or sliding along a face while
+        // parting elsewhere): bisect back to the touch.
+        double lo = t_safe, hi = t;
+        for (int it = 0; it < 60 && hi - lo > 1e-13; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          const Probe pm = probe(mid);
+          if (pm.distance > kContactTolerance)
+            lo = mid;
+          else if (pm.distance < -kContactTolerance)
+            hi = mid;
+          else {
+            lo = hi = mid;
+            break;
+          }
+        }
+        t = hi;
+        p = probe(t);
+      }
+      // Touching (or overlapping where the search began): a contact if the points approach.
+      // The core reaching into the section across the tip radius meets the arm's end face.
+      const bool separable = p.approach.distance > 0;
+      const bool at_tip = !separable && ((p.approach.s == 0 && p.a_at_tip) || (p.approach.s == 1 && p.b_at_tip));
+      const Vec3 normal = separable ? Vec3(p.approach.normal.x() * p.forward + p.approach.normal.y() * Vec3::UnitZ())
+                          : at_tip  ? Vec3(p.radial)
+                                    : Vec3(p.forward);  // core inside the plate: pushed along the motion
+      const Vec3 on_core = p.a3 + p.approach.s * (p.b3 - p.a3);
+      const Vec3 point = at_tip ? on_core : Vec3(on_core - rad_ * normal);
+      const Vec3 arm_of = point - p.centre;
+      const Vec3 v_rel = m_.velocity(t) + m_.spin.cross(arm_of) - sp_.velocity_at(point);
+      // On the arm: the core's part over it touches (the surface point may stand up to a
+      // radius beyond the tip).
+      const double radius = std::clamp((on_core - C).dot(p.radial), 0.0, sp_.edges[e_].reach);
+      if (v_rel.dot(normal) < 0) {
+        {
+          Contact k;
+          k.edge = e_;
+          k.time = t;
+          k.centre = p.centre;
+          k.axis = p.axis;
+          k.point = point;
+          k.normal = normal;
+          k.radius = radius;
+          k.forward_offset = p.approach.on_section.x();
+          k.radial = p.radial;
+          k.forward = p.forward;
+          k.part = p.approach.on_section.x() < -sec.shape().width ? 1 : 0;
+          return k;
+        }
+      }
+      // Parting: step on by a few tolerances' worth (a step that goes deeper is bisected),
+      // or, overlapping where the search began, by the overlap.
+      const double bound = v_rel.norm() + (omega + spin_rate) * rho_ + 1e-9;
+      t_safe = t, known_apart = p.distance >= -kContactTolerance;
+      t += std::max((std::max(-p.distance, 0.0) + 4 * kContactTolerance) / bound, 1e-10);
+    }
+    stats.gave_up = true;
+    return std::nullopt;
+  }
+
+ private:
+  Probe probe(double t) const {
+    Probe p;
+    sp_.frame(e_, phase_, t, p.radial, p.forward);
+    p.centre = m_.centre(t);
+    p.axis = m_.axis(t);
+    p.a3 = p.centre - hs_ * p.axis;
+    p.b3 = p.centre + hs_ * p.axis;
+    const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
+    // Only the part of the core over the arm (from the axis out to its tip) can touch it.
+    const double xa = (p.a3 - C).dot(p.radial), xb = (p.b3 - C).dot(p.radial), reach = sp_.edges[e_].reach;
+    if (std::max(xa, xb) < 0 || std::min(xa, xb) > reach) {
+      // Off the arm: no touch; the core's radial gap to it bounds the step.
+      p.distance = std::min(std::abs(xa - std::clamp(xa, 0.0, reach)), std::abs(xb - std::clamp(xb, 0.0, reach)));
+      p.off_arm = true;
+      return p;
+    }
+    if (xa != xb) {
+      const double s0 = std::clamp((0.0 - xa) / (xb - xa), 0.0, 1.0), s1 = std::clamp((reach - xa) / (xb - xa), 0.0, 1.0);
+      const double lo = std::min(s0, s1), hi = std::max(s0, s1);
+      p.a_at_tip = lo > 0 && xa > reach;
+      p.b_at_tip = hi < 1 && xb > reach;
+      const Vec3 a = p.a3 + lo * (p.b3 - p.a3), b = p.a3 + hi * (p.b3 - p.a3);
+      p.a3 = a, p.b3 = b;
+    }
+    const Vec2 a((p.a3 - C).dot(p.forward), p.a3.z() - C.z()), b((p.b3 - C).dot(p.forward), p.b3.z() - C.z());
+    p.approach = sp_.section.approach(a, b);
+    p.distance = p.approach.distance - rad_;
+    return p;
+  }
+
+  const Spindle& sp_;
+  std::size_t e_;
+  double phase_;
+  const Motion& m_;
+  double hs_, rad_, rho_;
+};
+
+}  // namespace
+
+std::optional<Contact> first_contact(const Spindle& spindle, double phase, const projectile::Projectile& nail, const Motion& motion,
+                                     double t1, SearchStats& stats) {
+  std::optional<Contact> best;
+  for (std::size_t e = 0; e < spindle.edges.size(); ++e) {
+    auto c = EdgeSearch(spindle, e, phase, nail, motion).run(best ? best->time : t1, stats);
+    if (c && (!best || c->time < best->time)) best = c;
+  }
+  return best;
+}
+
+}  // namespace j232::strike

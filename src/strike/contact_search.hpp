@@ -1,0 +1,65 @@
+#pragma once
+// When and where a turning blade first touches a moving, spinning capsule
+// (docs/model.md §5.1b). The blade near each edge is its section (strike/blade_section)
+// swept along the arm; the nail is a capsule whose centre moves as p0 + v0 s + a s^2 / 2
+// (s = t - t0) while its axis turns about a fixed spin. The search is conservative
+// advancement: far from an arm, by the angle the arm must still turn (or the height or
+// radius the nail must still cross) over a bound on how fast that gap closes; near it, by
+// the distance between the capsule and the section over a bound on how fast any point of
+// the capsule moves in the blade's frame. A step never carries the nail into the blade
+// unseen; one that finds it overlapping is bisected back to the touch. A touch counts when
+// the contact points approach each other; after an impulse the same search, from the
+// contact, finds the next touch of the same pass (the nail turning back into the plate, or
+// the plate catching it again) or the next pass.
+#include <Eigen/Dense>
+#include <optional>
+
+#include "projectile/projectile.hpp"
+#include "strike/spindle.hpp"
+
+namespace j232::strike {
+
+// A body moving freely over a short interval.
+struct Motion {
+  Vec3 p0 = Vec3::Zero(), v0 = Vec3::Zero(), a = Vec3::Zero();  // centre at t0, its velocity, a constant acceleration
+  double t0 = 0;
+  Vec3 axis0 = Vec3::UnitZ();  // unit, tip -> head, at t0
+  Vec3 spin = Vec3::Zero();    // rad/s
+  Vec3 centre(double t) const {
+    const double s = t - t0;
+    return p0 + v0 * s + 0.5 * s * s * a;
+  }
+  Vec3 velocity(double t) const { return v0 + (t - t0) * a; }
+  Vec3 axis(double t) const;
+};
+
+// The axis after turning about `spin` for dt (Rodrigues' rotation).
+Vec3 turned(const Vec3& axis, const Vec3& spin, double dt);
+
+struct Contact {
+  std::size_t spindle = 0, edge = 0;
+  double time = 0;
+  Vec3 centre = Vec3::Zero();  // the nail's centre then
+  Vec3 axis = Vec3::UnitZ();   // and its axis
+  Vec3 point = Vec3::Zero();   // the contact, on the nail's surface, world
+  Vec3 normal = Vec3::UnitY();  // unit, from the blade into the nail
+  double radius = 0;            // of the contact along the arm, from the spindle's axis
+  double forward_offset = 0;    // off the arm's edge line along the blade's motion (section u, <= 0: behind it), m
+  Vec3 radial = Vec3::UnitX(), forward = Vec3::UnitY();  // the arm's frame then: along it, and the blade's motion
+  int part = 0;                 // 0: the plate (edge, bevel, faces), 1: the sail
+};
+
+struct SearchStats {
+  int steps = 0;             // advancement steps taken
+  bool gave_up = false;      // the step cap was reached: the result is not known
+};
+
+inline constexpr double kContactTolerance = 2e-6;  // m: a capsule this close to the section touches it
+inline constexpr int kMaxSearchSteps = 4000;        // per edge and search
+
+// The first approaching touch of any edge of `spindle` on the capsule in [motion.t0, t1],
+// the blade standing at `phase` at time 0. `stats` accumulates.
+std::optional<Contact> first_contact(const Spindle& spindle, double phase, const projectile::Projectile& nail, const Motion& motion,
+                                     double t1, SearchStats& stats);
+
+}  // namespace j232::strike

@@ -1,0 +1,55 @@
+#pragma once
+// The impulse of one blade contact on the nail (docs/model.md §5.1c). At the contact point,
+// with the geometric normal n (blade into nail), the velocity of the nail's point relative
+// to the blade's point changes linearly with the impulse P on the nail: dv = K P, with
+//     K = K_nail + K_blade,
+//     K_nail  = I / m - [r]x I_n^-1 [r]x      (r: contact point from the nail's centre)
+//     K_blade = B C B^T                       (C: the blade's planar compliance there,
+//                                              B = [e_t e_r]: it yields only in its plane)
+// The impulse is Poisson's restitution with Coulomb friction: first the sticking impulse,
+// which ends the contact with relative velocity -e v_n n; if its tangential part needs more
+// than mu times its normal part, the nail slides: P = P_n (n - mu t) with t the direction
+// of the initial slip and P_n set by the same normal restitution. Poisson's rule with
+// friction can create energy when the slip would reverse; the energy change of the two
+// bodies, P . (v_rel + K P / 2), is checked, and e lowered until it is not positive (at
+// e = 0 with sticking it is the perfectly inelastic impulse, which never creates energy).
+// Frictionless, with n along the blade's motion and the contact on the line of the nail's
+// centre, this is report 445-1's central impact (blade/impact.hpp).
+#include <Eigen/Dense>
+
+#include "blade/blade.hpp"
+#include "blade/restitution.hpp"
+#include "projectile/projectile.hpp"
+#include "strike/contact_search.hpp"
+#include "strike/spindle.hpp"
+
+namespace j232::strike {
+
+struct ImpulseSolution {
+  Vec3 impulse = Vec3::Zero();  // on the nail, N s
+  double e = 0;                 // the restitution used
+  bool sticking = false;
+  double energy_change = 0;  // J, <= 0
+};
+
+// Solves one impulse for the relative velocity v_rel (nail point minus blade point) with
+// compliance K. `v_rel . n` must be negative (approaching).
+ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu);
+
+// The nail's inverse inertia (world), a rod with transverse inertia I_t and axial I_a.
+Eigen::Matrix3d inverse_inertia(const projectile::Projectile& nail, const Vec3& axis);
+
+struct StrikeOutcome {
+  bool approaching = false;
+  double approach_speed = 0;
+  ImpulseSolution solution;
+  Vec3 velocity_after = Vec3::Zero(), spin_after = Vec3::Zero();
+  double blade_effective_mass = 0;   // along the tangent at the contact, kg
+  blade::ContactLocation where;      // the blade body struck
+  double energy_lost = 0;            // J, >= 0
+};
+
+// The contact `k` of `spindle` on the nail moving at `velocity` with `spin`.
+StrikeOutcome strike(const Spindle& spindle, const Contact& k, const projectile::Projectile& nail, const Vec3& velocity, const Vec3& spin);
+
+}  // namespace j232::strike
