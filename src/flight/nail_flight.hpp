@@ -105,6 +105,7 @@ struct FlightResult {
   static constexpr int kMaxContactsPerPass = 20;
   Vec3 launch_velocity = Vec3::Zero();  // as the nail leaves the blade (its last contact before it touches anything else)
   int search_steps = 0;                 // contact-search steps (for the benchmark)
+  int near_steps = 0, parting_steps = 0, off_arm_steps = 0;
   bool non_finite = false;                // the state stopped being a finite number (a bug or absurd input)
   int queries = 0;                        // scene ray queries (for the benchmark)
   double flight_time = 0;

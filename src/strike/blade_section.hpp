@@ -26,6 +26,7 @@ struct EdgeShape {
 struct ConvexPolygon {
   std::array<Vec2, 6> v{};  // counter-clockwise in (u, w)
   int n = 0;
+  Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  // bounding box
 };
 
 // The nearest approach of a segment to the section.

@@ -25,6 +25,51 @@ double time_to_close(double gap, double v0, double a) {
   return (-v0 + std::sqrt(v0 * v0 + 2 * a * gap)) / a;
 }
 
+// An angle at least asin(x) (the half-angle a reach x r subtends at radius r), cheaply:
+// x / sqrt(1 - x^2) = tan(asin x) >= asin x; a right angle for a reach near the radius.
+double half_angle(double x) { return x < 0.7 ? x / std::sqrt(1 - x * x) : 0.5 * units::pi; }
+
+// How far a nail is from touching a turning blade at one instant, in lower bounds on the
+// time it needs: to reach the slab of its section (height), the disc of an edge's reach
+// (radius), and the angle an arm must still turn to bring its section within reach of it.
+// The angle is from the arm forward to the nail's centre, in (-pi, pi]: the arm can touch
+// the capsule only while the centre is less than alpha_f ahead of it or alpha_b behind.
+// Angular steps are kept short enough that the nail stays beyond 3/4 of its radius.
+struct Outlook {
+  const Spindle& sp;
+  double z_time = 0, r = 0, vh = 0, accel_h = 0, azimuth = 0, alpha_f = 0, alpha_b = 0, cap = 0, rate = 0, rho = 0, turned = 0;
+
+  Outlook(const Spindle& spindle, double phase, const Motion& m, double reach_of_nail, const Vec3& c, const Vec3& v, double t)
+      : sp(spindle), rho(reach_of_nail) {
+    const BladeSection& sec = sp.section;
+    const double qx = c.x() - sp.centre.x(), qy = c.y() - sp.centre.y(), z = c.z() - sp.height;
+    r = std::sqrt(qx * qx + qy * qy), vh = std::sqrt(v.x() * v.x() + v.y() * v.y());
+    accel_h = std::sqrt(m.a.x() * m.a.x() + m.a.y() * m.a.y());
+    const double gap_z = std::max(z - rho - sec.top(), sec.bottom() - z - rho);
+    z_time = gap_z > 0 ? time_to_close(gap_z, std::abs(v.z()), m.a.norm()) : 0.0;
+    cap = vh > 0 ? 0.25 * r / (vh + 1e-12) : HUGE_VAL;
+    const double r_low = 0.75 * r;
+    alpha_f = half_angle((rho + 1e-4) / r_low);
+    alpha_b = half_angle((rho - sec.back() + 1e-4) / r_low);
+    rate = sp.omega() + (vh + accel_h * std::min(cap, 1.0)) / std::max(r_low, 1e-9);
+    azimuth = std::atan2(qy, qx);
+    turned = phase + sp.sense * sp.omega() * t;
+  }
+  // The lower bound for edge e (0: it may touch now).
+  double far(std::size_t e) const {
+    double f = z_time;
+    const double gap_r = r - rho - sp.edges[e].reach;
+    if (gap_r > 0) f = std::max(f, time_to_close(gap_r, vh, accel_h));
+    double ahead = sp.sense * (azimuth - turned - sp.edges[e].azimuth);
+    ahead -= units::two_pi * std::nearbyint(ahead / units::two_pi);
+    if (ahead > alpha_f || ahead < -alpha_b) {
+      const double gap = ahead > alpha_f ? ahead - alpha_f : ahead + units::two_pi - alpha_f;
+      f = std::max(f, std::min(gap / rate, cap));
+    }
+    return f;
+  }
+};
+
 // The capsule against one edge's section at one instant.
 struct Probe {
   double distance = 0;  // capsule surface to section, m (< 0: overlapping)
@@ -43,36 +88,14 @@ class EdgeSearch {
     const BladeSection& sec = sp_.section;
     const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
     const double omega = sp_.omega(), spin_rate = m_.spin.norm(), accel = m_.a.norm();
-    const double accel_h = std::hypot(m_.a.x(), m_.a.y());
     double t = m_.t0, t_safe = m_.t0;
     bool known_apart = false;  // at t_safe the capsule overlapped the section by less than the tolerance
     for (int step = 0; step < kMaxSearchSteps; ++step, ++stats.steps) {
       if (t > t1) return std::nullopt;
       const Vec3 c = m_.centre(t), v = m_.velocity(t);
-      const double qx = c.x() - C.x(), qy = c.y() - C.y(), z = c.z() - C.z();
-      const double r = std::hypot(qx, qy), vh = std::hypot(v.x(), v.y());
-      // Lower bounds on the time before any touch: height, radius, angle.
-      double far = 0;
-      const double gap_z = std::max(z - rho_ - sec.top(), sec.bottom() - z - rho_);
-      if (gap_z > 0) far = std::max(far, time_to_close(gap_z, std::abs(v.z()), accel));
-      const double gap_r = r - rho_ - sp_.edges[e_].reach;
-      if (gap_r > 0) far = std::max(far, time_to_close(gap_r, vh, accel_h));
-      // The angle from the arm forward to the nail's centre, in (-pi, pi]; the arm can
-      // touch the capsule only while the centre is less than alpha_f ahead of it or
-      // alpha_b behind. Steps are kept short enough that the nail stays beyond 3/4 of r.
-      const double cap = vh > 0 ? 0.25 * r / (vh + 1e-12) : HUGE_VAL;
-      const double r_low = 0.75 * r;
-      const double alpha_f = r_low > rho_ + 1e-4 ? std::asin((rho_ + 1e-4) / r_low) : 0.5 * units::pi;
-      const double behind = rho_ - sec.back() + 1e-4;
-      const double alpha_b = r_low > behind ? std::asin(behind / r_low) : 0.5 * units::pi;
-      const double arm = phase_ + sp_.sense * omega * t + sp_.edges[e_].azimuth;
-      const double ahead = std::remainder(sp_.sense * (std::atan2(qy, qx) - arm), units::two_pi);
-      const bool in_window = ahead <= alpha_f && ahead >= -alpha_b;
-      if (!in_window) {
-        const double gap = ahead > alpha_f ? ahead - alpha_f : ahead + units::two_pi - alpha_f;
-        const double rate = omega + (vh + accel_h * std::min(cap, 1.0)) / std::max(r_low, 1e-9);
-        far = std::max(far, std::min(gap / rate, cap));
-      }
+      const Outlook look(sp_, phase_, m_, rho_, c, v, t);
+      const double far = look.far(e_);
+      if (far > t1 - t) return std::nullopt;
       if (far > 0) {
         t_safe = t, known_apart = true;
         t += std::max(far, 1e-10);
@@ -85,15 +108,30 @@ class EdgeSearch {
         // first, which they do no faster than this. A nail hovering at the tip radius is
         // looked at 64 times a pass (a step into the plate is bisected back).
         const double radial_rate = v.norm() + spin_rate * hs_ + omega * (rho_ - sec.back()) + 1e-9;
+        ++stats.off_arm_steps;
         t_safe = t, known_apart = true;
-        t += std::max(p.distance / radial_rate, (alpha_f + alpha_b) / (64 * omega));
+        t += std::max(p.distance / radial_rate, (look.alpha_f + look.alpha_b) / (64 * omega));
         continue;
       }
       if (p.distance > kContactTolerance) {
-        const Vec3 v_rel = v - sp_.velocity_at(c);
-        const double bound = v_rel.norm() + (omega + spin_rate) * rho_ + 1e-9;
+        // The line through the section's nearest point, across the normal, separates the
+        // two (the section is convex): the core's distance past it is a lower bound on the
+        // distance, and it shrinks no faster than the centre's motion toward it (in the
+        // blade's frame, projected on the section) plus the turn of the core about its
+        // centre, (spin + omega) half-length, plus the curvature of the centre's path in
+        // the turning frame. Steps are at least kMinStep of that: one that lands in the
+        // plate is bisected back to the touch, and a touch that began and ended within one
+        // is shallower than that.
+        const Vec3 q(c.x() - C.x(), c.y() - C.y(), 0.0);
+        const double x_c = q.dot(p.radial), u_c = q.dot(p.forward);
+        const double u_rate = v.dot(p.forward) - omega * x_c, w_rate = v.z();
+        const double toward = -(p.approach.normal.x() * u_rate + p.approach.normal.y() * w_rate);
+        const double c1 = std::max(toward, 0.0) + (omega + spin_rate) * hs_ + 1e-9;
+        const double c2 = accel + 2 * omega * std::sqrt(v.x() * v.x() + v.y() * v.y()) + omega * omega * (std::abs(u_c) + hs_);
+        const double gap = std::max(p.distance, kMinStep);
+        ++stats.near_steps;
         t_safe = t, known_apart = true;
-        t += std::max(p.distance / bound, 1e-10);
+        t += 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2 * gap));
         continue;
       }
       if (p.distance < -kContactTolerance && known_apart) {
@@ -146,11 +184,12 @@ class EdgeSearch {
           return k;
         }
       }
-      // Parting: step on by a few tolerances' worth (a step that goes deeper is bisected),
-      // or, overlapping where the search began, by the overlap.
-      const double bound = v_rel.norm() + (omega + spin_rate) * rho_ + 1e-9;
+      // Parting: step on (a step that goes deeper is bisected back), or, overlapping where
+      // the search began, by the overlap.
+      const double bound = v_rel.norm() + (omega + spin_rate) * hs_ + 1e-9;
+      ++stats.parting_steps;
       t_safe = t, known_apart = p.distance >= -kContactTolerance;
-      t += std::max((std::max(-p.distance, 0.0) + 4 * kContactTolerance) / bound, 1e-10);
+      t += (std::max(-p.distance, 0.0) + kMinStep) / bound;
     }
     stats.gave_up = true;
     return std::nullopt;
@@ -199,9 +238,24 @@ class EdgeSearch {
 std::optional<Contact> first_contact(const Spindle& spindle, double phase, const projectile::Projectile& nail, const Motion& motion,
                                      double t1, SearchStats& stats) {
   std::optional<Contact> best;
+  // The whole blade first: a nail that cannot reach its slab or its disc in time is not
+  // looked at edge by edge.
+  const Vec3& c = motion.p0;
+  const Vec3& v = motion.v0;
+  const double rho = nail.half_segment() + nail.radius(), accel = motion.a.norm();
+  const double gap_z = std::max(c.z() - spindle.height - rho - spindle.section.top(), spindle.height + spindle.section.bottom() - c.z() - rho);
+  if (gap_z > 0 && time_to_close(gap_z, std::abs(v.z()), accel) > t1 - motion.t0) return best;
+  const double dx = c.x() - spindle.centre.x(), dy = c.y() - spindle.centre.y();
+  const double r = std::sqrt(dx * dx + dy * dy);
+  if (r - rho > spindle.reach && time_to_close(r - rho - spindle.reach, std::sqrt(v.x() * v.x() + v.y() * v.y()), accel) > t1 - motion.t0)
+    return best;
+  // Then each edge's outlook from the start, worked out once for them all.
+  const Outlook look(spindle, phase, motion, rho, c, v, motion.t0);
   for (std::size_t e = 0; e < spindle.edges.size(); ++e) {
-    auto c = EdgeSearch(spindle, e, phase, nail, motion).run(best ? best->time : t1, stats);
-    if (c && (!best || c->time < best->time)) best = c;
+    ++stats.steps;
+    if (look.far(e) > (best ? best->time : t1) - motion.t0) continue;
+    auto found = EdgeSearch(spindle, e, phase, nail, motion).run(best ? best->time : t1, stats);
+    if (found && (!best || found->time < best->time)) best = found;
   }
   return best;
 }

@@ -6,8 +6,10 @@
 // advancement: far from an arm, by the angle the arm must still turn (or the height or
 // radius the nail must still cross) over a bound on how fast that gap closes; near it, by
 // the distance between the capsule and the section over a bound on how fast any point of
-// the capsule moves in the blade's frame. A step never carries the nail into the blade
-// unseen; one that finds it overlapping is bisected back to the touch. A touch counts when
+// the capsule moves in the blade's frame, but by no less than kMinStep of that motion. A
+// step that finds the capsule overlapping the section is bisected back to the touch, so
+// only a grazing touch shallower than kMinStep can pass unseen (docs/validation.md: the
+// search against a fine fixed-step reference). A touch counts when
 // the contact points approach each other; after an impulse the same search, from the
 // contact, finds the next touch of the same pass (the nail turning back into the plate, or
 // the plate catching it again) or the next pass.
@@ -51,10 +53,12 @@ struct Contact {
 
 struct SearchStats {
   int steps = 0;             // advancement steps taken
+  int near_steps = 0, parting_steps = 0, off_arm_steps = 0;  // of which near the arm, parting from a touch, off the arm
   bool gave_up = false;      // the step cap was reached: the result is not known
 };
 
 inline constexpr double kContactTolerance = 2e-6;  // m: a capsule this close to the section touches it
+inline constexpr double kMinStep = 2e-4;            // m: the least travel of a step near the blade (a tenth of a nail's diameter)
 inline constexpr int kMaxSearchSteps = 4000;        // per edge and search
 
 // The first approaching touch of any edge of `spindle` on the capsule in [motion.t0, t1],
