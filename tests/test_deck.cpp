@@ -9,6 +9,7 @@
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
 #include "feed/feed.hpp"
+#include "strike/contact_search.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
@@ -82,23 +83,33 @@ TEST_CASE("deck: bad decks are refused with the key and what was expected", "[de
 
 TEST_CASE("deck: a clockwise blade strikes the mirror image of a counter-clockwise one", "[deck][feed]") {
   const auto s = read(kThree);
-  const auto edges = feed::leading_edges(s.spindles[0].blade);
+  strike::Spindle ccw(s.spindles[0].blade, s.spindles[0].geometry, s.restitution), cw = ccw;
+  ccw.sense = +1, cw.sense = -1;
   feed::NailDrop d;
-  d.length = 0.0508, d.mass = 0.002;
+  d.nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);
   d.fall_speed = 2.4;
-  for (const double phase : {0.3, 1.7, 4.0}) {
+  d.axis = Eigen::Vector3d(0.05, 0.03, 1.0).normalized();
+  int struck = 0;
+  for (const double phase : {0.3, 1.7, 4.0, 5.5}) {
     d.position = {0.2, 0.15};
     d.blade_phase = phase;
-    const auto ccw = feed::find_strike(d, edges, s.spindles[0].blade.omega, s.spindles[0].geometry, +1);
-    d.position = {0.2, -0.15};
-    d.blade_phase = -phase;
-    const auto cw = feed::find_strike(d, edges, s.spindles[0].blade.omega, s.spindles[0].geometry, -1);
-    REQUIRE(ccw.has_value() == cw.has_value());
-    if (!ccw) continue;
-    CHECK(cw->time == Approx(ccw->time).margin(1e-12));
-    CHECK(cw->azimuth == Approx(-ccw->azimuth).margin(1e-12));
-    CHECK(cw->radius == Approx(ccw->radius).margin(1e-12));
+    const auto left = feed::fall_through(d, ccw);
+    strike::SearchStats stats;
+    const auto a = strike::first_contact(ccw, phase, d.nail, left.motion, left.until, stats);
+    feed::NailDrop mirrored = d;
+    mirrored.position = {0.2, -0.15};
+    mirrored.axis.y() = -d.axis.y();
+    const auto right = feed::fall_through(mirrored, cw);
+    const auto b = strike::first_contact(cw, -phase, mirrored.nail, right.motion, right.until, stats);
+    REQUIRE(a.has_value() == b.has_value());
+    if (!a) continue;
+    ++struck;
+    CHECK(b->time == Approx(a->time).margin(1e-12));
+    CHECK(b->point.y() == Approx(-a->point.y()).margin(1e-12));
+    CHECK(b->normal.y() == Approx(-a->normal.y()).margin(1e-12));
+    CHECK(b->radius == Approx(a->radius).margin(1e-12));
   }
+  CHECK(struck > 0);
 }
 
 TEST_CASE("deck: the three-spindle deck runs, its outline encloses every tip circle, nails meet other blades", "[deck][assess]") {

@@ -33,7 +33,7 @@ flight::FlightResult land(const scene::Scene& ground, const flight::Body& start,
   static std::vector<scenario::GuardSpec> guards(1);
   flight::FlightContext ctx{&ground, &s, 1e6, 0.0, 0.0, &guards};
   random::Stream rng(1, 0, 0, random::Purpose::Test);
-  return flight::fly(start, 0.05, 0.0025, 0.002, drag, ctx, {}, rng);
+  return flight::fly(start, projectile::Projectile::capsule(0.05, 0.0025, 0.002), drag, ctx, {}, {}, rng);
 }
 }  // namespace
 

@@ -185,7 +185,7 @@ TEST_CASE("scene: the operator-zone share converges to the sector's fraction of 
     b.position = {0, 0, s.spindles[0].geometry.height};
     b.velocity = {100 * std::cos(a), 100 * std::sin(a), 0};
     b.axis = Vec3::UnitZ();  // broadside to the board
-    const auto r = flight::fly(b, 0.0508, 0.00251, 0.002, {}, ctx, {}, rng);
+    const auto r = flight::fly(b, projectile::Projectile::capsule(0.0508, 0.00251, 0.002), {}, ctx, {}, {}, rng);
     marks += r.mark_count;
     zone += r.hits_zone + r.punctures_zone;
   }
@@ -208,7 +208,7 @@ TEST_CASE("counted height: J232 counts only marks above the blade plane", "[scen
     b.position = {0.9, 0, counted + dz};  // outside the deck, inside the board
     b.velocity = {100, 0, 0};
     b.axis = Vec3::UnitZ();
-    const auto r = flight::fly(b, 0.0508, 0.00251, 0.002, {}, ctx, {}, rng);
+    const auto r = flight::fly(b, projectile::Projectile::capsule(0.0508, 0.00251, 0.002), {}, ctx, {}, {}, rng);
     REQUIRE(r.mark_count == 1);
     CHECK(r.marks[0].counted == (dz > 0));
     CHECK(r.uncounted_marks == (dz > 0 ? 0 : 1));

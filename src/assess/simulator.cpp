@@ -22,6 +22,7 @@ std::vector<strike::Spindle> make_spindles(const scenario::Scenario& s) {
       strike::Spindle sp(spec.blade, spec.geometry, s.restitution);
       sp.centre = {spec.x, spec.y};
       sp.sense = spec.sense;
+      sp.reference_search = s.run.reference_contact_search;
       out.push_back(std::move(sp));
     } catch (const std::invalid_argument& e) {
       throw scenario::InputError(s.file, std::nullopt, s.spindles.size() == 1 ? "blade" : fmt::format("spindles[{}].blade", k + 1), "",
@@ -93,7 +94,8 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   // The strike: the blade's first touch on the falling capsule, and its impulse.
   const feed::FallThrough fall = feed::fall_through(drop, spindle);
   strike::SearchStats search;
-  auto contact = strike::first_contact(spindle, drop.blade_phase, drop.nail, fall.motion, fall.until, search);
+  auto contact = strike::first_contact(spindle, drop.blade_phase, drop.nail, fall.motion, fall.until, search,
+                                       spindle.reference_search ? strike::SearchMethod::FixedSteps : strike::SearchMethod::Advancement);
   if (search.gave_up) {
     out.flight.fate = flight::Fate::CutOff;
     return out;

@@ -177,7 +177,9 @@ std::optional<strike::Contact> NailFlight::blade_contact(const Body& from, const
   m.p0 = from.position, m.v0 = from.velocity, m.a = acceleration, m.t0 = from.time, m.axis0 = from.axis, m.spin = from.spin;
   strike::SearchStats stats;
   for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
-    auto c = strike::first_contact((*ctx.spindles)[k], phases.at_zero[k], nail, m, best ? best->time : from.time + dt, stats);
+    const strike::Spindle& sp = (*ctx.spindles)[k];
+    auto c = strike::first_contact(sp, phases.at_zero[k], nail, m, best ? best->time : from.time + dt, stats,
+                                   sp.reference_search ? strike::SearchMethod::FixedSteps : strike::SearchMethod::Advancement);
     if (c && (!best || c->time < best->time)) best = c, best->spindle = k;
   }
   r.search_steps += stats.steps;

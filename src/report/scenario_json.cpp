@@ -182,7 +182,8 @@ json run_json(const scenario::RunSpec& r) {
           {"chord_tolerance_m", r.chord_tolerance},
           {"time_limit_s", r.time_limit},
           {"max_bounces", r.max_bounces},
-          {"rest_speed_m_s", r.rest_speed}};
+          {"rest_speed_m_s", r.rest_speed},
+          {"contact_search", r.reference_contact_search ? "fixed_steps" : "advancement"}};
 }
 
 }  // namespace

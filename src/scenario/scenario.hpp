@@ -215,6 +215,9 @@ struct RunSpec {
   double time_limit = 3.0;         // s of flight per nail
   int max_bounces = 100;
   double rest_speed = 0.3;  // m/s: slower after a bounce is at rest
+  // How blade contacts are searched: conservative advancement, or the fixed-step reference
+  // it is validated against (about 100 times slower; docs/validation.md).
+  bool reference_contact_search = false;
 };
 
 // An uncertainty study of the scenario (`j232 uq`, docs/model.md §6b): inputs varied

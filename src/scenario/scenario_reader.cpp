@@ -228,6 +228,7 @@ void read_run(const TableReader& t, RunSpec& r) {
   r.time_limit = t.quantity_or("time_limit", Kind::Time, r.time_limit, Range::between(0.1, 60));
   r.max_bounces = static_cast<int>(t.integer_or("max_bounces", r.max_bounces, 1, 10000));
   r.rest_speed = t.quantity_or("rest_speed", Kind::Speed, r.rest_speed, Range::between(0.01, 5));
+  r.reference_contact_search = t.string_or("contact_search", "advancement", {"advancement", "fixed_steps"}) == "fixed_steps";
   t.refuse_unknown_keys();
 }
 

@@ -1,7 +1,9 @@
 #include "strike/contact_search.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "units/quantity.hpp"
 
@@ -73,7 +75,8 @@ struct Outlook {
 // The capsule against one edge's section at one instant.
 struct Probe {
   double distance = 0;  // capsule surface to section, m (< 0: overlapping)
-  SectionApproach approach;
+  SectionApproach approach;               // the nearest part's
+  std::array<SectionApproach, 2> parts;   // each part's (plate, sail)
   Vec3 radial, forward, centre, axis, a3, b3;  // a3-b3: the part of the core over the arm
   bool off_arm = false;                       // no part of it is
   bool a_at_tip = false, b_at_tip = false;    // that end cut at the tip radius
@@ -125,13 +128,20 @@ class EdgeSearch {
         const Vec3 q(c.x() - C.x(), c.y() - C.y(), 0.0);
         const double x_c = q.dot(p.radial), u_c = q.dot(p.forward);
         const double u_rate = v.dot(p.forward) - omega * x_c, w_rate = v.z();
-        const double toward = -(p.approach.normal.x() * u_rate + p.approach.normal.y() * w_rate);
-        const double c1 = std::max(toward, 0.0) + (omega + spin_rate) * hs_ + 1e-9;
         const double c2 = accel + 2 * omega * std::sqrt(v.x() * v.x() + v.y() * v.y()) + omega * omega * (std::abs(u_c) + hs_);
-        const double gap = std::max(p.distance, kMinStep);
+        // Each part of the section (plate, sail) has its own separating line: the step is
+        // the least any of them allows.
+        double step_time = HUGE_VAL;
+        for (int k = 0; k < sec.parts(); ++k) {
+          const SectionApproach& part = p.parts[static_cast<std::size_t>(k)];
+          const double toward = -(part.normal.x() * u_rate + part.normal.y() * w_rate);
+          const double c1 = std::max(toward, 0.0) + (omega + spin_rate) * hs_ + 1e-9;
+          const double gap = std::max(part.distance - rad_, kMinStep);
+          step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2 * gap)));
+        }
         ++stats.near_steps;
         t_safe = t, known_apart = true;
-        t += 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2 * gap));
+        t += step_time;
         continue;
       }
       if (p.distance < -kContactTolerance && known_apart) {
@@ -154,36 +164,9 @@ class EdgeSearch {
         p = probe(t);
       }
       // Touching (or overlapping where the search began): a contact if the points approach.
-      // The core reaching into the section across the tip radius meets the arm's end face.
-      const bool separable = p.approach.distance > 0;
-      const bool at_tip = !separable && ((p.approach.s == 0 && p.a_at_tip) || (p.approach.s == 1 && p.b_at_tip));
-      const Vec3 normal = separable ? Vec3(p.approach.normal.x() * p.forward + p.approach.normal.y() * Vec3::UnitZ())
-                          : at_tip  ? Vec3(p.radial)
-                                    : Vec3(p.forward);  // core inside the plate: pushed along the motion
-      const Vec3 on_core = p.a3 + p.approach.s * (p.b3 - p.a3);
-      const Vec3 point = at_tip ? on_core : Vec3(on_core - rad_ * normal);
-      const Vec3 arm_of = point - p.centre;
-      const Vec3 v_rel = m_.velocity(t) + m_.spin.cross(arm_of) - sp_.velocity_at(point);
-      // On the arm: the core's part over it touches (the surface point may stand up to a
-      // radius beyond the tip).
-      const double radius = std::clamp((on_core - C).dot(p.radial), 0.0, sp_.edges[e_].reach);
-      if (v_rel.dot(normal) < 0) {
-        {
-          Contact k;
-          k.edge = e_;
-          k.time = t;
-          k.centre = p.centre;
-          k.axis = p.axis;
-          k.point = point;
-          k.normal = normal;
-          k.radius = radius;
-          k.forward_offset = p.approach.on_section.x();
-          k.radial = p.radial;
-          k.forward = p.forward;
-          k.part = p.approach.on_section.x() < -sec.shape().width ? 1 : 0;
-          return k;
-        }
-      }
+      const Touch touch = touch_at(t, p);
+      if (touch.approaching) return touch.contact;
+      const Vec3& v_rel = touch.v_rel;
       // Parting: step on (a step that goes deeper is bisected back), or, overlapping where
       // the search began, by the overlap.
       const double bound = v_rel.norm() + (omega + spin_rate) * hs_ + 1e-9;
@@ -195,7 +178,44 @@ class EdgeSearch {
     return std::nullopt;
   }
 
- private:
+ public:
+  struct Touch {
+    Contact contact;
+    Vec3 v_rel = Vec3::Zero();
+    bool approaching = false;
+  };
+  // The contact the probe at t describes (the capsule touching the section).
+  Touch touch_at(double t, const Probe& p) const {
+    const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
+    const BladeSection& sec = sp_.section;
+    Touch out;
+    // The core reaching into the section across the tip radius meets the arm's end face.
+    const bool separable = p.approach.distance > 0;
+    const bool at_tip = !separable && ((p.approach.s == 0 && p.a_at_tip) || (p.approach.s == 1 && p.b_at_tip));
+    const Vec3 normal = separable ? Vec3(p.approach.normal.x() * p.forward + p.approach.normal.y() * Vec3::UnitZ())
+                        : at_tip  ? Vec3(p.radial)
+                                  : Vec3(p.forward);  // core inside the plate: pushed along the motion
+    const Vec3 on_core = p.a3 + p.approach.s * (p.b3 - p.a3);
+    const Vec3 point = at_tip ? on_core : Vec3(on_core - rad_ * normal);
+    out.v_rel = m_.velocity(t) + m_.spin.cross(point - p.centre) - sp_.velocity_at(point);
+    out.approaching = out.v_rel.dot(normal) < 0;
+    Contact& k = out.contact;
+    k.edge = e_;
+    k.time = t;
+    k.centre = p.centre;
+    k.axis = p.axis;
+    k.point = point;
+    k.normal = normal;
+    // On the arm: the core's part over it touches (the surface point may stand up to a
+    // radius beyond the tip).
+    k.radius = std::clamp((on_core - C).dot(p.radial), 0.0, sp_.edges[e_].reach);
+    k.forward_offset = p.approach.on_section.x();
+    k.radial = p.radial;
+    k.forward = p.forward;
+    k.part = p.approach.on_section.x() < -sec.shape().width ? 1 : 0;
+    return out;
+  }
+
   Probe probe(double t) const {
     Probe p;
     sp_.frame(e_, phase_, t, p.radial, p.forward);
@@ -221,11 +241,15 @@ class EdgeSearch {
       p.a3 = a, p.b3 = b;
     }
     const Vec2 a((p.a3 - C).dot(p.forward), p.a3.z() - C.z()), b((p.b3 - C).dot(p.forward), p.b3.z() - C.z());
-    p.approach = sp_.section.approach(a, b);
+    for (int k = 0; k < sp_.section.parts(); ++k) {
+      p.parts[static_cast<std::size_t>(k)] = segment_to_polygon(a, b, sp_.section.part(k));
+      if (k == 0 || p.parts[static_cast<std::size_t>(k)].distance < p.approach.distance) p.approach = p.parts[static_cast<std::size_t>(k)];
+    }
     p.distance = p.approach.distance - rad_;
     return p;
   }
 
+ private:
   const Spindle& sp_;
   std::size_t e_;
   double phase_;
@@ -235,8 +259,79 @@ class EdgeSearch {
 
 }  // namespace
 
+namespace {
+
+// The reference: near an arm, fixed steps of at most kReferenceStep of relative motion, the
+// clearance of every edge tested at each; the first approaching touch is refined by
+// bisection. Away from every arm's plate (a plain distance in plan to its rectangle, or
+// the height above or below it) the step is that gap over the fastest relative motion.
+constexpr double kReferenceStep = 1e-5;  // m
+
+std::optional<Contact> fixed_step_contact(const Spindle& sp, double phase, const projectile::Projectile& nail, const Motion& m, double t1,
+                                          SearchStats& stats) {
+  const double rho = nail.half_segment() + nail.radius();
+  const double bound = m.v0.norm() + m.a.norm() * (t1 - m.t0) + sp.omega() * (sp.reach + rho) + m.spin.norm() * nail.half_segment();
+  const double dt = kReferenceStep / std::max(bound, 1e-9);
+  std::vector<EdgeSearch> edges;
+  for (std::size_t e = 0; e < sp.edges.size(); ++e) edges.emplace_back(sp, e, phase, nail, m);
+  std::vector<double> before(sp.edges.size(), HUGE_VAL);
+  const Vec3 C(sp.centre.x(), sp.centre.y(), sp.height);
+  double step = dt;
+  for (double t = m.t0; t <= t1; t += step) {
+    ++stats.steps;
+    // Far from every arm's plate (in plan, or above or below it) the step is that gap over
+    // the fastest any point of either body moves; near it, dt.
+    const Vec3 c = m.centre(t);
+    const double z = c.z() - sp.height;
+    double gap = std::max(z - rho - sp.section.top(), sp.section.bottom() - z - rho);
+    double plan = HUGE_VAL;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      Vec3 radial, forward;
+      sp.frame(e, phase, t, radial, forward);
+      const double x = (c - C).dot(radial), u = (c - C).dot(forward);
+      const double dx = x - std::clamp(x, 0.0, sp.edges[e].reach), du = u - std::clamp(u, sp.section.back(), 0.0);
+      plan = std::min(plan, std::sqrt(dx * dx + du * du) - rho);
+    }
+    gap = std::max(gap, plan);
+    if (gap > kReferenceStep) {
+      std::fill(before.begin(), before.end(), HUGE_VAL);
+      step = std::max(dt, gap / bound);
+      continue;
+    }
+    step = dt;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const auto p = edges[e].probe(t);
+      const double d = p.off_arm ? HUGE_VAL : p.distance;
+      if (d <= kContactTolerance && before[e] > kContactTolerance) {
+        double lo = t - step, hi = t;
+        for (int it = 0; it < 60 && hi - lo > 1e-13; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          const auto pm = edges[e].probe(mid);
+          (!pm.off_arm && pm.distance <= kContactTolerance ? hi : lo) = mid;
+        }
+        const auto touch = edges[e].touch_at(hi, edges[e].probe(hi));
+        if (touch.approaching) return touch.contact;
+      }
+      before[e] = d;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Clearance clearance(const Spindle& spindle, std::size_t e, double phase, const projectile::Projectile& nail, const Motion& motion, double t) {
+  const EdgeSearch search(spindle, e, phase, nail, motion);
+  const auto p = search.probe(t);
+  Clearance c;
+  c.distance = p.distance;
+  c.off_arm = p.off_arm;
+  if (!p.off_arm) c.approaching = search.touch_at(t, p).approaching;
+  return c;
+}
+
 std::optional<Contact> first_contact(const Spindle& spindle, double phase, const projectile::Projectile& nail, const Motion& motion,
-                                     double t1, SearchStats& stats) {
+                                     double t1, SearchStats& stats, SearchMethod method) {
   std::optional<Contact> best;
   // The whole blade first: a nail that cannot reach its slab or its disc in time is not
   // looked at edge by edge.
@@ -249,6 +344,7 @@ std::optional<Contact> first_contact(const Spindle& spindle, double phase, const
   const double r = std::sqrt(dx * dx + dy * dy);
   if (r - rho > spindle.reach && time_to_close(r - rho - spindle.reach, std::sqrt(v.x() * v.x() + v.y() * v.y()), accel) > t1 - motion.t0)
     return best;
+  if (method == SearchMethod::FixedSteps) return fixed_step_contact(spindle, phase, nail, motion, t1, stats);
   // Then each edge's outlook from the start, worked out once for them all.
   const Outlook look(spindle, phase, motion, rho, c, v, motion.t0);
   for (std::size_t e = 0; e < spindle.edges.size(); ++e) {

@@ -61,9 +61,24 @@ inline constexpr double kContactTolerance = 2e-6;  // m: a capsule this close to
 inline constexpr double kMinStep = 2e-4;            // m: the least travel of a step near the blade (a tenth of a nail's diameter)
 inline constexpr int kMaxSearchSteps = 4000;        // per edge and search
 
+// How the search steps: conservative advancement (production), or fixed steps of at most
+// 10 um of relative motion testing the clearance at each (the reference it is validated
+// against: docs/validation.md; `[run] contact_search = "fixed_steps"`, about 100 times slower).
+enum class SearchMethod { Advancement, FixedSteps };
+
 // The first approaching touch of any edge of `spindle` on the capsule in [motion.t0, t1],
 // the blade standing at `phase` at time 0. `stats` accumulates.
 std::optional<Contact> first_contact(const Spindle& spindle, double phase, const projectile::Projectile& nail, const Motion& motion,
-                                     double t1, SearchStats& stats);
+                                     double t1, SearchStats& stats, SearchMethod method = SearchMethod::Advancement);
+
+// The capsule's clearance from edge e's section at time t (< 0: overlapping; the part of
+// the core beyond the arm's tip does not count), and whether its nearest points approach
+// each other then. For tests and the fixed-step reference.
+struct Clearance {
+  double distance = 0;
+  bool approaching = false;
+  bool off_arm = false;
+};
+Clearance clearance(const Spindle& spindle, std::size_t e, double phase, const projectile::Projectile& nail, const Motion& motion, double t);
 
 }  // namespace j232::strike

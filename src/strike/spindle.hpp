@@ -45,6 +45,7 @@ struct Spindle {
   BladeSection section;
   blade::Restitution restitution = blade::Restitution::constant(0.9);  // nail on blade
   double friction = 0.4;                                               // nail on blade, Coulomb
+  bool reference_search = false;  // contacts by the fixed-step reference ([run] contact_search)
 
   Spindle(const blade::Blade& blade, const scenario::BladeGeometry& geometry, const blade::Restitution& restitution);
   double omega() const { return blade.omega; }

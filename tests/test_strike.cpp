@@ -1,0 +1,363 @@
+// The strike stage: the blade's section, the contact search against a fixed-step
+// reference, and the impulse's invariants (momentum about the spindle and each pivot,
+// no energy created, the report's central impact as its frictionless limit).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "blade/impact.hpp"
+#include "feed/feed.hpp"
+#include "random_blades.hpp"
+#include "stats_check.hpp"
+#include "strike/contact_search.hpp"
+#include "strike/impulse.hpp"
+#include "units/quantity.hpp"
+
+using namespace j232;
+using Vec3 = Eigen::Vector3d;
+using Vec2 = Eigen::Vector2d;
+
+namespace {
+
+// A straight 48 in bar centred on the spindle (two edges, 24 in reach) at 1000 rpm.
+scenario::Scenario bar_scenario() {
+  scenario::Scenario s;
+  s.spindles[0].blade.omega = 1000 * units::rpm;
+  s.spindles[0].blade.hub.bar_mass = 10;
+  s.spindles[0].blade.hub.bar_length = 1.2192;
+  s.feed.stations = {{0, 0.55, 0.0}};
+  return s;
+}
+
+// The report's pivoted blade with a free hub: a 24 in hub bar (11 lb) and a 12 in link
+// (5.5 lb) pinned at each end, 1000 rpm, so impulses move the hub and the links.
+blade::Blade pivoted_blade() {
+  blade::Blade b;
+  b.omega = 1000 * units::rpm;
+  b.hub.bar_mass = 11 * 0.45359237;
+  b.hub.bar_length = 0.6096;
+  b.hub.drive_inertia = 0.05;
+  for (const double azimuth : {0.0, units::pi}) {
+    blade::Arm arm;
+    arm.azimuth = azimuth;
+    arm.pivot_radius = 0.3048;
+    blade::Link link;
+    link.length = 0.3048, link.mass = 5.5 * 0.45359237;
+    arm.links.push_back(link);
+    b.arms.push_back(arm);
+  }
+  return b;
+}
+
+strike::Spindle spindle(const scenario::Scenario& s) { return strike::Spindle(s.spindles[0].blade, s.spindles[0].geometry, s.restitution); }
+
+// An upright nail falling past the blade at (0.5, 0), its tip `depth` below the top face
+// when the leading edge (phase -0.2 rad ahead of it... behind it) is about to reach it.
+strike::Motion upright_nail(double tip_below_top, const strike::Spindle& sp, const projectile::Projectile& nail) {
+  strike::Motion m;
+  const double top = sp.height + 0.5 * sp.section.shape().thickness;
+  m.p0 = {0.5, 0.0, top - tip_below_top + 0.5 * nail.length};
+  m.v0 = {0.0, 0.0, -2.5};
+  m.a = {0.0, 0.0, -feed::kGravity};
+  m.axis0 = Vec3::UnitZ();
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("blade section: the plate, its bevel and sail as convex polygons", "[strike][geometry]") {
+  strike::EdgeShape shape;
+  shape.thickness = 0.006, shape.width = 0.1, shape.bevel_angle = 30 * units::degree, shape.bevel_on_top = true;
+  const strike::BladeSection top(shape);
+  REQUIRE(top.parts() == 1);
+  // A point ahead of the sharp edge (on the bottom face) at its height: 10 mm off, normal forward.
+  auto a = top.approach(Vec2(0.01, -0.003), Vec2(0.01, -0.003));
+  CHECK(a.distance == Approx(0.01));
+  CHECK(a.normal.x() == Approx(1.0));
+  // Above the bevel face: its normal leans forward by the bevel angle from straight up.
+  const Vec2 on_bevel(-0.5 * 0.006 / std::tan(30 * units::degree), 0.0);
+  const Vec2 n(std::sin(30 * units::degree), std::cos(30 * units::degree));
+  a = top.approach(on_bevel + 0.002 * n, on_bevel + 0.002 * n);
+  CHECK(a.distance == Approx(0.002));
+  CHECK(a.normal.x() == Approx(n.x()));
+  CHECK(a.normal.y() == Approx(n.y()));
+  // A vertical segment in front of a square edge touches it along the overlap: its middle.
+  shape.bevel_angle = 90 * units::degree;
+  const strike::BladeSection square(shape);
+  a = square.approach(Vec2(0.002, -0.02), Vec2(0.002, 0.001));
+  CHECK(a.distance == Approx(0.002));
+  CHECK(a.on_section.y() == Approx(-0.001).margin(1e-12));  // the overlap is w in [-3, 1] mm
+  // Overlap reports zero distance.
+  CHECK(square.approach(Vec2(-0.01, -0.02), Vec2(-0.01, 0.02)).distance == 0);
+  // The sail rises behind the width.
+  shape.sail_height = 0.03, shape.sail_angle = 45 * units::degree;
+  const strike::BladeSection sailed(shape);
+  REQUIRE(sailed.parts() == 2);
+  CHECK(sailed.top() == Approx(0.033));
+  a = sailed.approach(Vec2(-0.115 + 0.002 * std::sqrt(0.5), 0.018 + 0.002 * std::sqrt(0.5)), Vec2(-0.115, 0.06));
+  CHECK(a.distance > 0);
+}
+
+TEST_CASE("strike: an upright nail struck by a frictionless square edge gets no vertical impulse", "[strike][physics]") {
+  auto s = bar_scenario();
+  s.spindles[0].geometry.edge.bevel_angle = 90 * units::degree;
+  s.spindles[0].geometry.edge.friction = 0.0;
+  const auto sp = spindle(s);
+  const auto nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);
+  for (const double depth : {0.002, 0.01, 0.03}) {
+    const auto m = upright_nail(depth, sp, nail);
+    strike::SearchStats stats;
+    // The edge at 0 rad stands 0.1 rad behind the nail's azimuth at time 0.
+    const auto c = strike::first_contact(sp, -0.1, nail, m, m.t0 + 0.02, stats);
+    REQUIRE(c);
+    CHECK(std::abs(c->normal.z()) < 1e-9);
+    const auto out = strike::strike(sp, *c, nail, m.velocity(c->time), Vec3::Zero());
+    REQUIRE(out.approaching);
+    CHECK(std::abs(out.solution.impulse.z()) < 1e-12);
+    CHECK(out.velocity_after.z() == Approx(m.velocity(c->time).z()).margin(1e-12));
+  }
+  SECTION("friction against the falling nail lifts it; a top bevel under its tip lifts it more") {
+    s.spindles[0].geometry.edge.friction = 0.4;
+    const auto rough = spindle(s);
+    const auto m = upright_nail(0.03, rough, nail);
+    strike::SearchStats stats;
+    const auto c = strike::first_contact(rough, -0.1, nail, m, m.t0 + 0.02, stats);
+    REQUIRE(c);
+    const auto out = strike::strike(rough, *c, nail, m.velocity(c->time), Vec3::Zero());
+    CHECK(out.solution.impulse.z() > 0);
+    s.spindles[0].geometry.edge.bevel_angle = 30 * units::degree;
+    s.spindles[0].geometry.edge.friction = 0.0;
+    const auto bevelled = spindle(s);
+    const auto tip_in_bevel = upright_nail(0.003, bevelled, nail);  // the tip 3 mm into the 6 mm plate
+    const auto b = strike::first_contact(bevelled, -0.1, nail, tip_in_bevel, tip_in_bevel.t0 + 0.02, stats);
+    REQUIRE(b);
+    CHECK(b->normal.z() == Approx(std::cos(30 * units::degree)).epsilon(1e-6));  // the bevel face's normal
+  }
+}
+
+TEST_CASE("impulse: no energy created, Coulomb's cone respected, separation as restitution says", "[strike][physics]") {
+  std::mt19937_64 rng(17);
+  const auto u = [&](double lo, double hi) { return test::uniform(rng, lo, hi); };
+  int sliding = 0, lowered = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const auto nail = projectile::Projectile::capsule(u(0.01, 0.08), u(0.001, 0.005), u(0.001, 0.01));
+    const Vec3 axis = Vec3(u(-1, 1), u(-1, 1), u(-1, 1)).normalized();
+    const Vec3 r = u(-0.5, 0.5) * nail.length * axis + nail.radius() * axis.unitOrthogonal();
+    const Eigen::Matrix3d inv_i = strike::inverse_inertia(nail, axis);
+    Eigen::Matrix3d R;
+    R << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+    Eigen::Matrix3d K = Eigen::Matrix3d::Identity() / nail.mass - R * inv_i * R;
+    const Vec3 t_dir = Vec3(u(-1, 1), u(-1, 1), 0).normalized();
+    K += (1.0 / u(0.05, 50)) * t_dir * t_dir.transpose();  // a blade giving way along its motion
+    const Vec3 n = Vec3(u(-1, 1), u(-1, 1), u(-1, 1)).normalized();
+    Vec3 v_rel = Vec3(u(-100, 100), u(-100, 100), u(-100, 100));
+    if (v_rel.dot(n) >= 0) v_rel -= (v_rel.dot(n) + u(0.1, 50)) * n;
+    const double mu = u(0, 1.5), e = u(0, 1);
+    const auto sol = strike::solve_impulse(K, v_rel, n, blade::Restitution::constant(e), mu);
+    const double scale = 0.5 * v_rel.dot(K.ldlt().solve(v_rel));
+    CHECK(sol.energy_change <= 1e-9 * scale);
+    const double pn = sol.impulse.dot(n);
+    CHECK(pn >= 0);
+    CHECK((sol.impulse - pn * n).norm() <= mu * pn * (1 + 1e-9) + 1e-15);
+    const Vec3 after = v_rel + K * sol.impulse;
+    if (sol.e == Approx(e)) CHECK(after.dot(n) == Approx(-e * v_rel.dot(n)).epsilon(1e-7));
+    if (!sol.sticking) ++sliding;
+    if (sol.e < e - 1e-9) ++lowered;
+  }
+  CHECK(sliding > 1000);  // both regimes are exercised
+  INFO("restitution lowered to create no energy in " << lowered << " of 20000");
+  CHECK(lowered < 20000);
+}
+
+TEST_CASE("impulse: frictionless and central, it is report 445-1's impact", "[strike][physics]") {
+  const auto b = pivoted_blade();
+  scenario::BladeGeometry g;
+  g.edge.friction = 0;
+  const strike::Spindle sp(b, g, blade::Restitution::constant(0.7));
+  const auto nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);
+  strike::Contact k;
+  k.edge = 0;
+  k.radius = 0.55;
+  k.radial = Vec3::UnitX(), k.forward = Vec3::UnitY();
+  k.centre = {0.55, -0.003, sp.height};
+  k.point = {0.55, -0.00125, sp.height};
+  k.axis = Vec3::UnitZ();
+  k.normal = Vec3::UnitY();
+  const Vec3 v(0.0, -3.0, -2.5);
+  const auto out = strike::strike(sp, k, nail, v, Vec3::Zero());
+  REQUIRE(out.approaching);
+  blade::StruckObject body;
+  body.mass = nail.mass;
+  body.velocity = v;
+  const blade::BladeModel model(b);
+  const auto report = blade::solve_impact(model, *blade::locate(b, 0, 0.55), body, blade::Restitution::constant(0.7));
+  CHECK(out.velocity_after.y() == Approx(report.contact.velocity_after.y()).epsilon(1e-12));
+  CHECK(out.velocity_after.z() == Approx(-2.5).epsilon(1e-12));
+  CHECK(out.spin_after.norm() < 1e-9);
+  CHECK(out.blade_effective_mass == Approx(report.blade_effective_mass).epsilon(1e-12));
+}
+
+TEST_CASE("impulse: angular momentum about the spindle and each pivot is conserved", "[strike][physics]") {
+  const auto b = pivoted_blade();
+  const blade::BladeModel model(b);
+  std::mt19937_64 rng(23);
+  const auto u = [&](double lo, double hi) { return test::uniform(rng, lo, hi); };
+  for (int trial = 0; trial < 500; ++trial) {
+    scenario::BladeGeometry g;
+    g.edge.friction = u(0, 1);
+    const strike::Spindle sp(b, g, blade::Restitution::constant(u(0, 1)));
+    const auto nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);
+    strike::Contact k;
+    k.edge = 0;
+    k.radius = u(0.05, 0.6);
+    k.forward_offset = -u(0, 0.05);  // on the plate, behind the edge line
+    k.radial = Vec3::UnitX(), k.forward = Vec3::UnitY();
+    k.axis = Vec3(u(-1, 1), u(-1, 1), u(-1, 1)).normalized();
+    k.point = {k.radius, k.forward_offset, sp.height + u(-0.003, 0.003)};
+    k.normal = Vec3(u(0.2, 1), u(-0.3, 0.3), u(-1, 1)).normalized();
+    k.normal = Vec3(k.normal.y(), k.normal.x(), k.normal.z());  // mostly along the blade's motion (+y)
+    k.centre = k.point + nail.radius() * k.normal + u(-0.02, 0.02) * k.axis;
+    const Vec3 v(u(-20, 20), u(-20, 20), u(-5, 5));
+    Vec3 w(u(-2000, 2000), u(-2000, 2000), u(-2000, 2000));
+    w -= w.dot(k.axis) * k.axis;
+    const auto out = strike::strike(sp, k, nail, v, w);
+    if (!out.approaching) continue;
+    const Vec3& P = out.solution.impulse;
+    // The nail: linear and angular momentum change by the impulse and its moment.
+    CHECK((nail.mass * (out.velocity_after - v) - P).norm() < 1e-12);
+    const Eigen::Matrix3d inertia = strike::inverse_inertia(nail, k.axis).inverse();
+    CHECK((inertia * (out.spin_after - w) - (k.point - k.centre).cross(P)).norm() < 1e-9 * (1 + P.norm()));
+    // The blade takes -P at the contact: its generalised momenta change by the moments of -P
+    // about the spindle (all coordinates together) and about the pivot (the link's own).
+    const auto where = *blade::locate(b, 0, k.radius);
+    const Eigen::VectorXd dq = model.rates_after(where, k.forward_offset, -P.dot(k.forward), -P.dot(k.radial)) - model.rigid_rates();
+    const Eigen::VectorXd dp = model.mass_matrix() * dq;
+    const Vec3 nail_about_spindle = k.point.cross(P);  // the spindle's axis through the origin
+    CHECK(dp.sum() + nail_about_spindle.z() == Approx(0).margin(1e-9));
+    if (!where.on_hub) {
+      const Vec3 pin(0.3048, 0.0, k.point.z());
+      CHECK(dp[1] + (k.point - pin).cross(P).z() == Approx(0).margin(1e-9));  // coordinate 1: arm 0's link
+    }
+    // And the energy of nail and blade together does not grow.
+    const double nail_before = 0.5 * nail.mass * v.squaredNorm() + 0.5 * w.dot(inertia * w);
+    const double nail_after = 0.5 * nail.mass * out.velocity_after.squaredNorm() + 0.5 * out.spin_after.dot(inertia * out.spin_after);
+    const double blade_before = model.kinetic_energy(model.rigid_rates()), blade_after = model.kinetic_energy(model.rigid_rates() + dq);
+    CHECK(nail_after + blade_after <= nail_before + blade_before + 1e-9 * (nail_before + blade_before));
+  }
+}
+
+TEST_CASE("contact search: agrees with the fixed-step reference, and leaves no overlap after a strike", "[strike][search]") {
+  auto s = bar_scenario();
+  s.spindles[0].geometry.edge.sail_height = 0.02;  // plate, bevel and sail all in play
+  const auto sp = spindle(s);
+  int struck = 0, matched = 0, restruck = 0, rematched = 0;
+  for (int i = 0; i < 150; ++i) {
+    random::Stream rng(31, 0, static_cast<std::uint64_t>(i), random::Purpose::Feed);
+    const auto drop = feed::sample_drop(s, i, rng);
+    const auto fall = feed::fall_through(drop, sp);
+    strike::SearchStats stats, ref_stats;
+    const auto c = strike::first_contact(sp, drop.blade_phase, drop.nail, fall.motion, fall.until, stats);
+    const auto r = strike::first_contact(sp, drop.blade_phase, drop.nail, fall.motion, fall.until, ref_stats, strike::SearchMethod::FixedSteps);
+    if (c.has_value() != r.has_value()) {
+      const auto& k = c ? *c : *r;
+      FAIL_CHECK("nail " << i << ": only the " << (c ? "search" : "reference") << " finds a touch, at t = " << k.time << ", edge " << k.edge
+                         << ", normal (" << k.normal.transpose() << "), offset " << k.forward_offset << ", radius " << k.radius);
+      continue;
+    }
+    if (!c) continue;
+    ++struck;
+    // Both stop within the contact tolerance of the touch: the same time to within that
+    // tolerance over the approach speed.
+    const auto first = strike::strike(sp, *c, drop.nail, fall.motion.velocity(c->time), Vec3::Zero());
+    const double slack = std::max(1e-6, 2 * strike::kContactTolerance / first.approach_speed);
+    const bool same = c->edge == r->edge && std::abs(c->time - r->time) < slack;
+    if (!same)
+      FAIL_CHECK("nail " << i << ": search t = " << c->time << " edge " << c->edge << " (" << c->normal.transpose() << "), reference t = " << r->time
+                         << " edge " << r->edge << " (" << r->normal.transpose() << ")");
+    matched += same;
+    // After the strike: the next touch the search finds, and no overlap before it.
+    const auto out = strike::strike(sp, *c, drop.nail, fall.motion.velocity(c->time), Vec3::Zero());
+    REQUIRE(out.approaching);
+    strike::Motion after;
+    after.p0 = c->centre, after.v0 = out.velocity_after, after.a = fall.motion.a, after.t0 = c->time, after.axis0 = c->axis;
+    after.spin = out.spin_after - out.spin_after.dot(c->axis) * c->axis;
+    const double until = c->time + 0.002;
+    const auto next = strike::first_contact(sp, drop.blade_phase, drop.nail, after, until, stats);
+    const auto next_ref = strike::first_contact(sp, drop.blade_phase, drop.nail, after, until, ref_stats, strike::SearchMethod::FixedSteps);
+    restruck += next.has_value();
+    rematched += next.has_value() == next_ref.has_value() && (!next || std::abs(next->time - next_ref->time) < 1e-5);
+    const double end = next ? next->time : until;
+    double worst = HUGE_VAL;
+    for (double t = c->time + 1e-7; t < end; t += 2e-7)
+      for (std::size_t e = 0; e < sp.edges.size(); ++e) {
+        const auto gap = strike::clearance(sp, e, drop.blade_phase, drop.nail, after, t);
+        if (!gap.off_arm) worst = std::min(worst, gap.distance);
+      }
+    CHECK(worst >= -1e-5);
+  }
+  CHECK(struck > 60);
+  CHECK(matched == struck);
+  CHECK(restruck > 10);
+  CHECK(rematched >= restruck - 1);
+}
+
+TEST_CASE("feed: strike probability and strike time match the blade's sweep", "[strike][feed][statistics]") {
+  // Two edges 180 deg apart sweep a given azimuth every pi / omega, each plate taking
+  // tau = (width + diameter) / (omega r) to pass. An upright nail spans the plate's height
+  // for a window W (from its tip at the top face to its head past the bottom one); it is
+  // struck if a plate is under it at any time in [-tau, W] (from -tau it lands on the
+  // plate's top face as its tip reaches it, at time 0): with probability (W + tau) omega / pi,
+  // and the edge's strikes come at a time uniform on [0, W].
+  auto s = bar_scenario();
+  s.feed.outlet_speed_max = 0;  // fixed fall speed: a fixed window
+  s.feed.tilt_max = 0;
+  s.feed.outlet_diameter = 1e-6;  // at one radius
+  s.nail.length_tolerance = 0;
+  s.spindles[0].geometry.edge.bevel_angle = 90 * units::degree;
+  const auto sp = spindle(s);
+  REQUIRE(sp.edges.size() == 2);
+  std::vector<double> edge_times;
+  const int n = 6000;
+  int struck = 0, landed = 0;
+  double window = 0;
+  const double omega = s.spindles[0].blade.omega, tau = (sp.section.shape().width + s.nail.diameter) / (omega * 0.55);
+  for (int i = 0; i < n; ++i) {
+    random::Stream rng(11, 0, static_cast<std::uint64_t>(i), random::Purpose::Feed);
+    const auto d = feed::sample_drop(s, i, rng);
+    const double v = d.fall_speed, depth = sp.section.shape().thickness + d.nail.length;
+    window = (-v + std::sqrt(v * v + 2 * feed::kGravity * depth)) / feed::kGravity;
+    const auto fall = feed::fall_through(d, sp);
+    strike::SearchStats stats;
+    const auto c = strike::first_contact(sp, d.blade_phase, d.nail, fall.motion, fall.until, stats);
+    if (!c) continue;
+    ++struck;
+    if (c->normal.z() > 0.999) {
+      ++landed;
+      CHECK(std::abs(c->time) < 1e-5);
+    } else {
+      edge_times.push_back(c->time);
+    }
+  }
+  const double p = (window + tau) * omega / units::pi;
+  const double se = std::sqrt(p * (1 - p) / n);
+  CHECK(std::abs(static_cast<double>(struck) / n - p) < 4 * se);
+  const double p_land = tau * omega / units::pi;
+  CHECK(std::abs(static_cast<double>(landed) / n - p_land) < 4 * std::sqrt(p_land * (1 - p_land) / n));
+  CHECK(test::ks_statistic(edge_times, [&](double t) { return t / window; }) < test::ks_critical_001(edge_times.size()));
+}
+
+TEST_CASE("feed: nails outside the tip circle fall through", "[strike][feed]") {
+  auto s = bar_scenario();
+  s.feed.stations = {{0, 0.70, 0.5}};  // beyond the 0.6096 m reach
+  const auto sp = spindle(s);
+  int struck = 0;
+  for (int i = 0; i < 500; ++i) {
+    random::Stream rng(3, 0, static_cast<std::uint64_t>(i), random::Purpose::Feed);
+    const auto d = feed::sample_drop(s, i, rng);
+    const auto fall = feed::fall_through(d, sp);
+    strike::SearchStats stats;
+    struck += strike::first_contact(sp, d.blade_phase, d.nail, fall.motion, fall.until, stats).has_value();
+  }
+  CHECK(struck == 0);
+}
