@@ -161,15 +161,23 @@ TEST_CASE("deck: a discharge chute roofs its opening, runs outward and keeps nai
       }
   CHECK(lowest_y == Approx(outline_y - o.chute_length).margin(0.005));
   // The same deck with and without its chute, on the same random numbers: the chute turns
-  // the nails that leave by the opening down into the turf.
+  // the nails that leave by the opening down into the turf, so far fewer of the marks come
+  // by the opening. (Most of this deck's marks come from nails that the blade's faces send
+  // down into the turf and out under the skirt: docs/validation.md.)
   s.run.replicates = 100;
   auto open = s;
   open.housing.openings[0].chute_length = 0;
-  const auto with = assess::summarise(assess::run_assessment(assess::Simulator(s), 2), s);
-  const auto without = assess::summarise(assess::run_assessment(assess::Simulator(open), 2), open);
-  INFO("punctures outside: " << with.criteria[assess::PuncturesOutside].mean_share << " with the chute, "
-                             << without.criteria[assess::PuncturesOutside].mean_share << " without");
-  CHECK(with.criteria[assess::PuncturesOutside].mean_share < 0.2 * without.criteria[assess::PuncturesOutside].mean_share);
+  const auto by_opening = [](const assess::Assessment& a) {
+    std::uint64_t marks = 0;
+    for (const auto& [key, bands] : a.exits.marks)
+      if (a.exit_names.at(key).rfind("opening", 0) == 0)
+        for (auto n : bands) marks += n;
+    return marks;
+  };
+  const auto with = assess::run_assessment(assess::Simulator(s), 2), without = assess::run_assessment(assess::Simulator(open), 2);
+  INFO("marks by the opening: " << by_opening(with) << " with the chute, " << by_opening(without) << " without");
+  CHECK(by_opening(without) > 100);
+  CHECK(2 * by_opening(with) < by_opening(without));  // 196 against 602 when written
 }
 
 TEST_CASE("deck: guards and deflectors along polylines hang on a mesh deck too", "[deck][housing][mesh]") {
@@ -206,11 +214,17 @@ openness = 0
   // It stops what the opening lets out.
   auto with = s, without = read_with("");
   with.run.replicates = without.run.replicates = 60;
-  const auto a = assess::summarise(assess::run_assessment(assess::Simulator(with), 2), with);
-  const auto b = assess::summarise(assess::run_assessment(assess::Simulator(without), 2), without);
-  INFO("hits outside: " << a.criteria[assess::HitsOutside].mean_share << " with the curtain, " << b.criteria[assess::HitsOutside].mean_share
-                        << " without");
-  CHECK(a.criteria[assess::HitsOutside].mean_share < 0.5 * b.criteria[assess::HitsOutside].mean_share);
+  // The counted marks of nails that left the deck toward the rear (exit azimuth beyond
+  // +-135 deg: the first and last 45 deg bands).
+  const auto rear = [](const assess::Assessment& a) {
+    std::uint64_t marks = 0;
+    for (const auto& [key, bands] : a.exits.marks) marks += bands.front() + bands.back();
+    return marks;
+  };
+  const auto a = assess::run_assessment(assess::Simulator(with), 2), b = assess::run_assessment(assess::Simulator(without), 2);
+  INFO("marks of nails leaving rearward: " << rear(a) << " with the curtain, " << rear(b) << " without");
+  CHECK(rear(b) > 50);
+  CHECK(2 * rear(a) < rear(b));
   // What a mesh deck has no use for is refused, naming the mesh.
   CHECK_THROWS_WITH(read_with("[[housing.guards]]\nazimuth_from = \"0 deg\"\nazimuth_to = \"90 deg\"\n"),
                     Contains("housing.guards[1].azimuth_from") && Contains("meshes/deck.obj") && Contains("along"));

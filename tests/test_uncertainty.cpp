@@ -37,9 +37,9 @@ drag = false
 base_draws = 6
 replicates = 12
 [[uncertainty.inputs]]
-parameter = "lift_angle"
-low = "0 deg"
-high = "10 deg"
+parameter = "bevel_angle"
+low = "20 deg"
+high = "45 deg"
 basis = "test"
 [[uncertainty.inputs]]
 parameter = "air.cd_axial"
@@ -53,7 +53,7 @@ basis = "test: drag is off, so this must not matter"
   const auto& pass = a.indices[0];
   CHECK(pass.total[1].estimate == 0.0);  // f(AB_2) == f(A) at every row
   CHECK(pass.first[1].estimate == 0.0);
-  // The lift angle decides this mower (docs/validation.md): it carries the variance.
+  // The edge's bevel decides how this mower's nails leave: it carries the variance.
   const auto& punct = a.indices[4];
   REQUIRE(punct.variance > 0);
   CHECK(punct.total[0].estimate > 0.5);
@@ -62,13 +62,13 @@ basis = "test: drag is off, so this must not matter"
 TEST_CASE("uncertainty: bad inputs are refused with the key and what was expected", "[uncertainty][input]") {
   using Catch::Contains;
   auto one = [](const std::string& low, const std::string& high) {
-    return "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"lift_angle\"\nlow = " + low + "\nhigh = " + high + "\nbasis = \"x\"\n";
+    return "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"bevel_angle\"\nlow = " + low + "\nhigh = " + high + "\nbasis = \"x\"\n";
   };
-  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad1.toml", one("\"0 deg\"", "\"10 rad\"")), 1),
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad1.toml", one("\"20 deg\"", "\"10 rad\"")), 1),
                     Contains("uncertainty.inputs[1].high") && Contains("same unit"));
-  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad2.toml", one("\"10 deg\"", "\"5 deg\"")), 1),
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad2.toml", one("\"30 deg\"", "\"25 deg\"")), 1),
                     Contains("uncertainty.inputs[1].high") && Contains("above low"));
-  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad3.toml", one("\"0 deg\"", "\"80 deg\"")), 1), Contains("45 deg"));
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-bad3.toml", one("\"20 deg\"", "\"95 deg\"")), 1), Contains("90 deg"));
   CHECK_THROWS_AS(scenario::read_scenario(
                       with_uncertainty("uq-bad4.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"x\"\nlow = 1\nhigh = 2\n")),
                   scenario::InputError);  // no basis
@@ -103,14 +103,14 @@ TEST_CASE("uncertainty: inputs drawn uniform, triangular or normal (truncated) o
   // Keys refused where they mean nothing, or out of range.
   using Catch::Contains;
   auto input = [](const std::string& extra) {
-    return "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"lift_angle\"\nlow = \"0 deg\"\nhigh = \"10 deg\"\nbasis = \"x\"\n" + extra;
+    return "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"bevel_angle\"\nlow = \"20 deg\"\nhigh = \"45 deg\"\nbasis = \"x\"\n" + extra;
   };
-  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-dist1.toml", input("mode = \"5 deg\"\n"))),
+  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-dist1.toml", input("mode = \"30 deg\"\n"))),
                     Contains("only a triangular distribution has a mode"));
   CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-dist2.toml", input("distribution = \"lognormal\"\n"))),
                     Contains("lognormal"));
   CHECK_THROWS_WITH(
-      study::run_uncertainty(with_uncertainty("uq-dist3.toml", input("distribution = \"triangular\"\nmode = \"12 deg\"\n")), 1),
+      study::run_uncertainty(with_uncertainty("uq-dist3.toml", input("distribution = \"triangular\"\nmode = \"50 deg\"\n")), 1),
       Contains("uncertainty.inputs[1].mode") && Contains("from low to high"));
   CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-dist4.toml", input("distribution = \"normal\"\nsd = \"0 deg\"\n")), 1),
                     Contains("uncertainty.inputs[1].sd"));
@@ -122,9 +122,9 @@ TEST_CASE("uncertainty: an interrupted study resumes from its journal to the sam
 base_draws = 4
 replicates = 10
 [[uncertainty.inputs]]
-parameter = "lift_angle"
-low = "0 deg"
-high = "10 deg"
+parameter = "bevel_angle"
+low = "20 deg"
+high = "45 deg"
 basis = "test"
 [[uncertainty.inputs]]
 parameter = "restitution"

@@ -61,8 +61,8 @@ def test_settings_as_a_sweep_sets_them():
     assert fast.settings == {"blade.speed": "3000 rpm"}
     tip = lambda sc: sc.assess(replicates=2, seed=1, marks=False)["tip_speed_m_s"]
     assert tip(fast) > tip(s)
-    flat = j232.sweep_point(SKIRT, {"lift_angle": "0 deg"}, replicates=4, seed=2)
-    again = j232.Scenario(SKIRT, {"lift_angle": "0 deg"}).assess(replicates=4, seed=2, marks=False)
+    flat = j232.sweep_point(SKIRT, {"bevel_angle": "45 deg"}, replicates=4, seed=2)
+    again = j232.Scenario(SKIRT, {"bevel_angle": "45 deg"}).assess(replicates=4, seed=2, marks=False)
     assert flat["criteria"] == again["criteria"]
 
 

@@ -67,12 +67,10 @@ void ExitTable::merge(const ExitTable& o) {
 
 void NailHistograms::merge(const NailHistograms& c) {
   exits.merge(c.exits);
-  exit_speed.merge(c.exit_speed);
-  mark_energy.merge(c.mark_energy);
-  board_energy.merge(c.board_energy);
-  board_energy_per_width.merge(c.board_energy_per_width);
-  contact_radius.merge(c.contact_radius);
-  strikes.merge(c.strikes);
+  std::vector<const Histogram*> theirs;
+  each_histogram(c, [&](const Histogram& h) { theirs.push_back(&h); });
+  std::size_t i = 0;
+  each_histogram(*this, [&](Histogram& h) { h.merge(*theirs[i++]); });
 }
 
 namespace {
@@ -96,6 +94,9 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       ++c.struck;
       if (o.flight.non_finite) continue;  // nothing of it is a number worth recording
       c.exit_speed.add(o.exit_speed);
+      c.launch_elevation.add(o.launch_elevation / units::degree);
+      for (std::size_t k = 0; k < o.flight.passes_by_contacts.size(); ++k)
+        for (int p = 0; p < o.flight.passes_by_contacts[k]; ++p) c.contacts_per_pass.add(static_cast<double>(k + 1));
       c.contact_radius.add(o.contact_radius);
       c.strikes.add(o.flight.strikes);
       c.exits.add(o.flight);

@@ -57,6 +57,13 @@ Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenar
   context_.skirt_bottom = footprint_.skirt_bottom;
   context_.deck_top = footprint_.top;
   context_.spindles = &spindles_;
+  // A derived operator zone on a board with no zone mesh of its own.
+  bool zone_mesh = false;
+  for (const auto& m : s.meshes) zone_mesh |= m.label == scenario::MeshLabel::OperatorZone;
+  if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived && !zone_mesh) {
+    zone_.emplace(s.zone, s.blade_plane());
+    context_.zone = &*zone_;
+  }
 }
 
 std::string Simulator::exit_name(flight::Exit exit, std::uint16_t index) const {
@@ -102,8 +109,14 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   }
   if (!contact) return out;
   contact->spindle = k0;
-  const strike::StrikeOutcome hit = strike::strike(spindle, *contact, drop.nail, fall.motion.velocity(contact->time), Vec3::Zero());
+  const Vec3 falling = fall.motion.velocity(contact->time);
+  const strike::StrikeOutcome hit = strike::strike(spindle, *contact, drop.nail, falling, Vec3::Zero());
   if (!hit.approaching) return out;
+  // The blade strikes a nail when it gives it energy: a nail that merely lands on a blade
+  // too slow to throw it (a stopped blade) is not thrown, and the test did not happen for it.
+  const double energy_after = 0.5 * drop.nail.mass * hit.velocity_after.squaredNorm() +
+                              0.5 * hit.spin_after.dot(strike::inverse_inertia(drop.nail, contact->axis).inverse() * hit.spin_after);
+  if (!(energy_after > 0.5 * drop.nail.mass * falling.squaredNorm())) return out;
   if (!hit.velocity_after.allFinite() || !hit.spin_after.allFinite()) {
     out.flight.fate = flight::Fate::CutOff;
     out.flight.non_finite = true;
@@ -121,6 +134,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   const projectile::Projectile& rod = drop.nail;
   drag.k_axial = s.air.density * s.air.cd_axial * (0.25 * units::pi * rod.diameter * rod.diameter) / (2 * rod.mass);
   drag.k_normal = s.air.density * s.air.cd_normal * (rod.length * rod.diameter) / (2 * rod.mass);
+  drag.k_spin = 3 * s.air.density * s.air.cd_normal * rod.diameter * rod.length * rod.length / (16 * rod.mass);
   drag.air = {-s.feed.ground_speed, 0.0, 0.0};  // still air, seen from the moving mower
   drag.spin_average = s.air.spin_average;
 

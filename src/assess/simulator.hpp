@@ -3,6 +3,7 @@
 // feed, find the strike, resolve the impact, fly. Everything the nails of a scenario
 // share (blade model, edges, scene) is built once here; simulate() allocates nothing.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,7 @@ class Simulator {
   std::vector<scenario::GuardSpec> guards_;
   scene::DeckFootprint footprint_;
   flight::DeckOutline deck_outline_;  // footprint_.outline, indexed for the flight
+  std::optional<scene::OperatorZone> zone_;  // a derived zone, judged from the throwing blade
   flight::FlightContext context_;
 };
 

@@ -22,7 +22,7 @@ double quantile_sorted(const std::vector<double>& v, double p) {
 }
 
 void Histogram::add(double v) {
-  const double b = std::max(0.0, v / bin_width);
+  const double b = std::max(0.0, (v - origin) / bin_width);
   const auto i = std::min(static_cast<std::size_t>(b), counts.size() - 1);
   ++counts[i];
   ++total;
@@ -41,10 +41,10 @@ double Histogram::quantile(double p) const {
   double below = 0;
   for (std::size_t i = 0; i < counts.size(); ++i) {
     const double c = static_cast<double>(counts[i]);
-    if (below + c >= target && c > 0) return bin_width * (static_cast<double>(i) + (target - below) / c);
+    if (below + c >= target && c > 0) return origin + bin_width * (static_cast<double>(i) + (target - below) / c);
     below += c;
   }
-  return bin_width * static_cast<double>(counts.size());
+  return origin + bin_width * static_cast<double>(counts.size());
 }
 
 }  // namespace j232::assess

@@ -21,12 +21,13 @@ double quantile_sorted(const std::vector<double>& sorted, double p);
 // across threads; quantiles are read to within one bin.
 struct Histogram {
   double bin_width = 1;
+  double origin = 0;                  // the first bin's lower edge (everything below lands in it)
   std::vector<std::uint64_t> counts;  // last bin collects everything beyond
   std::uint64_t total = 0;
   double sum = 0;  // for the exact mean (summed per chunk, merged in chunk order)
 
   Histogram() = default;
-  Histogram(double width, std::size_t bins) : bin_width(width), counts(bins, 0) {}
+  Histogram(double width, std::size_t bins, double lower_edge = 0) : bin_width(width), origin(lower_edge), counts(bins, 0) {}
   void add(double v);
   void merge(const Histogram& other);
   double mean() const { return total ? sum / static_cast<double>(total) : 0.0; }

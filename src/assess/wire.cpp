@@ -75,18 +75,19 @@ class Reader {
   std::size_t at_ = 0;
 };
 
-void put(Writer& w, const Histogram& h) { w.value(h.bin_width), w.list(h.counts, h.counts.size()), w.value(h.total), w.value(h.sum); }
+void put(Writer& w, const Histogram& h) {
+  w.value(h.bin_width), w.value(h.origin), w.list(h.counts, h.counts.size()), w.value(h.total), w.value(h.sum);
+}
 void get(Reader& r, Histogram& h) {
-  h.bin_width = r.value<double>(), r.list(h.counts), h.total = r.value<std::uint64_t>(), h.sum = r.value<double>();
+  h.bin_width = r.value<double>(), h.origin = r.value<double>(), r.list(h.counts), h.total = r.value<std::uint64_t>(),
+  h.sum = r.value<double>();
 }
 void put(Writer& w, const NailHistograms& n) {
-  for (const Histogram* h : {&n.exit_speed, &n.mark_energy, &n.board_energy, &n.board_energy_per_width, &n.contact_radius, &n.strikes})
-    put(w, *h);
+  NailHistograms::each_histogram(n, [&](const Histogram& h) { put(w, h); });
   w.map(n.exits.nails), w.map(n.exits.marks), w.value(n.exits.marks_by_strikes), w.value(n.exits.marks_by_first_touch);
 }
 void get(Reader& r, NailHistograms& n) {
-  for (Histogram* h : {&n.exit_speed, &n.mark_energy, &n.board_energy, &n.board_energy_per_width, &n.contact_radius, &n.strikes})
-    get(r, *h);
+  NailHistograms::each_histogram(n, [&](Histogram& h) { get(r, h); });
   r.map(n.exits.nails), r.map(n.exits.marks);
   n.exits.marks_by_strikes = r.value<decltype(n.exits.marks_by_strikes)>();
   n.exits.marks_by_first_touch = r.value<decltype(n.exits.marks_by_first_touch)>();

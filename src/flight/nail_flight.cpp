@@ -116,6 +116,9 @@ struct NailFlight {
   std::optional<strike::Contact> blade_contact(const Body& from, const Vec3& acceleration, double dt);
   void restrike(const strike::Contact& k);
   void touched_scene() { on_blade = false; }
+  void close_pass() {
+    ++r.passes_by_contacts[static_cast<std::size_t>(std::min(pass_contacts, FlightResult::kMaxContactsPerPass + 1) - 1)];
+  }
   void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
   bool respond(const scene::Hit& hit);
   bool slide(const scene::Hit& hit);
@@ -204,6 +207,7 @@ void NailFlight::restrike(const strike::Contact& k) {
   if (same_pass) {
     ++pass_contacts;
   } else {
+    close_pass();
     pass_contacts = 1;
     ++r.passes;
   }
@@ -242,8 +246,15 @@ bool NailFlight::respond(const scene::Hit& hit) {
       const double width = board::presented_width(length, diameter, b.axis.dot(n));
       const board::Mark mark = board::classify(energy, width, s.board);
       if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
-      if (mark != board::Mark::None)
-        record_mark(hit.point, energy, hit.surface == scene::Surface::TargetZone, mark == board::Mark::Puncture);
+      if (mark != board::Mark::None) {
+        // A derived zone: the line of sight from the blade that threw the nail.
+        bool zone = hit.surface == scene::Surface::TargetZone;
+        if (ctx.zone && ctx.spindles && pass_spindle < ctx.spindles->size()) {
+          const auto& sp = (*ctx.spindles)[pass_spindle];
+          zone = ctx.zone->contains(hit.point, Vec3(sp.centre.x(), sp.centre.y(), sp.height));
+        }
+        record_mark(hit.point, energy, zone, mark == board::Mark::Puncture);
+      }
       // The board is the test's catcher: a nail that does not go through it drops at its foot.
       touch(Touch::Board);
       at_board = true;
@@ -269,7 +280,10 @@ bool NailFlight::respond(const scene::Hit& hit) {
       break;
     }
     case scene::Surface::Ground: {
-      const Vec3 rough = rough_normal(n, s.ground.roughness, rng);
+      // A rough facet the nail would meet from behind is no facet it can meet: drawn again.
+      Vec3 rough = rough_normal(n, s.ground.roughness, rng);
+      for (int tries = 0; tries < 16 && b.velocity.dot(rough) >= 0; ++tries) rough = rough_normal(n, s.ground.roughness, rng);
+      if (b.velocity.dot(rough) >= 0) rough = n;
       // The impact angle against the local (rough) surface sets the normal restitution.
       const double speed = b.velocity.norm();
       const double angle = speed > 0 ? std::asin(std::clamp(-b.velocity.dot(rough) / speed, 0.0, 1.0)) : 0.5 * units::pi;
@@ -408,11 +422,13 @@ FlightResult NailFlight::run() {
 
     // On the ground with too little rebound to fly: slide to rest, or into a wall and on.
     if (hit->surface == scene::Surface::Ground && b.velocity.dot(hit->normal) < kSlideBelow && !slide(*hit)) break;
-    if (b.velocity.norm() < s.run.rest_speed) {
+    // At rest only on something that holds it up (not under the deck plate, not on a wall).
+    if (b.velocity.norm() < s.run.rest_speed && hit->normal.z() > 0.5) {
       ended_at_rest = true;
       break;
     }
   }
+  close_pass();
   r.flight_time = b.time - start.time;
   r.end_position = b.position;
   r.fate = fate();

@@ -23,6 +23,7 @@
 #include "flight/trajectory.hpp"
 #include "random/stream.hpp"
 #include "scenario/scenario.hpp"
+#include "scene/operator_zone.hpp"
 #include "scene/scene.hpp"
 
 namespace j232::flight {
@@ -100,9 +101,10 @@ struct FlightResult {
   static constexpr int kMaxStrikes = 50;  // beyond: cut off (a nail caught between blade and deck)
   // Passes: an edge's contacts with the nail until they part (docs/model.md §5.1b). A pass
   // with more than kMaxContactsPerPass contacts cuts the nail off (counted, never silent).
+  static constexpr int kMaxContactsPerPass = 20;
   int passes = 1;
   int most_contacts_in_pass = 1;
-  static constexpr int kMaxContactsPerPass = 20;
+  std::array<std::uint16_t, kMaxContactsPerPass + 1> passes_by_contacts{};  // [k]: passes of k + 1 contacts
   Vec3 launch_velocity = Vec3::Zero();  // as the nail leaves the blade (its last contact before it touches anything else)
   int search_steps = 0;                 // contact-search steps (for the benchmark)
   int near_steps = 0, parting_steps = 0, off_arm_steps = 0;
@@ -126,6 +128,9 @@ struct FlightContext {
   // openings, skirt and plate heights; a mesh deck does not.
   const DeckOutline* deck_outline = nullptr;
   bool generated_deck = true;
+  // A zone derived from a seated operator: whether a mark is in it is judged along the line
+  // from the blade that threw the nail (null: the board's labels say).
+  const scene::OperatorZone* zone = nullptr;
   double skirt_bottom = 0, deck_top = 0;
   // When set, the nail's centre is appended at the start and after every move (tracing
   // chosen nails again for pictures; the per-nail path of a run leaves it null).

@@ -110,6 +110,9 @@ Body advance(const Body& b, double dt, const DragOverStep& drag, const Vec3& acc
     const double half = 0.5 * rate * dt, ch = std::cos(half), sh = std::sin(half);
     mid_axis = rotate(b.axis, k, ch, sh);
     out.axis = rotate(b.axis, k, ch * ch - sh * sh, 2 * sh * ch);
+    // The spin decays over the step (the axis turned at the step's starting rate: the
+    // decay is a fraction of a per cent per chord).
+    if (drag.on() && drag.spin_damping() > 0) out.spin = b.spin / (1 + drag.spin_damping() * rate * dt);
   }
   if (!drag.on()) {
     out.position = b.position + b.velocity * dt + 0.5 * kGravity * dt * dt;

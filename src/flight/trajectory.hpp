@@ -28,6 +28,10 @@ struct Drag {
   double k_normal = 0;      // rho C_n A_n / (2 m), 1/m
   Vec3 air = Vec3::Zero();  // air velocity in the mower's frame (still air seen from a moving mower)
   bool spin_average = true;  // false: always the drag as the axis stands ([air] spin_average: the resolved reference)
+  // The tumbling slowed by the cross-flow drag on the turning shank: d|w|/dt = -k_spin |w|^2
+  // (strip theory: the torque of rho C_n D (w s)^2 / 2 per length about the centre over
+  // the inertia m L^2 / 12 gives k_spin = 3 rho C_n D L^2 / (16 m); docs/model.md §5.3).
+  double k_spin = 0;  // 1/rad
 };
 
 inline const Vec3 kGravity(0.0, 0.0, -units::standard_gravity);
@@ -66,6 +70,7 @@ class DragOverStep {
   // Drag that turns with the axis, of a spinning nail: its steps must follow the turn.
   bool follows_axis() const { return drag_->on && !averaged_ && rate_ > 0; }
   double spin_rate() const { return rate_; }
+  double spin_damping() const { return drag_->k_spin; }
   // Gravity plus drag at this velocity with the axis there.
   Vec3 acceleration(const Vec3& velocity, const Vec3& axis) const;
 

@@ -20,14 +20,20 @@ using json = nlohmann::ordered_json;
 Chart histogram_chart(const assess::Histogram& h, const std::string& title, const std::string& x_title, const char* unit,
                       const std::string& of_what, const std::string& colour) {
   Chart chart(title, x_title, fmt::format("share of {} per {:g} {} bin (%)", of_what, h.bin_width, unit));
-  const double cut = std::max(h.quantile(0.999) + 2 * h.bin_width, 5 * h.bin_width);
-  std::vector<double> edges{0}, heights;
-  for (std::size_t i = 0; i < h.counts.size() && edges.back() < cut; ++i) {
+  // From the first bin (or, for a histogram below zero, the lowest recorded value's) to the
+  // 99.9th percentile.
+  const double cut = std::max(h.quantile(0.999) + 2 * h.bin_width, h.origin + 5 * h.bin_width);
+  std::size_t first = 0;
+  if (h.origin < 0)
+    while (first + 1 < h.counts.size() && h.counts[first] == 0 && h.origin + static_cast<double>(first + 1) * h.bin_width < 0) ++first;
+  if (first > 0) first = first > 2 ? first - 2 : 0;
+  std::vector<double> edges{h.origin + static_cast<double>(first) * h.bin_width}, heights;
+  for (std::size_t i = first; i < h.counts.size() && edges.back() < cut; ++i) {
     heights.push_back(h.total ? 100.0 * static_cast<double>(h.counts[i]) / static_cast<double>(h.total) : 0.0);
-    edges.push_back(static_cast<double>(i + 1) * h.bin_width);
+    edges.push_back(h.origin + static_cast<double>(i + 1) * h.bin_width);
   }
   chart.bars(edges, heights, colour, "");
-  chart.x_range(0, edges.back());
+  chart.x_range(edges.front(), edges.back());
   chart.caption(
       fmt::format("{} values; mean {:.3g}, median {:.3g}, 95th percentile {:.3g}.", h.total, h.mean(), h.quantile(0.5), h.quantile(0.95)));
   return chart;
@@ -99,8 +105,8 @@ std::string criteria_section(const assess::Summary& sum, const json& r) {
 
 std::string histogram_section(const scenario::Scenario& s, const assess::Assessment& a, const json& r) {
   std::string o = "<section id=\"energies\">\n<h2>3. Speeds and energies</h2>\n";
-  Chart speed =
-      histogram_chart(a.exit_speed, "Nail speed leaving the blade", "speed after impact (m/s)", "m/s", "struck nails", palette(0));
+  Chart speed = histogram_chart(a.exit_speed, "Nail speed leaving the blade", "speed after its last blade contact before anything else (m/s)",
+                                "m/s", "struck nails", palette(0));
   const double tip = s.tip_speed();
   speed.vline(tip, "#000", fmt::format("blade tip speed {:.1f} m/s", tip));
   o += "<figure>" + speed.svg() +
@@ -111,6 +117,19 @@ std::string histogram_section(const scenario::Scenario& s, const assess::Assessm
            number("exit_speed_over_tip_speed.mean", r["exit_speed_over_tip_speed"]["mean"], "{:.2f}"),
            number("exit_speed_over_tip_speed.q05", r["exit_speed_over_tip_speed"]["q05"], "{:.2f}"),
            number("exit_speed_over_tip_speed.q95", r["exit_speed_over_tip_speed"]["q95"], "{:.2f}"));
+  // The launch: which way the blade's contacts send the nail, above or below its plane.
+  Chart launch = histogram_chart(a.launch_elevation, "Launch elevation", "elevation of the nail's velocity as it leaves the blade (deg)",
+                                 "deg", "struck nails", palette(3));
+  launch.vline(0, "#000", "blade plane");
+  const auto& le = r["launch_elevation_deg"];
+  const auto& cp = r["contacts_per_pass"];
+  o += "<figure>" + launch.svg() +
+       fmt::format("<figcaption>Launched at {}° on average (5–95 %: {}° to {}°), from the geometry of the contacts: the edge, its "
+                   "bevel, the plate's faces (a spinning nail's end swings into them) and the sail, with friction. Blade contacts "
+                   "per pass: {} on average, at most {}.</figcaption></figure>\n",
+                   number("launch_elevation_deg.mean", le["mean"], "{:.1f}"), number("launch_elevation_deg.q05", le["q05"], "{:.1f}"),
+                   number("launch_elevation_deg.q95", le["q95"], "{:.1f}"), number("contacts_per_pass.mean", cp["mean"], "{:.2f}"),
+                   number("contacts_per_pass.most", cp["most"], "{}"));
   // Kinetic energy along the board's normal at the first arrival; the thresholds
   // depend on how the nail presents itself, so both extremes are drawn.
   Chart energy = histogram_chart(a.board_energy, "Kinetic energy at the board (normal to it)", "normal kinetic energy at the board (J)",

@@ -37,6 +37,12 @@ json histogram_json(const assess::Histogram& h, const char* unit) {
   return {{"unit", unit},           {"count", h.total},        {"mean", h.mean()},         {"q05", h.quantile(0.05)},
           {"q50", h.quantile(0.5)}, {"q95", h.quantile(0.95)}, {"bin_width", h.bin_width}, {"counts", h.counts}};
 }
+// The largest value a histogram of whole counts (bin k holds k) recorded.
+int most_in(const assess::Histogram& h) {
+  for (std::size_t i = h.counts.size(); i-- > 0;)
+    if (h.counts[i]) return static_cast<int>(i);
+  return 0;
+}
 // How the nails left the deck, for the counted marks (the table "How nails leave").
 json exits_json(const assess::Assessment& a) {
   const auto& e = a.exits;
@@ -169,6 +175,15 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
         {"q95", a.exit_speed.quantile(0.95) / tip_speed},
         {"published_range", {0.8, 1.4}},
         {"published_source", "Chazen and Chamberlain, New England Journal of Medicine, 1962, as widely reported"}}},
+      {"launch_elevation_deg", histogram_json(a.launch_elevation, "deg")},
+      {"contacts_per_pass",
+       {{"mean", a.contacts_per_pass.mean()},
+        {"most", most_in(a.contacts_per_pass)},
+        {"passes", a.contacts_per_pass.total},
+        {"passes_by_contacts_from_1",
+         std::vector<std::uint64_t>(a.contacts_per_pass.counts.begin() + 1,
+                                    a.contacts_per_pass.counts.begin() + std::max(most_in(a.contacts_per_pass), 1) + 1)},
+        {"note", "a pass: the contacts of one blade edge with the nail until they part; a pass of more than 20 cuts the nail off"}}},
       {"mark_energy", histogram_json(a.mark_energy, "J")},
       {"contact_radius", histogram_json(a.contact_radius, "m")},
       {"strikes_per_struck_nail", strikes_json(a.strikes)},

@@ -209,6 +209,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
       {"ground",
        {{"restitution", s.ground.restitution},
         {"angle_exponent", s.ground.angle_exponent},
+        {"max_restitution", s.ground.max_restitution},
         {"friction", s.ground.friction},
         {"roughness_deg", s.ground.roughness / units::degree}}},
       {"target", target_json(s, roles.target)},
@@ -282,13 +283,15 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   a.push_back({s.ground.angle_exponent == 0
                    ? fmt::format("Ground: restitution {:g} at any angle, friction {:g}, roughness {:.0f} deg", s.ground.restitution,
                                  s.ground.friction, s.ground.roughness / units::degree)
-                   : fmt::format("Ground: normal restitution {:g} x (impact angle / 90 deg)^-{:g} (at most 1), friction {:g}, "
+                   : fmt::format("Ground: normal restitution {:g} x (impact angle / 90 deg)^-{:g} (at most {:g}), friction {:g}, "
                                  "roughness {:.0f} deg",
-                                 s.ground.restitution, s.ground.angle_exponent, s.ground.friction, s.ground.roughness / units::degree),
+                                 s.ground.restitution, s.ground.angle_exponent, s.ground.max_restitution, s.ground.friction,
+                                 s.ground.roughness / units::degree),
                fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)});
   a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3; {}", s.air.cd_normal, s.air.cd_axial, s.air.density,
                                         s.air.spin_average ? "averaged over the axis's turn for a fast-spinning nail"
-                                                           : "as the axis stands, in steps of at most 0.3 rad of its turn (reference)")
+                                                           : "as the axis stands, in steps of at most 0.3 rad of its turn (reference)") +
+                                "; the tumbling slowed by the cross-flow drag on the turning shank (strip theory, estimate)"
                           : std::string("Air drag off (conservative: faster nails)"),
                fmt::format("{} (handbook)", params)});
   a.push_back({s.criteria.denominator == scenario::CriteriaSpec::Denominator::NailsFed

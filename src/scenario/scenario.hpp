@@ -130,16 +130,18 @@ struct GroundSpec {  // turf
   // Normal restitution depends on the impact angle (docs/model.md §5.3): rockfall field
   // data (Wyllie 2014) fit e_n = 19.5 theta^-1.03 (theta in degrees between the path and
   // the surface), so shallow impacts keep more of their normal speed. j232 keeps the
-  // exponent and scales the law to `restitution` at a perpendicular impact, capped at 1.
-  double restitution = 0.15;     // e_n at a 90 deg (perpendicular) impact
-  double angle_exponent = 1.03;  // 0: one constant e_n at every angle
+  // exponent and scales the law to `restitution` at a perpendicular impact, capped at
+  // `max_restitution` (the law passes 1 at grazing angles; a bounce off turf loses energy).
+  double restitution = 0.15;       // e_n at a 90 deg (perpendicular) impact
+  double angle_exponent = 1.03;    // 0: one constant e_n at every angle
+  double max_restitution = 0.8;    // cap at shallow impacts (estimate)
   double friction = 0.5;
   double roughness = 0.1745;  // std. dev. of the local surface normal's tilt, rad (10 deg)
   // e_n for an impact whose path makes `angle` (rad, 0-pi/2) with the surface.
   double restitution_at(double angle) const {
     if (angle_exponent == 0.0) return restitution;
     const double ratio = std::max(angle, 1e-3) / (0.5 * std::numbers::pi);
-    return std::min(1.0, restitution * std::pow(ratio, -angle_exponent));
+    return std::min(max_restitution, restitution * std::pow(ratio, -angle_exponent));
   }
 };
 

@@ -356,6 +356,9 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
 void read_ground(const TableReader& g, GroundSpec& ground) {
   ground.restitution = g.quantity_or("restitution", Kind::Dimensionless, ground.restitution, Range::UnitInterval);
   ground.angle_exponent = g.quantity_or("angle_exponent", Kind::Dimensionless, ground.angle_exponent, Range::between(0, 3));
+  ground.max_restitution = g.quantity_or("max_restitution", Kind::Dimensionless, ground.max_restitution, Range::between(0, 0.99));
+  if (ground.max_restitution < ground.restitution)
+    throw g.error("max_restitution", fmt::format("expected at least the perpendicular restitution ({:g})", ground.restitution));
   ground.friction = g.quantity_or("friction", Kind::Dimensionless, ground.friction, Range::between(0, 2));
   ground.roughness = g.quantity_or("roughness", Kind::Angle, ground.roughness, Range::between(0, 45 * units::degree));
   g.refuse_unknown_keys();

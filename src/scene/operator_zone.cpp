@@ -21,12 +21,14 @@ OperatorZone::OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_
   }
 }
 
-bool OperatorZone::contains(const Vec3& p) const {
+bool OperatorZone::contains(const Vec3& p) const { return contains(p, blade_centre_); }
+
+bool OperatorZone::contains(const Vec3& p, const Vec3& eye) const {
   if (spec_.kind == scenario::OperatorZoneSpec::Kind::Sector)
     return within_arc(std::atan2(p.y(), p.x()), spec_.azimuth_from, spec_.azimuth_to) && p.z() >= spec_.bottom && p.z() <= spec_.top;
   // A nail crossing the board at p on a straight line from the blade: does that line,
   // continued beyond the board, enter the envelope?
-  const Vec3 d = (p - blade_centre_).normalized();
+  const Vec3 d = (p - eye).normalized();
   for (const auto& s : spheres_) {
     const Vec3 m = p - s.centre;
     const double b = m.dot(d);

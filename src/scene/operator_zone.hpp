@@ -14,7 +14,9 @@ namespace j232::scene {
 class OperatorZone {
  public:
   OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_height);
-  bool contains(const Vec3& board_point) const;
+  bool contains(const Vec3& board_point) const;  // seen from the blade's centre at the origin
+  // Seen from `eye` (a spindle's blade centre): the line from it through the board point.
+  bool contains(const Vec3& board_point, const Vec3& eye) const;
 
   struct Sphere {
     Vec3 centre;

@@ -22,7 +22,7 @@ skirt=$src/scenarios/highway-pivoted-raised-skirt.toml
 sed 's/^base_draws = 32/base_draws = 4/; s/^replicates = 100/replicates = 20/' "$skirt" >"$work/uq-small.toml"
 
 "$exe" run "$skirt" --replicates 240 --trajectories 5 --out "$work/run-plain" >/dev/null || [ $? -eq 1 ]
-"$exe" sweep --base "$skirt" --x "lift_angle=0 deg,5 deg,10 deg" --replicates 40 --out "$work/sweep-plain" >/dev/null
+"$exe" sweep --base "$skirt" --x "bevel_angle=20 deg,30 deg,45 deg" --replicates 40 --out "$work/sweep-plain" >/dev/null
 "$exe" uq "$work/uq-small.toml" --out "$work/uq-plain" >/dev/null
 for n in 1 2 3; do
   code=0
@@ -35,7 +35,7 @@ for n in 1 2 3; do
   [ "$(find "$work" -maxdepth 1 -name 'run-*' -type d | wc -l)" -ge 1 ] || fail "no output"
 done
 for n in 2 3; do
-  mpi "$n" "$exe" sweep --base "$skirt" --x "lift_angle=0 deg,5 deg,10 deg" --replicates 40 --out "$work/sweep-$n" >/dev/null 2>&1 ||
+  mpi "$n" "$exe" sweep --base "$skirt" --x "bevel_angle=20 deg,30 deg,45 deg" --replicates 40 --out "$work/sweep-$n" >/dev/null 2>&1 ||
     fail "sweep on $n ranks failed"
   for f in "$work"/sweep-plain/*.csv; do cmp "$f" "$work/sweep-$n/$(basename "$f")" || fail "sweep CSV on $n ranks differs"; done
 done
