@@ -68,7 +68,8 @@ struct ShareDistribution {
 struct NailHistograms {
   Histogram exit_speed{0.5, 400};            // m/s as the nail leaves the blade, 0.5 m/s bins to 200 m/s
   Histogram launch_elevation{1, 180, -90};   // deg, its elevation then, 1 deg bins from -90 to 90
-  Histogram contacts_per_pass{1, 22};        // blade contacts in each pass: bin k holds k contacts
+  Histogram contacts_per_pass{1, 33};        // blade contacts in each pass: bin k holds k contacts (32: 32 or more)
+  Histogram most_contacts_in_pass{1, 402};   // per struck nail, its pass of most contacts
   Histogram mark_energy{0.05, 600};          // J, 0.05 J bins to 30 J: marks only
   Histogram board_energy{0.05, 600};         // J: every first arrival at the board, marked or not
   Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
@@ -80,7 +81,8 @@ struct NailHistograms {
   // one list, so none can be left out of one of them.
   template <class Self, class Visit>
   static void each_histogram(Self& self, Visit&& visit) {
-    for (auto* h : {&self.exit_speed, &self.launch_elevation, &self.contacts_per_pass, &self.mark_energy, &self.board_energy,
+    for (auto* h : {&self.exit_speed, &self.launch_elevation, &self.contacts_per_pass, &self.most_contacts_in_pass, &self.mark_energy,
+                    &self.board_energy,
                     &self.board_energy_per_width, &self.contact_radius, &self.strikes})
       visit(*h);
   }

@@ -117,7 +117,7 @@ struct NailFlight {
   void restrike(const strike::Contact& k);
   void touched_scene() { on_blade = false; }
   void close_pass() {
-    ++r.passes_by_contacts[static_cast<std::size_t>(std::min(pass_contacts, FlightResult::kMaxContactsPerPass + 1) - 1)];
+    ++r.passes_by_contacts[std::min(static_cast<std::size_t>(pass_contacts), r.passes_by_contacts.size()) - 1];
   }
   void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
   bool respond(const scene::Hit& hit);

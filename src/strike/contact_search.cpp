@@ -198,7 +198,11 @@ class EdgeSearch {
     const Vec3 on_core = p.a3 + p.approach.s * (p.b3 - p.a3);
     const Vec3 point = at_tip ? on_core : Vec3(on_core - rad_ * normal);
     out.v_rel = m_.velocity(t) + m_.spin.cross(point - p.centre) - sp_.velocity_at(point);
-    out.approaching = out.v_rel.dot(normal) < 0;
+    // A touch is the capsule's surface reaching the section (or the core reaching it across
+    // the tip radius, the arm's end face). A core already inside the plate came in across
+    // the spindle's axis, where the arm goes on into the hub or the other arm and no face
+    // is modelled: the hub's region is left transparent rather than given a made-up face.
+    out.approaching = out.v_rel.dot(normal) < 0 && (separable || at_tip);
     Contact& k = out.contact;
     k.edge = e_;
     k.time = t;
