@@ -80,6 +80,7 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
       estimated("bevel_angle", "20 deg", "45 deg", "estimate: mower blades are ground to about 30 deg; no figure for industrial cutters"),
       estimated("edge_friction", "0.2", "0.6", "handbook: steel on steel, kinetic 0.42-0.57; lower for an oily, worn edge"),
       estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"),
+      estimated("ground.max_restitution", "0.5", "0.95", "estimate: the angle law passes 1 at grazing impacts; a bounce off turf loses energy"),
       estimated("housing.friction", "0.3", "0.6", "handbook: steel on steel, kinetic 0.42-0.57"),
       estimated("feed.tilt_max", "0 deg", "10 deg", "estimate: SAE J232's feed tube geometry is not available"),
   };

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # report_in_browser.sh J232 SCENARIO WORKDIR ARTEFACT_STEM [CHARTS [RUN OPTIONS...]]: runs
 # `j232 run` on the scenario (with the extra options) and checks its report.html in headless
-# Chromium against its result.json (check_page.py), expecting CHARTS charts (5 unless told),
+# Chromium against its result.json (check_page.py), expecting CHARTS charts (6 unless told),
 # leaving a screenshot and PDF at ARTEFACT_STEM.png/.pdf.
 set -euo pipefail
-exe=$1 scenario=$2 work=$3 stem=$4 charts=${5:-5}
+exe=$1 scenario=$2 work=$3 stem=$4 charts=${5:-6}
 shift $(( $# < 5 ? $# : 5 ))
 rm -rf "$work"
 code=0
