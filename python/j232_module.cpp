@@ -126,7 +126,7 @@ PyScenario make_scenario(toml::table document, std::string file, const py::dict&
   return from_python([&] {
     PyScenario p{std::move(document), std::move(file), settings, {}};
     // As a sweep point is made: file keys into the document, the document read with every
-    // check, then the named parameters (blade_speed, lift_angle, ...) onto the result.
+    // check, then the named parameters (blade_speed, bevel_angle, ...) onto the result.
     const auto parsed = read_settings(settings, p.file);
     toml::table doc = p.document;
     for (const auto& s : parsed) study::apply_to_document(s, doc, p.file);
@@ -156,6 +156,7 @@ py::array_t<T> to_array(const std::vector<T>& v) {
 py::dict histogram_dict(const assess::Histogram& h) {
   py::dict d;
   d["bin_width"] = h.bin_width;
+  d["origin"] = h.origin;  // the first bin's lower edge
   d["counts"] = to_array(h.counts);
   d["total"] = h.total;
   d["mean"] = h.mean();
@@ -228,6 +229,8 @@ py::dict assess_scenario(const PyScenario& p, std::optional<long long> replicate
   histograms["board_energy_per_width_j_m"] = histogram_dict(a.board_energy_per_width);
   histograms["contact_radius_m"] = histogram_dict(a.contact_radius);
   histograms["strikes"] = histogram_dict(a.strikes);
+  histograms["launch_elevation_deg"] = histogram_dict(a.launch_elevation);
+  histograms["contacts_per_pass"] = histogram_dict(a.contacts_per_pass);
   result["histograms"] = histograms;
   if (marks) result["marks_table"] = columns.dict();
   return result;
@@ -280,7 +283,7 @@ PYBIND11_MODULE(_j232, m) {
                          "on top (as a sweep point is made).")
       .def(py::init(&load_scenario), py::arg("source"), py::arg("settings") = py::dict(), py::arg("base_dir") = ".",
            "Scenario(source, settings={}, base_dir='.'): source is a path or a dict of the TOML file's tables; settings "
-           "maps dotted keys ('housing.skirt_bottom') or named parameters ('blade_speed', 'lift_angle', ...) to values "
+           "maps dotted keys ('housing.skirt_bottom') or named parameters ('blade_speed', 'bevel_angle', ...) to values "
            "('2500 rpm', 0.5); base_dir anchors a dict's relative mesh paths. Raises j232.InputError naming the key, "
            "value and what was expected.")
       .def(

@@ -224,7 +224,7 @@ struct RunSpec {
 
 // An uncertainty study of the scenario (`j232 uq`, docs/model.md §6b): inputs varied
 // uniformly between two values, each with the basis of its range. `parameter` is a sweep
-// parameter (`restitution`, `lift_angle`, ...) or any dotted key of the file; `low` and
+// parameter (`restitution`, `bevel_angle`, ...) or any dotted key of the file; `low` and
 // `high` are written as that key takes them ("0.7", "0 deg"). No inputs: j232 uq uses its
 // default set of the estimated inputs.
 struct UncertainInput {
