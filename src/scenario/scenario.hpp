@@ -218,7 +218,7 @@ struct RunSpec {
   int max_bounces = 100;
   double rest_speed = 0.3;  // m/s: slower after a bounce is at rest
   // How blade contacts are searched: conservative advancement, or the fixed-step reference
-  // it is validated against (about 100 times slower; docs/validation.md).
+  // it is validated against (about 300 times slower; docs/validation.md).
   bool reference_contact_search = false;
 };
 

@@ -28,8 +28,9 @@ double time_to_close(double gap, double v0, double a) {
 }
 
 // An angle at least asin(x) (the half-angle a reach x r subtends at radius r), cheaply:
-// x / sqrt(1 - x^2) = tan(asin x) >= asin x; a right angle for a reach near the radius.
-double half_angle(double x) { return x < 0.7 ? x / std::sqrt(1 - x * x) : 0.5 * units::pi; }
+// x / sqrt(1 - x^2) = tan(asin x) >= asin x; a right angle for a reach near the radius;
+// every azimuth (pi) for a reach beyond it (a nail across the axis).
+double half_angle(double x) { return x < 0.7 ? x / std::sqrt(1 - x * x) : x < 1 ? 0.5 * units::pi : units::pi; }
 
 // How far a nail is from touching a turning blade at one instant, in lower bounds on the
 // time it needs: to reach the slab of its section (height), the disc of an edge's reach
@@ -49,7 +50,7 @@ struct Outlook {
     accel_h = std::sqrt(m.a.x() * m.a.x() + m.a.y() * m.a.y());
     const double gap_z = std::max(z - rho - sec.top(), sec.bottom() - z - rho);
     z_time = gap_z > 0 ? time_to_close(gap_z, std::abs(v.z()), m.a.norm()) : 0.0;
-    cap = vh > 0 ? 0.25 * r / (vh + 1e-12) : HUGE_VAL;
+    cap = time_to_close(0.25 * r, vh, accel_h);
     const double r_low = 0.75 * r;
     alpha_f = half_angle((rho + 1e-4) / r_low);
     alpha_b = half_angle((rho - sec.back() + 1e-4) / r_low);
@@ -65,7 +66,10 @@ struct Outlook {
     double ahead = sp.sense * (azimuth - turned - sp.edges[e].azimuth);
     ahead -= units::two_pi * std::nearbyint(ahead / units::two_pi);
     if (ahead > alpha_f || ahead < -alpha_b) {
-      const double gap = ahead > alpha_f ? ahead - alpha_f : ahead + units::two_pi - alpha_f;
+      // The arm may close on the window from its front, or the nail (turning about the
+      // spindle faster than the arm, near the axis) on it from behind: the nearer way.
+      const double gap = ahead > alpha_f ? std::min(ahead - alpha_f, units::two_pi - alpha_b - ahead)
+                                         : std::min(ahead + units::two_pi - alpha_f, -alpha_b - ahead);
       f = std::max(f, std::min(gap / rate, cap));
     }
     return f;
@@ -80,6 +84,7 @@ struct Probe {
   Vec3 radial, forward, centre, axis, a3, b3;  // a3-b3: the part of the core over the arm
   bool off_arm = false;                       // no part of it is
   bool a_at_tip = false, b_at_tip = false;    // that end cut at the tip radius
+  Vec2 whole_a = Vec2::Zero(), whole_b = Vec2::Zero();  // the whole core in the section's plane
 };
 
 class EdgeSearch {
@@ -132,13 +137,18 @@ class EdgeSearch {
         // Each part of the section (plate, sail) has its own separating line: the step is
         // the least any of them allows.
         double step_time = HUGE_VAL;
-        for (int k = 0; k < sec.parts(); ++k) {
-          const SectionApproach& part = p.parts[static_cast<std::size_t>(k)];
+        const auto bound_by = [&](const SectionApproach& part) {
           const double toward = -(part.normal.x() * u_rate + part.normal.y() * w_rate);
           const double c1 = std::max(toward, 0.0) + (omega + spin_rate) * hs_ + 1e-9;
           const double gap = std::max(part.distance - rad_, kMinStep);
           step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2 * gap)));
-        }
+        };
+        for (int k = 0; k < sec.parts(); ++k) bound_by(p.parts[static_cast<std::size_t>(k)]);
+        // A core reaching beyond the tip: its outer part may come over the arm within the
+        // step, so the whole core's distance (to the section continued past the tip, a
+        // lower bound) bounds it too.
+        if (p.a_at_tip || p.b_at_tip)
+          for (int k = 0; k < sec.parts(); ++k) bound_by(segment_to_polygon(p.whole_a, p.whole_b, sec.part(k)));
         ++stats.near_steps;
         t_safe = t, known_apart = true;
         t += step_time;
@@ -165,7 +175,10 @@ class EdgeSearch {
       }
       // Touching (or overlapping where the search began): a contact if the points approach.
       const Touch touch = touch_at(t, p);
-      if (touch.approaching) return touch.contact;
+      // (At the search's start, where the last impulse may have left the points barely
+      // parting or at rest, only a touch that really approaches counts: no zero-time repeat.)
+      const bool real = t > m_.t0 || -touch.v_rel.dot(touch.contact.normal) > 1e-6;
+      if (touch.approaching && real) return touch.contact;
       const Vec3& v_rel = touch.v_rel;
       // Parting: step on (a step that goes deeper is bisected back), or, overlapping where
       // the search began, by the overlap.
@@ -190,12 +203,13 @@ class EdgeSearch {
     const BladeSection& sec = sp_.section;
     Touch out;
     // The core reaching into the section across the tip radius meets the arm's end face.
+    // (Overlapping with an end cut at the tip radius: the core came in across the tip.)
     const bool separable = p.approach.distance > 0;
-    const bool at_tip = !separable && ((p.approach.s == 0 && p.a_at_tip) || (p.approach.s == 1 && p.b_at_tip));
+    const bool at_tip = !separable && (p.a_at_tip || p.b_at_tip);
     const Vec3 normal = separable ? Vec3(p.approach.normal.x() * p.forward + p.approach.normal.y() * Vec3::UnitZ())
                         : at_tip  ? Vec3(p.radial)
                                   : Vec3(p.forward);  // core inside the plate: pushed along the motion
-    const Vec3 on_core = p.a3 + p.approach.s * (p.b3 - p.a3);
+    const Vec3 on_core = at_tip ? (p.a_at_tip ? p.a3 : p.b3) : Vec3(p.a3 + p.approach.s * (p.b3 - p.a3));
     const Vec3 point = at_tip ? on_core : Vec3(on_core - rad_ * normal);
     out.v_rel = m_.velocity(t) + m_.spin.cross(point - p.centre) - sp_.velocity_at(point);
     // A touch is the capsule's surface reaching the section (or the core reaching it across
@@ -228,6 +242,8 @@ class EdgeSearch {
     p.a3 = p.centre - hs_ * p.axis;
     p.b3 = p.centre + hs_ * p.axis;
     const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
+    p.whole_a = Vec2((p.a3 - C).dot(p.forward), p.a3.z() - C.z());
+    p.whole_b = Vec2((p.b3 - C).dot(p.forward), p.b3.z() - C.z());
     // Only the part of the core over the arm (from the axis out to its tip) can touch it.
     const double xa = (p.a3 - C).dot(p.radial), xb = (p.b3 - C).dot(p.radial), reach = sp_.edges[e_].reach;
     if (std::max(xa, xb) < 0 || std::min(xa, xb) > reach) {

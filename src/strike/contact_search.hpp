@@ -63,7 +63,7 @@ inline constexpr int kMaxSearchSteps = 4000;        // per edge and search
 
 // How the search steps: conservative advancement (production), or fixed steps of at most
 // 10 um of relative motion testing the clearance at each (the reference it is validated
-// against: docs/validation.md; `[run] contact_search = "fixed_steps"`, about 100 times slower).
+// against: docs/validation.md; `[run] contact_search = "fixed_steps"`, about 300 times slower).
 enum class SearchMethod { Advancement, FixedSteps };
 
 // The first approaching touch of any edge of `spindle` on the capsule in [motion.t0, t1],

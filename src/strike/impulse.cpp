@@ -13,19 +13,27 @@ Eigen::Matrix3d skew(const Vec3& r) {
 
 double energy_change(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& P) { return P.dot(v_rel + 0.5 * (K * P)); }
 
-// The impulse for restitution e: sticking if friction can hold it, else sliding.
+// The impulse for restitution e (Poisson's: the restitution phase's normal impulse is e
+// times the compression's): sticking if friction can hold it, else sliding.
 ImpulseSolution impulse_for(const Eigen::Matrix3d& K, const Eigen::LDLT<Eigen::Matrix3d>& Kf, const Vec3& v_rel, const Vec3& n, double e,
                             double mu) {
   ImpulseSolution out;
   out.e = e;
   const double vn = v_rel.dot(n);
-  const Vec3 stick = Kf.solve(Vec3(-e * vn * n - v_rel));
+  // Sticking: compression brings the relative velocity to zero (P_c = -K^-1 v_rel); the
+  // restitution impulse then acts only along the normal's relative velocity, K P_r || n,
+  // with n . P_r = e n . P_c.
+  const Vec3 compression = Kf.solve(Vec3(-v_rel));
+  const Vec3 along_normal = Kf.solve(n);
+  const Vec3 stick = compression + (e * compression.dot(n) / n.dot(along_normal)) * along_normal;
   const double pn = stick.dot(n);
   const Vec3 pt = stick - pn * n;
   if (pn >= 0 && pt.norm() <= mu * pn) {
     out.impulse = stick;
     out.sticking = true;
   } else {
+    // Sliding against the initial slip: P = P_n (n - mu t), compression to zero normal
+    // relative velocity and restitution e times it (Poisson's and Newton's rules agree here).
     Vec3 slip = v_rel - vn * n;
     if (slip.norm() > 1e-12)
       slip.normalize();
@@ -51,7 +59,13 @@ ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const
   double lo = 0, hi = e0;
   ImpulseSolution best = impulse_for(K, Kf, v_rel, n, 0.0, mu);
   if (best.energy_change > scale) {
-    best = impulse_for(K, Kf, v_rel, n, 0.0, HUGE_VAL);  // sticking, perfectly inelastic
+    // Perfectly inelastic sticking (the relative velocity brought to zero) never creates
+    // energy; if it would pull rather than push, a frictionless plastic impulse.
+    best = ImpulseSolution{};
+    best.sticking = true;
+    const Vec3 plastic = Kf.solve(Vec3(-v_rel));
+    best.impulse = plastic.dot(n) > 0 ? plastic : Vec3((-v_rel.dot(n) / n.dot(K * n)) * n);
+    best.energy_change = energy_change(K, v_rel, best.impulse);
     return best;
   }
   for (int it = 0; it < 40; ++it) {

@@ -6,13 +6,14 @@
 //     K_nail  = I / m - [r]x I_n^-1 [r]x      (r: contact point from the nail's centre)
 //     K_blade = B C B^T                       (C: the blade's planar compliance there,
 //                                              B = [e_t e_r]: it yields only in its plane)
-// The impulse is Poisson's restitution with Coulomb friction: first the sticking impulse,
-// which ends the contact with relative velocity -e v_n n; if its tangential part needs more
-// than mu times its normal part, the nail slides: P = P_n (n - mu t) with t the direction
-// of the initial slip and P_n set by the same normal restitution. Poisson's rule with
-// friction can create energy when the slip would reverse; the energy change of the two
-// bodies, P . (v_rel + K P / 2), is checked, and e lowered until it is not positive (at
-// e = 0 with sticking it is the perfectly inelastic impulse, which never creates energy).
+// The impulse is Poisson's restitution with Coulomb friction: first the sticking impulse
+// (compression P_c = -K^-1 v_rel to zero relative velocity, then a restitution impulse
+// along K^-1 n whose normal part is e times the compression's); if its tangential part
+// needs more than mu times its normal part, the nail slides: P = P_n (n - mu t) with t the
+// direction of the initial slip and P_n (1 + e) times the compression's. With friction the
+// sliding impulse can create energy when the slip would reverse; the energy change of the
+// two bodies, P . (v_rel + K P / 2), is checked, and e lowered until it is not positive (the
+// perfectly inelastic sticking impulse never creates energy).
 // Frictionless, with n along the blade's motion and the contact on the line of the nail's
 // centre, this is report 445-1's central impact (blade/impact.hpp).
 #include <Eigen/Dense>
