@@ -40,7 +40,8 @@ double half_angle(double x) { return x < 0.7 ? x / std::sqrt(1 - x * x) : x < 1 
 // Angular steps are kept short enough that the nail stays beyond 3/4 of its radius.
 struct Outlook {
   const Spindle& sp;
-  double z_time = 0, r = 0, vh = 0, accel_h = 0, azimuth = 0, alpha_f = 0, alpha_b = 0, cap = 0, rate = 0, rho = 0, turned = 0;
+  double z_time = 0, r = 0, vh = 0, accel_h = 0, azimuth = 0, alpha_f = 0, alpha_b = 0, cap = 0, rate = 0, overtake = 0, rho = 0,
+         turned = 0;
 
   Outlook(const Spindle& spindle, double phase, const Motion& m, double reach_of_nail, const Vec3& c, const Vec3& v, double t)
       : sp(spindle), rho(reach_of_nail) {
@@ -54,7 +55,9 @@ struct Outlook {
     const double r_low = 0.75 * r;
     alpha_f = half_angle((rho + 1e-4) / r_low);
     alpha_b = half_angle((rho - sec.back() + 1e-4) / r_low);
-    rate = sp.omega() + (vh + accel_h * std::min(cap, 1.0)) / std::max(r_low, 1e-9);
+    const double nail_rate = (vh + accel_h * std::min(cap, 1.0)) / std::max(r_low, 1e-9);
+    rate = sp.omega() + nail_rate;
+    overtake = nail_rate - sp.omega();
     azimuth = std::atan2(qy, qx);
     turned = phase + sp.sense * sp.omega() * t;
   }
@@ -66,11 +69,13 @@ struct Outlook {
     double ahead = sp.sense * (azimuth - turned - sp.edges[e].azimuth);
     ahead -= units::two_pi * std::nearbyint(ahead / units::two_pi);
     if (ahead > alpha_f || ahead < -alpha_b) {
-      // The arm may close on the window from its front, or the nail (turning about the
-      // spindle faster than the arm, near the axis) on it from behind: the nearer way.
-      const double gap = ahead > alpha_f ? std::min(ahead - alpha_f, units::two_pi - alpha_b - ahead)
-                                         : std::min(ahead + units::two_pi - alpha_f, -alpha_b - ahead);
-      f = std::max(f, std::min(gap / rate, cap));
+      // The arm closes on the window from its front at no more than `rate`; the nail can
+      // reach it from behind only by turning about the spindle faster than the arm (near
+      // the axis), at no more than `overtake`.
+      const double front = ahead > alpha_f ? ahead - alpha_f : ahead + units::two_pi - alpha_f;
+      const double behind = ahead > alpha_f ? units::two_pi - alpha_b - ahead : -alpha_b - ahead;
+      const double time = std::min(front / rate, overtake > 0 ? behind / overtake : HUGE_VAL);
+      f = std::max(f, std::min(time, cap));
     }
     return f;
   }
