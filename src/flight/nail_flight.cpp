@@ -186,7 +186,6 @@ std::optional<strike::Contact> NailFlight::blade_contact(const Body& from, const
     if (c && (!best || c->time < best->time)) best = c, best->spindle = k;
   }
   r.search_steps += stats.steps;
-  r.near_steps += stats.near_steps, r.parting_steps += stats.parting_steps, r.off_arm_steps += stats.off_arm_steps;
   if (stats.gave_up) cut_off = true;
   return best;
 }

@@ -109,7 +109,6 @@ struct FlightResult {
   std::array<std::uint16_t, 32> passes_by_contacts{};  // [k]: passes of k + 1 contacts (the last: 32 or more)
   Vec3 launch_velocity = Vec3::Zero();  // as the nail leaves the blade (its last contact before it touches anything else)
   int search_steps = 0;                 // contact-search steps (for the benchmark)
-  int near_steps = 0, parting_steps = 0, off_arm_steps = 0;
   bool non_finite = false;                // the state stopped being a finite number (a bug or absurd input)
   int queries = 0;                        // scene ray queries (for the benchmark)
   double flight_time = 0;

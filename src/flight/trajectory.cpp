@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "strike/contact_search.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::flight {
@@ -40,12 +41,7 @@ bool spin_averaged(const Drag& drag, const Vec3& velocity, double spin_rate) {
 Vec3 rotate(const Vec3& axis, const Vec3& k, double c, double s) { return axis * c + k.cross(axis) * s + k * (k.dot(axis)) * (1 - c); }
 }  // namespace
 
-Vec3 rotate_axis(const Vec3& axis, const Vec3& spin, double dt) {
-  const double rate = spin.norm();
-  if (rate * dt == 0.0) return axis;
-  const double angle = rate * dt;
-  return rotate(axis, spin / rate, std::cos(angle), std::sin(angle));
-}
+Vec3 rotate_axis(const Vec3& axis, const Vec3& spin, double dt) { return strike::turned(axis, spin, dt); }
 
 Vec3 drag_acceleration(const Drag& drag, const Vec3& velocity, const Vec3& axis) {
   const Vec3 v = velocity - drag.air;

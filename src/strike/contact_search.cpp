@@ -121,7 +121,6 @@ class EdgeSearch {
         // first, which they do no faster than this. A nail hovering at the tip radius is
         // looked at 64 times a pass (a step into the plate is bisected back).
         const double radial_rate = v.norm() + spin_rate * hs_ + omega * (rho_ - sec.back()) + 1e-9;
-        ++stats.off_arm_steps;
         t_safe = t, known_apart = true;
         t += std::max(p.distance / radial_rate, (look.alpha_f + look.alpha_b) / (64 * omega));
         continue;
@@ -154,7 +153,6 @@ class EdgeSearch {
         // lower bound) bounds it too.
         if (p.a_at_tip || p.b_at_tip)
           for (int k = 0; k < sec.parts(); ++k) bound_by(segment_to_polygon(p.whole_a, p.whole_b, sec.part(k)));
-        ++stats.near_steps;
         t_safe = t, known_apart = true;
         t += step_time;
         continue;
@@ -188,7 +186,6 @@ class EdgeSearch {
       // Parting: step on (a step that goes deeper is bisected back), or, overlapping where
       // the search began, by the overlap.
       const double bound = v_rel.norm() + (omega + spin_rate) * hs_ + 1e-9;
-      ++stats.parting_steps;
       t_safe = t, known_apart = p.distance >= -kContactTolerance;
       t += (std::max(-p.distance, 0.0) + kMinStep) / bound;
     }

@@ -53,7 +53,6 @@ struct Contact {
 
 struct SearchStats {
   int steps = 0;             // advancement steps taken
-  int near_steps = 0, parting_steps = 0, off_arm_steps = 0;  // of which near the arm, parting from a touch, off the arm
   bool gave_up = false;      // the step cap was reached: the result is not known
 };
 
