@@ -206,6 +206,42 @@ TEST_CASE("re-strikes: in a closed deck some nails come back into the blade's di
   CHECK(sum.validity.valid);
 }
 
+TEST_CASE("similarity: thrown speed follows blade speed when the feed scales with it", "[assess][similarity]") {
+  // Every speed of the strike scaled by k (the blade's, the nail's fall and drift) leaves
+  // the geometry of each contact the same: the thrown speed must scale by k and the launch
+  // elevation stay (gravity and drag barely act within a pass). At a fixed feed instead the
+  // blade meets the falling nail k times more often, nearer its tip, and throws it slower
+  // for its speed (docs/validation.md §3): the depth a nail falls between two passes,
+  // against its length, is the similarity number that report 445-1's central impact lacks.
+  auto slow = scenario::read_scenario(scenario_path("highway-pivoted.toml"));
+  slow.run.replicates = 100;
+  const double k = 3;
+  auto fast = slow, fast_same_feed = slow;
+  for (auto* s : {&fast, &fast_same_feed})
+    for (auto& sp : s->spindles) sp.blade.omega *= k;
+  fast.feed.drop_height *= k * k;
+  fast.feed.outlet_speed_max *= k;
+  fast.feed.ground_speed *= k;
+  const auto a_slow = assess::run_assessment(assess::Simulator(slow), 2);
+  const auto a_fast = assess::run_assessment(assess::Simulator(fast), 2);
+  const auto a_same = assess::run_assessment(assess::Simulator(fast_same_feed), 2);
+  const double struck_slow = static_cast<double>(a_slow.struck) / static_cast<double>(a_slow.nails);
+  const double struck_fast = static_cast<double>(a_fast.struck) / static_cast<double>(a_fast.nails);
+  INFO("struck " << struck_slow << " and " << struck_fast << "; thrown speed " << a_slow.exit_speed.mean() << ", "
+                 << a_fast.exit_speed.mean() << " and at the same feed " << a_same.exit_speed.mean() << " m/s; elevation "
+                 << a_slow.launch_elevation.mean() << ", " << a_fast.launch_elevation.mean() << " and " << a_same.launch_elevation.mean()
+                 << " deg");
+  // Gravity is not scaled: it speeds the slow nail's fall through the blade by some 10 %,
+  // so a few more of the slow nails fall past between two passes.
+  CHECK(std::abs(struck_fast - struck_slow) < 0.05);
+  CHECK(a_fast.exit_speed.mean() / a_slow.exit_speed.mean() == Approx(k).epsilon(0.03));
+  CHECK(a_fast.exit_speed.quantile(0.95) / a_slow.exit_speed.quantile(0.95) == Approx(k).epsilon(0.03));  // the histogram reaches that far
+  CHECK(std::abs(a_fast.launch_elevation.mean() - a_slow.launch_elevation.mean()) < 2.0);
+  // The same blade speed with the test's own feed: nearer the tip, slower, steeper.
+  CHECK(a_same.exit_speed.mean() / a_slow.exit_speed.mean() < 0.93 * k);
+  CHECK(a_same.launch_elevation.mean() > a_slow.launch_elevation.mean() + 10.0);
+}
+
 TEST_CASE("trace: every mark's trail is consistent and the ways out add up", "[assess][trace]") {
   // The deck with a side discharge: counted marks leave by the opening.
   auto deck = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));

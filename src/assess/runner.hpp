@@ -66,7 +66,7 @@ struct ShareDistribution {
 // The per-nail distributions a run records: fixed bins, so merging chunks is exact and
 // order-free. A chunk's and the whole run's are the same set.
 struct NailHistograms {
-  Histogram exit_speed{0.5, 400};            // m/s as the nail leaves the blade, 0.5 m/s bins to 200 m/s
+  Histogram exit_speed{0.5, 1200};           // m/s as the nail leaves the blade, 0.5 m/s bins to 600 m/s (beyond any blade)
   Histogram launch_elevation{1, 180, -90};   // deg, its elevation then, 1 deg bins from -90 to 90
   Histogram contacts_per_pass{1, 33};        // blade contacts in each pass: bin k holds k contacts (32: 32 or more)
   Histogram most_contacts_in_pass{1, 402};   // per struck nail, its pass of most contacts
