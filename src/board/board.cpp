@@ -5,10 +5,11 @@
 
 namespace j232::board {
 
-double presented_width(double length, double diameter, double cos_theta) {
+double presented_width(double length, double diameter, double cos_theta, double crush_depth) {
   const double c = std::min(1.0, std::abs(cos_theta));
   const double s = std::sqrt(std::max(0.0, 1.0 - c * c));
-  return length * s + diameter * c;
+  const double pressing = c * length > crush_depth ? crush_depth / c : length;
+  return pressing * s + diameter * c;
 }
 
 Mark classify(double normal_energy, double width, const scenario::BoardSpec& board) {

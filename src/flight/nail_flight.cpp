@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "board/board.hpp"
+#include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"
 #include "units/quantity.hpp"
 
@@ -105,6 +106,7 @@ struct NailFlight {
   bool on_blade = true;
   Touch last_touch = Touch::Blade;
   std::uint16_t last_guard_passed = 0;
+  double last_event = start.time;  // the last contact with anything (blade or scene)
   bool in_deck = ctx.deck_outline && !ctx.deck_outline->empty() && ctx.deck_outline->contains(b.position.x(), b.position.y());
 
   FlightResult run();
@@ -120,6 +122,8 @@ struct NailFlight {
     ++r.passes_by_contacts[std::min(static_cast<std::size_t>(pass_contacts), r.passes_by_contacts.size()) - 1];
   }
   void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
+  void reach_board(const scene::Hit& hit, const PlaneTouch& at, const Vec3& velocity);
+  std::optional<PlaneTouch> board_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const;
   bool respond(const scene::Hit& hit);
   bool slide(const scene::Hit& hit);
   Fate fate() const;
@@ -212,7 +216,7 @@ void NailFlight::restrike(const strike::Contact& k) {
   }
   r.most_contacts_in_pass = std::max(r.most_contacts_in_pass, pass_contacts);
   if (pass_contacts > FlightResult::kMaxContactsPerPass) cut_off = true;
-  pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time;
+  pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
   b.velocity = out.velocity_after;
   // The spin about the nail's own axis (from friction at its surface) is left out: it
   // holds under 1/200 of the energy of its tumbling, and flight follows the axis only.
@@ -234,6 +238,49 @@ void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool p
     (zone ? (puncture ? r.punctures_zone : r.hits_zone) : (puncture ? r.punctures_outside : r.hits_outside)) += 1;
 }
 
+// Where the tumbling nail first touches the board it is heading for: the centre's ray met
+// the board at `centre_arrives`; the capsule reached its plane earlier, by up to half its
+// length, at the point its spin had turned nearest (docs/model.md §5.5). Searched from
+// the time the centre was that far from the plane, not before the nail's last contact.
+std::optional<PlaneTouch> NailFlight::board_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const {
+  const double closing = std::max(1e-3, -hit.normal.dot(chord.velocity(centre_arrives)));
+  const double reach = nail.half_segment() + nail.radius() + 1e-3;
+  const double from = std::max(last_event, centre_arrives - 2 * reach / closing);
+  return first_plane_touch(chord, nail, hit.point, hit.normal, from, centre_arrives);
+}
+
+// The board judges the point that strikes it (docs/model.md §5.5): the energy a plastic
+// impact there takes out of the rod, m_eff v_n^2 / 2 with v_n that point's speed into the
+// board (its centre's and its spin's) and m_eff the rod's mass felt there along the
+// normal; the width the rod presents; the mark where that point is, in the zone (or not)
+// that the board is labelled with there.
+void NailFlight::reach_board(const scene::Hit& hit, const PlaneTouch& at, const Vec3& velocity) {
+  const Vec3& n = hit.normal;
+  const Vec3 arm = at.point - at.centre;
+  const double approach = std::max(0.0, -n.dot(velocity + b.spin.cross(arm)));
+  const double energy = 0.5 * effective_mass(nail, at.axis, arm, n) * approach * approach;
+  const double width = board::presented_width(length, diameter, at.axis.dot(n), s.board.crush_depth);
+  const board::Mark mark = board::classify(energy, width, s.board);
+  if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
+  if (mark != board::Mark::None) {
+    // The board's label where the mark is (the centre's face when the point overhangs the
+    // board's edge), or a derived zone's line of sight from the blade that threw the nail.
+    bool zone = hit.surface == scene::Surface::TargetZone;
+    ++r.queries;
+    const auto there = ctx.scene->first_hit(at.point + 1e-3 * n, -n, 2e-3);
+    if (there && (there->surface == scene::Surface::TargetZone || there->surface == scene::Surface::TargetOutside))
+      zone = there->surface == scene::Surface::TargetZone;
+    if (ctx.zone && ctx.spindles && pass_spindle < ctx.spindles->size()) {
+      const auto& sp = (*ctx.spindles)[pass_spindle];
+      zone = ctx.zone->contains(at.point, Vec3(sp.centre.x(), sp.centre.y(), sp.height));
+    }
+    record_mark(at.point, energy, zone, mark == board::Mark::Puncture);
+  }
+  // The board is the test's catcher: a nail that does not go through it drops at its foot.
+  touch(Touch::Board);
+  at_board = true;
+}
+
 // What the surface at `hit` does to the nail arriving as `b`. Returns false when the nail stops.
 bool NailFlight::respond(const scene::Hit& hit) {
   const Vec3 n = hit.normal;
@@ -241,22 +288,11 @@ bool NailFlight::respond(const scene::Hit& hit) {
   switch (hit.surface) {
     case scene::Surface::TargetZone:
     case scene::Surface::TargetOutside: {
-      const double energy = 0.5 * mass * vn * vn;
-      const double width = board::presented_width(length, diameter, b.axis.dot(n));
-      const board::Mark mark = board::classify(energy, width, s.board);
-      if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
-      if (mark != board::Mark::None) {
-        // A derived zone: the line of sight from the blade that threw the nail.
-        bool zone = hit.surface == scene::Surface::TargetZone;
-        if (ctx.zone && ctx.spindles && pass_spindle < ctx.spindles->size()) {
-          const auto& sp = (*ctx.spindles)[pass_spindle];
-          zone = ctx.zone->contains(hit.point, Vec3(sp.centre.x(), sp.centre.y(), sp.height));
-        }
-        record_mark(hit.point, energy, zone, mark == board::Mark::Puncture);
-      }
-      // The board is the test's catcher: a nail that does not go through it drops at its foot.
-      touch(Touch::Board);
-      at_board = true;
+      // Reached sliding along the ground (in flight, run() finds the touch first): at the
+      // point where the centre meets it, lying as it lies.
+      PlaneTouch at;
+      at.time = b.time, at.centre = b.position, at.axis = b.axis, at.point = hit.point;
+      reach_board(hit, at, b.velocity);
       return false;
     }
     case scene::Surface::Housing:
@@ -412,12 +448,28 @@ FlightResult NailFlight::run() {
       continue;
     }
     touched_scene();
+    if (hit->surface == scene::Surface::TargetZone || hit->surface == scene::Surface::TargetOutside) {
+      // The board: the capsule's first touch of it, before its centre gets there.
+      strike::Motion chord_motion;
+      chord_motion.p0 = b.position, chord_motion.v0 = b.velocity, chord_motion.a = accel, chord_motion.t0 = b.time;
+      chord_motion.axis0 = b.axis, chord_motion.spin = b.spin;
+      const double arrives = b.time + dt * hit->distance / len;
+      const auto at = board_touch(*hit, chord_motion, arrives);
+      moved(b.position, hit->point);
+      b = advance(b, dt * hit->distance / len, step_drag, accel);
+      b.position = hit->point;
+      PlaneTouch centre_there;
+      centre_there.time = b.time, centre_there.centre = b.position, centre_there.axis = b.axis, centre_there.point = hit->point;
+      reach_board(*hit, at ? *at : centre_there, at ? chord_motion.velocity(at->time) : b.velocity);
+      break;
+    }
     moved(b.position, hit->point);
     b = advance(b, dt * hit->distance / len, step_drag, accel);
     b.position = hit->point;
     skip = {};
     skip.add(hit->face);
-    if (!respond(*hit)) break;  // stopped by the board
+    last_event = b.time;
+    if (!respond(*hit)) break;
 
     // On the ground with too little rebound to fly: slide to rest, or into a wall and on.
     if (hit->surface == scene::Surface::Ground && b.velocity.dot(hit->normal) < kSlideBelow && !slide(*hit)) break;

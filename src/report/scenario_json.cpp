@@ -215,7 +215,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
       {"target", target_json(s, roles.target)},
       {"meshes", meshes},
       {"operator_zone", zone_json(s.zone)},
-      {"board", {{"puncture_energy_per_width_J_m", s.board.puncture_energy_per_width}, {"hit_fraction", s.board.hit_fraction}}},
+      {"board", {{"puncture_energy_per_width_J_m", s.board.puncture_energy_per_width}, {"hit_fraction", s.board.hit_fraction}, {"crush_depth_m", s.board.crush_depth}}},
       {"criteria", criteria_json(s.criteria)},
       {"air", {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}, {"spin_average", s.air.spin_average}}},
       {"uncertainty", uncertainty_json(s.uncertainty)},
@@ -264,8 +264,9 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   a.push_back({fmt::format("Feed: {} nails, dropped {:.0f} mm onto the blade at {} station(s), upright within {:.0f} deg", s.feed.nails,
                            s.feed.drop_height * 1e3, s.feed.stations.size(), s.feed.tilt_max * 180 / units::pi),
                "estimate: SAE J232 feed geometry not available (docs/model.md 5.1)"});
-  a.push_back({fmt::format("Board: puncture at {:g} J/m of presented width, hit at {:g} of that; normal kinetic energy",
-                           s.board.puncture_energy_per_width, s.board.hit_fraction),
+  a.push_back({fmt::format("Board: puncture at {:g} J/m of the width the nail presses on it (its part within {:g} mm of the "
+                           "first touch), hit at {:g} of that; the energy a plastic impact takes out at the point that strikes",
+                           s.board.puncture_energy_per_width, s.board.crush_depth * 1e3, s.board.hit_fraction),
                fmt::format("{} (estimate: no published value for 350# double-wall)", params)});
   if (scene::mesh_roles(s).target)
     a.push_back({"Target board: the scenario's target mesh(es)", "scenario (user geometry)"});

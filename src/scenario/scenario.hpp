@@ -182,6 +182,9 @@ struct OperatorZoneSpec {
 struct BoardSpec {                           // double-wall 350# corrugated board
   double puncture_energy_per_width = 110.0;  // J/m
   double hit_fraction = 0.3;                 // hit threshold / puncture threshold
+  // How deep the nail crushes the board as it marks it: the part of the nail within this
+  // depth of its first touch is what presses on the board (about the board's thickness).
+  double crush_depth = 0.007;  // m: the board's caliper, about 7 mm
 };
 
 struct CriteriaSpec {  // report 445-1, Chapter 3 (SAE J232)

@@ -394,6 +394,7 @@ void read_board(const TableReader& b, BoardSpec& board) {
   board.puncture_energy_per_width =
       b.quantity_or("puncture_energy_per_width", Kind::EnergyPerLength, board.puncture_energy_per_width, Range::between(1, 1e4));
   board.hit_fraction = b.quantity_or("hit_fraction", Kind::Dimensionless, board.hit_fraction, Range::UnitInterval);
+  board.crush_depth = b.quantity_or("crush_depth", Kind::Length, board.crush_depth, Range::between(1e-4, 0.1));
   b.refuse_unknown_keys();
 }
 

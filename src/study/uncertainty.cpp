@@ -74,6 +74,7 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
       estimated("board.puncture_energy_per_width", "80 J/m", "140 J/m",
                 "estimate: no published value for 350# double-wall board; 110 J/m +/- ~27 %"),
       estimated("board.hit_fraction", "0.2", "0.4", "estimate: a hit takes about a third of a puncture's energy"),
+      estimated("board.crush_depth", "3 mm", "12 mm", "estimate: about the board's caliper (7 mm); how deep a mark crushes it is not measured"),
       estimated(
           "restitution", "0.4", "0.95",
           "report 445-1: drop tests 0.9-0.96 at ~1 m/s, 0.45-0.6 at ~2.3 m/s; its Table 3.1 fits 0.53-0.65 at 11 m/s (j232 calibrate)"),

@@ -1,0 +1,38 @@
+#pragma once
+// Where a tumbling nail first touches a flat surface, and what the surface feels there
+// (docs/model.md §5.5). The nail is the capsule of projectile/; between events its centre
+// moves on a parabola and its axis turns about its spin (strike::Motion). A ray from the
+// centre finds which surface the nail is heading for; the capsule touches that surface's
+// plane earlier, at its point nearest the plane, turned as the spin has turned it then.
+#include <optional>
+
+#include "projectile/projectile.hpp"
+#include "strike/contact_search.hpp"
+
+namespace j232::flight {
+
+using Vec3 = Eigen::Vector3d;
+
+struct PlaneTouch {
+  double time = 0;
+  Vec3 centre = Vec3::Zero();  // the nail's centre then
+  Vec3 axis = Vec3::UnitZ();   // and its axis
+  Vec3 point = Vec3::Zero();   // the point of the capsule that touches, on the plane
+};
+
+// The first time in [from, until] at which the capsule moving as `m` reaches the plane
+// through `q` with unit normal `n` (pointing to the side the nail comes from), found by
+// conservative advancement on its clearance n.(c - q) - h |n.a| - D/2 (h the half core
+// segment) to within kTouchTolerance; if it already reaches the plane at `from`, then.
+// Nothing when it stays clear until `until`.
+inline constexpr double kTouchTolerance = 2e-6;  // m
+std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const projectile::Projectile& nail, const Vec3& q, const Vec3& n,
+                                            double from, double until);
+
+// The nail's mass as felt at a point r from its centre along the unit direction n: the
+// impulse that stops that point's motion along n is m_eff times its speed, and the energy a
+// perfectly plastic impact there takes out is m_eff v_n^2 / 2:
+//     1 / m_eff = n . (I / m - [r]x I^-1 [r]x) n = 1/m + (r x n) . I^-1 (r x n).
+double effective_mass(const projectile::Projectile& nail, const Vec3& axis, const Vec3& r, const Vec3& n);
+
+}  // namespace j232::flight
