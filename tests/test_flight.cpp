@@ -2,9 +2,11 @@
 // range) and the vertical fall with quadratic drag (tanh law); drag shortens the range.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
 
 #include "flight/deck_outline.hpp"
 #include "flight/nail_flight.hpp"
+#include "flight/plane_touch.hpp"
 #include "flight/trajectory.hpp"
 #include "scene/scene.hpp"
 
@@ -256,4 +258,60 @@ TEST_CASE("flight: the tumbling slows as dw/dt = -k w^2 (air on the turning shan
   c.spin = {3000.0, 0.0, 0.0};
   for (int i = 0; i < 100; ++i) c = flight::advance(c, 1e-3, drag);
   CHECK(c.spin.norm() == 3000.0);
+}
+
+TEST_CASE("board touch: the capsule's first touch of a plane, and the mass it strikes with", "[flight][board]") {
+  const auto nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);
+  const double h = nail.half_segment(), rad = nail.radius(), m = nail.mass;
+  const Vec3 q(1.0, 0, 0), n(-1, 0, 0);  // a wall at x = 1 facing -x
+  SECTION("not spinning: the nearer end touches when the centre is its reach away") {
+    for (const double theta : {0.0, 0.3, 1.0, units::pi / 2}) {
+      strike::Motion mo;
+      mo.p0 = {0.5, 0, 0.3}, mo.v0 = {20, 0, 0};
+      mo.axis0 = {std::cos(theta), 0, std::sin(theta)};  // theta from the wall's normal
+      const auto t = flight::first_plane_touch(mo, nail, q, n, 0.0, 1.0);
+      REQUIRE(t);
+      const double reach = h * std::cos(theta) + rad;
+      CHECK(t->time == Approx((0.5 - reach) / 20).margin(2 * flight::kTouchTolerance / 20));
+      CHECK(t->point.x() == Approx(1.0).margin(1e-12));
+      if (theta < units::pi / 2) CHECK(t->point.z() == Approx(0.3 + h * std::sin(theta)).margin(1e-9));  // the end nearer the wall
+    }
+  }
+  SECTION("never reaching the plane: nothing") {
+    strike::Motion mo;
+    mo.p0 = {0.5, 0, 0.3}, mo.v0 = {0, 0, 5};
+    CHECK_FALSE(flight::first_plane_touch(mo, nail, q, n, 0.0, 0.1));
+  }
+  SECTION("spinning: no touch is missed before the one found (fine sampling of the clearance)") {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int i = 0; i < 200; ++i) {
+      strike::Motion mo;
+      mo.p0 = {0.9 + 0.05 * u(rng), 0, 0.3}, mo.v0 = {30 + 20 * u(rng), 10 * u(rng), 10 * u(rng)}, mo.a = {0, 0, -g};
+      mo.axis0 = Vec3(u(rng), u(rng), u(rng)).normalized();
+      mo.spin = Vec3(u(rng), u(rng), u(rng)).cross(mo.axis0).normalized() * 3000 * (1 + u(rng));
+      const auto t = flight::first_plane_touch(mo, nail, q, n, 0.0, 0.05);
+      REQUIRE(t);
+      const auto clearance = [&](double time) {
+        const Vec3 c = mo.centre(time), a = mo.axis(time);
+        return n.dot(c - q) - h * std::abs(n.dot(a)) - rad;
+      };
+      CHECK(std::abs(clearance(t->time)) < 1e-5);
+      for (double time = 0; time < t->time - 1e-7; time += 1e-7) {
+        // Only touches shallower than the search's least step (0.2 mm) may be stepped over.
+        if (clearance(time) < -2e-4) FAIL("touched at " << time << " before " << t->time);
+      }
+    }
+  }
+  SECTION("effective mass: the whole mass end on, a quarter at the end of a rod lying flat") {
+    const Vec3 axis(0, 0, 1);
+    CHECK(flight::effective_mass(nail, axis, Vec3(0, 0, h), Vec3(0, 0, -1)) == Approx(m));
+    CHECK(flight::effective_mass(nail, axis, Vec3(0, 0, 0), Vec3(1, 0, 0)) == Approx(m));
+    // A slender rod struck across at its end, r = L/2: m / (1 + (L/2)^2 m / (m L^2/12)) = m / 4.
+    CHECK(flight::effective_mass(nail, axis, Vec3(0, 0, nail.length / 2), Vec3(1, 0, 0)) == Approx(m / 4));
+    // At an angle theta from the axis, at the end: m / (1 + 3 sin^2 theta).
+    const double th = 0.7;
+    CHECK(flight::effective_mass(nail, axis, Vec3(0, 0, nail.length / 2), Vec3(std::sin(th), 0, std::cos(th))) ==
+          Approx(m / (1 + 3 * std::sin(th) * std::sin(th))));
+  }
 }
