@@ -177,7 +177,9 @@ TEST_CASE("deck: a discharge chute roofs its opening, runs outward and keeps nai
   const auto with = assess::run_assessment(assess::Simulator(s), 2), without = assess::run_assessment(assess::Simulator(open), 2);
   INFO("marks by the opening: " << by_opening(with) << " with the chute, " << by_opening(without) << " without");
   CHECK(by_opening(without) > 100);
-  CHECK(2 * by_opening(with) < by_opening(without));  // 196 against 602 when written
+  // 196 against 602 when written (the nail bouncing as a point), 440 against 827 since it
+  // bounces as a tumbling rod (its spin feeds its rebounds off the chute and the turf).
+  CHECK(5 * by_opening(with) < 3 * by_opening(without));
 }
 
 TEST_CASE("deck: guards and deflectors along polylines hang on a mesh deck too", "[deck][housing][mesh]") {

@@ -15,6 +15,7 @@ using flight::Vec3;
 
 namespace {
 constexpr double g = 9.80665;
+constexpr double kRadius = 0.00125;  // of the sphere land() flies
 
 scene::Scene flat_ground(double half = 200.0) {
   scene::Soup soup;
@@ -35,7 +36,9 @@ flight::FlightResult land(const scene::Scene& ground, const flight::Body& start,
   static std::vector<scenario::GuardSpec> guards(1);
   flight::FlightContext ctx{&ground, &s, 1e6, 0.0, 0.0, &guards};
   random::Stream rng(1, 0, 0, random::Purpose::Test);
-  return flight::fly(start, projectile::Projectile::capsule(0.05, 0.0025, 0.002), drag, ctx, {}, {}, rng);
+  // A small sphere touches the ground where its centre's parabola meets the height of its
+  // radius (a rod would touch earlier, at its end; test_flight's board-touch case has that).
+  return flight::fly(start, projectile::Projectile::sphere(kRadius * 2, 0.002), drag, ctx, {}, {}, rng);
 }
 }  // namespace
 
@@ -59,7 +62,7 @@ TEST_CASE("flight: chords against the scene find the landing point of the parabo
   for (double angle : {15.0, 45.0, 70.0}) {
     const double a = angle * 3.14159265358979323846 / 180, v = 30.0;
     flight::Body b;
-    b.position = {0, 0, 1e-9};
+    b.position = {0, 0, kRadius + 1e-9};
     b.velocity = {v * std::cos(a), 0.0, v * std::sin(a)};
     const auto r = land(ground, b, {});
     const double range = v * v * std::sin(2 * a) / g;
@@ -93,7 +96,7 @@ TEST_CASE("flight: a vertical fall with quadratic drag follows the tanh law", "[
 TEST_CASE("flight: drag shortens a nail's flight; cross-flow drag exceeds end-on", "[flight][drag]") {
   const auto ground = flat_ground();
   flight::Body b;
-  b.position = {0, 0, 1e-9};
+  b.position = {0, 0, kRadius + 1e-9};
   b.velocity = {60.0, 0.0, 10.0};
   b.axis = Vec3::UnitX();  // flying point first
   const auto free = land(ground, b, {});

@@ -7,6 +7,7 @@
 #include "board/board.hpp"
 #include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"
+#include "blade/restitution.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::flight {
@@ -73,6 +74,24 @@ Vec3 rough_normal(const Vec3& n, double roughness, random::Stream& rng) {
   return (n * std::cos(angle) + axis.cross(n) * std::sin(angle)).normalized();
 }
 
+// The nail's rebound off an immovable surface at the point `arm` from its centre: Poisson's
+// restitution e and Coulomb friction mu through the impulse of strike/impulse.hpp (the
+// other body's compliance zero), so the bounce changes the spin as well as the velocity
+// (docs/model.md §5.3). Nothing happens when that point is not approaching the surface.
+void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& arm, const Vec3& n, double e, double mu, Vec3& velocity,
+             Vec3& spin) {
+  const Vec3 v_point = velocity + spin.cross(arm);
+  if (!(v_point.dot(n) < 0)) return;
+  const Eigen::Matrix3d inv_i = strike::inverse_inertia(nail, axis);
+  Eigen::Matrix3d R;
+  R << 0, -arm.z(), arm.y(), arm.z(), 0, -arm.x(), -arm.y(), arm.x(), 0;
+  const Eigen::Matrix3d K = Eigen::Matrix3d::Identity() / nail.mass - R * inv_i * R;
+  const Vec3 P = strike::solve_impulse(K, v_point, n, blade::Restitution::constant(std::clamp(e, 0.0, 1.0)), mu).impulse;
+  velocity += P / nail.mass;
+  spin += inv_i * arm.cross(P);
+  spin -= spin.dot(axis) * axis;  // the spin about the nail's own axis is left out (as after a blade contact)
+}
+
 }  // namespace
 
 namespace {
@@ -123,9 +142,14 @@ struct NailFlight {
   }
   void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
   void reach_board(const scene::Hit& hit, const PlaneTouch& at, const Vec3& velocity);
-  std::optional<PlaneTouch> board_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const;
-  bool respond(const scene::Hit& hit);
+  std::optional<PlaneTouch> surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const;
+  // `arm`: the touching point from the centre (in flight; null: the nail slides on the
+  // ground and bounces as a point).
+  bool respond(const scene::Hit& hit, const Vec3* arm = nullptr);
+  void bounce_off(const Vec3& n, double e, double mu, const Vec3* arm);
   bool slide(const scene::Hit& hit);
+  bool after_bounce(const scene::Hit& hit);
+  std::optional<scene::Hit> last_plane{};  // the surface last bounced off (not a guard passed through)
   Fate fate() const;
 };
 
@@ -238,11 +262,11 @@ void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool p
     (zone ? (puncture ? r.punctures_zone : r.hits_zone) : (puncture ? r.punctures_outside : r.hits_outside)) += 1;
 }
 
-// Where the tumbling nail first touches the board it is heading for: the centre's ray met
-// the board at `centre_arrives`; the capsule reached its plane earlier, by up to half its
+// Where the tumbling nail first touches the surface it is heading for: the centre's ray met
+// it at `centre_arrives`; the capsule reached its plane earlier, by up to half its
 // length, at the point its spin had turned nearest (docs/model.md §5.5). Searched from
 // the time the centre was that far from the plane, not before the nail's last contact.
-std::optional<PlaneTouch> NailFlight::board_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const {
+std::optional<PlaneTouch> NailFlight::surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const {
   const double closing = std::max(1e-3, -hit.normal.dot(chord.velocity(centre_arrives)));
   const double reach = nail.half_segment() + nail.radius() + 1e-3;
   const double from = std::max(last_event, centre_arrives - 2 * reach / closing);
@@ -282,9 +306,20 @@ void NailFlight::reach_board(const scene::Hit& hit, const PlaneTouch& at, const 
 }
 
 // What the surface at `hit` does to the nail arriving as `b`. Returns false when the nail stops.
-bool NailFlight::respond(const scene::Hit& hit) {
+// A bounce with restitution e and friction mu off the surface with normal n: at the touching
+// point as a rigid body when there is one, else at the centre.
+void NailFlight::bounce_off(const Vec3& n, double e, double mu, const Vec3* arm) {
+  if (arm)
+    rebound(nail, b.axis, *arm, n, e, mu, b.velocity, b.spin);
+  else
+    b.velocity = bounce(b.velocity, n, e, mu);
+}
+
+bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const Vec3 n = hit.normal;
-  const double vn = b.velocity.dot(n);
+  // How the surface meets the nail: its touching point's velocity (the centre's when it slides).
+  const Vec3 v_in = arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity;
+  const double vn = v_in.dot(n);
   switch (hit.surface) {
     case scene::Surface::TargetZone:
     case scene::Surface::TargetOutside: {
@@ -297,7 +332,7 @@ bool NailFlight::respond(const scene::Hit& hit) {
     }
     case scene::Surface::Housing:
     case scene::Surface::Deflector:
-      b.velocity = bounce(b.velocity, n, s.housing.restitution.at(-vn), s.housing.friction);
+      bounce_off(n, s.housing.restitution.at(std::max(-vn, 1e-9)), s.housing.friction, arm);
       touch(hit.surface == scene::Surface::Housing ? Touch::Housing : Touch::Deflector);
       last_contact_guard = false;
       break;
@@ -309,7 +344,7 @@ bool NailFlight::respond(const scene::Hit& hit) {
         last_guard_passed = hit.guard;
         return true;
       }
-      b.velocity = bounce(b.velocity, n, g.restitution, g.friction);
+      bounce_off(n, g.restitution, g.friction, arm);
       touch(Touch::GuardBounce);
       last_contact_guard = true;
       break;
@@ -317,12 +352,12 @@ bool NailFlight::respond(const scene::Hit& hit) {
     case scene::Surface::Ground: {
       // A rough facet the nail would meet from behind is no facet it can meet: drawn again.
       Vec3 rough = rough_normal(n, s.ground.roughness, rng);
-      for (int tries = 0; tries < 16 && b.velocity.dot(rough) >= 0; ++tries) rough = rough_normal(n, s.ground.roughness, rng);
-      if (b.velocity.dot(rough) >= 0) rough = n;
+      for (int tries = 0; tries < 16 && v_in.dot(rough) >= 0; ++tries) rough = rough_normal(n, s.ground.roughness, rng);
+      if (v_in.dot(rough) >= 0) rough = n;
       // The impact angle against the local (rough) surface sets the normal restitution.
-      const double speed = b.velocity.norm();
-      const double angle = speed > 0 ? std::asin(std::clamp(-b.velocity.dot(rough) / speed, 0.0, 1.0)) : 0.5 * units::pi;
-      b.velocity = bounce(b.velocity, rough, s.ground.restitution_at(angle), s.ground.friction);
+      const double speed = v_in.norm();
+      const double angle = speed > 0 ? std::asin(std::clamp(-v_in.dot(rough) / speed, 0.0, 1.0)) : 0.5 * units::pi;
+      bounce_off(rough, s.ground.restitution_at(angle), s.ground.friction, arm);
       const double out = b.velocity.dot(n);
       if (out < 0) b.velocity -= 2 * out * n;  // a rough facet cannot send it into the ground
       touch(Touch::Ground);
@@ -338,6 +373,7 @@ bool NailFlight::respond(const scene::Hit& hit) {
 bool NailFlight::slide(const scene::Hit& hit) {
   const Vec3 up = hit.normal;
   const double decel = s.ground.friction * -kGravity.z();
+  b.position -= up.dot(b.position - hit.point) * up;  // it lies on the ground (its centre was up to half its length above)
   bool stopped = false;
   while (!stopped) {
     Vec3 slide = b.velocity - b.velocity.dot(up) * up;
@@ -374,6 +410,23 @@ bool NailFlight::slide(const scene::Hit& hit) {
     if (wall->surface == scene::Surface::Ground) break;  // slid onto another ground face: fly on from there
   }
   return !(stopped || ended_at_rest || cut_off);
+}
+
+// After a bounce off `hit`: remembered for the tumbling nail's next touch of it; on the
+// ground with too little rebound to fly, it slides to rest or into a wall and on; at rest
+// only on something that holds it up (not under the deck plate, not on a wall). Returns
+// false when the flight has ended.
+bool NailFlight::after_bounce(const scene::Hit& hit) {
+  if (last_touch != Touch::GuardPass) last_plane = hit;
+  if (hit.surface == scene::Surface::Ground && b.velocity.dot(hit.normal) < kSlideBelow) {
+    last_plane.reset();
+    if (!slide(hit)) return false;
+  }
+  if (b.velocity.norm() < s.run.rest_speed && hit.normal.z() > 0.5) {
+    ended_at_rest = true;
+    return false;
+  }
+  return true;
 }
 
 // How the flight ended, in the tally's words.
@@ -426,9 +479,30 @@ FlightResult NailFlight::run() {
     // The blades first: a contact on this chord cuts the scene query short.
     const auto contact = blade_contact(b, accel, dt);
     if (cut_off) break;
-    const double reach = contact ? len * (contact->time - b.time) / dt : len;
+    strike::Motion chord_motion;
+    chord_motion.p0 = b.position, chord_motion.v0 = b.velocity, chord_motion.a = accel, chord_motion.t0 = b.time;
+    chord_motion.axis0 = b.axis, chord_motion.spin = b.spin;
+    // The surface it last bounced off, met again by its other end or the same one as it
+    // tumbles (its face is skipped by the centre's ray just after the bounce).
+    std::optional<PlaneTouch> again;
+    if (last_plane && last_plane->normal.dot(b.position - last_plane->point) < nail.half_segment() + nail.radius() + len)
+      again = first_plane_touch(chord_motion, nail, last_plane->point, last_plane->normal, b.time, contact ? contact->time : b.time + dt,
+                                true);
+    const double until = again ? again->time : contact ? contact->time : b.time + dt;
+    const double reach = len * std::min(1.0, (until - b.time) / dt);
     ++r.queries;
     const auto hit = ctx.scene->first_hit(b.position, chord / len, reach, skip);
+    if (!hit && again) {
+      const Vec3 from = b.position;
+      b.position = again->centre, b.velocity = chord_motion.velocity(again->time), b.axis = again->axis, b.time = again->time;
+      moved(from, b.position);
+      last_event = b.time;
+      const scene::Hit plane = *last_plane;
+      const Vec3 arm = again->point - again->centre;
+      if (!respond(plane, &arm)) break;
+      if (!after_bounce(plane)) break;
+      continue;
+    }
     if (!hit && contact) {
       const Vec3 from = b.position;
       b.position = contact->centre;
@@ -448,13 +522,11 @@ FlightResult NailFlight::run() {
       continue;
     }
     touched_scene();
+    // The capsule touches the surface's plane before its centre gets there (by up to half
+    // its length), at the point its tumbling has turned nearest.
+    const double arrives = b.time + dt * hit->distance / len;
+    const auto at = surface_touch(*hit, chord_motion, arrives);
     if (hit->surface == scene::Surface::TargetZone || hit->surface == scene::Surface::TargetOutside) {
-      // The board: the capsule's first touch of it, before its centre gets there.
-      strike::Motion chord_motion;
-      chord_motion.p0 = b.position, chord_motion.v0 = b.velocity, chord_motion.a = accel, chord_motion.t0 = b.time;
-      chord_motion.axis0 = b.axis, chord_motion.spin = b.spin;
-      const double arrives = b.time + dt * hit->distance / len;
-      const auto at = board_touch(*hit, chord_motion, arrives);
       moved(b.position, hit->point);
       b = advance(b, dt * hit->distance / len, step_drag, accel);
       b.position = hit->point;
@@ -463,21 +535,24 @@ FlightResult NailFlight::run() {
       reach_board(*hit, at ? *at : centre_there, at ? chord_motion.velocity(at->time) : b.velocity);
       break;
     }
-    moved(b.position, hit->point);
-    b = advance(b, dt * hit->distance / len, step_drag, accel);
-    b.position = hit->point;
     skip = {};
     skip.add(hit->face);
-    last_event = b.time;
-    if (!respond(*hit)) break;
-
-    // On the ground with too little rebound to fly: slide to rest, or into a wall and on.
-    if (hit->surface == scene::Surface::Ground && b.velocity.dot(hit->normal) < kSlideBelow && !slide(*hit)) break;
-    // At rest only on something that holds it up (not under the deck plate, not on a wall).
-    if (b.velocity.norm() < s.run.rest_speed && hit->normal.z() > 0.5) {
-      ended_at_rest = true;
-      break;
+    if (at) {
+      const Vec3 from = b.position;
+      b.position = at->centre, b.velocity = chord_motion.velocity(at->time), b.axis = at->axis, b.time = at->time;
+      moved(from, b.position);
+      last_event = b.time;
+      const Vec3 arm = at->point - at->centre;
+      if (!respond(*hit, &arm)) break;
+    } else {  // (never expected: the centre reaching the plane means the capsule did)
+      moved(b.position, hit->point);
+      b = advance(b, dt * hit->distance / len, step_drag, accel);
+      b.position = hit->point;
+      last_event = b.time;
+      if (!respond(*hit)) break;
     }
+
+    if (!after_bounce(*hit)) break;
   }
   close_pass();
   r.flight_time = b.time - start.time;

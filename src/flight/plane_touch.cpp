@@ -19,7 +19,7 @@ double clearance(const projectile::Projectile& nail, const Vec3& centre, const V
 }  // namespace
 
 std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const projectile::Projectile& nail, const Vec3& q, const Vec3& n,
-                                            double from, double until) {
+                                            double from, double until, bool leaving) {
   // How fast the clearance can fall: the centre's speed along n (linear in time, so at most
   // its larger end value) and the core's ends swinging about the centre.
   const double centre_speed = std::max(std::abs(n.dot(m.velocity(from))), std::abs(n.dot(m.velocity(until))));
@@ -29,7 +29,13 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   constexpr double kMinStep = 2e-4;  // m
   const auto state = [&](double t, Vec3* point) { return clearance(nail, m.centre(t), m.axis(t), q, n, point); };
   double t = from, g = state(t, nullptr);
-  if (g <= kTouchTolerance) until = from;  // touching already
+  // Just bounced off this plane: the touch it is leaving is not a new one; the search starts
+  // once the nail has come clear of the plane (nothing if it stays on it until `until`).
+  while (leaving && g <= kTouchTolerance) {
+    if (t >= until) return std::nullopt;
+    t = std::min(until, t + kMinStep / bound), g = state(t, nullptr);
+  }
+  if (g <= kTouchTolerance) until = t;  // touching already
   for (int steps = 0; g > kTouchTolerance && steps < 100000; ++steps) {
     if (t >= until) return std::nullopt;
     const double next = std::min(until, t + std::max(g, kMinStep) / bound);

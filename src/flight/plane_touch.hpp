@@ -23,11 +23,12 @@ struct PlaneTouch {
 // The first time in [from, until] at which the capsule moving as `m` reaches the plane
 // through `q` with unit normal `n` (pointing to the side the nail comes from), found by
 // conservative advancement on its clearance n.(c - q) - h |n.a| - D/2 (h the half core
-// segment) to within kTouchTolerance; if it already reaches the plane at `from`, then.
-// Nothing when it stays clear until `until`.
+// segment) to within kTouchTolerance; if it already reaches the plane at `from`, then
+// (unless `leaving`: it has just bounced off this plane, and only a touch after it has come
+// clear counts). Nothing when it stays clear until `until`.
 inline constexpr double kTouchTolerance = 2e-6;  // m
 std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const projectile::Projectile& nail, const Vec3& q, const Vec3& n,
-                                            double from, double until);
+                                            double from, double until, bool leaving = false);
 
 // The nail's mass as felt at a point r from its centre along the unit direction n: the
 // impulse that stops that point's motion along n is m_eff times its speed, and the energy a
