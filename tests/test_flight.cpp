@@ -318,3 +318,46 @@ TEST_CASE("board touch: the capsule's first touch of a plane, and the mass it st
           Approx(m / (1 + 3 * std::sin(th) * std::sin(th))));
   }
 }
+
+TEST_CASE("rebound: a tumbling rod off a wall creates no energy, separates, keeps angular momentum about the contact", "[flight][bounce]") {
+  const auto nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);
+  const double h = nail.half_segment(), rad = nail.radius();
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Vec3 n(0, 0, 1);  // the floor, facing up
+  const auto energy = [&](const Vec3& v, const Vec3& w, const Vec3& axis) {
+    const Vec3 across = w - w.dot(axis) * axis;
+    return 0.5 * nail.mass * v.squaredNorm() + 0.5 * nail.transverse_inertia() * across.squaredNorm() +
+           0.5 * nail.axial_inertia() * std::pow(w.dot(axis), 2);
+  };
+  int bounced = 0;
+  for (int i = 0; i < 5000; ++i) {
+    Vec3 axis = Vec3(u(rng), u(rng), u(rng)).normalized();
+    if (axis.z() > 0) axis = -axis;  // the tip end lowest: it touches
+    const Vec3 arm = h * axis - rad * n;
+    Vec3 v(20 * u(rng), 20 * u(rng), -20 * std::abs(u(rng)));
+    Vec3 w = Vec3(u(rng), u(rng), u(rng)).cross(axis) * 2000;
+    const double e = 0.5 * (1 + u(rng)), mu = i % 2 ? 0.0 : 0.8 * (1 + u(rng));
+    const Vec3 v0 = v, w0 = w;
+    const double before = energy(v, w, axis);
+    flight::rebound(nail, axis, arm, n, e, mu, v, w);
+    if ((v0 + w0.cross(arm)).dot(n) >= 0) {
+      CHECK(v == v0);  // not approaching: untouched
+      continue;
+    }
+    ++bounced;
+    CHECK(energy(v, w, axis) <= before * (1 + 1e-12));
+    CHECK((v + w.cross(arm)).dot(n) >= -1e-9);  // the point leaves the floor
+    if (mu == 0) {
+      // Frictionless: the impulse is along n through the contact, so the angular momentum
+      // about the contact point, m arm' x v + I w with arm' from the contact to the centre,
+      // is unchanged (its part about the nail's own axis is nil here).
+      const Eigen::Matrix3d I = nail.transverse_inertia() * (Eigen::Matrix3d::Identity() - axis * axis.transpose()) +
+                                nail.axial_inertia() * axis * axis.transpose();
+      const Vec3 L0 = nail.mass * (-arm).cross(v0) + I * w0, L1 = nail.mass * (-arm).cross(v) + I * w;
+      CHECK((L1 - L0).norm() < 1e-9 * (L0.norm() + 1e-12));
+      CHECK((v - v0).cross(n).norm() < 1e-9);  // and the centre's velocity changes only along n
+    }
+  }
+  CHECK(bounced > 1000);
+}

@@ -74,24 +74,6 @@ Vec3 rough_normal(const Vec3& n, double roughness, random::Stream& rng) {
   return (n * std::cos(angle) + axis.cross(n) * std::sin(angle)).normalized();
 }
 
-// The nail's rebound off an immovable surface at the point `arm` from its centre: Poisson's
-// restitution e and Coulomb friction mu through the impulse of strike/impulse.hpp (the
-// other body's compliance zero), so the bounce changes the spin as well as the velocity
-// (docs/model.md §5.3). Nothing happens when that point is not approaching the surface.
-void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& arm, const Vec3& n, double e, double mu, Vec3& velocity,
-             Vec3& spin) {
-  const Vec3 v_point = velocity + spin.cross(arm);
-  if (!(v_point.dot(n) < 0)) return;
-  const Eigen::Matrix3d inv_i = strike::inverse_inertia(nail, axis);
-  Eigen::Matrix3d R;
-  R << 0, -arm.z(), arm.y(), arm.z(), 0, -arm.x(), -arm.y(), arm.x(), 0;
-  const Eigen::Matrix3d K = Eigen::Matrix3d::Identity() / nail.mass - R * inv_i * R;
-  const Vec3 P = strike::solve_impulse(K, v_point, n, blade::Restitution::constant(std::clamp(e, 0.0, 1.0)), mu).impulse;
-  velocity += P / nail.mass;
-  spin += inv_i * arm.cross(P);
-  spin -= spin.dot(axis) * axis;  // the spin about the nail's own axis is left out (as after a blade contact)
-}
-
 }  // namespace
 
 namespace {

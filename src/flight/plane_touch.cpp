@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "blade/restitution.hpp"
 #include "strike/impulse.hpp"
 
 namespace j232::flight {
@@ -60,6 +61,20 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   // On the plane itself (the clearance is within the tolerance, or an overlap at `from`).
   touch.point -= n.dot(touch.point - q) * n;
   return touch;
+}
+
+void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& arm, const Vec3& n, double e, double mu, Vec3& velocity,
+             Vec3& spin) {
+  const Vec3 v_point = velocity + spin.cross(arm);
+  if (!(v_point.dot(n) < 0)) return;
+  const Eigen::Matrix3d inv_i = strike::inverse_inertia(nail, axis);
+  Eigen::Matrix3d R;
+  R << 0, -arm.z(), arm.y(), arm.z(), 0, -arm.x(), -arm.y(), arm.x(), 0;
+  const Eigen::Matrix3d K = Eigen::Matrix3d::Identity() / nail.mass - R * inv_i * R;
+  const Vec3 P = strike::solve_impulse(K, v_point, n, blade::Restitution::constant(std::clamp(e, 0.0, 1.0)), mu).impulse;
+  velocity += P / nail.mass;
+  spin += inv_i * arm.cross(P);
+  spin -= spin.dot(axis) * axis;  // the spin about the nail's own axis is left out (as after a blade contact)
 }
 
 double effective_mass(const projectile::Projectile& nail, const Vec3& axis, const Vec3& r, const Vec3& n) {
