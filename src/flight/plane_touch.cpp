@@ -17,14 +17,43 @@ double clearance(const projectile::Projectile& nail, const Vec3& centre, const V
   if (point) *point = core - nail.radius() * n;
   return n.dot(centre - q) - h * std::abs(along) - nail.radius();
 }
+// The axis along n as it turns about the spin k: n . a(t) = c + A cos(wt) + B sin(wt), so
+// |n . a| reaches at most |c| + sqrt(A^2 + B^2) (`reach`: exact, and constant, without
+// spin) and changes at most w sqrt(A^2 + B^2) per second (`swing_rate`).
+struct AxisAlongNormal {
+  double reach = 0, swing_rate = 0;
+};
+AxisAlongNormal axis_along(const strike::Motion& m, const Vec3& n) {
+  const double w = m.spin.norm();
+  if (!(w > 0)) return {std::abs(n.dot(m.axis0)), 0.0};
+  const Vec3 k = m.spin / w;
+  const Vec3 along = k.dot(m.axis0) * k, across = m.axis0 - along;
+  const double a = n.dot(across), b = n.dot(k.cross(across)), turning = std::sqrt(a * a + b * b);
+  return {std::abs(n.dot(along)) + turning, w * turning};
+}
+
+// The first x >= 0 at which c0 + c1 x + c2 x^2 / 2 (c0 > 0) reaches zero, or HUGE_VAL.
+double first_root(double c0, double c1, double c2) {
+  if (c2 == 0) return c1 < 0 ? -c0 / c1 : HUGE_VAL;
+  const double disc = c1 * c1 - 2 * c2 * c0;
+  if (disc < 0) return HUGE_VAL;
+  // The roots' product is 2 c0 / c2 and sum -2 c1 / c2; stable forms of both.
+  const double qq = -(c1 + std::copysign(std::sqrt(disc), c1));
+  const double r1 = qq / c2, r2 = qq != 0 ? 2 * c0 / qq : HUGE_VAL;
+  double best = HUGE_VAL;
+  for (const double r : {r1, r2})
+    if (r >= 0 && r < best) best = r;
+  return best;
+}
 }  // namespace
 
 std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const projectile::Projectile& nail, const Vec3& q, const Vec3& n,
                                             double from, double until, bool leaving) {
   // How fast the clearance can fall: the centre's speed along n (linear in time, so at most
-  // its larger end value) and the core's ends swinging about the centre.
+  // its larger end value) and the core's ends swinging about the centre along n.
   const double centre_speed = std::max(std::abs(n.dot(m.velocity(from))), std::abs(n.dot(m.velocity(until))));
-  const double bound = centre_speed + nail.half_segment() * m.spin.norm() + 1e-9;
+  const AxisAlongNormal axis = axis_along(m, n);
+  const double bound = centre_speed + nail.half_segment() * axis.swing_rate + 1e-9;
   // Steps of at least this much motion: a touch shallower than it can be missed (as the
   // blade's search, strike/contact_search.hpp); an overlap found is bisected back.
   constexpr double kMinStep = 2e-4;  // m
@@ -37,6 +66,18 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
     t = std::min(until, t + kMinStep / bound), g = state(t, nullptr);
   }
   if (g <= kTouchTolerance) until = t;  // touching already
+  // Far from the plane no stepping is needed: however the axis turns about the spin, the
+  // core reaches at most h M along -n (M = axis.reach), so the centre's height above the
+  // plane, a quadratic in time, must first come down to h M + D/2 (the swept disc's reach).
+  if (g > kTouchTolerance) {
+    const double reach = nail.half_segment() * axis.reach + nail.radius() + kTouchTolerance;
+    const double above = n.dot(m.centre(t) - q) - reach;
+    const double x = above > 0 ? first_root(above, n.dot(m.velocity(t)), n.dot(m.a)) : 0.0;
+    if (x > 0) {
+      if (!(t + x <= until)) return std::nullopt;
+      t += x, g = state(t, nullptr);
+    }
+  }
   for (int steps = 0; g > kTouchTolerance && steps < 100000; ++steps) {
     if (t >= until) return std::nullopt;
     const double next = std::min(until, t + std::max(g, kMinStep) / bound);
@@ -47,7 +88,8 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
     }
     // Through the plane within the step: back to the first instant within tolerance.
     double lo = t, hi = next;
-    for (int it = 0; it < 60 && hi - lo > 1e-12; ++it) {
+    // (to a step in which nothing moves more than the tolerance)
+    for (int it = 0; it < 60 && (hi - lo) * bound > kTouchTolerance; ++it) {
       const double mid = 0.5 * (lo + hi);
       (state(mid, nullptr) > kTouchTolerance ? lo : hi) = mid;
     }
