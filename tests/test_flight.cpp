@@ -280,6 +280,40 @@ TEST_CASE("board touch: the capsule's first touch of a plane, and the mass it st
       if (theta < units::pi / 2) CHECK(t->point.z() == Approx(0.3 + h * std::sin(theta)).margin(1e-9));  // the end nearer the wall
     }
   }
+  SECTION("falling onto a floor under gravity: the quadratic far field, exact without spin") {
+    const Vec3 floor_q(0, 0, 0), up(0, 0, 1);
+    for (const double theta : {0.0, 0.5, 1.2}) {
+      strike::Motion mo;
+      mo.p0 = {0, 0, 0.4}, mo.v0 = {3, 0, 2}, mo.a = {0, 0, -g};
+      mo.axis0 = {std::sin(theta), 0, std::cos(theta)};
+      const auto t = flight::first_plane_touch(mo, nail, floor_q, up, 0.0, 2.0);
+      REQUIRE(t);
+      const double reach = h * std::cos(theta) + rad;  // the centre's height at the touch
+      const double expected = (2 + std::sqrt(4 + 2 * g * (0.4 - reach))) / g;
+      CHECK(t->time == Approx(expected).margin(1e-7));
+      CHECK(t->point.z() == Approx(0).margin(1e-12));
+      CHECK_FALSE(t->already);
+    }
+  }
+  SECTION("leaving a plane: the touch it leaves is not found again, the other end coming round is") {
+    const Vec3 floor_q(0, 0, 0), up(0, 0, 1);
+    strike::Motion mo;
+    mo.axis0 = Vec3(1, 0, -1).normalized();  // its tip end down, touching
+    mo.p0 = Vec3(0, 0, h / std::sqrt(2.0) + rad);
+    mo.v0 = {0, 0, 0.5};
+    mo.spin = {0, -200, 0};  // turning its head end down onto the floor
+    const auto standing = flight::first_plane_touch(mo, nail, floor_q, up, 0.0, 0.1);
+    REQUIRE(standing);
+    CHECK(standing->already);
+    CHECK(standing->time == 0.0);
+    const auto next = flight::first_plane_touch(mo, nail, floor_q, up, 0.0, 0.1, true);
+    REQUIRE(next);
+    CHECK(next->time > 1e-3);
+    CHECK(next->point.x() < 0);  // the other end (the head's), on the other side of the centre
+    // Rising straight off the floor without turning: nothing more.
+    mo.spin = Vec3::Zero();
+    CHECK_FALSE(flight::first_plane_touch(mo, nail, floor_q, up, 0.0, 0.05, true));
+  }
   SECTION("never reaching the plane: nothing") {
     strike::Motion mo;
     mo.p0 = {0.5, 0, 0.3}, mo.v0 = {0, 0, 5};
@@ -357,6 +391,8 @@ TEST_CASE("rebound: a tumbling rod off a wall creates no energy, separates, keep
       const Vec3 L0 = nail.mass * (-arm).cross(v0) + I * w0, L1 = nail.mass * (-arm).cross(v) + I * w;
       CHECK((L1 - L0).norm() < 1e-9 * (L0.norm() + 1e-12));
       CHECK((v - v0).cross(n).norm() < 1e-9);  // and the centre's velocity changes only along n
+      // Newton's and Poisson's rules agree without friction: the point leaves at e times its approach.
+      CHECK((v + w.cross(arm)).dot(n) == Approx(-e * (v0 + w0.cross(arm)).dot(n)).epsilon(1e-9));
     }
   }
   CHECK(bounced > 1000);

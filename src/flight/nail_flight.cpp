@@ -252,7 +252,16 @@ std::optional<PlaneTouch> NailFlight::surface_touch(const scene::Hit& hit, const
   const double closing = std::max(1e-3, -hit.normal.dot(chord.velocity(centre_arrives)));
   const double reach = nail.half_segment() + nail.radius() + 1e-3;
   const double from = std::max(last_event, centre_arrives - 2 * reach / closing);
-  return first_plane_touch(chord, nail, hit.point, hit.normal, from, centre_arrives);
+  // The plane it last bounced off (its face or a face beside it in that plane): the touch it
+  // is leaving is no new one.
+  const bool same_plane = last_plane && last_plane->normal.dot(hit.normal) > 1 - 1e-12 &&
+                          std::abs(hit.normal.dot(hit.point - last_plane->point)) < 1e-9;
+  auto at = first_plane_touch(chord, nail, hit.point, hit.normal, from, centre_arrives, same_plane);
+  // Already on the plane when the search looked back from before this chord: met here, at
+  // the chord's start, never earlier than the nail's present.
+  if (at && at->already && at->time < chord.t0)
+    at = first_plane_touch(chord, nail, hit.point, hit.normal, chord.t0, centre_arrives, same_plane);
+  return at;
 }
 
 // The board judges the point that strikes it (docs/model.md §5.5): the energy a plastic
@@ -264,7 +273,15 @@ void NailFlight::reach_board(const scene::Hit& hit, const PlaneTouch& at, const 
   const Vec3& n = hit.normal;
   const Vec3 arm = at.point - at.centre;
   const double approach = std::max(0.0, -n.dot(velocity + b.spin.cross(arm)));
-  const double energy = 0.5 * effective_mass(nail, at.axis, arm, n) * approach * approach;
+  const double at_point = 0.5 * effective_mass(nail, at.axis, arm, n) * approach * approach;
+  // A nail nearly flat has more of its shank within the crush depth than its end: the part
+  // pressing on the board shares what a plastic contact along the whole shank takes out (its
+  // normal translation and the turn that moves its ends along n), in proportion to its length.
+  const double cos_theta = std::abs(at.axis.dot(n));
+  const double pressing = cos_theta * length > s.board.crush_depth ? s.board.crush_depth / cos_theta : length;
+  const double centre_in = std::max(0.0, -n.dot(velocity)), turn = n.dot(b.spin.cross(at.axis));
+  const double along_shank = centre_in > 0 ? 0.5 * mass * centre_in * centre_in + 0.5 * nail.transverse_inertia() * turn * turn : 0.0;
+  const double energy = std::max(at_point, pressing / length * along_shank);
   const double width = board::presented_width(length, diameter, at.axis.dot(n), s.board.crush_depth);
   const board::Mark mark = board::classify(energy, width, s.board);
   if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
@@ -291,7 +308,9 @@ void NailFlight::reach_board(const scene::Hit& hit, const PlaneTouch& at, const 
 // A bounce with restitution e and friction mu off the surface with normal n: at the touching
 // point as a rigid body when there is one, else at the centre.
 void NailFlight::bounce_off(const Vec3& n, double e, double mu, const Vec3* arm) {
-  if (arm)
+  // A touching point that does not move into the surface while the centre does (found on
+  // the plane already): the centre's bounce, so that no surface is crossed.
+  if (arm && (b.velocity + b.spin.cross(*arm)).dot(n) < 0)
     rebound(nail, b.axis, *arm, n, e, mu, b.velocity, b.spin);
   else
     b.velocity = bounce(b.velocity, n, e, mu);
@@ -340,8 +359,10 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
       const double speed = v_in.norm();
       const double angle = speed > 0 ? std::asin(std::clamp(-v_in.dot(rough) / speed, 0.0, 1.0)) : 0.5 * units::pi;
       bounce_off(rough, s.ground.restitution_at(angle), s.ground.friction, arm);
+      // A rough facet cannot send a point-like bounce into the ground. (A tumbling rod's centre
+      // may still move into it after a rigid rebound at one end: its next touch is searched.)
       const double out = b.velocity.dot(n);
-      if (out < 0) b.velocity -= 2 * out * n;  // a rough facet cannot send it into the ground
+      if (out < 0 && !arm) b.velocity -= 2 * out * n;
       touch(Touch::Ground);
       break;
     }
@@ -377,12 +398,14 @@ bool NailFlight::slide(const scene::Hit& hit) {
       moved(from, from + distance * slide);
       b.position = from + distance * slide;
       b.time += speed / decel;
+    last_event = b.time;
       b.velocity = Vec3::Zero();
       ended_at_rest = true;
       break;
     }
     const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
     b.time += (speed - arrive) / decel;
+    last_event = b.time;
     moved(from, wall->point);
     b.position = wall->point;
     b.velocity = arrive * slide;
@@ -400,11 +423,14 @@ bool NailFlight::slide(const scene::Hit& hit) {
 // false when the flight has ended.
 bool NailFlight::after_bounce(const scene::Hit& hit) {
   if (last_touch != Touch::GuardPass) last_plane = hit;
-  if (hit.surface == scene::Surface::Ground && b.velocity.dot(hit.normal) < kSlideBelow) {
+  // How fast its ends swing about its centre: a nail still tumbling is not lying yet.
+  const double swing = b.spin.norm() * nail.half_segment();
+  if (hit.surface == scene::Surface::Ground && b.velocity.dot(hit.normal) < kSlideBelow && swing < kSlideBelow) {
     last_plane.reset();
+    b.spin = Vec3::Zero();  // lying on the ground, it slides without turning
     if (!slide(hit)) return false;
   }
-  if (b.velocity.norm() < s.run.rest_speed && hit.normal.z() > 0.5) {
+  if (b.velocity.norm() < s.run.rest_speed && swing < s.run.rest_speed && hit.normal.z() > 0.5) {
     ended_at_rest = true;
     return false;
   }

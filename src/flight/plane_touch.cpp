@@ -58,14 +58,23 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   // blade's search, strike/contact_search.hpp); an overlap found is bisected back.
   constexpr double kMinStep = 2e-4;  // m
   const auto state = [&](double t, Vec3* point) { return clearance(nail, m.centre(t), m.axis(t), q, n, point); };
+  // Whether the capsule's point nearest the plane moves into it at t.
+  const auto approaching = [&](double t) {
+    Vec3 point;
+    state(t, &point);
+    return n.dot(m.velocity(t) + m.spin.cross(Vec3(point - m.centre(t)))) < 0;
+  };
   double t = from, g = state(t, nullptr);
-  // Just bounced off this plane: the touch it is leaving is not a new one; the search starts
-  // once the nail has come clear of the plane (nothing if it stays on it until `until`).
-  while (leaving && g <= kTouchTolerance) {
+  // Just bounced off this plane: the touch it is leaving is not a new one. While the nail is
+  // still on the plane, only its nearest point moving into it again (the same end, or the
+  // other one come round) is a touch; nothing if it stays on it, leaving, until `until`.
+  bool already = g <= kTouchTolerance;
+  while (leaving && g <= kTouchTolerance && !approaching(t)) {
     if (t >= until) return std::nullopt;
     t = std::min(until, t + kMinStep / bound), g = state(t, nullptr);
   }
   if (g <= kTouchTolerance) until = t;  // touching already
+  else already = false;
   // Far from the plane no stepping is needed: however the axis turns about the spin, the
   // core reaches at most h M along -n (M = axis.reach), so the centre's height above the
   // plane, a quadratic in time, must first come down to h M + D/2 (the swept disc's reach).
@@ -78,7 +87,8 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
       t += x, g = state(t, nullptr);
     }
   }
-  for (int steps = 0; g > kTouchTolerance && steps < 100000; ++steps) {
+  int steps = 0;
+  for (; g > kTouchTolerance && steps < 100000; ++steps) {
     if (t >= until) return std::nullopt;
     const double next = std::min(until, t + std::max(g, kMinStep) / bound);
     const double g_next = state(next, nullptr);
@@ -95,7 +105,9 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
     }
     t = hi, g = 0;
   }
+  if (g > kTouchTolerance) return std::nullopt;  // the step cap: no touch found (never seen)
   PlaneTouch touch;
+  touch.already = already && t == from;
   touch.time = t;
   touch.centre = m.centre(t);
   touch.axis = m.axis(t);

@@ -18,14 +18,15 @@ struct PlaneTouch {
   Vec3 centre = Vec3::Zero();  // the nail's centre then
   Vec3 axis = Vec3::UnitZ();   // and its axis
   Vec3 point = Vec3::Zero();   // the point of the capsule that touches, on the plane
+  bool already = false;        // it was on (or through) the plane at the search's start
 };
 
 // The first time in [from, until] at which the capsule moving as `m` reaches the plane
 // through `q` with unit normal `n` (pointing to the side the nail comes from), found by
 // conservative advancement on its clearance n.(c - q) - h |n.a| - D/2 (h the half core
 // segment) to within kTouchTolerance; if it already reaches the plane at `from`, then
-// (unless `leaving`: it has just bounced off this plane, and only a touch after it has come
-// clear counts). Nothing when it stays clear until `until`.
+// (unless `leaving`: it has just bounced off this plane, and only its nearest point moving
+// into the plane again, or a touch after it has come clear, counts). Nothing when it stays clear until `until`.
 inline constexpr double kTouchTolerance = 2e-6;  // m
 std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const projectile::Projectile& nail, const Vec3& q, const Vec3& n,
                                             double from, double until, bool leaving = false);
