@@ -7,7 +7,6 @@
 #include "board/board.hpp"
 #include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"
-#include "blade/restitution.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::flight {
@@ -116,7 +115,8 @@ struct NailFlight {
     last_touch = t;
   }
   void moved(const Vec3& from, const Vec3& to);
-  std::optional<strike::Contact> blade_contact(const Body& from, const Vec3& acceleration, double dt);
+  std::optional<strike::Contact> blade_contact(const strike::Motion& chord, double until);
+  Vec3 meet(const PlaneTouch& at, const strike::Motion& chord);
   void restrike(const strike::Contact& k);
   void touched_scene() { on_blade = false; }
   void close_pass() {
@@ -181,17 +181,29 @@ void NailFlight::moved(const Vec3& from, const Vec3& to) {
     }
 }
 
-// The earliest blade contact of the nail over the step from `from` of dt, its centre
-// moving with the step's starting velocity and acceleration, its axis turning with its spin.
-std::optional<strike::Contact> NailFlight::blade_contact(const Body& from, const Vec3& acceleration, double dt) {
-  std::optional<strike::Contact> best;
-  if (!ctx.spindles) return best;
+// The nail over a chord as the contact searches see it: its centre moving with the chord's
+// starting velocity and acceleration, its axis turning with its spin.
+strike::Motion chord_motion(const Body& from, const Vec3& acceleration) {
   strike::Motion m;
   m.p0 = from.position, m.v0 = from.velocity, m.a = acceleration, m.t0 = from.time, m.axis0 = from.axis, m.spin = from.spin;
+  return m;
+}
+
+// A surface met where the centre meets it (a nail sliding on the ground, or no touch found).
+PlaneTouch centre_touching(const Body& b, const Vec3& point) {
+  PlaneTouch at;
+  at.time = b.time, at.centre = b.position, at.axis = b.axis, at.point = point;
+  return at;
+}
+
+// The earliest blade contact of the nail moving as `chord` until `until`.
+std::optional<strike::Contact> NailFlight::blade_contact(const strike::Motion& m, double until) {
+  std::optional<strike::Contact> best;
+  if (!ctx.spindles) return best;
   strike::SearchStats stats;
   for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
     const strike::Spindle& sp = (*ctx.spindles)[k];
-    auto c = strike::first_contact(sp, phases.at_zero[k], nail, m, best ? best->time : from.time + dt, stats,
+    auto c = strike::first_contact(sp, phases.at_zero[k], nail, m, best ? best->time : until, stats,
                                    sp.reference_search ? strike::SearchMethod::FixedSteps : strike::SearchMethod::Advancement);
     if (c && (!best || c->time < best->time)) best = c, best->spindle = k;
   }
@@ -264,6 +276,16 @@ std::optional<PlaneTouch> NailFlight::surface_touch(const scene::Hit& hit, const
   return at;
 }
 
+// The nail moved along the chord to where it touches a surface; returns the touching
+// point from its centre.
+Vec3 NailFlight::meet(const PlaneTouch& at, const strike::Motion& chord) {
+  const Vec3 from = b.position;
+  b.position = at.centre, b.velocity = chord.velocity(at.time), b.axis = at.axis, b.time = at.time;
+  moved(from, b.position);
+  last_event = b.time;
+  return at.point - at.centre;
+}
+
 // The board judges the point that strikes it (docs/model.md §5.5): the energy a plastic
 // impact there takes out of the rod, m_eff v_n^2 / 2 with v_n that point's speed into the
 // board (its centre's and its spin's) and m_eff the rod's mass felt there along the
@@ -326,9 +348,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
     case scene::Surface::TargetOutside: {
       // Reached sliding along the ground (in flight, run() finds the touch first): at the
       // point where the centre meets it, lying as it lies.
-      PlaneTouch at;
-      at.time = b.time, at.centre = b.position, at.axis = b.axis, at.point = hit.point;
-      reach_board(hit, at, b.velocity);
+      reach_board(hit, centre_touching(b, hit.point), b.velocity);
       return false;
     }
     case scene::Surface::Housing:
@@ -398,7 +418,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
       moved(from, from + distance * slide);
       b.position = from + distance * slide;
       b.time += speed / decel;
-    last_event = b.time;
+      last_event = b.time;
       b.velocity = Vec3::Zero();
       ended_at_rest = true;
       break;
@@ -478,35 +498,29 @@ FlightResult NailFlight::run() {
     const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
     const double dt = std::min(chord_step(b, accel, s.run.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
     const Body next = advance(b, dt, step_drag, accel);
-    const Vec3 chord = next.position - b.position;
-    const double len = chord.norm();
+    const Vec3 step = next.position - b.position;
+    const double len = step.norm();
     if (!(len > 1e-12)) {
       b = next;
       continue;
     }
     // The blades first: a contact on this chord cuts the scene query short.
-    const auto contact = blade_contact(b, accel, dt);
+    const strike::Motion chord = chord_motion(b, accel);
+    const auto contact = blade_contact(chord, b.time + dt);
     if (cut_off) break;
-    strike::Motion chord_motion;
-    chord_motion.p0 = b.position, chord_motion.v0 = b.velocity, chord_motion.a = accel, chord_motion.t0 = b.time;
-    chord_motion.axis0 = b.axis, chord_motion.spin = b.spin;
     // The surface it last bounced off, met again by its other end or the same one as it
     // tumbles (its face is skipped by the centre's ray just after the bounce).
     std::optional<PlaneTouch> again;
     if (last_plane && last_plane->normal.dot(b.position - last_plane->point) < nail.half_segment() + nail.radius() + len)
-      again = first_plane_touch(chord_motion, nail, last_plane->point, last_plane->normal, b.time, contact ? contact->time : b.time + dt,
+      again = first_plane_touch(chord, nail, last_plane->point, last_plane->normal, b.time, contact ? contact->time : b.time + dt,
                                 true);
     const double until = again ? again->time : contact ? contact->time : b.time + dt;
     const double reach = len * std::min(1.0, (until - b.time) / dt);
     ++r.queries;
-    const auto hit = ctx.scene->first_hit(b.position, chord / len, reach, skip);
+    const auto hit = ctx.scene->first_hit(b.position, step / len, reach, skip);
     if (!hit && again) {
-      const Vec3 from = b.position;
-      b.position = again->centre, b.velocity = chord_motion.velocity(again->time), b.axis = again->axis, b.time = again->time;
-      moved(from, b.position);
-      last_event = b.time;
       const scene::Hit plane = *last_plane;
-      const Vec3 arm = again->point - again->centre;
+      const Vec3 arm = meet(*again, chord);
       if (!respond(plane, &arm)) break;
       if (!after_bounce(plane)) break;
       continue;
@@ -533,24 +547,18 @@ FlightResult NailFlight::run() {
     // The capsule touches the surface's plane before its centre gets there (by up to half
     // its length), at the point its tumbling has turned nearest.
     const double arrives = b.time + dt * hit->distance / len;
-    const auto at = surface_touch(*hit, chord_motion, arrives);
+    const auto at = surface_touch(*hit, chord, arrives);
     if (hit->surface == scene::Surface::TargetZone || hit->surface == scene::Surface::TargetOutside) {
       moved(b.position, hit->point);
       b = advance(b, dt * hit->distance / len, step_drag, accel);
       b.position = hit->point;
-      PlaneTouch centre_there;
-      centre_there.time = b.time, centre_there.centre = b.position, centre_there.axis = b.axis, centre_there.point = hit->point;
-      reach_board(*hit, at ? *at : centre_there, at ? chord_motion.velocity(at->time) : b.velocity);
+      reach_board(*hit, at ? *at : centre_touching(b, hit->point), at ? chord.velocity(at->time) : b.velocity);
       break;
     }
     skip = {};
     skip.add(hit->face);
     if (at) {
-      const Vec3 from = b.position;
-      b.position = at->centre, b.velocity = chord_motion.velocity(at->time), b.axis = at->axis, b.time = at->time;
-      moved(from, b.position);
-      last_event = b.time;
-      const Vec3 arm = at->point - at->centre;
+      const Vec3 arm = meet(*at, chord);
       if (!respond(*hit, &arm)) break;
     } else {  // (never expected: the centre reaching the plane means the capsule did)
       moved(b.position, hit->point);

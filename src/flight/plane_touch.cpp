@@ -122,9 +122,7 @@ void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& a
   const Vec3 v_point = velocity + spin.cross(arm);
   if (!(v_point.dot(n) < 0)) return;
   const Eigen::Matrix3d inv_i = strike::inverse_inertia(nail, axis);
-  Eigen::Matrix3d R;
-  R << 0, -arm.z(), arm.y(), arm.z(), 0, -arm.x(), -arm.y(), arm.x(), 0;
-  const Eigen::Matrix3d K = Eigen::Matrix3d::Identity() / nail.mass - R * inv_i * R;
+  const Eigen::Matrix3d K = strike::nail_compliance(nail, inv_i, arm);
   const Vec3 P = strike::solve_impulse(K, v_point, n, blade::Restitution::constant(std::clamp(e, 0.0, 1.0)), mu).impulse;
   velocity += P / nail.mass;
   spin += inv_i * arm.cross(P);

@@ -84,6 +84,11 @@ Eigen::Matrix3d inverse_inertia(const projectile::Projectile& nail, const Vec3& 
   return (Eigen::Matrix3d::Identity() - along) / nail.transverse_inertia() + along / nail.axial_inertia();
 }
 
+Eigen::Matrix3d nail_compliance(const projectile::Projectile& nail, const Eigen::Matrix3d& inv_i, const Vec3& r) {
+  const Eigen::Matrix3d R = skew(r);
+  return Eigen::Matrix3d::Identity() / nail.mass - R * inv_i * R;
+}
+
 StrikeOutcome strike(const Spindle& sp, const Contact& k, const projectile::Projectile& nail, const Vec3& velocity, const Vec3& spin) {
   StrikeOutcome out;
   const Vec3 r = k.point - k.centre;
@@ -99,8 +104,7 @@ StrikeOutcome strike(const Spindle& sp, const Contact& k, const projectile::Proj
   out.where = *where;
 
   const Eigen::Matrix3d inv_i = inverse_inertia(nail, k.axis);
-  const Eigen::Matrix3d R = skew(r);
-  Eigen::Matrix3d K = Eigen::Matrix3d::Identity() / nail.mass - R * inv_i * R;
+  Eigen::Matrix3d K = nail_compliance(nail, inv_i, r);
   // The blade yields in its plane, along its motion and radially (through the offset).
   const Eigen::Matrix2d C = sp.model.planar_compliance(*where, k.forward_offset);
   Eigen::Matrix<double, 3, 2> B;

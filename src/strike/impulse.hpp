@@ -40,6 +40,10 @@ ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const
 // The nail's inverse inertia (world), a rod with transverse inertia I_t and axial I_a.
 Eigen::Matrix3d inverse_inertia(const projectile::Projectile& nail, const Vec3& axis);
 
+// The nail's own compliance at the point r from its centre: K_nail = I / m - [r]x I_n^-1 [r]x
+// (`inv_i`: its inverse inertia, inverse_inertia(nail, axis)).
+Eigen::Matrix3d nail_compliance(const projectile::Projectile& nail, const Eigen::Matrix3d& inv_i, const Vec3& r);
+
 struct StrikeOutcome {
   bool approaching = false;
   double approach_speed = 0;
