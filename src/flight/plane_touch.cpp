@@ -78,32 +78,69 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   // Far from the plane no stepping is needed: however the axis turns about the spin, the
   // core reaches at most h M along -n (M = axis.reach), so the centre's height above the
   // plane, a quadratic in time, must first come down to h M + D/2 (the swept disc's reach).
-  if (g > kTouchTolerance) {
-    const double reach = nail.half_segment() * axis.reach + nail.radius() + kTouchTolerance;
-    const double above = n.dot(m.centre(t) - q) - reach;
-    const double x = above > 0 ? first_root(above, n.dot(m.velocity(t)), n.dot(m.a)) : 0.0;
-    if (x > 0) {
-      if (!(t + x <= until)) return std::nullopt;
-      t += x, g = state(t, nullptr);
+  // (Checked again at every step: a nail that leaves the plane's near field crosses the
+  // rest of the interval in one step.)
+  const double reach = nail.half_segment() * axis.reach + nail.radius() + kTouchTolerance;
+  const auto far_field = [&](double t_now) {
+    const double above = n.dot(m.centre(t_now) - q) - reach;
+    return above > 0 ? first_root(above, n.dot(m.velocity(t_now)), n.dot(m.a)) : 0.0;
+  };
+  // Near it, each end's clearance f = n.(c - q) -+ h n.a - D/2 is smooth, with
+  // |f''| <= |n.acc| + h w^2 R (R = axis.swing_rate / w): the first root of its Taylor lower
+  // bound f + f' s - M s^2 / 2 is a safe step, much longer than the first-order one
+  // (g / bound) unless the nail tumbles fast. The longer of the two is taken.
+  const double h = nail.half_segment();
+  const double curvature = std::abs(n.dot(m.a)) + h * m.spin.norm() * axis.swing_rate + 1e-9;
+  const auto second_order = [&](double t_now) {
+    const Vec3 a = m.axis(t_now);
+    const double p = n.dot(m.centre(t_now) - q) - nail.radius(), dp = n.dot(m.velocity(t_now));
+    const double sv = h * n.dot(a), ds = h * n.dot(m.spin.cross(a));
+    double step = HUGE_VAL;
+    for (const double sign : {-1.0, 1.0}) {
+      const double f = p + sign * sv, df = dp + sign * ds;
+      step = std::min(step, f > 0 ? (df + std::sqrt(df * df + 2 * curvature * f)) / curvature : 0.0);
     }
-  }
+    return step;
+  };
+  // A step into the plane is brought back to the touch by regula falsi (Illinois) on the
+  // clearance, to within the tolerance.
+  const auto refine = [&](double lo, double g_lo, double hi, double g_hi) {
+    g_lo -= kTouchTolerance, g_hi -= kTouchTolerance;  // the root sought: clearance = tolerance
+    int side = 0;
+    for (int it = 0; it < 60 && (hi - lo) * bound > kTouchTolerance; ++it) {
+      double mid = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+      if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
+      const double g_mid = state(mid, nullptr) - kTouchTolerance;
+      if (g_mid <= 0 && g_mid >= -kTouchTolerance) return mid;  // within the tolerance of the plane
+      if (g_mid > 0) {
+        lo = mid, g_lo = g_mid;
+        if (side == -1) g_hi *= 0.5;
+        side = -1;
+      } else {
+        hi = mid, g_hi = g_mid;
+        if (side == 1) g_lo *= 0.5;
+        side = 1;
+      }
+    }
+    return hi;
+  };
   int steps = 0;
   for (; g > kTouchTolerance && steps < 100000; ++steps) {
     if (t >= until) return std::nullopt;
-    const double next = std::min(until, t + std::max(g, kMinStep) / bound);
+    if (const double x = far_field(t); x > std::max(g, kMinStep) / bound) {
+      if (!(t + x <= until)) return std::nullopt;
+      t += x, g = state(t, nullptr);
+      continue;
+    }
+    const double step = std::max(std::max(g, kMinStep) / bound, second_order(t));
+    const double next = std::min(until, t + step);
     const double g_next = state(next, nullptr);
     if (g_next > kTouchTolerance) {
       t = next, g = g_next;
       continue;
     }
     // Through the plane within the step: back to the first instant within tolerance.
-    double lo = t, hi = next;
-    // (to a step in which nothing moves more than the tolerance)
-    for (int it = 0; it < 60 && (hi - lo) * bound > kTouchTolerance; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (state(mid, nullptr) > kTouchTolerance ? lo : hi) = mid;
-    }
-    t = hi, g = 0;
+    t = refine(t, g, next, g_next), g = 0;
   }
   if (g > kTouchTolerance) return std::nullopt;  // the step cap: no touch found (never seen)
   PlaneTouch touch;
