@@ -99,6 +99,38 @@ TEST_CASE("blade section: the plate, its bevel and sail as convex polygons", "[s
   CHECK(a.distance > 0);
 }
 
+TEST_CASE("contact search: its coarse atan2 and its turning axis", "[strike][search]") {
+  // The azimuth bound widens the arm's window by kCoarseAtan2Error: the approximation must
+  // stay inside it everywhere, on the axes and at the octant boundaries too.
+  std::mt19937_64 gen(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double y = u(gen) * std::pow(10.0, 3 * u(gen)), x = u(gen) * std::pow(10.0, 3 * u(gen));
+    worst = std::max(worst, std::abs(strike::coarse_atan2(y, x) - std::atan2(y, x)));
+  }
+  for (const double a : {0.0, 0.25, 0.5, 0.75, 1.0, -0.25, -0.5, -0.75})
+    worst = std::max(worst, std::abs(strike::coarse_atan2(std::sin(a * units::pi), std::cos(a * units::pi)) -
+                                     std::atan2(std::sin(a * units::pi), std::cos(a * units::pi))));
+  CHECK(worst < 0.6 * strike::kCoarseAtan2Error);
+  CHECK(strike::coarse_atan2(0.0, 0.0) == 0.0);
+  // The turning axis: unit, the angle from its start w dt (for an axis across the spin),
+  // its component along the spin fixed, and exactly its start at dt = 0.
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 axis = Vec3(u(gen), u(gen), u(gen)).normalized(), spin = 3000 * Vec3(u(gen), u(gen), u(gen));
+    const strike::Turning turning(axis, spin);
+    const double dt = 1e-3 * u(gen);
+    const Vec3 a = turning.at(dt);
+    CHECK(a.norm() == Approx(1.0).epsilon(1e-12));
+    CHECK(a.dot(spin) == Approx(axis.dot(spin)).margin(1e-9));
+    const Vec3 k = spin.normalized();
+    const Vec3 p0 = axis - axis.dot(k) * k, p1 = a - a.dot(k) * k;
+    const double turned = std::atan2(k.dot(p0.cross(p1)), p0.dot(p1));
+    CHECK(std::remainder(turned - spin.norm() * dt, units::two_pi) == Approx(0.0).margin(1e-9));
+    CHECK(turning.at(0.0) == axis);
+  }
+}
+
 TEST_CASE("strike: an upright nail struck by a frictionless square edge gets no vertical impulse", "[strike][physics]") {
   auto s = bar_scenario();
   s.spindles[0].geometry.edge.bevel_angle = 90 * units::degree;

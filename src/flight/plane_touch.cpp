@@ -57,7 +57,8 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   // Steps of at least this much motion: a touch shallower than it can be missed (as the
   // blade's search, strike/contact_search.hpp); an overlap found is bisected back.
   constexpr double kMinStep = 2e-4;  // m
-  const auto state = [&](double t, Vec3* point) { return clearance(nail, m.centre(t), m.axis(t), q, n, point); };
+  const strike::Turning turning = m.turning();
+  const auto state = [&](double t, Vec3* point) { return clearance(nail, m.centre(t), turning.at(t - m.t0), q, n, point); };
   // Whether the capsule's point nearest the plane moves into it at t.
   const auto approaching = [&](double t) {
     Vec3 point;
@@ -92,7 +93,7 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   const double h = nail.half_segment();
   const double curvature = std::abs(n.dot(m.a)) + h * m.spin.norm() * axis.swing_rate + 1e-9;
   const auto second_order = [&](double t_now) {
-    const Vec3 a = m.axis(t_now);
+    const Vec3 a = turning.at(t_now - m.t0);
     const double p = n.dot(m.centre(t_now) - q) - nail.radius(), dp = n.dot(m.velocity(t_now));
     const double sv = h * n.dot(a), ds = h * n.dot(m.spin.cross(a));
     double step = HUGE_VAL;
@@ -147,7 +148,7 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   touch.already = already && t == from;
   touch.time = t;
   touch.centre = m.centre(t);
-  touch.axis = m.axis(t);
+  touch.axis = turning.at(t - m.t0);
   clearance(nail, touch.centre, touch.axis, q, n, &touch.point);
   // On the plane itself (the clearance is within the tolerance, or an overlap at `from`).
   touch.point -= n.dot(touch.point - q) * n;

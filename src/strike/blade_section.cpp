@@ -9,13 +9,6 @@ namespace {
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Parameter of the point of segment p-q nearest x, in [0, 1].
-double nearest_on(const Vec2& p, const Vec2& q, const Vec2& x) {
-  const Vec2 d = q - p;
-  const double l2 = d.squaredNorm();
-  return l2 > 0 ? std::clamp((x - p).dot(d) / l2, 0.0, 1.0) : 0.0;
-}
-
 bool inside(const ConvexPolygon& poly, const Vec2& x) {
   for (int i = 0; i < poly.n; ++i) {
     const Vec2& p = poly.v[static_cast<std::size_t>(i)];
@@ -31,6 +24,17 @@ bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& p, const Vec2& q) 
 }
 
 }  // namespace
+
+void ConvexPolygon::finish() {
+  lo = hi = v[0];
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    lo = lo.cwiseMin(v[k]), hi = hi.cwiseMax(v[k]);
+    edge[k] = v[static_cast<std::size_t>((i + 1) % n)] - v[k];
+    const double l2 = edge[k].squaredNorm();
+    inv_len2[k] = l2 > 0 ? 1 / l2 : 0.0;
+  }
+}
 
 SectionApproach segment_to_polygon(const Vec2& a, const Vec2& b, const ConvexPolygon& poly) {
   SectionApproach best;
@@ -54,31 +58,33 @@ SectionApproach segment_to_polygon(const Vec2& a, const Vec2& b, const ConvexPol
     }
   }
   // Apart: the nearest pair has an end of the segment or a vertex of the polygon in it.
-  // Squared distances, one root at the end.
+  // Squared distances, one root at the end; the edges' inverse squared lengths are the
+  // polygon's own, the segment's worked out once.
   double best2 = HUGE_VAL;
   const Vec2 d = b - a;
-  const double dl2 = d.squaredNorm();
+  const double dl2 = d.squaredNorm(), inv_dl2 = dl2 > 0 ? 1 / dl2 : 0.0;
   for (int i = 0; i < poly.n; ++i) {
-    const Vec2& p = poly.v[static_cast<std::size_t>(i)];
-    const Vec2& q = poly.v[static_cast<std::size_t>((i + 1) % poly.n)];
+    const auto k = static_cast<std::size_t>(i);
+    const Vec2& p = poly.v[k];
+    const Vec2& e = poly.edge[k];
+    const double inv_el2 = poly.inv_len2[k];
     const auto consider = [&](double s, const Vec2& on_poly) {
       const double dist2 = (a + s * d - on_poly).squaredNorm();
       if (dist2 < best2) best2 = dist2, best.s = s, best.on_section = on_poly;
     };
-    consider(0, p + nearest_on(p, q, a) * (q - p));
-    consider(1, p + nearest_on(p, q, b) * (q - p));
-    consider(nearest_on(a, b, p), p);
+    consider(0, p + std::clamp((a - p).dot(e) * inv_el2, 0.0, 1.0) * e);
+    consider(1, p + std::clamp((b - p).dot(e) * inv_el2, 0.0, 1.0) * e);
+    consider(std::clamp((p - a).dot(d) * inv_dl2, 0.0, 1.0), p);
     // A segment lying parallel to an edge touches it along an interval: its middle.
-    const Vec2 e = q - p;
-    const double el2 = e.squaredNorm(), c = cross(d, e);
-    if (el2 > 0 && dl2 > 0 && c * c <= 1e-18 * el2 * dl2) {
-      const double el = std::sqrt(el2);
+    const double c = cross(d, e);
+    if (inv_el2 > 0 && dl2 > 0 && c * c * inv_el2 <= 1e-18 * dl2) {
+      const double el = std::sqrt(1 / inv_el2);
       const Vec2 t = e / el;
       const double sa = (a - p).dot(t), sb = (b - p).dot(t);
       const double lo = std::max(0.0, std::min(sa, sb)), hi = std::min(el, std::max(sa, sb));
       if (hi > lo) {
         const Vec2 mid = p + 0.5 * (lo + hi) * t;
-        const double s = std::clamp((mid - a).dot(d) / dl2, 0.0, 1.0);
+        const double s = std::clamp((mid - a).dot(d) * inv_dl2, 0.0, 1.0);
         const double dist2 = (a + s * d - mid).squaredNorm();
         if (dist2 <= best2 * (1 + 1e-12)) best2 = dist2, best.s = s, best.on_section = mid;
       }
@@ -102,11 +108,7 @@ BladeSection::BladeSection(const EdgeShape& shape) : shape_(shape) {
   if (run == 0) plate.v = {Vec2(-w, -half), Vec2(0, -half), Vec2(0, half), Vec2(-w, half)};
   parts_[0] = plate;
   count_ = 1;
-  const auto box = [](ConvexPolygon& p) {
-    p.lo = p.hi = p.v[0];
-    for (int i = 1; i < p.n; ++i) p.lo = p.lo.cwiseMin(p.v[static_cast<std::size_t>(i)]), p.hi = p.hi.cwiseMax(p.v[static_cast<std::size_t>(i)]);
-  };
-  box(parts_[0]);
+  parts_[0].finish();
   back_ = -w;
   top_ = half;
   if (shape.sail_height > 0) {
@@ -116,7 +118,7 @@ BladeSection::BladeSection(const EdgeShape& shape) : shape_(shape) {
     sail.n = 5;
     sail.v = {Vec2(-w - t, -half), Vec2(-w, -half), Vec2(-w, half), Vec2(-w - rise, half + h), Vec2(-w - rise - t, half + h)};
     parts_[1] = sail;
-    box(parts_[1]);
+    parts_[1].finish();
     count_ = 2;
     back_ = -w - rise - t;
     top_ = half + h;

@@ -27,6 +27,10 @@ struct ConvexPolygon {
   std::array<Vec2, 6> v{};  // counter-clockwise in (u, w)
   int n = 0;
   Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  // bounding box
+  std::array<Vec2, 6> edge{};          // v[i+1] - v[i]
+  std::array<double, 6> inv_len2{};    // 1 / |edge|^2 (0 for a degenerate edge)
+  // The box and edges from the vertices.
+  void finish();
 };
 
 // The nearest approach of a segment to the section.

@@ -14,12 +14,27 @@
 // contact, finds the next touch of the same pass (the nail turning back into the plate, or
 // the plate catching it again) or the next pass.
 #include <Eigen/Dense>
+#include <cmath>
 #include <optional>
 
 #include "projectile/projectile.hpp"
 #include "strike/spindle.hpp"
 
 namespace j232::strike {
+
+// An axis turning at a constant spin: a(dt) = along + across cos(w dt) + ortho sin(w dt)
+// (Rodrigues' rotation, its fixed parts worked out once for the many instants a search
+// looks at).
+struct Turning {
+  Vec3 start = Vec3::UnitZ(), along = Vec3::UnitZ(), across = Vec3::Zero(), ortho = Vec3::Zero();
+  double rate = 0;  // w, rad/s
+  Turning() = default;
+  Turning(const Vec3& axis, const Vec3& spin);
+  Vec3 at(double dt) const {
+    if (rate * dt == 0.0) return start;
+    return along + across * std::cos(rate * dt) + ortho * std::sin(rate * dt);
+  }
+};
 
 // A body moving freely over a short interval.
 struct Motion {
@@ -33,6 +48,7 @@ struct Motion {
   }
   Vec3 velocity(double t) const { return v0 + (t - t0) * a; }
   Vec3 axis(double t) const;
+  Turning turning() const { return {axis0, spin}; }
 };
 
 // The axis after turning about `spin` for dt (Rodrigues' rotation).
@@ -59,6 +75,10 @@ struct SearchStats {
 inline constexpr double kContactTolerance = 2e-6;  // m: a capsule this close to the section touches it
 inline constexpr double kMinStep = 2e-4;            // m: the least travel of a step near the blade (a tenth of a nail's diameter)
 inline constexpr int kMaxSearchSteps = 4000;        // per edge and search
+inline constexpr double kCoarseAtan2Error = 2e-5;   // rad: coarse_atan2's bound, with a margin
+
+// atan2(y, x) to within kCoarseAtan2Error (for the search's angular bounds; exposed for tests).
+double coarse_atan2(double y, double x);
 
 // How the search steps: conservative advancement (production), or fixed steps of at most
 // 10 um of relative motion testing the clearance at each (the reference it is validated
