@@ -33,8 +33,8 @@ flight::FlightResult land(const scene::Scene& ground, const flight::Body& start,
   s.ground.roughness = 0;
   s.run.time_limit = 60;
   s.run.chord_tolerance = 1e-4;
-  static std::vector<scenario::GuardSpec> guards(1);
-  flight::FlightContext ctx{&ground, &s, 1e6, 0.0, 0.0, &guards};
+  static const flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+  const flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
   random::Stream rng(1, 0, 0, random::Purpose::Test);
   // A small sphere touches the ground where its centre's parabola meets the height of its
   // radius (a rod would touch earlier, at its end; test_flight's board-touch case has that).

@@ -174,8 +174,8 @@ TEST_CASE("scene: the operator-zone share converges to the sector's fraction of 
                         soup.labels[t]);
     }
   const scene::Scene sc(ring);
-  std::vector<scenario::GuardSpec> guards(1);
-  const flight::FlightContext ctx{&sc, &s, 100.0, 0.65, 0.0, &guards};
+  const flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+  const flight::FlightContext ctx{&sc, &settings, 100.0, 0.65, 0.0};
   int zone = 0, marks = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i) {
@@ -199,9 +199,9 @@ TEST_CASE("counted height: J232 counts only marks above the blade plane", "[scen
   // counted height: the marks are located either way, but only the upper ones count.
   const auto s = basic();
   const scene::Scene sc(scene::build_scene_soup(s));
-  std::vector<scenario::GuardSpec> guards(1);
+  const flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
   const double counted = s.spindles[0].geometry.height;
-  const flight::FlightContext ctx{&sc, &s, 100.0, 0.65, counted, &guards};
+  const flight::FlightContext ctx{&sc, &settings, 100.0, 0.65, counted};
   for (const double dz : {0.05, -0.05}) {
     random::Stream rng(3, 0, 0, random::Purpose::Test);
     flight::Body b;

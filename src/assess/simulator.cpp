@@ -44,12 +44,12 @@ Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenar
     if (m.label == scenario::MeshLabel::Guard) guards_.push_back(m.guard);
   guards_.insert(guards_.end(), s.housing.guards.begin(), s.housing.guards.end());  // a mesh deck keeps only polyline guards
   if (guards_.empty()) guards_.emplace_back();
+  flight_settings_ = flight::FlightSettings(scenario_, guards_);
   context_.scene = scene_.get();
-  context_.scenario = &scenario_;
+  context_.settings = &flight_settings_;
   context_.deck_radius = scene::mesh_roles(s).housing ? s.reach() + 0.05 : s.housing.deck_radius;
   context_.counted_height = s.counted_height();
   context_.escape_radius = scene::escape_radius(s, scene_->soup());
-  context_.guards = &guards_;
   footprint_ = scene::deck_footprint(s, scene_->soup());
   deck_outline_ = flight::DeckOutline(footprint_.outline);
   context_.deck_outline = &deck_outline_;

@@ -53,6 +53,7 @@ class Simulator {
   std::vector<strike::Spindle> spindles_;
   std::unique_ptr<scene::Scene> scene_;
   std::vector<scenario::GuardSpec> guards_;
+  flight::FlightSettings flight_settings_;  // built once from the scenario and the guards
   scene::DeckFootprint footprint_;
   flight::DeckOutline deck_outline_;  // footprint_.outline, indexed for the flight
   std::optional<scene::OperatorZone> zone_;  // a derived zone, judged from the throwing blade

@@ -89,7 +89,7 @@ struct NailFlight {
   const FirstContact& first;
   random::Stream& rng;
   const double length = nail.length, diameter = nail.diameter, mass = nail.mass;
-  const scenario::Scenario& s = *ctx.scenario;
+  const FlightSettings& set = *ctx.settings;
 
   FlightResult r{};
   Body b = start;
@@ -159,7 +159,7 @@ void NailFlight::moved(const Vec3& from, const Vec3& to) {
     trace.exit = Exit::DeckEdge;
     return;
   }
-  const auto& openings = s.housing.openings;
+  const auto& openings = set.openings;
   for (std::size_t i = 0; i < openings.size(); ++i)
     if (c.z() < openings[i].top && in_arc(trace.exit_azimuth, openings[i].azimuth_from, openings[i].azimuth_to)) {
       trace.exit = Exit::Opening;
@@ -300,12 +300,12 @@ void NailFlight::reach_board(const scene::Hit& hit, const PlaneTouch& at, const 
   // pressing on the board shares what a plastic contact along the whole shank takes out (its
   // normal translation and the turn that moves its ends along n), in proportion to its length.
   const double cos_theta = std::abs(at.axis.dot(n));
-  const double pressing = cos_theta * length > s.board.crush_depth ? s.board.crush_depth / cos_theta : length;
+  const double pressing = cos_theta * length > set.board.crush_depth ? set.board.crush_depth / cos_theta : length;
   const double centre_in = std::max(0.0, -n.dot(velocity)), turn = n.dot(b.spin.cross(at.axis));
   const double along_shank = centre_in > 0 ? 0.5 * mass * centre_in * centre_in + 0.5 * nail.transverse_inertia() * turn * turn : 0.0;
   const double energy = std::max(at_point, pressing / length * along_shank);
-  const double width = board::presented_width(length, diameter, at.axis.dot(n), s.board.crush_depth);
-  const board::Mark mark = board::classify(energy, width, s.board);
+  const double width = board::presented_width(length, diameter, at.axis.dot(n), set.board.crush_depth);
+  const board::Mark mark = board::classify(energy, width, set.board);
   if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
   if (mark != board::Mark::None) {
     // The board's label where the mark is (the centre's face when the point overhangs the
@@ -339,54 +339,56 @@ void NailFlight::bounce_off(const Vec3& n, double e, double mu, const Vec3* arm)
 }
 
 bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
+  const SurfaceMaterial& material = set.materials.of(hit.surface, hit.guard);
   const Vec3 n = hit.normal;
   // How the surface meets the nail: its touching point's velocity (the centre's when it slides).
   const Vec3 v_in = arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity;
-  const double vn = v_in.dot(n);
-  switch (hit.surface) {
-    case scene::Surface::TargetZone:
-    case scene::Surface::TargetOutside: {
+  switch (material.response) {
+    case SurfaceMaterial::Response::Board:
       // Reached sliding along the ground (in flight, run() finds the touch first): at the
       // point where the centre meets it, lying as it lies.
       reach_board(hit, centre_touching(b, hit.point), b.velocity);
       return false;
-    }
-    case scene::Surface::Housing:
-    case scene::Surface::Deflector:
-      bounce_off(n, s.housing.restitution.at(std::max(-vn, 1e-9)), s.housing.friction, arm);
-      touch(hit.surface == scene::Surface::Housing ? Touch::Housing : Touch::Deflector);
-      last_contact_guard = false;
-      break;
-    case scene::Surface::Guard: {
-      const auto& g = ctx.guards->at(hit.guard);
-      if (rng.uniform() < g.openness) {
-        b.velocity *= g.pass_speed_factor;  // slips between the links, losing speed
+    case SurfaceMaterial::Response::Curtain:
+      if (rng.uniform() < material.openness) {
+        b.velocity *= material.pass_speed_factor;  // slips between the links, losing speed
         touch(Touch::GuardPass);
         last_guard_passed = hit.guard;
         return true;
       }
-      bounce_off(n, g.restitution, g.friction, arm);
-      touch(Touch::GuardBounce);
-      last_contact_guard = true;
-      break;
-    }
-    case scene::Surface::Ground: {
-      // A rough facet the nail would meet from behind is no facet it can meet: drawn again.
-      Vec3 rough = rough_normal(n, s.ground.roughness, rng);
-      for (int tries = 0; tries < 16 && v_in.dot(rough) >= 0; ++tries) rough = rough_normal(n, s.ground.roughness, rng);
-      if (v_in.dot(rough) >= 0) rough = n;
-      // The impact angle against the local (rough) surface sets the normal restitution.
-      const double speed = v_in.norm();
-      const double angle = speed > 0 ? std::asin(std::clamp(-v_in.dot(rough) / speed, 0.0, 1.0)) : 0.5 * units::pi;
-      bounce_off(rough, s.ground.restitution_at(angle), s.ground.friction, arm);
-      // A rough facet cannot send a point-like bounce into the ground. (A tumbling rod's centre
-      // may still move into it after a rigid rebound at one end: its next touch is searched.)
-      const double out = b.velocity.dot(n);
-      if (out < 0 && !arm) b.velocity -= 2 * out * n;
-      touch(Touch::Ground);
-      break;
-    }
+      break;  // else it bounces off the curtain
+    case SurfaceMaterial::Response::Bounce: break;
   }
+  // The facet the nail meets: on a rough surface the local normal, tilted at random; one it
+  // would meet from behind is no facet it can meet, and is drawn again.
+  Vec3 facet = n;
+  if (material.roughness > 0) {
+    facet = rough_normal(n, material.roughness, rng);
+    for (int tries = 0; tries < 16 && v_in.dot(facet) >= 0; ++tries) facet = rough_normal(n, material.roughness, rng);
+    if (v_in.dot(facet) >= 0) facet = n;
+  }
+  // The impact angle against that facet (turf's restitution follows it) or the normal speed.
+  double angle = 0.5 * units::pi;
+  if (material.by_angle) {
+    const double speed = v_in.norm();
+    if (speed > 0) angle = std::asin(std::clamp(-v_in.dot(facet) / speed, 0.0, 1.0));
+  }
+  bounce_off(facet, material.restitution(std::max(-v_in.dot(n), 1e-9), angle), material.friction, arm);
+  // A rough facet cannot send a point-like bounce into the surface. (A tumbling rod's centre
+  // may still move into it after a rigid rebound at one end: its next touch is searched.)
+  if (material.roughness > 0) {
+    const double out = b.velocity.dot(n);
+    if (out < 0 && !arm) b.velocity -= 2 * out * n;
+  }
+  switch (hit.surface) {
+    case scene::Surface::Housing: touch(Touch::Housing); break;
+    case scene::Surface::Deflector: touch(Touch::Deflector); break;
+    case scene::Surface::Guard: touch(Touch::GuardBounce); break;
+    default: touch(Touch::Ground); break;
+  }
+  // Whether a nail that comes to rest under the mower was last turned back by a guard (a
+  // bounce on the turf after it does not change that).
+  if (hit.surface != scene::Surface::Ground) last_contact_guard = hit.surface == scene::Surface::Guard;
   ++r.bounces;
   return true;
 }
@@ -395,17 +397,17 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
 // and on. Returns false when the flight has ended (at rest, stopped, cut off).
 bool NailFlight::slide(const scene::Hit& hit) {
   const Vec3 up = hit.normal;
-  const double decel = s.ground.friction * -kGravity.z();
+  const double decel = set.materials.of(hit.surface, hit.guard).friction * -kGravity.z();
   b.position -= up.dot(b.position - hit.point) * up;  // it lies on the ground (its centre was up to half its length above)
   bool stopped = false;
   while (!stopped) {
     Vec3 slide = b.velocity - b.velocity.dot(up) * up;
     const double speed = slide.norm();
-    if (r.bounces > s.run.max_bounces || !std::isfinite(speed)) {
+    if (r.bounces > set.max_bounces || !std::isfinite(speed)) {
       cut_off = true;
       break;
     }
-    if (speed < s.run.rest_speed || decel <= 0) {
+    if (speed < set.rest_speed || decel <= 0) {
       ended_at_rest = true;
       break;
     }
@@ -432,7 +434,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
     skip = {};
     skip.add(wall->face);
     stopped = !respond(*wall);
-    if (wall->surface == scene::Surface::Ground) break;  // slid onto another ground face: fly on from there
+    if (set.materials.of(wall->surface, wall->guard).holds_up) break;  // slid onto another ground face: fly on from there
   }
   return !(stopped || ended_at_rest || cut_off);
 }
@@ -445,12 +447,12 @@ bool NailFlight::after_bounce(const scene::Hit& hit) {
   if (last_touch != Touch::GuardPass) last_plane = hit;
   // How fast its ends swing about its centre: a nail still tumbling is not lying yet.
   const double swing = b.spin.norm() * nail.half_segment();
-  if (hit.surface == scene::Surface::Ground && b.velocity.dot(hit.normal) < kSlideBelow && swing < kSlideBelow) {
+  if (set.materials.of(hit.surface, hit.guard).holds_up && b.velocity.dot(hit.normal) < kSlideBelow && swing < kSlideBelow) {
     last_plane.reset();
     b.spin = Vec3::Zero();  // lying on the ground, it slides without turning
     if (!slide(hit)) return false;
   }
-  if (b.velocity.norm() < s.run.rest_speed && swing < s.run.rest_speed && hit.normal.z() > 0.5) {
+  if (b.velocity.norm() < set.rest_speed && swing < set.rest_speed && hit.normal.z() > 0.5) {
     ended_at_rest = true;
     return false;
   }
@@ -478,7 +480,7 @@ FlightResult NailFlight::run() {
   NailTrace& trace = r.trace;
   trace.last_strike_speed = start.velocity.norm();
   r.launch_velocity = start.velocity;
-  const double t_end = start.time + s.run.time_limit;
+  const double t_end = start.time + set.time_limit;
   int steps = 0;
   if (ctx.path) ctx.path->push_back(b.position);
   for (;;) {
@@ -486,7 +488,7 @@ FlightResult NailFlight::run() {
       r.non_finite = true;
       break;
     }
-    if (b.time >= t_end || r.bounces > s.run.max_bounces || ++steps > kMaxFlightSteps || r.strikes > FlightResult::kMaxStrikes) {
+    if (b.time >= t_end || r.bounces > set.max_bounces || ++steps > kMaxFlightSteps || r.strikes > FlightResult::kMaxStrikes) {
       cut_off = true;
       break;
     }
@@ -496,7 +498,7 @@ FlightResult NailFlight::run() {
     // The drag and acceleration shared by the chord's length, its step and a step to a hit on it.
     const DragOverStep step_drag(drag, b);
     const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
-    const double dt = std::min(chord_step(b, accel, s.run.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
+    const double dt = std::min(chord_step(b, accel, set.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
     const Body next = advance(b, dt, step_drag, accel);
     const Vec3 step = next.position - b.position;
     const double len = step.norm();
@@ -548,7 +550,7 @@ FlightResult NailFlight::run() {
     // its length), at the point its tumbling has turned nearest.
     const double arrives = b.time + dt * hit->distance / len;
     const auto at = surface_touch(*hit, chord, arrives);
-    if (hit->surface == scene::Surface::TargetZone || hit->surface == scene::Surface::TargetOutside) {
+    if (set.materials.of(hit->surface, hit->guard).response == SurfaceMaterial::Response::Board) {
       moved(b.position, hit->point);
       b = advance(b, dt * hit->distance / len, step_drag, accel);
       b.position = hit->point;

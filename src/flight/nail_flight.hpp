@@ -1,6 +1,6 @@
 #pragma once
 // One thrown nail from the blade to its end: chords against the scene, and what each
-// surface does to it (docs/model.md §5.3):
+// surface does to it (docs/model.md §5.3; each surface's row of flight/surface_material.hpp):
 //   target (operator zone or outside): the board model marks it (hit / puncture) or not;
 //       either way the board catches the nail (it drops at the board's foot);
 //   housing, deflector: bounce with restitution e(v) and Coulomb friction;
@@ -20,6 +20,7 @@
 #include "strike/contact_search.hpp"
 #include "strike/spindle.hpp"
 #include "flight/deck_outline.hpp"
+#include "flight/flight_settings.hpp"
 #include "flight/trajectory.hpp"
 #include "random/stream.hpp"
 #include "scenario/scenario.hpp"
@@ -116,15 +117,15 @@ struct FlightResult {
   NailTrace trace;
 };
 
-// What the flight needs beyond the body: scene, the scenario's surfaces, and settings.
+// What the flight needs beyond the body: the scene, its settings (limits, board, the
+// surfaces' materials), and the deck.
 struct FlightContext {
   const scene::Scene* scene = nullptr;
-  const scenario::Scenario* scenario = nullptr;
+  const FlightSettings* settings = nullptr;
   double escape_radius = 0;  // horizontal distance at which the nail has left the test
   double deck_radius = 0;
-  double counted_height = 0;                                 // marks below it are not counted (Scenario::counted_height)
-  const std::vector<scenario::GuardSpec>* guards = nullptr;  // indexed by the scene's guard index
-  const std::vector<strike::Spindle>* spindles = nullptr;    // the turning blades; none: nothing strikes again
+  double counted_height = 0;                               // marks below it are not counted (Scenario::counted_height)
+  const std::vector<strike::Spindle>* spindles = nullptr;  // the turning blades; none: nothing strikes again
   // The deck's outline in plan and what crossing it means: a generated deck names its
   // openings, skirt and plate heights; a mesh deck does not.
   const DeckOutline* deck_outline = nullptr;

@@ -1,0 +1,15 @@
+#include "flight/flight_settings.hpp"
+
+namespace j232::flight {
+
+FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<scenario::GuardSpec>& guards)
+    : chord_tolerance(s.run.chord_tolerance),
+      time_limit(s.run.time_limit),
+      max_bounces(s.run.max_bounces),
+      rest_speed(s.run.rest_speed),
+      board(s.board),
+      materials(s, guards) {
+  for (const auto& o : s.housing.openings) openings.push_back({o.azimuth_from, o.azimuth_to, o.top});
+}
+
+}  // namespace j232::flight

@@ -1,0 +1,31 @@
+#pragma once
+// What a nail's flight needs to know of the scenario, built once by the simulator and
+// handed down (the flight never reads the whole Scenario): its numerical and physical
+// limits, the board's model, the deck's named openings (to say how a nail left), and the
+// surfaces' materials.
+#include <vector>
+
+#include "flight/surface_material.hpp"
+#include "scenario/scenario.hpp"
+
+namespace j232::flight {
+
+struct FlightSettings {
+  double chord_tolerance = 0.001;  // m: the most a chord may sag from the path
+  double time_limit = 3.0;         // s of flight per nail
+  int max_bounces = 100;
+  double rest_speed = 0.3;  // m/s: slower after a bounce (and turning slower at its ends) is at rest
+  scenario::BoardSpec board;
+  // The generated deck's discharge openings, for naming the way out.
+  struct Opening {
+    double azimuth_from = 0, azimuth_to = 0, top = 0;
+  };
+  std::vector<Opening> openings;
+  SurfaceMaterials materials;
+
+  FlightSettings() = default;
+  // `guards`: indexed as the scene numbers them.
+  FlightSettings(const scenario::Scenario& s, const std::vector<scenario::GuardSpec>& guards);
+};
+
+}  // namespace j232::flight
