@@ -397,3 +397,47 @@ TEST_CASE("spinning nails: air.spin_average = false is read and follows the axis
   REQUIRE(struck > 10);
   CHECK(ref_queries > 5 * avg_queries);  // the axis turns tens of radians within an averaged chord
 }
+
+TEST_CASE("replay: a replayed nail is the nail of the run, and its events add up to its outcome", "[assess][trajectories]") {
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted-chains.toml"));
+  s.run.replicates = 3;
+  const assess::Simulator sim(s);
+  int marked = 0, restruck = 0, passed = 0;
+  for (std::uint64_t r = 0; r < 3; ++r)
+    for (int n = 0; n < s.feed.nails; ++n) {
+      const auto plain = sim.simulate(r, n);
+      const auto replay = sim.replay(r, n);
+      const auto& f = replay.outcome.flight;
+      // Recording changes nothing.
+      CHECK(f.fate == plain.flight.fate);
+      CHECK(f.end_position == plain.flight.end_position);
+      CHECK(f.mark_count == plain.flight.mark_count);
+      CHECK(replay.struck == (plain.flight.fate != flight::Fate::NotStruck && plain.flight.fate != flight::Fate::CutOff));
+      if (!replay.struck) continue;
+      // The events: every bounce and later strike, one end with the fate, a board event
+      // with the board's own energy, times that never go back.
+      int bounces = 0, strikes = 1, boards = 0, passes = 0;
+      double t = replay.strike.time;
+      for (const auto& e : replay.events) {
+        CHECK(e.time >= t);
+        t = e.time;
+        bounces += e.kind == flight::FlightEvent::Kind::Bounce;
+        strikes += e.kind == flight::FlightEvent::Kind::Strike;
+        passes += e.kind == flight::FlightEvent::Kind::GuardPass;
+        if (e.kind == flight::FlightEvent::Kind::Board) {
+          if (boards++ == 0) CHECK(e.energy == f.board_energy);
+          CHECK((e.mark > 0) == (f.mark_count > 0));
+        }
+      }
+      REQUIRE(!replay.events.empty());
+      CHECK(replay.events.back().kind == flight::FlightEvent::Kind::End);
+      CHECK(replay.events.back().fate == f.fate);
+      CHECK(bounces == f.bounces);
+      CHECK(strikes == f.strikes);
+      CHECK(boards == (f.board_energy >= 0 ? 1 : 0));
+      marked += f.mark_count > 0, restruck += f.strikes > 1, passed += passes > 0;
+    }
+  CHECK(marked > 5);
+  CHECK(restruck > 5);
+  CHECK(passed > 5);
+}

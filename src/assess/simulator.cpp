@@ -86,12 +86,19 @@ NailOutcome Simulator::trace(std::uint64_t replicate, int nail, std::vector<flig
   return run_nail(replicate, nail, &path);
 }
 
-NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<flight::Vec3>* path) const {
+NailReplay Simulator::replay(std::uint64_t replicate, int nail) const {
+  NailReplay r;
+  r.outcome = run_nail(replicate, nail, &r.path, &r);
+  return r;
+}
+
+NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<flight::Vec3>* path, NailReplay* replay) const {
   const scenario::Scenario& s = scenario_;
   NailOutcome out;
   out.flight.fate = flight::Fate::NotStruck;
   random::Stream feed_rng(s.run.seed, replicate, static_cast<std::uint64_t>(nail), random::Purpose::Feed);
   const feed::NailDrop drop = feed::sample_drop(s, nail, feed_rng);
+  if (replay) replay->drop = drop;
   // The spindle this nail's station feeds strikes it (drop and strike are about its axis).
   const std::size_t k0 = s.feed.stations[static_cast<std::size_t>(drop.station)].spindle;
   const strike::Spindle& spindle = spindles_[k0];
@@ -111,6 +118,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   contact->spindle = k0;
   const Vec3 falling = fall.motion.velocity(contact->time);
   const strike::StrikeOutcome hit = strike::strike(spindle, *contact, drop.nail, falling, Vec3::Zero());
+  if (replay) replay->strike = *contact, replay->falling = falling, replay->velocity_after = hit.velocity_after, replay->spin_after = hit.spin_after;
   if (!hit.approaching) return out;
   // The blade strikes a nail when it gives it energy: a nail that merely lands on a blade
   // too slow to throw it (a stopped blade) is not thrown, and the test did not happen for it.
@@ -153,6 +161,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   }
   flight::FlightContext context = context_;
   context.path = path;
+  if (replay) replay->struck = true, context.events = &replay->events;
   out.flight = flight::fly(body, rod, drag, context, phases, {k0, contact->edge}, flight_rng);
   const Vec3& launch = out.flight.launch_velocity;
   out.exit_speed = launch.norm();

@@ -27,6 +27,18 @@ struct NailOutcome {
   int spindle = 0;  // the spindle that fed it (0-based)
 };
 
+// One nail replayed with its whole trail (`j232 trace`): how it was fed, the feed's strike,
+// and every event of its flight.
+struct NailReplay {
+  NailOutcome outcome;
+  feed::NailDrop drop;
+  bool struck = false;        // the blade touched it and threw it
+  strike::Contact strike;     // the feed's strike (when struck)
+  flight::Vec3 falling = flight::Vec3::Zero(), velocity_after = flight::Vec3::Zero(), spin_after = flight::Vec3::Zero();
+  std::vector<flight::FlightEvent> events;
+  std::vector<flight::Vec3> path;
+};
+
 class Simulator {
  public:
   // Builds the blade model and the scene; throws scenario::InputError for bad meshes
@@ -38,6 +50,8 @@ class Simulator {
   // The same nail again (deterministic: the same outcome), its path recorded: the centre at
   // the first strike and at every contact, strike and chord end (for trajectory pictures).
   NailOutcome trace(std::uint64_t replicate, int nail, std::vector<flight::Vec3>& path) const;
+  // The same nail again with every event of its flight (deterministic: the same outcome).
+  NailReplay replay(std::uint64_t replicate, int nail) const;
 
   const scenario::Scenario& scenario() const { return scenario_; }
   const scene::Scene& scene() const { return *scene_; }
@@ -48,7 +62,8 @@ class Simulator {
   std::string exit_name(flight::Exit exit, std::uint16_t index) const;
 
  private:
-  NailOutcome run_nail(std::uint64_t replicate, int nail, std::vector<flight::Vec3>* path) const;
+  // `path`, `replay`: what to record besides the outcome (null: nothing, as in a run).
+  NailOutcome run_nail(std::uint64_t replicate, int nail, std::vector<flight::Vec3>* path, NailReplay* replay = nullptr) const;
   scenario::Scenario scenario_;
   std::vector<strike::Spindle> spindles_;
   std::unique_ptr<scene::Scene> scene_;

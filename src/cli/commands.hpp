@@ -15,5 +15,6 @@ Runner add_sweep_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
 Runner add_uq_command(CLI::App& app);
 Runner add_calibrate_command(CLI::App& app);
+Runner add_trace_command(CLI::App& app);
 
 }  // namespace j232::cli

@@ -31,6 +31,7 @@ int run_command_line(int argc, char** argv) {
   const Runner compare = add_compare_command(app);
   const Runner uq = add_uq_command(app);
   const Runner calibrate = add_calibrate_command(app);
+  const Runner trace = add_trace_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -46,6 +47,7 @@ int run_command_line(int argc, char** argv) {
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("uq")) return uq();
     if (app.got_subcommand("calibrate")) return calibrate();
+    if (app.got_subcommand("trace")) return trace();
   } catch (const j232::scenario::InputError& e) {
     if (reporter) fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
     return kBadInput;

@@ -38,6 +38,20 @@ const char* touch_name(Touch t) {
   return "unknown";
 }
 
+const char* event_name(FlightEvent::Kind k) {
+  switch (k) {
+    case FlightEvent::Kind::Strike: return "strike";
+    case FlightEvent::Kind::Bounce: return "bounce";
+    case FlightEvent::Kind::GuardPass: return "guard-pass";
+    case FlightEvent::Kind::Slide: return "slide";
+    case FlightEvent::Kind::Rest: return "rest";
+    case FlightEvent::Kind::Board: return "board";
+    case FlightEvent::Kind::LeftDeck: return "left-deck";
+    case FlightEvent::Kind::End: return "end";
+  }
+  return "unknown";
+}
+
 namespace {
 
 bool in_arc(double a, double from, double to) {
@@ -110,6 +124,16 @@ struct NailFlight {
   bool in_deck = ctx.deck_outline && !ctx.deck_outline->empty() && ctx.deck_outline->contains(b.position.x(), b.position.y());
 
   FlightResult run();
+  // An event of the replayed nail (nothing unless the context collects them), the nail's
+  // state as it now is.
+  FlightEvent* log(FlightEvent::Kind kind, const Vec3& point = Vec3::Zero(), const Vec3& normal = Vec3::Zero(), double speed_in = 0) {
+    if (!ctx.events) return nullptr;
+    FlightEvent e;
+    e.kind = kind, e.time = b.time, e.centre = b.position, e.velocity = b.velocity, e.spin = b.spin, e.axis = b.axis;
+    e.point = point, e.normal = normal, e.speed_in = speed_in;
+    ctx.events->push_back(e);
+    return &ctx.events->back();
+  }
   void touch(Touch t) {
     r.trace.touch(t);
     last_touch = t;
@@ -144,6 +168,7 @@ void NailFlight::moved(const Vec3& from, const Vec3& to) {
   if (!in_deck || ctx.deck_outline->contains(to.x(), to.y())) return;
   in_deck = false;
   const Vec3 c = from + ctx.deck_outline->exit_fraction(from, to) * (to - from);
+  log(FlightEvent::Kind::LeftDeck, c);
   trace.exit_azimuth = std::atan2(c.y(), c.x());
   trace.exit_height = c.z();
   if (last_touch == Touch::GuardPass) {
@@ -235,6 +260,7 @@ void NailFlight::restrike(const strike::Contact& k) {
   r.most_contacts_in_pass = std::max(r.most_contacts_in_pass, pass_contacts);
   if (pass_contacts > FlightResult::kMaxContactsPerPass) cut_off = true;
   pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
+  const double speed_in = b.velocity.norm();
   b.velocity = out.velocity_after;
   // The spin about the nail's own axis (from friction at its surface) is left out: it
   // holds under 1/200 of the energy of its tumbling, and flight follows the axis only.
@@ -244,6 +270,8 @@ void NailFlight::restrike(const strike::Contact& k) {
   touch(Touch::Blade);
   trace.last_strike_speed = b.velocity.norm();
   last_contact_guard = false;
+  if (FlightEvent* e = log(FlightEvent::Kind::Strike, k.point, k.normal, speed_in))
+    e->spindle = static_cast<std::uint16_t>(k.spindle), e->edge = static_cast<std::uint16_t>(k.edge);
 }
 
 void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool puncture) {
@@ -321,6 +349,10 @@ void NailFlight::reach_board(const scene::Hit& hit, const PlaneTouch& at, const 
     }
     record_mark(at.point, energy, zone, mark == board::Mark::Puncture);
   }
+  if (FlightEvent* e = log(FlightEvent::Kind::Board, at.point, n, velocity.norm())) {
+    e->surface = hit.surface, e->face = hit.face, e->energy = energy, e->width = width;
+    e->mark = mark == board::Mark::Puncture ? 2 : mark == board::Mark::Hit ? 1 : 0;
+  }
   // The board is the test's catcher: a nail that does not go through it drops at its foot.
   touch(Touch::Board);
   at_board = true;
@@ -341,6 +373,7 @@ void NailFlight::bounce_off(const Vec3& n, double e, double mu, const Vec3* arm)
 bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const SurfaceMaterial& material = set.materials.of(hit.surface, hit.guard);
   const Vec3 n = hit.normal;
+  const double speed_in = b.velocity.norm();
   // How the surface meets the nail: its touching point's velocity (the centre's when it slides).
   const Vec3 v_in = arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity;
   switch (material.response) {
@@ -354,6 +387,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
         b.velocity *= material.pass_speed_factor;  // slips between the links, losing speed
         touch(Touch::GuardPass);
         last_guard_passed = hit.guard;
+        if (FlightEvent* e = log(FlightEvent::Kind::GuardPass, hit.point, n, v_in.norm())) e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard;
         return true;
       }
       break;  // else it bounces off the curtain
@@ -390,6 +424,8 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   // bounce on the turf after it does not change that).
   if (hit.surface != scene::Surface::Ground) last_contact_guard = hit.surface == scene::Surface::Guard;
   ++r.bounces;
+  if (FlightEvent* e = log(FlightEvent::Kind::Bounce, arm ? Vec3(b.position + *arm) : hit.point, n, speed_in))
+    e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard;
   return true;
 }
 
@@ -399,6 +435,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
   const Vec3 up = hit.normal;
   const double decel = set.materials.of(hit.surface, hit.guard).friction * -kGravity.z();
   b.position -= up.dot(b.position - hit.point) * up;  // it lies on the ground (its centre was up to half its length above)
+  log(FlightEvent::Kind::Slide, b.position, up, b.velocity.norm());
   bool stopped = false;
   while (!stopped) {
     Vec3 slide = b.velocity - b.velocity.dot(up) * up;
@@ -409,6 +446,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
     }
     if (speed < set.rest_speed || decel <= 0) {
       ended_at_rest = true;
+      log(FlightEvent::Kind::Rest, b.position, up);
       break;
     }
     slide /= speed;
@@ -423,6 +461,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
       last_event = b.time;
       b.velocity = Vec3::Zero();
       ended_at_rest = true;
+      log(FlightEvent::Kind::Rest, b.position, up);
       break;
     }
     const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
@@ -454,6 +493,7 @@ bool NailFlight::after_bounce(const scene::Hit& hit) {
   }
   if (b.velocity.norm() < set.rest_speed && swing < set.rest_speed && hit.normal.z() > 0.5) {
     ended_at_rest = true;
+    log(FlightEvent::Kind::Rest, b.position, hit.normal);
     return false;
   }
   return true;
@@ -576,6 +616,7 @@ FlightResult NailFlight::run() {
   r.flight_time = b.time - start.time;
   r.end_position = b.position;
   r.fate = fate();
+  if (FlightEvent* e = log(FlightEvent::Kind::End)) e->fate = r.fate;
   return std::move(r);
 }
 

@@ -117,6 +117,26 @@ struct FlightResult {
   NailTrace trace;
 };
 
+// One event of a nail's flight, for replaying a nail (`j232 trace`): what happened, when
+// and where, and the nail's state just after it. Recorded only when the context asks.
+struct FlightEvent {
+  enum class Kind : std::uint8_t { Strike, Bounce, GuardPass, Slide, Rest, Board, LeftDeck, End };
+  Kind kind = Kind::End;
+  double time = 0;  // s on the blades' clock
+  Vec3 centre = Vec3::Zero(), velocity = Vec3::Zero(), spin = Vec3::Zero(), axis = Vec3::UnitZ();  // after it
+  Vec3 point = Vec3::Zero();   // the contact (Strike, Bounce, Board), or where it crossed the deck's outline
+  Vec3 normal = Vec3::Zero();  // the surface's or the blade's at the contact, unit (zero when none)
+  double speed_in = 0;         // m/s of the centre before it
+  scene::Surface surface = scene::Surface::Ground;
+  std::uint32_t face = 0;
+  std::uint16_t guard = 0;
+  std::uint16_t spindle = 0, edge = 0;  // Strike
+  double energy = 0, width = 0;         // Board: what the board model judged
+  int mark = 0;                         // Board: 0 none, 1 hit, 2 puncture
+  Fate fate = Fate::Escaped;            // End
+};
+const char* event_name(FlightEvent::Kind k);  // "strike", "bounce", "guard-pass", "slide", "rest", "board", "left-deck", "end"
+
 // What the flight needs beyond the body: the scene, its settings (limits, board, the
 // surfaces' materials), and the deck.
 struct FlightContext {
@@ -137,6 +157,8 @@ struct FlightContext {
   // When set, the nail's centre is appended at the start and after every move (tracing
   // chosen nails again for pictures; the per-nail path of a run leaves it null).
   std::vector<Vec3>* path = nullptr;
+  // When set, every event of the flight is appended (replaying one nail; null in a run).
+  std::vector<FlightEvent>* events = nullptr;
 };
 
 // The blade contact the flight starts from (the feed's strike): its pass goes on.

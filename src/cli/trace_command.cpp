@@ -1,0 +1,165 @@
+// `j232 trace`: one nail of an assessment replayed with its whole trail (as pbrt's
+// --debugstart replays one pixel): how it was fed, the feed's strike, and every event of
+// its flight with the nail's state after it. Nails are pure functions of the seed, the
+// replicate and their number, so the replay is the nail of the run: marks.csv's
+// `replicate` and `nail` columns name it, or --find picks the first of a kind.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "assess/simulator.hpp"
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "report/atomic_file.hpp"
+#include "scenario/input_error.hpp"
+#include "scenario/scenario_reader.hpp"
+#include "units/quantity.hpp"
+
+namespace j232::cli {
+namespace {
+
+struct TraceOptions {
+  std::string scenario, find, json;
+  std::uint64_t replicate = 0;
+  int nail = 0;
+  std::optional<std::uint64_t> seed;
+};
+
+// What --find looks for, in a nail's outcome.
+bool matches(const std::string& what, const assess::NailOutcome& o) {
+  const auto& f = o.flight;
+  if (what == "puncture-zone") return f.punctures_zone > 0;
+  if (what == "hit-zone") return f.hits_zone > 0;
+  if (what == "puncture") return f.punctures_zone + f.punctures_outside > 0;
+  if (what == "mark") return f.fate == flight::Fate::MarkedBoard;
+  if (what == "cut-off") return f.fate == flight::Fate::CutOff;
+  if (what == "contained") return f.fate == flight::Fate::Contained;
+  if (what == "stopped-by-guard") return f.fate == flight::Fate::StoppedByGuard;
+  if (what == "escaped") return f.fate == flight::Fate::Escaped;
+  if (what == "restruck") return f.strikes > 1;
+  return false;
+}
+const char* kFindKinds = "puncture-zone, hit-zone, puncture, mark, cut-off, contained, stopped-by-guard, escaped, restruck";
+
+std::string vec(const flight::Vec3& v, int digits = 3) { return fmt::format("({:.{}f}, {:.{}f}, {:.{}f})", v.x(), digits, v.y(), digits, v.z(), digits); }
+
+std::string detail(const flight::FlightEvent& e) {
+  using Kind = flight::FlightEvent::Kind;
+  switch (e.kind) {
+    case Kind::Strike: return fmt::format("spindle {} edge {}", e.spindle + 1, e.edge + 1);
+    case Kind::Bounce:
+    case Kind::GuardPass: {
+      std::string what(scene::name(e.surface));
+      if (e.surface == scene::Surface::Guard) what = fmt::format("guard {}", e.guard + 1);
+      return fmt::format("{} (face {}), normal {}", what, e.face + 1, vec(e.normal, 2));
+    }
+    case Kind::Board:
+      return fmt::format("{}: {:.2f} J over {:.1f} mm -> {}", scene::name(e.surface), e.energy, 1e3 * e.width,
+                         e.mark == 2 ? "puncture" : e.mark == 1 ? "hit" : "no mark");
+    case Kind::LeftDeck: return fmt::format("crossed the outline at {}, azimuth {:.1f} deg", vec(e.point), std::atan2(e.point.y(), e.point.x()) / units::degree);
+    case Kind::End: return flight::fate_name(e.fate);
+    case Kind::Slide:
+    case Kind::Rest: return "";
+  }
+  return "";
+}
+
+nlohmann::json event_json(const flight::FlightEvent& e) {
+  auto v = [](const flight::Vec3& x) { return nlohmann::json::array({x.x(), x.y(), x.z()}); };
+  nlohmann::json j{{"event", flight::event_name(e.kind)}, {"time_s", e.time},   {"centre_m", v(e.centre)},
+                   {"velocity_m_s", v(e.velocity)},       {"spin_rad_s", v(e.spin)}, {"axis", v(e.axis)},
+                   {"speed_before_m_s", e.speed_in}};
+  using Kind = flight::FlightEvent::Kind;
+  if (e.kind == Kind::Strike || e.kind == Kind::Bounce || e.kind == Kind::Board || e.kind == Kind::GuardPass)
+    j["point_m"] = v(e.point), j["normal"] = v(e.normal);
+  if (e.kind == Kind::Bounce || e.kind == Kind::Board || e.kind == Kind::GuardPass) j["surface"] = scene::name(e.surface), j["face"] = e.face + 1;
+  if (e.kind == Kind::Strike) j["spindle"] = e.spindle + 1, j["edge"] = e.edge + 1;
+  if (e.kind == Kind::Board)
+    j["energy_J"] = e.energy, j["presented_width_m"] = e.width, j["mark"] = e.mark == 2 ? "puncture" : e.mark == 1 ? "hit" : "none";
+  if (e.kind == Kind::LeftDeck) j["crossing_m"] = v(e.point);
+  if (e.kind == Kind::End) j["fate"] = flight::fate_name(e.fate);
+  return j;
+}
+
+int run(const TraceOptions& o) {
+  if (!o.find.empty()) {
+    bool known = false;
+    for (const char* k : {"puncture-zone", "hit-zone", "puncture", "mark", "cut-off", "contained", "stopped-by-guard", "escaped", "restruck"})
+      known |= o.find == k;
+    if (!known) throw scenario::InputError("", std::nullopt, "--find", o.find, fmt::format("expected one of {}", kFindKinds));
+  }
+  scenario::Scenario s = scenario::read_scenario(o.scenario);
+  if (o.seed) s.run.seed = *o.seed;
+  if (o.nail < 0 || o.nail >= s.feed.nails)
+    throw scenario::InputError("", std::nullopt, "--nail", std::to_string(o.nail), fmt::format("expected a nail from 0 to {} (the test feeds {})", s.feed.nails - 1, s.feed.nails));
+  const assess::Simulator sim(s);
+  std::uint64_t replicate = o.replicate;
+  int nail = o.nail;
+  if (!o.find.empty()) {
+    // The first such nail in the order of the run (replicate, then nail).
+    bool found = false;
+    for (std::uint64_t r = 0; r < static_cast<std::uint64_t>(s.run.replicates) && !found; ++r)
+      for (int n = 0; n < s.feed.nails && !found; ++n)
+        if (matches(o.find, sim.simulate(r, n))) replicate = r, nail = n, found = true;
+    if (!found) {
+      fmt::print("no nail of the {} replicates of \"{}\" (seed {}) is of the kind {}\n", s.run.replicates, s.title, s.run.seed, o.find);
+      return kOk;
+    }
+  }
+  const assess::NailReplay r = sim.replay(replicate, nail);
+  const auto& d = r.drop;
+  fmt::print("{}\nreplicate {}, nail {} (seed {}); times on the blades' clock, positions in metres from the deck's centre\n", s.title,
+             replicate, nail, s.run.seed);
+  fmt::print("fed at station {} (spindle {}): tip at ({:.3f}, {:.3f}) m from the spindle's axis, axis {}, falling {:.2f} m/s, blade at {:.1f} deg\n",
+             d.station + 1, r.outcome.spindle + 1, d.position.x(), d.position.y(), vec(d.axis, 2), d.fall_speed,
+             d.blade_phase / units::degree);
+  if (!r.struck) {
+    fmt::print("not struck: {}\n", flight::fate_name(r.outcome.flight.fate));
+  } else {
+    fmt::print("struck at {:.3f} ms by edge {} at {:.3f} m from the axis: {:.2f} m/s -> {:.2f} m/s, spin {:.0f} rad/s; contact {}, normal {}\n",
+               1e3 * r.strike.time, r.strike.edge + 1, r.strike.radius, r.falling.norm(), r.velocity_after.norm(), r.spin_after.norm(),
+               vec(r.strike.point), vec(r.strike.normal, 2));
+    fmt::print("{:>10}  {:<10}  {:<26}  {:>9}  {:>9}  {}\n", "t (ms)", "event", "centre after (m)", "v (m/s)", "w (rad/s)", "detail");
+    for (const auto& e : r.events)
+      fmt::print("{:>10.3f}  {:<10}  {:<26}  {:>9.2f}  {:>9.0f}  {}\n", 1e3 * e.time, flight::event_name(e.kind), vec(e.centre),
+                 e.velocity.norm(), e.spin.norm(), detail(e));
+  }
+  const auto& f = r.outcome.flight;
+  fmt::print("fate: {}; {} strike(s), {} bounce(s), {} counted mark(s) (hits {} / punctures {} in the zone, hits {} / punctures {} outside)\n",
+             flight::fate_name(f.fate), f.strikes, f.bounces, f.mark_count - f.uncounted_marks, f.hits_zone, f.punctures_zone,
+             f.hits_outside, f.punctures_outside);
+  if (f.trace.exit != flight::Exit::Inside) fmt::print("left the deck: {}\n", sim.exit_name(f.trace.exit, f.trace.exit_index));
+  if (!o.json.empty()) {
+    nlohmann::json j{{"program", "j232 trace"},
+                     {"scenario", s.title},
+                     {"seed", s.run.seed},
+                     {"replicate", replicate},
+                     {"nail", nail},
+                     {"station", d.station + 1},
+                     {"struck", r.struck},
+                     {"fate", flight::fate_name(f.fate)},
+                     {"events", nlohmann::json::array()}};
+    for (const auto& e : r.events) j["events"].push_back(event_json(e));
+    report::write_atomically(o.json, j.dump(1) + "\n");
+    fmt::print("wrote {}\n", o.json);
+  }
+  return kOk;
+}
+}  // namespace
+
+Runner add_trace_command(CLI::App& app) {
+  auto o = std::make_shared<TraceOptions>();
+  CLI::App* cmd = app.add_subcommand("trace", "Replay one nail of an assessment with its whole trail: its feed, strike and every contact");
+  cmd->add_option("scenario", o->scenario, "Scenario file (TOML)")->required();
+  cmd->add_option("--replicate", o->replicate, "Replicate (0-based, as marks.csv numbers them)");
+  cmd->add_option("--nail", o->nail, "Nail within the replicate (0-based, as marks.csv numbers them)");
+  cmd->add_option("--find", o->find, std::string("Replay the first nail of the run of this kind instead: ") + kFindKinds);
+  cmd->add_option("--seed", o->seed, "Random seed (overrides the scenario's [run] seed)");
+  cmd->add_option("--json", o->json, "Also write the trail as JSON to this file");
+  return [o] { return run(*o); };
+}
+
+}  // namespace j232::cli
