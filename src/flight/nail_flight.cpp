@@ -124,6 +124,27 @@ struct NailFlight {
   bool in_deck = ctx.deck_outline && !ctx.deck_outline->empty() && ctx.deck_outline->contains(b.position.x(), b.position.y());
 
   FlightResult run();
+  // The flight's events (run() loops over them).
+  struct Chord {
+    DragOverStep drag;
+    Vec3 accel;
+    double dt;
+    Body next;
+    Vec3 step;
+    double len;
+    strike::Motion motion;
+  };
+  struct NextEvent {
+    enum class Kind { ChordEnd, Blade, PlaneAgain, Surface };
+    Kind kind = Kind::ChordEnd;
+    std::optional<strike::Contact> contact;
+    std::optional<PlaneTouch> again;
+    std::optional<scene::Hit> hit;
+  };
+  bool event_check(double t_end, int& steps);
+  Chord event_advance(double t_end) const;
+  NextEvent event_find(const Chord& c);
+  bool event_collide(const Chord& c, const NextEvent& e);
   // An event of the replayed nail (nothing unless the context collects them), the nail's
   // state as it now is.
   FlightEvent* log(FlightEvent::Kind kind, const Vec3& point = Vec3::Zero(), const Vec3& normal = Vec3::Zero(), double speed_in = 0) {
@@ -516,101 +537,121 @@ Fate NailFlight::fate() const {
     return Fate::Escaped;
 }
 
+// Whether the flight goes on: its state is finite, within the run's limits, and still in
+// the test's space. Sets what ended it.
+bool NailFlight::event_check(double t_end, int& steps) {
+  if (!b.position.allFinite() || !b.velocity.allFinite() || !std::isfinite(b.time)) {
+    r.non_finite = true;
+    return false;
+  }
+  if (b.time >= t_end || r.bounces > set.max_bounces || ++steps > kMaxFlightSteps || r.strikes > FlightResult::kMaxStrikes) {
+    cut_off = true;
+    return false;
+  }
+  const double horizontal2 = b.position.x() * b.position.x() + b.position.y() * b.position.y();
+  return !(horizontal2 > ctx.escape_radius * ctx.escape_radius || b.position.z() < -1.0);
+}
+
+// The next chord of free flight from where the nail is: the drag and acceleration shared by
+// the chord's length, its step and a step to a hit on it; where it would end; and the
+// motion the contact searches follow along it.
+NailFlight::Chord NailFlight::event_advance(double t_end) const {
+  const DragOverStep step_drag(drag, b);
+  const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
+  const double dt = std::min(chord_step(b, accel, set.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
+  const Body next = advance(b, dt, step_drag, accel);
+  return {step_drag, accel, dt, next, next.position - b.position, (next.position - b.position).norm(), chord_motion(b, accel)};
+}
+
+// What ends the chord first: the blades (a contact cuts the scene query short), the
+// surface the nail last bounced off met again by its other end or the same one as it
+// tumbles (its face is skipped by the centre's ray just after the bounce), a surface the
+// centre's ray meets, or nothing.
+NailFlight::NextEvent NailFlight::event_find(const Chord& c) {
+  NextEvent e;
+  e.contact = blade_contact(c.motion, b.time + c.dt);
+  if (cut_off) return e;
+  if (last_plane && last_plane->normal.dot(b.position - last_plane->point) < nail.half_segment() + nail.radius() + c.len)
+    e.again = first_plane_touch(c.motion, nail, last_plane->point, last_plane->normal, b.time,
+                                e.contact ? e.contact->time : b.time + c.dt, true);
+  const double until = e.again ? e.again->time : e.contact ? e.contact->time : b.time + c.dt;
+  const double reach = c.len * std::min(1.0, (until - b.time) / c.dt);
+  ++r.queries;
+  e.hit = ctx.scene->first_hit(b.position, c.step / c.len, reach, skip);
+  e.kind = e.hit ? NextEvent::Kind::Surface : e.again ? NextEvent::Kind::PlaneAgain : e.contact ? NextEvent::Kind::Blade : NextEvent::Kind::ChordEnd;
+  return e;
+}
+
+// What the event does to the nail. Returns false when the flight has ended.
+bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
+  switch (e.kind) {
+    case NextEvent::Kind::ChordEnd:
+      moved(b.position, c.next.position);
+      b = c.next;
+      skip = {};
+      return true;
+    case NextEvent::Kind::PlaneAgain: {
+      const scene::Hit plane = *last_plane;
+      const Vec3 arm = meet(*e.again, c.motion);
+      return respond(plane, &arm) && after_bounce(plane);
+    }
+    case NextEvent::Kind::Blade: {
+      const Vec3 from = b.position;
+      b.position = e.contact->centre;
+      b.velocity += c.accel * (e.contact->time - b.time);
+      b.axis = e.contact->axis;
+      b.time = e.contact->time;
+      moved(from, b.position);
+      skip = {};
+      restrike(*e.contact);
+      return !cut_off;
+    }
+    case NextEvent::Kind::Surface: break;
+  }
+  const scene::Hit& hit = *e.hit;
+  touched_scene();
+  // The capsule touches the surface's plane before its centre gets there (by up to half
+  // its length), at the point its tumbling has turned nearest.
+  const double to_hit = c.dt * hit.distance / c.len;
+  const auto at = surface_touch(hit, c.motion, b.time + to_hit);
+  if (set.materials.of(hit.surface, hit.guard).response == SurfaceMaterial::Response::Board) {
+    moved(b.position, hit.point);
+    b = advance(b, to_hit, c.drag, c.accel);
+    b.position = hit.point;
+    reach_board(hit, at ? *at : centre_touching(b, hit.point), at ? c.motion.velocity(at->time) : b.velocity);
+    return false;
+  }
+  skip = {};
+  skip.add(hit.face);
+  if (at) {
+    const Vec3 arm = meet(*at, c.motion);
+    if (!respond(hit, &arm)) return false;
+  } else {  // (never expected: the centre reaching the plane means the capsule did)
+    moved(b.position, hit.point);
+    b = advance(b, to_hit, c.drag, c.accel);
+    b.position = hit.point;
+    last_event = b.time;
+    if (!respond(hit)) return false;
+  }
+  return after_bounce(hit);
+}
+
+// The flight as a loop of named events (as OpenMC's event_advance / event_collide): check
+// that it goes on, plan the next chord, find what ends it, and let that act on the nail.
 FlightResult NailFlight::run() {
-  NailTrace& trace = r.trace;
-  trace.last_strike_speed = start.velocity.norm();
+  r.trace.last_strike_speed = start.velocity.norm();
   r.launch_velocity = start.velocity;
   const double t_end = start.time + set.time_limit;
   int steps = 0;
   if (ctx.path) ctx.path->push_back(b.position);
-  for (;;) {
-    if (!b.position.allFinite() || !b.velocity.allFinite() || !std::isfinite(b.time)) {
-      r.non_finite = true;
-      break;
-    }
-    if (b.time >= t_end || r.bounces > set.max_bounces || ++steps > kMaxFlightSteps || r.strikes > FlightResult::kMaxStrikes) {
-      cut_off = true;
-      break;
-    }
-    const double horizontal2 = b.position.x() * b.position.x() + b.position.y() * b.position.y();
-    if (horizontal2 > ctx.escape_radius * ctx.escape_radius || b.position.z() < -1.0) break;
-
-    // The drag and acceleration shared by the chord's length, its step and a step to a hit on it.
-    const DragOverStep step_drag(drag, b);
-    const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
-    const double dt = std::min(chord_step(b, accel, set.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
-    const Body next = advance(b, dt, step_drag, accel);
-    const Vec3 step = next.position - b.position;
-    const double len = step.norm();
-    if (!(len > 1e-12)) {
-      b = next;
+  while (event_check(t_end, steps)) {
+    const Chord c = event_advance(t_end);
+    if (!(c.len > 1e-12)) {
+      b = c.next;
       continue;
     }
-    // The blades first: a contact on this chord cuts the scene query short.
-    const strike::Motion chord = chord_motion(b, accel);
-    const auto contact = blade_contact(chord, b.time + dt);
-    if (cut_off) break;
-    // The surface it last bounced off, met again by its other end or the same one as it
-    // tumbles (its face is skipped by the centre's ray just after the bounce).
-    std::optional<PlaneTouch> again;
-    if (last_plane && last_plane->normal.dot(b.position - last_plane->point) < nail.half_segment() + nail.radius() + len)
-      again = first_plane_touch(chord, nail, last_plane->point, last_plane->normal, b.time, contact ? contact->time : b.time + dt,
-                                true);
-    const double until = again ? again->time : contact ? contact->time : b.time + dt;
-    const double reach = len * std::min(1.0, (until - b.time) / dt);
-    ++r.queries;
-    const auto hit = ctx.scene->first_hit(b.position, step / len, reach, skip);
-    if (!hit && again) {
-      const scene::Hit plane = *last_plane;
-      const Vec3 arm = meet(*again, chord);
-      if (!respond(plane, &arm)) break;
-      if (!after_bounce(plane)) break;
-      continue;
-    }
-    if (!hit && contact) {
-      const Vec3 from = b.position;
-      b.position = contact->centre;
-      b.velocity += accel * (contact->time - b.time);
-      b.axis = contact->axis;
-      b.time = contact->time;
-      moved(from, b.position);
-      skip = {};
-      restrike(*contact);
-      if (cut_off) break;
-      continue;
-    }
-    if (!hit) {
-      moved(b.position, next.position);
-      b = next;
-      skip = {};
-      continue;
-    }
-    touched_scene();
-    // The capsule touches the surface's plane before its centre gets there (by up to half
-    // its length), at the point its tumbling has turned nearest.
-    const double arrives = b.time + dt * hit->distance / len;
-    const auto at = surface_touch(*hit, chord, arrives);
-    if (set.materials.of(hit->surface, hit->guard).response == SurfaceMaterial::Response::Board) {
-      moved(b.position, hit->point);
-      b = advance(b, dt * hit->distance / len, step_drag, accel);
-      b.position = hit->point;
-      reach_board(*hit, at ? *at : centre_touching(b, hit->point), at ? chord.velocity(at->time) : b.velocity);
-      break;
-    }
-    skip = {};
-    skip.add(hit->face);
-    if (at) {
-      const Vec3 arm = meet(*at, chord);
-      if (!respond(*hit, &arm)) break;
-    } else {  // (never expected: the centre reaching the plane means the capsule did)
-      moved(b.position, hit->point);
-      b = advance(b, dt * hit->distance / len, step_drag, accel);
-      b.position = hit->point;
-      last_event = b.time;
-      if (!respond(*hit)) break;
-    }
-
-    if (!after_bounce(*hit)) break;
+    const NextEvent e = event_find(c);
+    if (cut_off || !event_collide(c, e)) break;
   }
   close_pass();
   r.flight_time = b.time - start.time;
