@@ -59,6 +59,11 @@ TEST_CASE("statistics: Wilson interval and quantiles", "[statistics]") {
   i = assess::wilson(1000, 1000);
   CHECK(i.high == 1.0);
   CHECK(i.low == Approx(0.99617).epsilon(1e-4));
+  // The bound at no successes is exactly 0, not 1e-19 (which a report would print).
+  for (std::uint64_t n : {1u, 7u, 2000u, 123457u}) {
+    CHECK(assess::wilson(0, n).low == 0.0);
+    CHECK(assess::wilson(n, n).high == 1.0);
+  }
   CHECK(assess::quantile_sorted({1, 2, 3, 4, 5}, 0.5) == 3);
   CHECK(assess::quantile_sorted({1, 2, 3, 4}, 0.5) == 2.5);
   assess::Histogram h(1.0, 10);

@@ -10,7 +10,8 @@ Interval wilson(std::uint64_t k, std::uint64_t n, double z) {
   const double nn = static_cast<double>(n), p = static_cast<double>(k) / nn, z2 = z * z;
   const double centre = (p + z2 / (2 * nn)) / (1 + z2 / nn);
   const double half = z / (1 + z2 / nn) * std::sqrt(p * (1 - p) / nn + z2 / (4 * nn * nn));
-  return {p, std::max(0.0, centre - half), std::min(1.0, centre + half)};
+  // At k = 0 (k = n) the bound is 0 (1) exactly; computed, it is off by rounding (1e-19).
+  return {p, k == 0 ? 0.0 : std::max(0.0, centre - half), k == n ? 1.0 : std::min(1.0, centre + half)};
 }
 
 double quantile_sorted(const std::vector<double>& v, double p) {
