@@ -219,7 +219,7 @@ py::dict assess_scenario(const PyScenario& p, std::optional<long long> replicate
     const assess::MarkSink sink = marks ? assess::MarkSink([&](const assess::MarkRow& r) { columns.add(r); }) : assess::MarkSink{};
     a = assess::run_assessment(*simulator, threads, nullptr, sink);
   }
-  const assess::Summary sum = assess::summarise(a, s);
+  const assess::Summary sum = assess::summarise(a, s, assess::kExactDraws);  // as j232 run
   report::Provenance provenance{j232::version, j232::git_revision, utc_now(), "python", a.threads, a.wall_seconds, {}, 1};
   py::dict result = from_json(report::result_json(s, a, sum, provenance));
   py::dict histograms;

@@ -446,3 +446,132 @@ TEST_CASE("replay: a replayed nail is the nail of the run, and its events add up
   CHECK(restruck > 5);
   CHECK(passed > 5);
 }
+
+namespace {
+// A toy feed: every nail of station s makes outcome k with probability probs[s][k].
+struct ToyFeed {
+  std::vector<assess::OutcomeDistribution> stations;
+  // Draws one nail of station s.
+  assess::NailMarks draw(std::size_t s, random::Stream& rng) const {
+    double u = rng.uniform();
+    for (const auto& [o, p] : stations[s]) {
+      if (u < p) return o;
+      u -= p;
+    }
+    return stations[s].back().first;
+  }
+};
+std::uint32_t key_of(const assess::NailMarks& m) {
+  flight::FlightResult f;
+  f.hits_zone = m[0], f.punctures_zone = m[1], f.hits_outside = m[2], f.punctures_outside = m[3];
+  return assess::marks_key(f);
+}
+}  // namespace
+
+TEST_CASE("exact P(pass): the dynamic programme against enumeration and simulation", "[statistics]") {
+  // Two stations, 6 nails (3 each), outcomes with up to two marks, small limits: every
+  // combination of the nails' outcomes enumerated (4^6).
+  const ToyFeed toy{{{{{0, 0, 0, 0}, 0.6}, {{1, 0, 0, 0}, 0.2}, {{0, 0, 1, 0}, 0.15}, {{0, 1, 1, 0}, 0.05}},
+                     {{{0, 0, 0, 0}, 0.7}, {{0, 0, 0, 1}, 0.1}, {{0, 0, 2, 0}, 0.1}, {{1, 0, 0, 1}, 0.1}}}};
+  const std::array<int, assess::kCategories> allowed{1, 0, 2, 1};
+  double enumerated = 0;
+  for (int code = 0; code < 4096; ++code) {
+    double p = 1;
+    std::array<int, assess::kCategories> sum{};
+    for (int i = 0; i < 6; ++i) {
+      const auto& [o, q] = toy.stations[static_cast<std::size_t>(i % 2)][static_cast<std::size_t>(code >> (2 * i) & 3)];
+      p *= q;
+      for (int c = 0; c < assess::kCategories; ++c) sum[static_cast<std::size_t>(c)] += o[static_cast<std::size_t>(c)];
+    }
+    bool pass = true;
+    for (int c = 0; c < assess::kCategories; ++c) pass = pass && sum[static_cast<std::size_t>(c)] <= allowed[static_cast<std::size_t>(c)];
+    if (pass) enumerated += p;
+  }
+  CHECK(assess::pass_probability(toy.stations, 6, allowed) == Approx(enumerated).epsilon(1e-12));
+  // The allowed counts follow the replicate judgement's rule (30 of 150 passes 20 %).
+  scenario::CriteriaSpec j232;
+  CHECK(assess::allowed_count(j232, assess::HitsZone, 150) == 30);
+  CHECK(assess::allowed_count(j232, assess::PuncturesZone, 150) == 0);
+  CHECK(assess::allowed_count(j232, assess::HitsOutside, 150) == 22);
+  CHECK(assess::allowed_count(j232, assess::PuncturesOutside, 150) == 7);
+  // 150 nails at J232's limits against 40 000 simulated tests.
+  const ToyFeed feed{{{{{0, 0, 0, 0}, 0.87}, {{0, 0, 1, 0}, 0.08}, {{0, 0, 0, 1}, 0.045}, {{1, 0, 0, 0}, 0.005}},
+                      {{{0, 0, 0, 0}, 0.9}, {{0, 0, 1, 0}, 0.06}, {{0, 0, 0, 1}, 0.039}, {{0, 1, 0, 0}, 0.001}}}};
+  std::array<int, assess::kCategories> limits{};
+  for (int c = 0; c < assess::kCategories; ++c) limits[static_cast<std::size_t>(c)] = assess::allowed_count(j232, c, 150);
+  const double exact = assess::pass_probability(feed.stations, 150, limits);
+  random::Stream rng(5, 0, 0, random::Purpose::Test);
+  int passed = 0;
+  const int tests = 40000;
+  for (int t = 0; t < tests; ++t) {
+    std::array<int, assess::kCategories> sum{};
+    for (int i = 0; i < 150; ++i) {
+      const auto o = feed.draw(static_cast<std::size_t>(i % 2), rng);
+      for (int c = 0; c < assess::kCategories; ++c) sum[static_cast<std::size_t>(c)] += o[static_cast<std::size_t>(c)];
+    }
+    bool pass = true;
+    for (int c = 0; c < assess::kCategories; ++c) pass = pass && sum[static_cast<std::size_t>(c)] <= limits[static_cast<std::size_t>(c)];
+    passed += pass;
+  }
+  const double share = static_cast<double>(passed) / tests;
+  INFO("exact " << exact << ", simulated " << share);
+  CHECK(exact > 0.1);
+  CHECK(exact < 0.9);
+  CHECK(std::abs(share - exact) < 4 * std::sqrt(exact * (1 - exact) / tests));
+}
+
+TEST_CASE("exact P(pass): its interval covers the truth about 95 % of the time", "[statistics]") {
+  // A small test (40 nails, two stations) with known per-nail probabilities: 300 runs of
+  // 150 replicates each, the interval from 200 bootstrap draws.
+  const ToyFeed feed{{{{{0, 0, 0, 0}, 0.86}, {{0, 0, 1, 0}, 0.09}, {{0, 0, 0, 1}, 0.04}, {{1, 0, 0, 0}, 0.01}},
+                      {{{0, 0, 0, 0}, 0.9}, {{0, 0, 1, 0}, 0.07}, {{0, 0, 0, 1}, 0.028}, {{0, 1, 0, 0}, 0.002}}}};
+  scenario::CriteriaSpec j232;
+  const int nails = 40;
+  std::array<int, assess::kCategories> limits{};
+  for (int c = 0; c < assess::kCategories; ++c) limits[static_cast<std::size_t>(c)] = assess::allowed_count(j232, c, nails);
+  const double truth = assess::pass_probability(feed.stations, nails, limits);
+  int covered = 0, runs = 300;
+  double width = 0;
+  for (int run = 0; run < runs; ++run) {
+    random::Stream rng(11, static_cast<std::uint64_t>(run), 0, random::Purpose::Test);
+    assess::StationOutcomes seen;
+    for (int r = 0; r < 150; ++r)
+      for (int i = 0; i < nails; ++i) seen.add(i % 2, key_of(feed.draw(static_cast<std::size_t>(i % 2), rng)));
+    const auto e = assess::exact_pass(seen, nails, j232, static_cast<std::uint64_t>(run), 200);
+    REQUIRE(e.computed);
+    covered += e.low <= truth && truth <= e.high;
+    width += e.high - e.low;
+  }
+  const double coverage = static_cast<double>(covered) / runs;
+  INFO("truth " << truth << ", coverage " << coverage << ", mean width " << width / runs);
+  CHECK(truth > 0.2);
+  CHECK(truth < 0.95);
+  CHECK(coverage > 0.90);
+  CHECK(coverage <= 1.0);
+  // Not computed where it cannot be, with the reason.
+  scenario::CriteriaSpec by_marks;
+  by_marks.denominator = scenario::CriteriaSpec::Denominator::Marks;
+  assess::StationOutcomes one;
+  one.add(0, 0);
+  const auto e = assess::exact_pass(one, 1, by_marks, 1, 10);
+  CHECK_FALSE(e.computed);
+  CHECK_THAT(e.not_computed, Catch::Contains("marks"));
+}
+
+TEST_CASE("exact P(pass): agrees with the replicates' estimate on a mower near neither end", "[assess][statistics]") {
+  auto s = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
+  s.run.replicates = 200;
+  s.run.target_half_width.reset();
+  const auto a = assess::run_assessment(assess::Simulator(s), 2);
+  const auto sum = assess::summarise(a, s, 200);
+  REQUIRE(sum.exact.computed);
+  INFO("replicates " << sum.pass.estimate << " (" << sum.pass.low << "-" << sum.pass.high << "), exact " << sum.exact.value << " ("
+                     << sum.exact.low << "-" << sum.exact.high << ")");
+  CHECK(sum.pass.estimate > 0.05);
+  CHECK(sum.pass.estimate < 0.95);
+  CHECK(sum.exact.value >= sum.pass.low);
+  CHECK(sum.exact.value <= sum.pass.high);
+  CHECK(sum.pass.estimate >= sum.exact.low - 0.02);
+  CHECK(sum.pass.estimate <= sum.exact.high + 0.02);
+  CHECK(sum.exact.high - sum.exact.low < sum.pass.high - sum.pass.low);  // every nail tells more than every test
+}

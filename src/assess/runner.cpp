@@ -67,6 +67,7 @@ void ExitTable::merge(const ExitTable& o) {
 
 void NailHistograms::merge(const NailHistograms& c) {
   exits.merge(c.exits);
+  outcomes.merge(c.outcomes);
   std::vector<const Histogram*> theirs;
   each_histogram(c, [&](const Histogram& h) { theirs.push_back(&h); });
   std::size_t i = 0;
@@ -87,6 +88,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
     for (int n = 0; n < nails; ++n) {
       const NailOutcome o = sim.simulate(replicate, n);
       tally.add(o.flight);
+      c.outcomes.add(o.station, marks_key(o.flight));
       ++c.nails;
       c.queries += static_cast<std::uint64_t>(o.flight.queries);
       if (o.flight.non_finite) ++c.non_finite;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "assess/simulator.hpp"
+#include "assess/exact_pass.hpp"
 #include "assess/statistics.hpp"
 #include "assess/tally.hpp"
 
@@ -76,6 +77,7 @@ struct NailHistograms {
   Histogram contact_radius{0.005, 400};      // m
   Histogram strikes{1, 52};                  // blade strikes per struck nail: bin k holds k strikes
   ExitTable exits;
+  StationOutcomes outcomes;  // every nail fed: its counted marks by category, by feed station (the exact P(pass))
 
   // Every histogram, for whatever must treat them all alike (merging, packing for MPI):
   // one list, so none can be left out of one of them.

@@ -36,7 +36,7 @@ Validity check_validity(const Assessment& a, const scenario::Scenario& s) {
 
 }  // namespace
 
-Summary summarise(const Assessment& a, const scenario::Scenario& scenario) {
+Summary summarise(const Assessment& a, const scenario::Scenario& scenario, int exact_draws) {
   const scenario::CriteriaSpec& criteria = scenario.criteria;
   Summary s;
   s.replicates = a.replicates;
@@ -76,6 +76,7 @@ Summary summarise(const Assessment& a, const scenario::Scenario& scenario) {
   s.exit_speed_mean = a.exit_speed.mean();
   s.queries_per_nail = s.nails ? static_cast<double>(a.queries) / static_cast<double>(s.nails) : 0;
   s.validity = check_validity(a, scenario);
+  s.exact = exact_pass(a.outcomes, scenario.feed.nails, criteria, scenario.run.seed, exact_draws);
   return s;
 }
 

@@ -38,9 +38,13 @@ struct Summary {
   double queries_per_nail = 0;
   double exit_speed_mean = 0;  // m/s, off the first strike
   Validity validity;
+  // P(pass) computed exactly from every nail's outcome (assess/exact_pass.hpp): the value,
+  // and with exact_draws > 0 its 95 % interval.
+  ExactPass exact;
 };
 
 // Judges the run against the scenario's criteria and checks that the test really happened.
-Summary summarise(const Assessment& a, const scenario::Scenario& scenario);
+// `exact_draws`: bootstrap draws for the exact estimate's interval (0: its value alone).
+Summary summarise(const Assessment& a, const scenario::Scenario& scenario, int exact_draws = 0);
 
 }  // namespace j232::assess

@@ -85,12 +85,16 @@ void get(Reader& r, Histogram& h) {
 void put(Writer& w, const NailHistograms& n) {
   NailHistograms::each_histogram(n, [&](const Histogram& h) { put(w, h); });
   w.map(n.exits.nails), w.map(n.exits.marks), w.value(n.exits.marks_by_strikes), w.value(n.exits.marks_by_first_touch);
+  w.value<std::uint64_t>(n.outcomes.by_station.size());
+  for (const auto& station : n.outcomes.by_station) w.map(station);
 }
 void get(Reader& r, NailHistograms& n) {
   NailHistograms::each_histogram(n, [&](Histogram& h) { get(r, h); });
   r.map(n.exits.nails), r.map(n.exits.marks);
   n.exits.marks_by_strikes = r.value<decltype(n.exits.marks_by_strikes)>();
   n.exits.marks_by_first_touch = r.value<decltype(n.exits.marks_by_first_touch)>();
+  n.outcomes.by_station.resize(r.value<std::uint64_t>());
+  for (auto& station : n.outcomes.by_station) r.map(station);
 }
 }  // namespace
 

@@ -19,7 +19,7 @@ inline constexpr std::uint64_t splitmix64(std::uint64_t& state) {
 }
 
 // What a stream is used for; separate purposes never share numbers.
-enum class Purpose : std::uint64_t { Feed = 1, Flight = 2, Test = 99 };
+enum class Purpose : std::uint64_t { Feed = 1, Flight = 2, Estimator = 3, Test = 99 };
 
 class Stream {
  public:

@@ -103,7 +103,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
     a.trajectories = assess::trace_nails(simulator, o.trajectories, notable);
     a.trajectories_not_kept = notable.not_kept();
   }
-  const assess::Summary sum = assess::summarise(a, s);
+  const assess::Summary sum = assess::summarise(a, s, assess::kExactDraws);
 
   Provenance p{j232::version, j232::git_revision, utc_now(), digest(scenario_file, s.meshes, o),
                a.threads,     a.wall_seconds,     {},        assess::cluster::size()};

@@ -63,6 +63,17 @@ std::string verdict_section(const assess::Summary& sum, const json& r, int nails
                    sum.settled ? "The verdict is settled: the whole 95 % interval lies on one side of the required probability."
                                : "<strong>Not settled:</strong> the 95 % interval straddles the required probability; run more "
                                  "replicates (or set run.target_half_width) before filing.");
+  const auto& e = r["pass_probability_exact"];
+  if (e.value("computed", false))
+    o += fmt::format(
+        "<p>From every nail rather than every test: P(pass) = {} (95 % interval {} to {}), the exact probability that a "
+        "{}-nail feed stays within all four limits when each feed station's nails make each combination of marks as often "
+        "as the run's nails did{} (interval by Bayesian bootstrap).</p>\n",
+        number("pass_probability_exact.estimate", e["estimate"], "{:.3f}"), number("pass_probability_exact.low", e["low"], "{:.3f}"),
+        number("pass_probability_exact.high", e["high"], "{:.3f}"), nails_per_test,
+        e["high"].get<double>() - e["low"].get<double>() < p["high"].get<double>() - p["low"].get<double>() ? "; narrower than the replicates' interval" : "");
+  else
+    o += fmt::format("<p>P(pass) from every nail was not computed: {}.</p>\n", escape(e.value("why_not", std::string())));
   o += "</section>\n";
   return o;
 }

@@ -19,6 +19,40 @@ json interval_json(const assess::Interval& i) {
   return {{"estimate", i.estimate}, {"low", i.low}, {"high", i.high}, {"confidence", 0.95}, {"method", "Wilson score"}};
 }
 
+// P(pass) from every nail (assess/exact_pass.hpp), or why it was not computed.
+json exact_json(const assess::ExactPass& e) {
+  if (!e.computed) return {{"computed", false}, {"why_not", e.not_computed}};
+  return {{"computed", true},
+          {"estimate", e.value},
+          {"low", e.low},
+          {"high", e.high},
+          {"confidence", 0.95},
+          {"method", "exact sum over the counts within the limits, each feed station's nail outcomes as observed; interval by Bayesian "
+                     "bootstrap (Dirichlet over the outcome frequencies, a quarter-nail prior on each single mark)"},
+          {"bootstrap_draws", e.draws},
+          {"states", e.states}};
+}
+
+// Each feed station's nails by their counted marks (what the exact P(pass) is computed from).
+json outcomes_json(const assess::StationOutcomes& o) {
+  json out = json::array();
+  for (std::size_t st = 0; st < o.by_station.size(); ++st) {
+    const double n = static_cast<double>(o.nails(st));
+    json rows = json::array();
+    for (const auto& [key, count] : o.by_station[st]) {
+      const auto m = assess::marks_of_key(key);
+      rows.push_back({{"hits_zone", m[0]},
+                      {"punctures_zone", m[1]},
+                      {"hits_outside", m[2]},
+                      {"punctures_outside", m[3]},
+                      {"nails", count},
+                      {"probability", n > 0 ? static_cast<double>(count) / n : 0.0}});
+    }
+    out.push_back({{"station", st + 1}, {"nails", o.nails(st)}, {"outcomes", rows}});
+  }
+  return out;
+}
+
 // Blade strikes per struck nail: the first (the feed's) and every strike after it.
 json strikes_json(const assess::Histogram& h) {
   const std::uint64_t once = h.counts.size() > 1 ? h.counts[1] : 0;
@@ -152,6 +186,8 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"verdict_settled", sum.validity.valid && sum.settled},
       {"invalid_because", sum.validity.reasons},
       {"pass_probability", interval_json(sum.pass)},
+      {"pass_probability_exact", exact_json(sum.exact)},
+      {"nail_outcomes_by_station", outcomes_json(a.outcomes)},
       {"required_pass_probability", sum.required},
       {"deciding_criterion", sum.criteria[sum.deciding].name},
       {"denominator", s.criteria.denominator == scenario::CriteriaSpec::Denominator::Marks ? "marks" : "nails_fed"},
@@ -273,6 +309,12 @@ void require_finite(const json& j, const std::string& where) {
 }
 
 std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum) {
+  const auto exact_line = [&]() -> std::string {
+    if (!sum.exact.computed) return fmt::format("  P(pass) from every nail: not computed ({})\n", sum.exact.not_computed);
+    const bool narrower = sum.exact.high - sum.exact.low < sum.pass.high - sum.pass.low;
+    return fmt::format("  P(pass) from every nail = {:.3f}  (95 % interval {:.3f} to {:.3f}; the exact sum over each station's nail outcomes{})\n",
+                       sum.exact.value, sum.exact.low, sum.exact.high, narrower ? ", narrower" : "");
+  };
   std::string out;
   out += fmt::format("{}\n", terminal_safe(s.title));
   if (!sum.validity.valid) {
@@ -289,6 +331,7 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
   }
   out += fmt::format("  P(pass one test) = {:.3f}  (95 % interval {:.3f} to {:.3f}; required {:.2f}; {} replicates)\n", sum.pass.estimate,
                      sum.pass.low, sum.pass.high, sum.required, sum.replicates);
+  out += exact_line();
   out += fmt::format("  {:<20} {:>8} {:>10} {:>17} {:>10}\n", "criterion", "limit", "mean", "5-95 % range", "P(pass)");
   for (int c = 0; c < assess::kCategories; ++c) {
     const auto& cs = sum.criteria[c];

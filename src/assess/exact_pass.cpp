@@ -1,0 +1,181 @@
+#include "assess/exact_pass.hpp"
+
+#include <algorithm>
+#include <boost/random/gamma_distribution.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "random/stream.hpp"
+
+namespace j232::assess {
+
+std::uint32_t marks_key(const flight::FlightResult& nail) {
+  const auto cap = [](int n) { return static_cast<std::uint32_t>(std::clamp(n, 0, 255)); };
+  return cap(nail.hits_zone) | cap(nail.punctures_zone) << 8 | cap(nail.hits_outside) << 16 | cap(nail.punctures_outside) << 24;
+}
+
+NailMarks marks_of_key(std::uint32_t key) {
+  return {static_cast<int>(key & 0xFFu), static_cast<int>(key >> 8 & 0xFFu), static_cast<int>(key >> 16 & 0xFFu),
+          static_cast<int>(key >> 24 & 0xFFu)};
+}
+
+void StationOutcomes::add(int station, std::uint32_t key) {
+  const auto s = static_cast<std::size_t>(station);
+  if (by_station.size() <= s) by_station.resize(s + 1);
+  ++by_station[s][key];
+}
+
+void StationOutcomes::merge(const StationOutcomes& other) {
+  if (by_station.size() < other.by_station.size()) by_station.resize(other.by_station.size());
+  for (std::size_t s = 0; s < other.by_station.size(); ++s)
+    for (const auto& [key, n] : other.by_station[s]) by_station[s][key] += n;
+}
+
+std::uint64_t StationOutcomes::nails(std::size_t station) const {
+  std::uint64_t n = 0;
+  if (station < by_station.size())
+    for (const auto& [key, count] : by_station[station]) n += count;
+  return n;
+}
+
+int allowed_count(const scenario::CriteriaSpec& criteria, int category, int nails) {
+  // judge(): count / nails <= limit + 1e-12.
+  const double limit = category_limit(criteria, category) + 1e-12;
+  int k = static_cast<int>(std::floor(limit * nails));
+  while (k + 1 <= nails && static_cast<double>(k + 1) / nails <= limit) ++k;
+  while (k >= 0 && static_cast<double>(k) / nails > limit) --k;
+  return std::min(k, nails);
+}
+
+double pass_probability(const std::vector<OutcomeDistribution>& stations, int nails, const std::array<int, kCategories>& allowed) {
+  std::array<std::size_t, kCategories> dim{};
+  std::size_t states = 1;
+  for (int c = 0; c < kCategories; ++c) {
+    if (allowed[static_cast<std::size_t>(c)] < 0) return 0.0;  // not even a clean test passes
+    dim[static_cast<std::size_t>(c)] = static_cast<std::size_t>(allowed[static_cast<std::size_t>(c)]) + 1;
+    states *= dim[static_cast<std::size_t>(c)];
+  }
+  // Strides of the flattened count vector (a, b, c, d).
+  const std::size_t s3 = 1, s2 = dim[3], s1 = dim[2] * s2, s0 = dim[1] * s1;
+  std::vector<double> mass(states, 0.0), next(states, 0.0);
+  mass[0] = 1.0;
+  // Counts reached so far in each category: the loops need go no further.
+  std::array<int, kCategories> reach{};
+  for (int i = 0; i < nails; ++i) {
+    const OutcomeDistribution& d = stations[static_cast<std::size_t>(i) % stations.size()];
+    std::fill(next.begin(), next.end(), 0.0);
+    std::array<int, kCategories> most{};
+    for (const auto& [o, p] : d)
+      for (int c = 0; c < kCategories; ++c) most[static_cast<std::size_t>(c)] = std::max(most[static_cast<std::size_t>(c)], o[static_cast<std::size_t>(c)]);
+    for (int a = 0; a <= reach[0]; ++a)
+      for (int b = 0; b <= reach[1]; ++b)
+        for (int c = 0; c <= reach[2]; ++c)
+          for (int e = 0; e <= reach[3]; ++e) {
+            const std::size_t at = static_cast<std::size_t>(a) * s0 + static_cast<std::size_t>(b) * s1 + static_cast<std::size_t>(c) * s2 +
+                                   static_cast<std::size_t>(e) * s3;
+            const double m = mass[at];
+            if (m == 0.0) continue;
+            for (const auto& [o, p] : d) {
+              const int na = a + o[0], nb = b + o[1], nc = c + o[2], ne = e + o[3];
+              if (na > allowed[0] || nb > allowed[1] || nc > allowed[2] || ne > allowed[3]) continue;  // this test fails
+              next[static_cast<std::size_t>(na) * s0 + static_cast<std::size_t>(nb) * s1 + static_cast<std::size_t>(nc) * s2 +
+                   static_cast<std::size_t>(ne) * s3] += m * p;
+            }
+          }
+    for (int c = 0; c < kCategories; ++c)
+      reach[static_cast<std::size_t>(c)] = std::min(allowed[static_cast<std::size_t>(c)], reach[static_cast<std::size_t>(c)] + most[static_cast<std::size_t>(c)]);
+    mass.swap(next);
+  }
+  double total = 0;
+  for (const double m : mass) total += m;
+  return std::min(1.0, total);
+}
+
+ExactPass exact_pass(const StationOutcomes& outcomes, int nails, const scenario::CriteriaSpec& criteria, std::uint64_t seed, int draws,
+                     std::uint64_t max_states) {
+  ExactPass out;
+  if (criteria.denominator == scenario::CriteriaSpec::Denominator::Marks) {
+    out.not_computed = "the shares are of all marks (criteria.denominator = \"marks\"): the exact estimate needs the total as one more count";
+    return out;
+  }
+  const std::size_t S = outcomes.by_station.size();
+  if (S == 0 || nails <= 0) {
+    out.not_computed = "no nail was recorded";
+    return out;
+  }
+  for (std::size_t s = 0; s < S; ++s)
+    if (outcomes.nails(s) == 0 && s < static_cast<std::size_t>(nails)) {
+      out.not_computed = fmt::format("no nail was recorded at feed station {}", s + 1);
+      return out;
+    }
+  std::array<int, kCategories> allowed{};
+  std::uint64_t states = 1;
+  for (int c = 0; c < kCategories; ++c) {
+    allowed[static_cast<std::size_t>(c)] = allowed_count(criteria, c, nails);
+    states *= static_cast<std::uint64_t>(std::max(allowed[static_cast<std::size_t>(c)], 0) + 1);
+  }
+  out.states = states;
+  if (states > max_states) {
+    out.not_computed = fmt::format("the limits allow {} combinations of counts (more than {}): too many to sum exactly", states, max_states);
+    return out;
+  }
+  // The observed frequencies.
+  std::vector<OutcomeDistribution> observed(S);
+  for (std::size_t s = 0; s < S; ++s) {
+    const double n = static_cast<double>(outcomes.nails(s));
+    for (const auto& [key, count] : outcomes.by_station[s]) observed[s].push_back({marks_of_key(key), static_cast<double>(count) / n});
+  }
+  out.value = pass_probability(observed, nails, allowed);
+  out.computed = true;
+  out.draws = draws;
+  if (draws <= 0) {
+    out.low = out.high = out.value;
+    return out;
+  }
+  // Bayesian bootstrap: each station's outcome probabilities drawn from Dirichlet(counts +
+  // prior), the prior a quarter of a nail on each single mark (one nail in all: weak, but
+  // it keeps a mark no nail made from being called impossible).
+  constexpr double kPrior = 0.25;
+  std::vector<std::vector<std::pair<NailMarks, double>>> alphas(S);
+  for (std::size_t s = 0; s < S; ++s) {
+    std::map<std::uint32_t, double> a;
+    for (const auto& [key, count] : outcomes.by_station[s]) a[key] += static_cast<double>(count);
+    for (int c = 0; c < kCategories; ++c) a[1u << (8 * c)] += kPrior;
+    for (const auto& [key, alpha] : a) alphas[s].push_back({marks_of_key(key), alpha});
+  }
+  // Each draw from its own stream (keyed by the draw), in parallel: the same values on any
+  // number of threads.
+  std::vector<double> values(static_cast<std::size_t>(draws));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, values.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<OutcomeDistribution> drawn(S);
+    for (std::size_t k = range.begin(); k != range.end(); ++k) {
+      random::Stream rng(seed, k, 0, random::Purpose::Estimator);
+      for (std::size_t s = 0; s < S; ++s) {
+        drawn[s].clear();
+        double sum = 0;
+        for (const auto& [o, alpha] : alphas[s]) {
+          boost::random::gamma_distribution<double> gamma(alpha, 1.0);
+          const double g = gamma(rng);
+          drawn[s].push_back({o, g});
+          sum += g;
+        }
+        for (auto& [o, w] : drawn[s]) w /= sum;
+      }
+      values[k] = pass_probability(drawn, nails, allowed);
+    }
+  });
+  std::sort(values.begin(), values.end());
+  const auto at = [&](double p) {
+    const double h = (static_cast<double>(values.size()) - 1) * p;
+    const auto lo = static_cast<std::size_t>(std::floor(h));
+    const auto hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
+  };
+  out.low = std::min(at(0.025), out.value);
+  out.high = std::max(at(0.975), out.value);
+  return out;
+}
+
+}  // namespace j232::assess
