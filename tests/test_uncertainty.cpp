@@ -53,8 +53,16 @@ basis = "test: drag is off, so this must not matter"
   const auto& pass = a.indices[0];
   CHECK(pass.total[1].estimate == 0.0);  // f(AB_2) == f(A) at every row
   CHECK(pass.first[1].estimate == 0.0);
+  CHECK(a.indices[1].total[1].estimate == 0.0);  // and for P(pass) from every nail
+  // P(pass) from every nail, at every draw: a probability, near the replicates' share.
+  for (const auto& out : a.outputs) {
+    CHECK(out[1] >= 0.0);
+    CHECK(out[1] <= 1.0);
+    CHECK(std::abs(out[1] - out[0]) < 4 * std::sqrt(0.25 / 12) + 0.02);
+  }
   // The edge's bevel decides how this mower's nails leave: it carries the variance.
-  const auto& punct = a.indices[4];
+  REQUIRE(std::string(study::kUqOutputNames[5]) == "punctures_outside");
+  const auto& punct = a.indices[5];
   REQUIRE(punct.variance > 0);
   CHECK(punct.total[0].estimate > 0.5);
 }

@@ -132,9 +132,9 @@ int uq(const UqOptions& o) {
              p["q05"].get<double>(), p["q95"].get<double>());
   fmt::print("Robust verdict: {} ({:.1f} % of draws pass)\n", j["robust_verdict"].get<std::string>(),
              100 * j["share_of_draws_passing"].get<double>());
-  const auto& s = r.indices[0];
+  const auto& s = r.indices[1];  // P(pass) from every nail: smooth in the inputs
   if (s.variance > 0) {
-    fmt::print("What drives P(pass) (total Sobol' index, 95 % interval):\n");
+    fmt::print("What drives P(pass) from every nail (total Sobol' index, 95 % interval):\n");
     std::vector<std::size_t> order(r.plan.inputs.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](auto a, auto b) { return s.total[a].estimate > s.total[b].estimate; });

@@ -12,8 +12,13 @@ namespace j232::report {
 
 namespace {
 using json = nlohmann::ordered_json;
-const char* kWords[study::kUqOutputs] = {"P(pass one test)",      "hits in the operator zone",  "punctures in the operator zone",
-                                         "hits outside the zone", "punctures outside the zone", "passes (P(pass) at least the required)"};
+const char* kWords[study::kUqOutputs] = {"P(pass one test)",
+                                         "P(pass) from every nail (exact)",
+                                         "hits in the operator zone",
+                                         "punctures in the operator zone",
+                                         "hits outside the zone",
+                                         "punctures outside the zone",
+                                         "passes (P(pass) at least the required)"};
 
 json index_json(const study::Index& i) { return {{"estimate", i.estimate}, {"low", i.low}, {"high", i.high}}; }
 }  // namespace
@@ -125,9 +130,10 @@ std::string uncertainty_html(const json& j) {
   for (int k = 0; k < study::kUqOutputs - 1; ++k) {
     const std::string name = study::kUqOutputNames[k];
     const auto& x = j["outputs"][name];
-    const double scale = k == 0 ? 1.0 : 100.0;
-    const char* f = k == 0 ? "{:.3f}" : "{:.2f}";
-    const char* unit = k == 0 ? "" : " %";
+    const bool probability = k < study::kUqProbabilityOutputs;
+    const double scale = probability ? 1.0 : 100.0;
+    const char* f = probability ? "{:.3f}" : "{:.2f}";
+    const char* unit = probability ? "" : " %";
     o += fmt::format("<tr><td>{}</td>", kWords[k]);
     for (const char* q : {"mean", "q05", "q50", "q95", "min", "max"})
       o += fmt::format("<td>{}{}</td>", number(fmt::format("outputs.{}.{}", name, q), x[q], f, scale), unit);
@@ -197,13 +203,16 @@ json uncertainty_summary_json(const json& study) {
   s["robust_verdict"] = study["robust_verdict"];
   s["share_of_draws_passing"] = study["share_of_draws_passing"];
   s["p_pass"] = study["outputs"]["p_pass"];
-  // The inputs by their total index for P(pass), largest first (none when P(pass) does not vary).
+  s["p_pass_exact"] = study["outputs"]["p_pass_exact"];
+  // The inputs by their total index for P(pass) from every nail (smooth in the inputs, where
+  // the share of passing replicates moves in steps), largest first (none when it does not vary).
   std::vector<json> drivers;
-  for (const auto& row : study["sensitivity"]["p_pass"]["indices"]) drivers.push_back({{"input", row["input"]}, {"total", row["total"]}});
+  for (const auto& row : study["sensitivity"]["p_pass_exact"]["indices"])
+    drivers.push_back({{"input", row["input"]}, {"total", row["total"]}});
   std::stable_sort(drivers.begin(), drivers.end(), [](const json& a, const json& b) {
     return a["total"]["estimate"].get<double>() > b["total"]["estimate"].get<double>();
   });
-  s["p_pass_variance"] = study["sensitivity"]["p_pass"]["variance"];
+  s["p_pass_variance"] = study["sensitivity"]["p_pass_exact"]["variance"];
   s["drivers_of_p_pass"] = drivers;
   return s;
 }
@@ -235,7 +244,7 @@ std::string uncertainty_summary_html(const json& r) {
       number("uncertainty.p_pass.q50", s["p_pass"]["q50"], "{:.3f}"), number("uncertainty.p_pass.q05", s["p_pass"]["q05"], "{:.3f}"),
       number("uncertainty.p_pass.q95", s["p_pass"]["q95"], "{:.3f}"));
   if (s["p_pass_variance"].get<double>() > 0) {
-    o += "<table class=\"numbers\"><thead><tr><th>input</th><th>total Sobol' index for P(pass)</th><th>95 % "
+    o += "<table class=\"numbers\"><thead><tr><th>input</th><th>total Sobol' index for P(pass) from every nail</th><th>95 % "
          "interval</th></tr></thead><tbody>\n";
     for (std::size_t i = 0; i < s["drivers_of_p_pass"].size(); ++i) {
       const auto& d = s["drivers_of_p_pass"][i];

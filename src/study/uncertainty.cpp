@@ -177,8 +177,11 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     if (!sum.validity.valid)
       throw InputError(file, std::nullopt, "uncertainty", fmt::format("draw {}", run + 1),
                        "the simulated test is invalid at this draw: " + sum.validity.reasons.front());
-    r.outputs.push_back({sum.pass.estimate, sum.criteria[0].mean_share, sum.criteria[1].mean_share, sum.criteria[2].mean_share,
-                         sum.criteria[3].mean_share, sum.pass.estimate >= r.required ? 1.0 : 0.0});
+    // (From every nail where it can be computed; else, for the `marks` denominator, the
+    // replicates' share, as uq.json says.)
+    r.outputs.push_back({sum.pass.estimate, sum.exact.computed ? sum.exact.value : sum.pass.estimate, sum.criteria[0].mean_share,
+                         sum.criteria[1].mean_share, sum.criteria[2].mean_share, sum.criteria[3].mean_share,
+                         sum.pass.estimate >= r.required ? 1.0 : 0.0});
     if (journal && journal->record) journal->record(run, r.outputs.back());
   }
   for (int o = 0; o < kUqOutputs; ++o) {

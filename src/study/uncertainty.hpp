@@ -27,10 +27,13 @@ struct UncertaintyPlan {
 };
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s);
 
-// The outputs judged at each draw: P(pass), the four mean shares, and whether it passes.
-inline constexpr int kUqOutputs = 6;
-inline constexpr const char* kUqOutputNames[kUqOutputs] = {"p_pass",       "hits_zone",         "punctures_zone",
+// The outputs judged at each draw: P(pass) (the share of passing replicates, and from
+// every nail: smooth, so its Sobol' indices mean something), the four mean shares, and
+// whether it passes ("passes" stays last).
+inline constexpr int kUqOutputs = 7;
+inline constexpr const char* kUqOutputNames[kUqOutputs] = {"p_pass",       "p_pass_exact",      "hits_zone", "punctures_zone",
                                                            "hits_outside", "punctures_outside", "passes"};
+inline constexpr int kUqProbabilityOutputs = 2;  // the first two are probabilities, the shares follow
 
 struct UncertaintyResult {
   UncertaintyPlan plan;
