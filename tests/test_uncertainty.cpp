@@ -9,6 +9,8 @@
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
+#include "report/uncertainty_report.hpp"
+#include "study/sensitivity.hpp"
 #include "study/uncertainty.hpp"
 
 using namespace j232;
@@ -168,4 +170,36 @@ basis = "test"
       CHECK(resumed.indices[static_cast<std::size_t>(o)].total[i].estimate == whole.indices[static_cast<std::size_t>(o)].total[i].estimate);
       CHECK(resumed.indices[static_cast<std::size_t>(o)].first[i].high == whole.indices[static_cast<std::size_t>(o)].first[i].high);
     }
+}
+
+TEST_CASE("uncertainty: the page never calls an output the same at every draw when its table shows a spread", "[uncertainty][report]") {
+  // One input, two base draws: A and B give every output the same value, one mixed draw
+  // (AB_1) another. The base draws carry no variance, yet the output moves.
+  study::UncertaintyResult r;
+  r.title = "test", r.scenario_file = "test.toml";
+  scenario::UncertainInput input;
+  input.parameter = "bevel_angle", input.low = "20 deg", input.high = "45 deg", input.basis = "test";
+  r.plan.inputs.push_back(input);
+  r.plan.base_draws = 2;
+  r.design = study::saltelli_design(1, 2);
+  const auto runs = r.design.runs();
+  REQUIRE(runs.size() == 6);
+  for (std::size_t run = 0; run < runs.size(); ++run) {
+    const double v = run == 5 ? 0.9 : 0.5;
+    r.values.push_back({runs[run][0]});
+    std::array<double, study::kUqOutputs> out{};
+    out.fill(0.01);
+    out[0] = v, out[1] = 0.25;
+    r.outputs.push_back(out);
+  }
+  for (int o = 0; o < study::kUqOutputs; ++o) {
+    std::vector<double> f;
+    for (const auto& out : r.outputs) f.push_back(out[static_cast<std::size_t>(o)]);
+    r.indices[static_cast<std::size_t>(o)] = study::sobol_indices(r.design, f, 20, 1);
+  }
+  REQUIRE(r.indices[0].variance == 0.0);
+  const std::string html = report::uncertainty_html(report::uncertainty_json(r));
+  CHECK_THAT(html, Catch::Contains("P(pass one test): the same at every base draw (A and B)"));
+  CHECK_THAT(html, Catch::Contains("from 0.5 to 0.9"));
+  CHECK_THAT(html, Catch::Contains("P(pass) from every nail (exact): the same at every draw (no variance"));
 }

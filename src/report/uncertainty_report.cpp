@@ -146,7 +146,15 @@ std::string uncertainty_html(const json& j) {
     const std::string name = study::kUqOutputNames[k];
     const auto& s = j["sensitivity"][name];
     if (s["variance"].get<double>() <= 0) {
-      o += fmt::format("<p>{}: the same at every draw (no variance to attribute).</p>\n", kWords[k]);
+      // The variance is over the base draws (A and B); the table's range is over every draw.
+      const auto& x = j["outputs"][name];
+      if (x["min"].get<double>() == x["max"].get<double>())
+        o += fmt::format("<p>{}: the same at every draw (no variance to attribute).</p>\n", kWords[k]);
+      else
+        o += fmt::format(
+            "<p>{}: the same at every base draw (A and B), so there is no variance to attribute, though it moves at "
+            "some of the mixed draws (from {} to {} over all of them): more base draws are needed to apportion it.</p>\n",
+            kWords[k], x["min"].get<double>(), x["max"].get<double>());
       continue;
     }
     Chart chart(fmt::format("Sobol' indices: {}", kWords[k]), "input (numbered as in the table above)", "index", 640, 300);
@@ -255,7 +263,10 @@ std::string uncertainty_summary_html(const json& r) {
     }
     o += "</tbody></table>\n";
   } else {
-    o += "<p>P(pass) is the same at every draw: no input moves the verdict over its range.</p>\n";
+    o += s["p_pass_exact"]["min"].get<double>() == s["p_pass_exact"]["max"].get<double>()
+             ? "<p>P(pass) is the same at every draw: no input moves the verdict over its range.</p>\n"
+             : "<p>P(pass) from every nail is the same at every base draw: the study's draws are too few to say which input "
+               "moves it.</p>\n";
   }
   return o + "</section>\n";
 }
