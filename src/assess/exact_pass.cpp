@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "assess/statistics.hpp"
 #include "random/stream.hpp"
 
 namespace j232::assess {
@@ -167,14 +168,8 @@ ExactPass exact_pass(const StationOutcomes& outcomes, int nails, const scenario:
     }
   });
   std::sort(values.begin(), values.end());
-  const auto at = [&](double p) {
-    const double h = (static_cast<double>(values.size()) - 1) * p;
-    const auto lo = static_cast<std::size_t>(std::floor(h));
-    const auto hi = std::min(lo + 1, values.size() - 1);
-    return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
-  };
-  out.low = std::min(at(0.025), out.value);
-  out.high = std::max(at(0.975), out.value);
+  out.low = std::min(quantile_sorted(values, 0.025), out.value);
+  out.high = std::max(quantile_sorted(values, 0.975), out.value);
   return out;
 }
 

@@ -28,21 +28,27 @@ struct TraceOptions {
   std::optional<std::uint64_t> seed;
 };
 
-// What --find looks for, in a nail's outcome.
-bool matches(const std::string& what, const assess::NailOutcome& o) {
-  const auto& f = o.flight;
-  if (what == "puncture-zone") return f.punctures_zone > 0;
-  if (what == "hit-zone") return f.hits_zone > 0;
-  if (what == "puncture") return f.punctures_zone + f.punctures_outside > 0;
-  if (what == "mark") return f.fate == flight::Fate::MarkedBoard;
-  if (what == "cut-off") return f.fate == flight::Fate::CutOff;
-  if (what == "contained") return f.fate == flight::Fate::Contained;
-  if (what == "stopped-by-guard") return f.fate == flight::Fate::StoppedByGuard;
-  if (what == "escaped") return f.fate == flight::Fate::Escaped;
-  if (what == "restruck") return f.strikes > 1;
-  return false;
+// What --find looks for: each kind by its name and its test on a nail's outcome.
+struct FindKind {
+  const char* name;
+  bool (*matches)(const assess::NailOutcome&);
+};
+constexpr FindKind kFindKinds[] = {
+    {"puncture-zone", [](const assess::NailOutcome& o) { return o.flight.punctures_zone > 0; }},
+    {"hit-zone", [](const assess::NailOutcome& o) { return o.flight.hits_zone > 0; }},
+    {"puncture", [](const assess::NailOutcome& o) { return o.flight.punctures_zone + o.flight.punctures_outside > 0; }},
+    {"mark", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::MarkedBoard; }},
+    {"cut-off", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::CutOff; }},
+    {"contained", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::Contained; }},
+    {"stopped-by-guard", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::StoppedByGuard; }},
+    {"escaped", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::Escaped; }},
+    {"restruck", [](const assess::NailOutcome& o) { return o.flight.strikes > 1; }},
+};
+std::string find_kind_names() {
+  std::string names;
+  for (const auto& k : kFindKinds) names += (names.empty() ? "" : ", ") + std::string(k.name);
+  return names;
 }
-const char* kFindKinds = "puncture-zone, hit-zone, puncture, mark, cut-off, contained, stopped-by-guard, escaped, restruck";
 
 std::string vec(const flight::Vec3& v, int digits = 3) { return fmt::format("({:.{}f}, {:.{}f}, {:.{}f})", v.x(), digits, v.y(), digits, v.z(), digits); }
 
@@ -85,12 +91,10 @@ nlohmann::json event_json(const flight::FlightEvent& e) {
 }
 
 int run(const TraceOptions& o) {
-  if (!o.find.empty()) {
-    bool known = false;
-    for (const char* k : {"puncture-zone", "hit-zone", "puncture", "mark", "cut-off", "contained", "stopped-by-guard", "escaped", "restruck"})
-      known |= o.find == k;
-    if (!known) throw scenario::InputError("", std::nullopt, "--find", o.find, fmt::format("expected one of {}", kFindKinds));
-  }
+  const FindKind* find = nullptr;
+  for (const auto& k : kFindKinds)
+    if (o.find == k.name) find = &k;
+  if (!o.find.empty() && !find) throw scenario::InputError("", std::nullopt, "--find", o.find, "expected one of " + find_kind_names());
   scenario::Scenario s = scenario::read_scenario(o.scenario);
   if (o.seed) s.run.seed = *o.seed;
   if (o.nail < 0 || o.nail >= s.feed.nails)
@@ -98,12 +102,12 @@ int run(const TraceOptions& o) {
   const assess::Simulator sim(s);
   std::uint64_t replicate = o.replicate;
   int nail = o.nail;
-  if (!o.find.empty()) {
+  if (find) {
     // The first such nail in the order of the run (replicate, then nail).
     bool found = false;
     for (std::uint64_t r = 0; r < static_cast<std::uint64_t>(s.run.replicates) && !found; ++r)
       for (int n = 0; n < s.feed.nails && !found; ++n)
-        if (matches(o.find, sim.simulate(r, n))) replicate = r, nail = n, found = true;
+        if (find->matches(sim.simulate(r, n))) replicate = r, nail = n, found = true;
     if (!found) {
       fmt::print("no nail of the {} replicates of \"{}\" (seed {}) is of the kind {}\n", s.run.replicates, s.title, s.run.seed, o.find);
       return kOk;
@@ -156,7 +160,7 @@ Runner add_trace_command(CLI::App& app) {
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML)")->required();
   cmd->add_option("--replicate", o->replicate, "Replicate (0-based, as marks.csv numbers them)");
   cmd->add_option("--nail", o->nail, "Nail within the replicate (0-based, as marks.csv numbers them)");
-  cmd->add_option("--find", o->find, std::string("Replay the first nail of the run of this kind instead: ") + kFindKinds);
+  cmd->add_option("--find", o->find, "Replay the first nail of the run of this kind instead: " + find_kind_names());
   cmd->add_option("--seed", o->seed, "Random seed (overrides the scenario's [run] seed)");
   cmd->add_option("--json", o->json, "Also write the trail as JSON to this file");
   return [o] { return run(*o); };

@@ -281,7 +281,7 @@ void NailFlight::restrike(const strike::Contact& k) {
   r.most_contacts_in_pass = std::max(r.most_contacts_in_pass, pass_contacts);
   if (pass_contacts > FlightResult::kMaxContactsPerPass) cut_off = true;
   pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
-  const double speed_in = b.velocity.norm();
+  const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
   b.velocity = out.velocity_after;
   // The spin about the nail's own axis (from friction at its surface) is left out: it
   // holds under 1/200 of the energy of its tumbling, and flight follows the axis only.
@@ -394,7 +394,7 @@ void NailFlight::bounce_off(const Vec3& n, double e, double mu, const Vec3* arm)
 bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const SurfaceMaterial& material = set.materials.of(hit.surface, hit.guard);
   const Vec3 n = hit.normal;
-  const double speed_in = b.velocity.norm();
+  const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
   // How the surface meets the nail: its touching point's velocity (the centre's when it slides).
   const Vec3 v_in = arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity;
   switch (material.response) {

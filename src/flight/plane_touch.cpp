@@ -58,21 +58,27 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   // blade's search, strike/contact_search.hpp); an overlap found is bisected back.
   constexpr double kMinStep = 2e-4;  // m
   const strike::Turning turning = m.turning();
-  const auto state = [&](double t, Vec3* point) { return clearance(nail, m.centre(t), turning.at(t - m.t0), q, n, point); };
+  // The clearance at t (and, when asked, the point nearest the plane and the axis then).
+  const auto state = [&](double t, Vec3* point, Vec3* axis_then = nullptr) {
+    const Vec3 a = turning.at(t - m.t0);
+    if (axis_then) *axis_then = a;
+    return clearance(nail, m.centre(t), a, q, n, point);
+  };
   // Whether the capsule's point nearest the plane moves into it at t.
   const auto approaching = [&](double t) {
     Vec3 point;
     state(t, &point);
     return n.dot(m.velocity(t) + m.spin.cross(Vec3(point - m.centre(t)))) < 0;
   };
-  double t = from, g = state(t, nullptr);
+  Vec3 a_t;  // the axis at t, kept with g for the step from t
+  double t = from, g = state(t, nullptr, &a_t);
   // Just bounced off this plane: the touch it is leaving is not a new one. While the nail is
   // still on the plane, only its nearest point moving into it again (the same end, or the
   // other one come round) is a touch; nothing if it stays on it, leaving, until `until`.
   bool already = g <= kTouchTolerance;
   while (leaving && g <= kTouchTolerance && !approaching(t)) {
     if (t >= until) return std::nullopt;
-    t = std::min(until, t + kMinStep / bound), g = state(t, nullptr);
+    t = std::min(until, t + kMinStep / bound), g = state(t, nullptr, &a_t);
   }
   if (g <= kTouchTolerance) until = t;  // touching already
   else already = false;
@@ -92,8 +98,7 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   // (g / bound) unless the nail tumbles fast. The longer of the two is taken.
   const double h = nail.half_segment();
   const double curvature = std::abs(n.dot(m.a)) + h * m.spin.norm() * axis.swing_rate + 1e-9;
-  const auto second_order = [&](double t_now) {
-    const Vec3 a = turning.at(t_now - m.t0);
+  const auto second_order = [&](double t_now, const Vec3& a) {
     const double p = n.dot(m.centre(t_now) - q) - nail.radius(), dp = n.dot(m.velocity(t_now));
     const double sv = h * n.dot(a), ds = h * n.dot(m.spin.cross(a));
     double step = HUGE_VAL;
@@ -130,14 +135,15 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
     if (t >= until) return std::nullopt;
     if (const double x = far_field(t); x > std::max(g, kMinStep) / bound) {
       if (!(t + x <= until)) return std::nullopt;
-      t += x, g = state(t, nullptr);
+      t += x, g = state(t, nullptr, &a_t);
       continue;
     }
-    const double step = std::max(std::max(g, kMinStep) / bound, second_order(t));
+    const double step = std::max(std::max(g, kMinStep) / bound, second_order(t, a_t));
     const double next = std::min(until, t + step);
-    const double g_next = state(next, nullptr);
+    Vec3 a_next;
+    const double g_next = state(next, nullptr, &a_next);
     if (g_next > kTouchTolerance) {
-      t = next, g = g_next;
+      t = next, g = g_next, a_t = a_next;
       continue;
     }
     // Through the plane within the step: back to the first instant within tolerance.

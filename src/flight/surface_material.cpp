@@ -21,7 +21,7 @@ SurfaceMaterials::SurfaceMaterials(const scenario::Scenario& s, const std::vecto
   kinds_[static_cast<std::size_t>(scene::Surface::TargetZone)] = board;
   SurfaceMaterial curtain;
   curtain.response = SurfaceMaterial::Response::Curtain;
-  kinds_[static_cast<std::size_t>(scene::Surface::Guard)] = curtain;  // (every guard face has its own row below)
+  // (No row of kinds_ for guards: every guard has its own, below; of() looks there.)
   for (const auto& g : guards) {
     curtain.by_speed = blade::Restitution::constant(g.restitution);
     curtain.friction = g.friction;
