@@ -404,7 +404,8 @@ TEST_CASE("feed: nails outside the tip circle fall through", "[strike][feed]") {
 
 TEST_CASE("contact search: nails crossing the tip circle, spinning, agree with the reference", "[strike][search]") {
   // Across the tip radius the search clips the core to the arm and meets its end face; a
-  // core partly beyond the tip bounds its steps by the whole core's distance.
+  // core partly beyond the tip bounds its steps by its distance from the wedge behind the
+  // section's separating line and the tip's plane.
   auto s = bar_scenario();
   const auto sp = spindle(s);
   const auto nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);

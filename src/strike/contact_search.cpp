@@ -97,6 +97,18 @@ struct Outlook {
   }
 };
 
+// The least, over a segment, of the larger of two gaps that vary linearly along it (x and
+// l at its ends a and b): how far its nearest point is from the wedge where both are <= 0.
+double wedge_clearance(double x_a, double l_a, double x_b, double l_b) {
+  double least = std::min(std::max(x_a, l_a), std::max(x_b, l_b));
+  const double da = x_a - l_a, db = x_b - l_b;
+  if ((da > 0) != (db > 0)) {  // the two gaps are equal within the segment
+    const double s = da / (da - db);
+    least = std::min(least, x_a + s * (x_b - x_a));
+  }
+  return least;
+}
+
 // The capsule against one edge's section at one instant.
 struct Probe {
   double distance = 0;  // capsule surface to section, m (< 0: overlapping)
@@ -165,10 +177,28 @@ class EdgeSearch {
         };
         for (int k = 0; k < sec.parts(); ++k) bound_by(p.parts[static_cast<std::size_t>(k)]);
         // A core reaching beyond the tip: its outer part may come over the arm within the
-        // step, so the whole core's distance (to the section continued past the tip, a
-        // lower bound) bounds it too.
-        if (p.a_at_tip || p.b_at_tip)
-          for (int k = 0; k < sec.parts(); ++k) bound_by(segment_to_polygon(p.whole_a, p.whole_b, sec.part(k)));
+        // step. The arm lies within the wedge behind both the part's separating line and
+        // the tip's plane (x <= reach), so no point of the core can reach it before it has
+        // closed the larger of its two gaps to them; each gap closes no faster than the
+        // point's motion along that line's normal (for the tip's plane, radially in the
+        // blade's frame: v . radial + omega u) plus the core's turn, and the centre's path
+        // curves at most as much as the section's case allows with the radius for u.
+        if (p.a_at_tip || p.b_at_tip) {
+          const double radial_rate = v.dot(p.radial) + omega * u_c;
+          const double r = std::sqrt(q.x() * q.x() + q.y() * q.y());
+          const double c2_wedge = accel + 2 * omega * std::sqrt(v.x() * v.x() + v.y() * v.y()) + omega * omega * (r + hs_);
+          const Vec3 end_a = p.centre - hs_ * p.axis, end_b = p.centre + hs_ * p.axis;
+          const double reach = sp_.edges[e_].reach;
+          const double x_a = (end_a - C).dot(p.radial) - reach, x_b = (end_b - C).dot(p.radial) - reach;
+          for (int k = 0; k < sec.parts(); ++k) {
+            const SectionApproach& part = p.parts[static_cast<std::size_t>(k)];
+            const double l_a = part.normal.dot(p.whole_a - part.on_section), l_b = part.normal.dot(p.whole_b - part.on_section);
+            const double gap = std::max(wedge_clearance(x_a, l_a, x_b, l_b) - rad_, kMinStep);
+            const double toward = std::max({-(part.normal.x() * u_rate + part.normal.y() * w_rate), -radial_rate, 0.0});
+            const double c1 = toward + (omega + spin_rate) * hs_ + 1e-9;
+            step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2_wedge * gap)));
+          }
+        }
         t_safe = t, known_apart = true;
         t += step_time;
         continue;
