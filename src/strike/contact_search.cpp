@@ -131,6 +131,7 @@ class EdgeSearch {
     const double omega = sp_.omega(), spin_rate = m_.spin.norm(), accel = m_.a.norm();
     double t = m_.t0, t_safe = m_.t0;
     bool known_apart = false;  // at t_safe the capsule overlapped the section by less than the tolerance
+    double d_safe = HUGE_VAL;  // the distance there, when a probe measured it (else HUGE_VAL)
     for (int step = 0; step < kMaxSearchSteps; ++step, ++stats.steps) {
       if (t > t1) return std::nullopt;
       const Vec3 c = m_.centre(t), v = m_.velocity(t);
@@ -138,7 +139,7 @@ class EdgeSearch {
       const double far = look.far(e_);
       if (far > t1 - t) return std::nullopt;
       if (far > 0) {
-        t_safe = t, known_apart = true;
+        t_safe = t, known_apart = true, d_safe = HUGE_VAL;
         t += std::max(far, 1e-10);
         continue;
       }
@@ -149,7 +150,7 @@ class EdgeSearch {
         // first, which they do no faster than this. A nail hovering at the tip radius is
         // looked at 64 times a pass (a step into the plate is bisected back).
         const double radial_rate = v.norm() + spin_rate * hs_ + omega * (rho_ - sec.back()) + 1e-9;
-        t_safe = t, known_apart = true;
+        t_safe = t, known_apart = true, d_safe = HUGE_VAL;
         t += std::max(p.distance / radial_rate, (look.alpha_f + look.alpha_b) / (64 * omega));
         continue;
       }
@@ -199,28 +200,34 @@ class EdgeSearch {
             step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2_wedge * gap)));
           }
         }
-        t_safe = t, known_apart = true;
+        t_safe = t, known_apart = true, d_safe = p.distance;
         t += step_time;
         continue;
       }
       if (p.distance < -kContactTolerance && known_apart) {
         // Stepped into the blade (a bound that did not hold, or sliding along a face while
-        // parting elsewhere): bisect back to the touch.
-        double lo = t_safe, hi = t;
+        // parting elsewhere): back to the touch by regula falsi (Illinois) on the distance,
+        // which is nearly linear in time over a step, or by halves where a probe is off the
+        // arm or was not measured.
+        double lo = t_safe, hi = t, d_lo = d_safe, d_hi = p.distance;
+        int side = 0;
         for (int it = 0; it < 60 && hi - lo > 1e-13; ++it) {
-          const double mid = 0.5 * (lo + hi);
-          const Probe pm = probe(mid);
-          if (pm.distance > kContactTolerance)
-            lo = mid;
-          else if (pm.distance < -kContactTolerance)
-            hi = mid;
-          else {
-            lo = hi = mid;
-            break;
+          double mid = d_lo < HUGE_VAL ? (lo * d_hi - hi * d_lo) / (d_hi - d_lo) : 0.5 * (lo + hi);
+          if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
+          Probe pm = probe(mid);
+          if (pm.off_arm || pm.distance > kContactTolerance) {
+            lo = mid, d_lo = pm.off_arm ? HUGE_VAL : pm.distance;
+            if (side == -1) d_hi *= 0.5;
+            side = -1;
+          } else {
+            hi = mid, p = pm;
+            if (pm.distance >= -kContactTolerance) break;  // within the tolerance of the touch
+            d_hi = pm.distance;
+            if (side == 1 && d_lo < HUGE_VAL) d_lo *= 0.5;
+            side = 1;
           }
         }
         t = hi;
-        p = probe(t);
       }
       // Touching (or overlapping where the search began): a contact if the points approach.
       const Touch touch = touch_at(t, p);
@@ -232,7 +239,7 @@ class EdgeSearch {
       // Parting: step on (a step that goes deeper is bisected back), or, overlapping where
       // the search began, by the overlap.
       const double bound = v_rel.norm() + (omega + spin_rate) * hs_ + 1e-9;
-      t_safe = t, known_apart = p.distance >= -kContactTolerance;
+      t_safe = t, known_apart = p.distance >= -kContactTolerance, d_safe = HUGE_VAL;
       t += (std::max(-p.distance, 0.0) + kMinStep) / bound;
     }
     stats.gave_up = true;
