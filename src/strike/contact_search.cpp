@@ -200,6 +200,10 @@ class EdgeSearch {
             step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2_wedge * gap)));
           }
         }
+        // The ends' own clearances, to second order, allow far longer steps to a nail that
+        // tumbles fast (spin x half-length is a loose bound on how fast its ends close on
+        // the plate when they swing across the normal).
+        step_time = std::max(step_time, ends_step(p, c, v, omega, spin_rate, accel));
         t_safe = t, known_apart = true, d_safe = p.distance;
         t += step_time;
         continue;
@@ -287,6 +291,40 @@ class EdgeSearch {
     k.forward = p.forward;
     k.part = p.approach.on_section.x() < -sec.shape().width ? 1 : 0;
     return out;
+  }
+
+  // A safe step from the whole core's two ends against each part's separating line (the
+  // line through the part's nearest point, across the normal; the part lies behind it).
+  // An end's clearance f from that line moves smoothly in the blade's frame: f' is the
+  // end's velocity there along the normal (exact), and |f''| is at most its acceleration
+  // there, M = |a| + w^2 h + 2 W (v_h + w h) + W^2 |u| (the centre's acceleration, the
+  // end's turn about the centre at spin w, the Coriolis and centripetal terms of the
+  // blade's turn W, u the end's distance along the blade's motion), bounded over at most
+  // kCap. The first root of f + f' s - M s^2 / 2 is a step in which no end crosses the
+  // line. None (0) when the line does not separate the whole core (part of it is beyond
+  // the arm's tip).
+  double ends_step(const Probe& p, const Vec3& c, const Vec3& v, double omega, double w, double accel) const {
+    constexpr double kCap = 2e-4;  // s
+    const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
+    const double h = hs_, qx = c.x() - C.x(), qy = c.y() - C.y();
+    const double r = std::sqrt(qx * qx + qy * qy), vh = std::sqrt(v.x() * v.x() + v.y() * v.y()) + accel * kCap;
+    const double u_max = r + h + (vh + w * h + omega * (r + h)) * kCap;
+    const double M = accel + w * w * h + 2 * omega * (vh + w * h) + omega * omega * u_max + 1e-9;
+    double step = kCap;
+    for (const double sign : {-1.0, 1.0}) {
+      const Vec3 arm = sign * h * p.axis, end = c + arm, v_end = v + m_.spin.cross(arm);
+      const Vec2 at((end - C).dot(p.forward), end.z() - C.z());
+      const Vec2 rate(v_end.dot(p.forward) - omega * (end - C).dot(p.radial), v_end.z());
+      for (int k = 0; k < sp_.section.parts(); ++k) {
+        const SectionApproach& part = p.parts[static_cast<std::size_t>(k)];
+        const double f = part.normal.dot(at - part.on_section) - rad_;
+        if (!(f > 0)) return 0.0;
+        const double gap = std::max(f, kMinStep), df = part.normal.dot(rate);
+        const double root = std::sqrt(df * df + 2 * M * gap);
+        step = std::min(step, df >= 0 ? (df + root) / M : 2 * gap / (root - df));
+      }
+    }
+    return step;
   }
 
   Probe probe(double t) const {
