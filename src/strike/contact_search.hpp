@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "projectile/projectile.hpp"
+#include "units/sin_cos.hpp"
 #include "strike/spindle.hpp"
 
 namespace j232::strike {
@@ -32,7 +33,8 @@ struct Turning {
   Turning(const Vec3& axis, const Vec3& spin);
   Vec3 at(double dt) const {
     if (rate * dt == 0.0) return start;
-    return along + across * std::cos(rate * dt) + ortho * std::sin(rate * dt);
+    const units::SinCos sc = units::sin_cos(rate * dt);
+    return along + across * sc.cos + ortho * sc.sin;
   }
 };
 

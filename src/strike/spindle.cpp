@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "units/quantity.hpp"
+#include "units/sin_cos.hpp"
 
 namespace j232::strike {
 
@@ -41,7 +42,8 @@ Spindle::Spindle(const blade::Blade& b, const scenario::BladeGeometry& g, const 
 
 void Spindle::frame(std::size_t e, double phase, double t, Vec3& radial, Vec3& forward) const {
   const double angle = phase + sense * omega() * t + edges[e].azimuth;
-  const double c = std::cos(angle), s = std::sin(angle);
+  const units::SinCos sc = units::sin_cos(angle);
+  const double c = sc.cos, s = sc.sin;
   radial = {c, s, 0.0};
   forward = {-sense * s, sense * c, 0.0};
 }
