@@ -26,7 +26,7 @@ scene::Scene flat_ground(double half = 200.0) {
 }
 
 // Lands and stops where it lands: a ground with restitution 0 and huge friction.
-flight::FlightResult land(const scene::Scene& ground, const flight::Body& start, const flight::Drag& drag) {
+flight::FlightResult land(const scene::Scene& ground, const flight::Body& start, const flight::Drag& drag, double board_near = HUGE_VAL) {
   static scenario::Scenario s;
   s.ground.restitution = 0;
   s.ground.friction = 1e9;
@@ -34,7 +34,8 @@ flight::FlightResult land(const scene::Scene& ground, const flight::Body& start,
   s.run.time_limit = 60;
   s.run.chord_tolerance = 1e-4;
   static const flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
-  const flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
+  flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
+  ctx.board_near = board_near;
   random::Stream rng(1, 0, 0, random::Purpose::Test);
   // A small sphere touches the ground where its centre's parabola meets the height of its
   // radius (a rod would touch earlier, at its end; test_flight's board-touch case has that).
@@ -72,6 +73,19 @@ TEST_CASE("flight: chords against the scene find the landing point of the parabo
     CHECK(r.flight_time == Approx(2 * v * std::sin(a) / g).margin(1e-3));
     CHECK(r.queries >= 2);
   }
+}
+
+TEST_CASE("flight: a nail at rest outside the mower is short of the board only when nearer than the board's nearest point", "[flight]") {
+  const auto ground = flat_ground();
+  flight::Body b;
+  b.position = {0, 0, kRadius + 1e-9};
+  b.velocity = {10.0, 0.0, 10.0};  // lands about 20.4 m out, and stays there
+  const auto short_of = land(ground, b, {}, 25.0);
+  CHECK(short_of.end_position.x() == Approx(20.39).margin(0.05));
+  CHECK(short_of.fate == flight::Fate::ShortOfBoard);
+  CHECK(land(ground, b, {}, 15.0).fate == flight::Fate::OverBoard);  // it came to rest beyond the board
+  CHECK(std::string(flight::fate_name(flight::Fate::ShortOfBoard)) == "at_rest_short_of_board");
+  CHECK(std::string(flight::fate_name(flight::Fate::OverBoard)) == "over_board");
 }
 
 TEST_CASE("flight: a vertical fall with quadratic drag follows the tanh law", "[flight][drag]") {

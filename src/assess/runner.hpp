@@ -100,7 +100,7 @@ struct Trajectory {
   std::uint64_t replicate = 0;
   int nail = 0;
   std::string why;  // "sample", "operator zone", "puncture"
-  flight::Fate fate = flight::Fate::Escaped;
+  flight::Fate fate = flight::Fate::OverBoard;
   std::vector<flight::Vec3> points;
 };
 

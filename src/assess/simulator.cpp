@@ -50,6 +50,7 @@ Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenar
   context_.deck_radius = scene::mesh_roles(s).housing ? s.reach() + 0.05 : s.housing.deck_radius;
   context_.counted_height = s.counted_height();
   context_.escape_radius = scene::escape_radius(s, scene_->soup());
+  context_.board_near = scene::board_near_radius(scene_->soup());
   footprint_ = scene::deck_footprint(s, scene_->soup());
   deck_outline_ = flight::DeckOutline(footprint_.outline);
   context_.deck_outline = &deck_outline_;

@@ -41,7 +41,8 @@ constexpr FindKind kFindKinds[] = {
     {"cut-off", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::CutOff; }},
     {"contained", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::Contained; }},
     {"stopped-by-guard", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::StoppedByGuard; }},
-    {"escaped", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::Escaped; }},
+    {"over-board", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::OverBoard; }},
+    {"short-of-board", [](const assess::NailOutcome& o) { return o.flight.fate == flight::Fate::ShortOfBoard; }},
     {"restruck", [](const assess::NailOutcome& o) { return o.flight.strikes > 1; }},
 };
 std::string find_kind_names() {

@@ -19,7 +19,8 @@ const char* fate_name(Fate f) {
     case Fate::ReachedBoardUnmarked: return "reached_board_unmarked";
     case Fate::MarkedBoard: return "marked_board";
     case Fate::MarkedBelowCountedHeight: return "marked_below_counted_height";
-    case Fate::Escaped: return "escaped";
+    case Fate::OverBoard: return "over_board";
+    case Fate::ShortOfBoard: return "at_rest_short_of_board";
     case Fate::CutOff: return "cut_off";
   }
   return "unknown";
@@ -533,8 +534,10 @@ Fate NailFlight::fate() const {
     return Fate::ReachedBoardUnmarked;
   else if (horizontal <= ctx.deck_radius && b.position.z() > -1.0)
     return last_contact_guard ? Fate::StoppedByGuard : Fate::Contained;
+  else if (ended_at_rest && horizontal < ctx.board_near)
+    return Fate::ShortOfBoard;
   else
-    return Fate::Escaped;
+    return Fate::OverBoard;
 }
 
 // Whether the flight goes on: its state is finite, within the run's limits, and still in

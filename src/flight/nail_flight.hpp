@@ -13,6 +13,7 @@
 //       slides to rest under friction, still able to strike a wall on the way.
 // The nail ends at the board, at rest, after max_bounces or time_limit, or leaving the scene.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -32,9 +33,10 @@ namespace j232::flight {
 // Where a nail went: not struck by the blade; at rest under the mower (contained by the
 // housing, or last turned back by a guard); caught by the board without a mark; marked
 // the board where J232 counts it; marked it only below the counted height (J232 does not
-// count marks below the blade plane); escaped (over the board, or at rest outside the mower short of it); or cut
-// off still moving by the run's limits (time, bounces, steps) or a non-finite state. A
-// cut-off nail's end is unknown, so too many of them make a run invalid.
+// count marks below the blade plane); gone over (or past) the board; at rest outside the
+// mower short of the board; or cut off still moving by the run's limits (time, bounces,
+// steps) or a non-finite state. A cut-off nail's end is unknown, so too many of them make
+// a run invalid.
 enum class Fate : std::uint8_t {
   NotStruck,
   Contained,
@@ -42,10 +44,11 @@ enum class Fate : std::uint8_t {
   ReachedBoardUnmarked,
   MarkedBoard,
   MarkedBelowCountedHeight,
-  Escaped,
+  OverBoard,
+  ShortOfBoard,
   CutOff
 };
-inline constexpr int kFates = 8;
+inline constexpr int kFates = 9;
 // Chords per flight before the nail is cut off: a nail at rest takes a few hundred at most.
 inline constexpr int kMaxFlightSteps = 200000;
 const char* fate_name(Fate f);
@@ -86,7 +89,7 @@ struct NailTrace {
 };
 
 struct FlightResult {
-  Fate fate = Fate::Escaped;
+  Fate fate = Fate::OverBoard;
   static constexpr int kMaxMarks = 4;  // marks beyond this are counted but not located
   std::array<MarkRecord, kMaxMarks> marks{};
   int mark_count = 0;  // every mark, counted or not
@@ -133,7 +136,7 @@ struct FlightEvent {
   std::uint16_t spindle = 0, edge = 0;  // Strike
   double energy = 0, width = 0;         // Board: what the board model judged
   int mark = 0;                         // Board: 0 none, 1 hit, 2 puncture
-  Fate fate = Fate::Escaped;            // End
+  Fate fate = Fate::OverBoard;          // End
 };
 const char* event_name(FlightEvent::Kind k);  // "strike", "bounce", "guard-pass", "slide", "rest", "board", "left-deck", "end"
 
@@ -145,6 +148,7 @@ struct FlightContext {
   double escape_radius = 0;  // horizontal distance at which the nail has left the test
   double deck_radius = 0;
   double counted_height = 0;                               // marks below it are not counted (Scenario::counted_height)
+  double board_near = HUGE_VAL;  // horizontal distance of the board's nearest point: a nail at rest short of it did not pass it
   const std::vector<strike::Spindle>* spindles = nullptr;  // the turning blades; none: nothing strikes again
   // The deck's outline in plan and what crossing it means: a generated deck names its
   // openings, skirt and plate heights; a mesh deck does not.

@@ -220,7 +220,8 @@ std::string fates_section(const json& r) {
       {"reached_board_unmarked", "reached the board without marking it"},
       {"marked_board", "marked the board where J232 counts (hit or puncture)"},
       {"marked_below_counted_height", "marked the board only below the blade plane (not counted)"},
-      {"escaped", "escaped (over the board or at rest short of it)"},
+      {"over_board", "went over or past the board"},
+      {"at_rest_short_of_board", "came to rest outside the mower, short of the board"},
       {"cut_off", "cut off still moving by the run's time, bounce or step limit"}};
   for (const auto& [key, label] : names) {
     const auto& f = r["fates"][key];

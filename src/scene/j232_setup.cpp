@@ -324,6 +324,14 @@ double escape_radius(const scenario::Scenario& s, const Soup& soup) {
   return reach + 1.0;
 }
 
+double board_near_radius(const Soup& soup) {
+  double nearest = HUGE_VAL;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (is_target(soup.labels[t]))
+      for (auto v : soup.triangles[t]) nearest = std::min(nearest, std::hypot(soup.points[v].x(), soup.points[v].y()));
+  return nearest;
+}
+
 Soup build_scene_soup(const scenario::Scenario& s) {
   Soup soup;
   const OperatorZone zone(s.zone, s.blade_plane());

@@ -35,5 +35,8 @@ DeckFootprint deck_footprint(const scenario::Scenario& s, const Soup& soup);
 // Beyond this horizontal distance a nail has left the test: 1 m past the farthest of
 // the board ring and every mesh surface but the ground.
 double escape_radius(const scenario::Scenario& s, const Soup& soup);
+// The horizontal distance of the board's nearest point from the deck's centre (HUGE_VAL
+// without a board): a nail at rest nearer than it has not gone past the board.
+double board_near_radius(const Soup& soup);
 
 }  // namespace j232::scene
