@@ -417,7 +417,8 @@ TEST_CASE("replay: a replayed nail is the nail of the run, and its events add up
       CHECK(f.fate == plain.flight.fate);
       CHECK(f.end_position == plain.flight.end_position);
       CHECK(f.mark_count == plain.flight.mark_count);
-      CHECK(replay.struck == (plain.flight.fate != flight::Fate::NotStruck && plain.flight.fate != flight::Fate::CutOff));
+      // (A nail cut off may have been cut off at its strike, before any flight, or in flight.)
+      if (plain.flight.fate != flight::Fate::CutOff) CHECK(replay.struck == (plain.flight.fate != flight::Fate::NotStruck));
       if (!replay.struck) continue;
       // The events: every bounce and later strike, one end with the fate, a board event
       // with the board's own energy, times that never go back.
@@ -574,4 +575,45 @@ TEST_CASE("exact P(pass): agrees with the replicates' estimate on a mower near n
   CHECK(sum.pass.estimate >= sum.exact.low - 0.02);
   CHECK(sum.pass.estimate <= sum.exact.high + 0.02);
   CHECK(sum.exact.high - sum.exact.low < sum.pass.high - sum.pass.low);  // every nail tells more than every test
+}
+
+TEST_CASE("warnings: a cut-off share nearing the invalidity limit names the limits that cut nails off", "[assess]") {
+  const auto s = scenario::read_scenario(scenario_path("highway-pivoted.toml"));
+  const auto with_cut_offs = [&](std::uint64_t by_time, std::uint64_t by_bounces) {
+    assess::Assessment a;
+    a.replicates = 10, a.nails = 1500, a.struck = 1000;
+    a.fates[static_cast<std::size_t>(flight::Fate::CutOff)] = by_time + by_bounces;
+    for (std::uint64_t i = 0; i < by_time; ++i) a.cut_off_by.add(static_cast<double>(flight::CutOff::TimeLimit));
+    for (std::uint64_t i = 0; i < by_bounces; ++i) a.cut_off_by.add(static_cast<double>(flight::CutOff::MaxBounces));
+    return assess::summarise(a, s);
+  };
+  const auto mentions = [](const std::vector<std::string>& lines, const std::string& what) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(what) != std::string::npos; });
+  };
+  // 0.2 %: nothing said.
+  const auto quiet = with_cut_offs(1, 1);
+  CHECK(quiet.validity.valid);
+  CHECK_FALSE(mentions(quiet.warnings, "cut off"));
+  // 0.5 %: warned, naming both limits with their values, the commoner first.
+  const auto near = with_cut_offs(2, 3);
+  CHECK(near.validity.valid);
+  REQUIRE(mentions(near.warnings, "cut off"));
+  CHECK(mentions(near.warnings, "3 by [run] max_bounces (100), 2 by [run] time_limit (3 s)"));
+  CHECK(near.cut_off_by[static_cast<std::size_t>(flight::CutOff::MaxBounces)] == 3);
+  // 1.5 %: invalid, and the reason names them too.
+  const auto invalid = with_cut_offs(15, 0);
+  CHECK_FALSE(invalid.validity.valid);
+  CHECK(mentions(invalid.validity.reasons, "15 by [run] time_limit (3 s)"));
+  CHECK_FALSE(mentions(invalid.warnings, "cut off"));
+}
+
+TEST_CASE("warnings: a blade faster than 100 m/s at the tip is called unusual, not refused", "[assess]") {
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted.toml"));
+  for (auto& sp : s.spindles) sp.blade.omega *= 2.0;  // 63.8 -> 127.6 m/s
+  assess::Assessment a;
+  a.replicates = 1, a.nails = 150, a.struck = 100;
+  const auto sum = assess::summarise(a, s);
+  CHECK(sum.validity.valid);
+  REQUIRE(sum.warnings.size() == 1);
+  CHECK(sum.warnings[0].find("unusual") != std::string::npos);
 }

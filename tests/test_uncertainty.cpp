@@ -147,23 +147,24 @@ basis = "test"
   REQUIRE(whole.outputs.size() == 4 * 4);
   // The first attempt records 6 assessments, then is interrupted.
   struct Interrupted {};
-  std::map<std::size_t, std::array<double, study::kUqOutputs>> kept;
-  study::UncertaintyJournal first{{}, [&](std::size_t run, const std::array<double, study::kUqOutputs>& v) {
+  std::map<std::size_t, study::UqRun> kept;
+  study::UncertaintyJournal first{{}, [&](std::size_t run, const study::UqRun& v) {
                                     kept[run] = v;
                                     if (kept.size() == 6) throw Interrupted{};
                                   }};
   CHECK_THROWS_AS(study::run_uncertainty(file, 2, {}, &first), Interrupted);
   // The second takes them and computes only the rest.
   std::size_t computed = 0;
-  study::UncertaintyJournal second{[&](std::size_t run) -> std::optional<std::array<double, study::kUqOutputs>> {
+  study::UncertaintyJournal second{[&](std::size_t run) -> std::optional<study::UqRun> {
                                      const auto it = kept.find(run);
                                      if (it == kept.end()) return std::nullopt;
                                      return it->second;
                                    },
-                                   [&](std::size_t, const std::array<double, study::kUqOutputs>&) { ++computed; }};
+                                   [&](std::size_t, const study::UqRun&) { ++computed; }};
   const auto resumed = study::run_uncertainty(file, 1, {}, &second);
   CHECK(computed == whole.outputs.size() - 6);
   CHECK(resumed.outputs == whole.outputs);
+  CHECK(resumed.warnings == whole.warnings);
   CHECK(resumed.values == whole.values);
   for (int o = 0; o < study::kUqOutputs; ++o)
     for (std::size_t i = 0; i < 2; ++i) {

@@ -94,6 +94,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       if (o.flight.non_finite) ++c.non_finite;
       if (o.flight.fate == flight::Fate::NotStruck) continue;
       ++c.struck;
+      if (o.flight.fate == flight::Fate::CutOff) c.cut_off_by.add(static_cast<double>(o.flight.cut_off));
       if (o.flight.non_finite) continue;  // nothing of it is a number worth recording
       c.exit_speed.add(o.exit_speed);
       c.launch_elevation.add(o.launch_elevation / units::degree);

@@ -76,6 +76,7 @@ struct NailHistograms {
   Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
   Histogram contact_radius{0.005, 400};      // m
   Histogram strikes{1, 52};                  // blade strikes per struck nail: bin k holds k strikes
+  Histogram cut_off_by{1, flight::kCutOffReasons};  // cut-off nails by the limit that cut them off: bin k holds flight::CutOff(k)
   ExitTable exits;
   StationOutcomes outcomes;  // every nail fed: its counted marks by category, by feed station (the exact P(pass))
 
@@ -85,7 +86,7 @@ struct NailHistograms {
   static void each_histogram(Self& self, Visit&& visit) {
     for (auto* h : {&self.exit_speed, &self.launch_elevation, &self.contacts_per_pass, &self.most_contacts_in_pass, &self.mark_energy,
                     &self.board_energy,
-                    &self.board_energy_per_width, &self.contact_radius, &self.strikes})
+                    &self.board_energy_per_width, &self.contact_radius, &self.strikes, &self.cut_off_by})
       visit(*h);
   }
   void merge(const NailHistograms& other);

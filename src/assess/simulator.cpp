@@ -113,6 +113,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
                                        spindle.reference_search ? strike::SearchMethod::FixedSteps : strike::SearchMethod::Advancement);
   if (search.gave_up) {
     out.flight.fate = flight::Fate::CutOff;
+    out.flight.cut_off = flight::CutOff::SearchSteps;
     return out;
   }
   if (!contact) return out;
@@ -128,6 +129,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   if (!(energy_after > 0.5 * drop.nail.mass * falling.squaredNorm())) return out;
   if (!hit.velocity_after.allFinite() || !hit.spin_after.allFinite()) {
     out.flight.fate = flight::Fate::CutOff;
+    out.flight.cut_off = flight::CutOff::NonFinite;
     out.flight.non_finite = true;
     return out;
   }

@@ -2,9 +2,40 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace j232::assess {
 
 namespace {
+
+// "12 by [run] time_limit (3 s), 2 by the contact search's step cap (4000)": the limits
+// that cut the run's nails off, most first.
+std::string cut_off_limits(const Assessment& a, const scenario::Scenario& s) {
+  std::vector<std::pair<std::uint64_t, std::string>> parts;
+  for (int k = 1; k < flight::kCutOffReasons; ++k) {
+    const auto n = k < static_cast<int>(a.cut_off_by.counts.size()) ? a.cut_off_by.counts[static_cast<std::size_t>(k)] : 0;
+    if (n == 0) continue;
+    std::string what;
+    switch (static_cast<flight::CutOff>(k)) {
+      case flight::CutOff::TimeLimit: what = fmt::format("[run] time_limit ({:g} s)", s.run.time_limit); break;
+      case flight::CutOff::MaxBounces: what = fmt::format("[run] max_bounces ({})", s.run.max_bounces); break;
+      case flight::CutOff::FlightSteps: what = fmt::format("the flight's step cap ({} chords)", flight::kMaxFlightSteps); break;
+      case flight::CutOff::MaxStrikes: what = fmt::format("the strike cap ({} blade strikes)", flight::FlightResult::kMaxStrikes); break;
+      case flight::CutOff::SearchSteps: what = fmt::format("the contact search's step cap ({})", strike::kMaxSearchSteps); break;
+      case flight::CutOff::ContactsInPass:
+        what = fmt::format("the cap on contacts in one pass ({})", flight::FlightResult::kMaxContactsPerPass);
+        break;
+      case flight::CutOff::UnresolvedContact: what = "a blade touch the impulse could not resolve"; break;
+      case flight::CutOff::NonFinite: what = "a non-finite state"; break;
+      case flight::CutOff::None: break;
+    }
+    parts.emplace_back(n, std::move(what));
+  }
+  std::stable_sort(parts.begin(), parts.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::string out;
+  for (const auto& [n, what] : parts) out += fmt::format("{}{} by {}", out.empty() ? "" : ", ", n, what);
+  return out.empty() ? "by no recorded limit" : out;
+}
 
 Validity check_validity(const Assessment& a, const scenario::Scenario& s) {
   Validity v;
@@ -21,10 +52,9 @@ Validity check_validity(const Assessment& a, const scenario::Scenario& s) {
   const std::uint64_t cut = a.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
   if (a.struck > 0 && static_cast<double>(cut) > kMaxCutOffShare * static_cast<double>(a.struck))
     refuse(
-        fmt::format("{} of {} struck nails ({:.1f} %) were cut off still moving by [run] time_limit ({:g} s), "
-                    "max_bounces ({}) or the step limit, more than the {:g} % allowed: where they would have ended "
-                    "is unknown; raise the limits",
-                    cut, a.struck, 100.0 * static_cast<double>(cut) / static_cast<double>(a.struck), s.run.time_limit, s.run.max_bounces,
+        fmt::format("{} of {} struck nails ({:.1f} %) were cut off still moving ({}), more than the {:g} % allowed: "
+                    "where they would have ended is unknown; raise the limits",
+                    cut, a.struck, 100.0 * static_cast<double>(cut) / static_cast<double>(a.struck), cut_off_limits(a, s),
                     100 * kMaxCutOffShare));
   if (a.non_finite > 0)
     refuse(
@@ -32,6 +62,29 @@ Validity check_validity(const Assessment& a, const scenario::Scenario& s) {
                     "are outside what the model can handle",
                     a.non_finite));
   return v;
+}
+
+std::vector<std::string> warnings(const Assessment& a, const scenario::Scenario& s, const Validity& validity) {
+  std::vector<std::string> w;
+  const std::uint64_t cut = a.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
+  const double share = a.struck ? static_cast<double>(cut) / static_cast<double>(a.struck) : 0.0;
+  if (validity.valid && share >= kWarnCutOffShare)
+    w.push_back(fmt::format("{} of {} struck nails ({:.2f} %) were cut off still moving ({}): nearing the {:g} % at which a run "
+                            "is invalid; raising those limits would show where they end",
+                            cut, a.struck, 100 * share, cut_off_limits(a, s), 100 * kMaxCutOffShare));
+  const double tip = s.tip_speed();
+  if (a.exit_speed.total > 0 && tip > 0) {
+    const double ratio = a.exit_speed.mean() / tip;
+    if (ratio < kPublishedThrownOverTip[0] || ratio > kPublishedThrownOverTip[1])
+      w.push_back(fmt::format("the nails' mean speed off the blade is {:.2f} x the tip speed, outside the published band "
+                              "{:g}-{:g}: check the blade's speed, edge and restitution inputs",
+                              ratio, kPublishedThrownOverTip[0], kPublishedThrownOverTip[1]));
+  }
+  if (tip > kUnusualTipSpeed)
+    w.push_back(fmt::format("the blade's tip speed, {:.0f} m/s, is unusual for a rotary mower (above {:g} m/s); the run "
+                            "goes ahead as given",
+                            tip, kUnusualTipSpeed));
+  return w;
 }
 
 }  // namespace
@@ -76,6 +129,9 @@ Summary summarise(const Assessment& a, const scenario::Scenario& scenario, int e
   s.exit_speed_mean = a.exit_speed.mean();
   s.queries_per_nail = s.nails ? static_cast<double>(a.queries) / static_cast<double>(s.nails) : 0;
   s.validity = check_validity(a, scenario);
+  s.warnings = warnings(a, scenario, s.validity);
+  for (int k = 0; k < flight::kCutOffReasons && k < static_cast<int>(a.cut_off_by.counts.size()); ++k)
+    s.cut_off_by[static_cast<std::size_t>(k)] = a.cut_off_by.counts[static_cast<std::size_t>(k)];
   s.exact = exact_pass(a.outcomes, scenario.feed.nails, criteria, scenario.run.seed, exact_draws);
   return s;
 }

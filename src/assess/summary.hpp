@@ -19,7 +19,12 @@ struct CriterionSummary {
 // Whether the simulated test really happened. A run that is not valid gets no verdict:
 // no nail struck, too many nails cut off by the run's limits (their end is unknown), or
 // any non-finite number.
-inline constexpr double kMaxCutOffShare = 0.01;  // of the nails struck
+inline constexpr double kMaxCutOffShare = 0.01;    // of the nails struck
+inline constexpr double kWarnCutOffShare = 0.0025;  // a quarter of it: warned about, naming the limits
+inline constexpr double kUnusualTipSpeed = 100.0;   // m/s: above it a blade is unusual (said, not refused)
+// The thrown speed over the tip speed that published measurements report (result.json
+// names the source); a mean outside it is flagged.
+inline constexpr std::array<double, 2> kPublishedThrownOverTip{0.8, 1.4};
 struct Validity {
   bool valid = true;
   std::vector<std::string> reasons;  // one sentence each, for the terminal, report and result.json
@@ -38,6 +43,11 @@ struct Summary {
   double queries_per_nail = 0;
   double exit_speed_mean = 0;  // m/s, off the first strike
   Validity validity;
+  // What a reader should know before trusting the numbers, one sentence each: a cut-off
+  // share nearing its limit (naming the limits that cut nails off), a mean thrown speed
+  // outside the published band, an unusual tip speed.
+  std::vector<std::string> warnings;
+  std::array<std::uint64_t, flight::kCutOffReasons> cut_off_by{};
   // P(pass) computed exactly from every nail's outcome (assess/exact_pass.hpp): the value,
   // and with exact_draws > 0 its 95 % interval.
   ExactPass exact;

@@ -53,7 +53,7 @@ class Journal {
       std::string line;
       if (std::getline(in, line) && line == header) {
         while (std::getline(in, line)) {
-          std::array<double, study::kUqOutputs> v{};
+          std::array<double, study::kUqOutputs + 2> v{};  // the outputs, the cut-off share and its commonest limit
           char* end = line.data();
           const auto run = std::strtoull(end, &end, 10);
           bool whole = end != line.data();
@@ -64,7 +64,13 @@ class Journal {
             x = std::strtod(start, &end);
             whole = end != start;
           }
-          if (whole && *end == '\0') kept_[run] = v;  // a line cut short by the interruption is not kept
+          if (whole && *end == '\0') {  // a line cut short by the interruption is not kept
+            study::UqRun kept;
+            std::copy(v.begin(), v.begin() + study::kUqOutputs, kept.outputs.begin());
+            kept.cut_off_share = v[study::kUqOutputs];
+            kept.cut_off_limit = static_cast<int>(v[study::kUqOutputs + 1]);
+            kept_[run] = kept;
+          }
         }
       } else if (!text.empty()) {
         fmt::print("{}: made from other inputs or another program: starting afresh\n", terminal_safe(path_));
@@ -83,15 +89,16 @@ class Journal {
   Journal& operator=(const Journal&) = delete;
   std::size_t kept() const { return kept_.size(); }
   study::UncertaintyJournal hooks() {
-    return {[this](std::size_t run) -> std::optional<std::array<double, study::kUqOutputs>> {
+    return {[this](std::size_t run) -> std::optional<study::UqRun> {
               const auto it = kept_.find(run);
               if (it == kept_.end()) return std::nullopt;
               return it->second;
             },
-            [this](std::size_t run, const std::array<double, study::kUqOutputs>& v) {
+            [this](std::size_t run, const study::UqRun& v) {
               if (!out_) return;
               std::string line = fmt::format("{}", run);
-              for (double x : v) line += fmt::format(",{:.17g}", x);
+              for (double x : v.outputs) line += fmt::format(",{:.17g}", x);
+              line += fmt::format(",{:.17g},{}", v.cut_off_share, v.cut_off_limit);
               std::fprintf(out_, "%s\n", line.c_str());
               std::fflush(out_);
             }};
@@ -105,7 +112,7 @@ class Journal {
 
  private:
   std::string path_, digest_;
-  std::map<std::size_t, std::array<double, study::kUqOutputs>> kept_;
+  std::map<std::size_t, study::UqRun> kept_;
   std::FILE* out_ = nullptr;
 };
 
@@ -142,6 +149,8 @@ int uq(const UqOptions& o) {
       fmt::print("  {:<34} {:.3f} ({:.3f} to {:.3f})\n", terminal_safe(r.plan.inputs[i].parameter), s.total[i].estimate, s.total[i].low,
                  s.total[i].high);
   }
+  for (std::size_t i = 0; i < r.warnings.size() && i < 5; ++i) fmt::print("WARNING: {}\n", terminal_safe(r.warnings[i]));
+  if (r.warnings.size() > 5) fmt::print("WARNING: {} more draws like these (uq.json lists them)\n", r.warnings.size() - 5);
   fmt::print("Wrote {}/uq.html, uq.json and uq.csv\n", terminal_safe(o.out));
   return kOk;
 }

@@ -26,6 +26,21 @@ const char* fate_name(Fate f) {
   return "unknown";
 }
 
+const char* cut_off_name(CutOff c) {
+  switch (c) {
+    case CutOff::None: return "none";
+    case CutOff::TimeLimit: return "time_limit";
+    case CutOff::MaxBounces: return "max_bounces";
+    case CutOff::FlightSteps: return "flight_step_cap";
+    case CutOff::MaxStrikes: return "strike_cap";
+    case CutOff::SearchSteps: return "contact_search_step_cap";
+    case CutOff::ContactsInPass: return "contacts_per_pass_cap";
+    case CutOff::UnresolvedContact: return "unresolved_blade_contact";
+    case CutOff::NonFinite: return "non_finite_state";
+  }
+  return "unknown";
+}
+
 const char* touch_name(Touch t) {
   switch (t) {
     case Touch::Blade: return "blade";
@@ -113,6 +128,11 @@ struct NailFlight {
   bool ended_at_rest = false;
   bool at_board = false;
   bool cut_off = false;
+  // Cut off by `why` (the first limit reached is the one named).
+  void cut(CutOff why) {
+    if (!cut_off) r.cut_off = why;
+    cut_off = true;
+  }
   // The pass under way: its spindle and edge, when it last touched, its contacts; and
   // whether the nail has yet to leave the blade (it has touched nothing else since it was fed).
   std::size_t pass_spindle = first.spindle, pass_edge = first.edge;
@@ -255,7 +275,7 @@ std::optional<strike::Contact> NailFlight::blade_contact(const strike::Motion& m
     if (c && (!best || c->time < best->time)) best = c, best->spindle = k;
   }
   r.search_steps += stats.steps;
-  if (stats.gave_up) cut_off = true;
+  if (stats.gave_up) cut(CutOff::SearchSteps);
   return best;
 }
 
@@ -265,7 +285,7 @@ void NailFlight::restrike(const strike::Contact& k) {
   const strike::Spindle& sp = (*ctx.spindles)[k.spindle];
   const strike::StrikeOutcome out = strike::strike(sp, k, nail, b.velocity, b.spin);
   if (!out.approaching) {  // the search found a touch the impulse cannot resolve: never loop on it
-    cut_off = true;
+    cut(CutOff::UnresolvedContact);
     return;
   }
   // The same pass while the same edge touches again within a quarter turn and nothing else
@@ -280,7 +300,7 @@ void NailFlight::restrike(const strike::Contact& k) {
     ++r.passes;
   }
   r.most_contacts_in_pass = std::max(r.most_contacts_in_pass, pass_contacts);
-  if (pass_contacts > FlightResult::kMaxContactsPerPass) cut_off = true;
+  if (pass_contacts > FlightResult::kMaxContactsPerPass) cut(CutOff::ContactsInPass);
   pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
   b.velocity = out.velocity_after;
@@ -309,21 +329,18 @@ void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool p
 // Where the tumbling nail first touches the surface it is heading for: the centre's ray met
 // it at `centre_arrives`; the capsule reached its plane earlier, by up to half its
 // length, at the point its spin had turned nearest (docs/model.md §5.5). Searched from
-// the time the centre was that far from the plane, not before the nail's last contact.
+// the time the centre was that far from the plane, but never before the chord's start:
+// what happened before it is history (its events are told), and a capsule already on the
+// plane there meets it there.
 std::optional<PlaneTouch> NailFlight::surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const {
   const double closing = std::max(1e-3, -hit.normal.dot(chord.velocity(centre_arrives)));
   const double reach = nail.half_segment() + nail.radius() + 1e-3;
-  const double from = std::max(last_event, centre_arrives - 2 * reach / closing);
+  const double from = std::max(chord.t0, centre_arrives - 2 * reach / closing);
   // The plane it last bounced off (its face or a face beside it in that plane): the touch it
   // is leaving is no new one.
   const bool same_plane = last_plane && last_plane->normal.dot(hit.normal) > 1 - 1e-12 &&
                           std::abs(hit.normal.dot(hit.point - last_plane->point)) < 1e-9;
-  auto at = first_plane_touch(chord, nail, hit.point, hit.normal, from, centre_arrives, same_plane);
-  // Already on the plane when the search looked back from before this chord: met here, at
-  // the chord's start, never earlier than the nail's present.
-  if (at && at->already && at->time < chord.t0)
-    at = first_plane_touch(chord, nail, hit.point, hit.normal, chord.t0, centre_arrives, same_plane);
-  return at;
+  return first_plane_touch(chord, nail, hit.point, hit.normal, from, centre_arrives, same_plane);
 }
 
 // The nail moved along the chord to where it touches a surface; returns the touching
@@ -463,7 +480,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
     Vec3 slide = b.velocity - b.velocity.dot(up) * up;
     const double speed = slide.norm();
     if (r.bounces > set.max_bounces || !std::isfinite(speed)) {
-      cut_off = true;
+      cut(std::isfinite(speed) ? CutOff::MaxBounces : CutOff::NonFinite);
       break;
     }
     if (speed < set.rest_speed || decel <= 0) {
@@ -545,10 +562,14 @@ Fate NailFlight::fate() const {
 bool NailFlight::event_check(double t_end, int& steps) {
   if (!b.position.allFinite() || !b.velocity.allFinite() || !std::isfinite(b.time)) {
     r.non_finite = true;
+    cut(CutOff::NonFinite);
     return false;
   }
   if (b.time >= t_end || r.bounces > set.max_bounces || ++steps > kMaxFlightSteps || r.strikes > FlightResult::kMaxStrikes) {
-    cut_off = true;
+    cut(b.time >= t_end              ? CutOff::TimeLimit
+        : r.bounces > set.max_bounces ? CutOff::MaxBounces
+        : steps > kMaxFlightSteps     ? CutOff::FlightSteps
+                                      : CutOff::MaxStrikes);
     return false;
   }
   const double horizontal2 = b.position.x() * b.position.x() + b.position.y() * b.position.y();

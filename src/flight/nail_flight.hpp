@@ -49,6 +49,21 @@ enum class Fate : std::uint8_t {
   CutOff
 };
 inline constexpr int kFates = 9;
+// Which limit cut a nail off (a run whose cut-off share nears its invalidity limit names
+// them, so the user knows which setting to raise).
+enum class CutOff : std::uint8_t {
+  None,
+  TimeLimit,         // [run] time_limit
+  MaxBounces,        // [run] max_bounces
+  FlightSteps,       // kMaxFlightSteps chords
+  MaxStrikes,        // FlightResult::kMaxStrikes blade strikes
+  SearchSteps,       // strike::kMaxSearchSteps steps of one contact search
+  ContactsInPass,    // FlightResult::kMaxContactsPerPass contacts in one pass
+  UnresolvedContact, // a blade touch the impulse could not resolve
+  NonFinite          // a non-finite state
+};
+inline constexpr int kCutOffReasons = 9;
+const char* cut_off_name(CutOff c);  // "time_limit", "max_bounces", ...
 // Chords per flight before the nail is cut off: a nail at rest takes a few hundred at most.
 inline constexpr int kMaxFlightSteps = 200000;
 const char* fate_name(Fate f);
@@ -114,6 +129,7 @@ struct FlightResult {
   Vec3 launch_velocity = Vec3::Zero();  // as the nail leaves the blade (its last contact before it touches anything else)
   int search_steps = 0;                 // contact-search steps (for the benchmark)
   bool non_finite = false;                // the state stopped being a finite number (a bug or absurd input)
+  CutOff cut_off = CutOff::None;          // what cut it off (fate CutOff), the first limit reached
   int queries = 0;                        // scene ray queries (for the benchmark)
   double flight_time = 0;
   Vec3 end_position = Vec3::Zero();

@@ -74,6 +74,11 @@ std::string verdict_section(const assess::Summary& sum, const json& r, int nails
         e["high"].get<double>() - e["low"].get<double>() < p["high"].get<double>() - p["low"].get<double>() ? "; narrower than the replicates' interval" : "");
   else
     o += fmt::format("<p>P(pass) from every nail was not computed: {}.</p>\n", escape(e.value("why_not", std::string())));
+  if (!sum.warnings.empty()) {
+    o += "<p><strong>Before filing, note:</strong></p>\n<ul class=\"warnings\">\n";
+    for (const auto& w : sum.warnings) o += fmt::format("<li>{}</li>\n", escape(w));
+    o += "</ul>\n";
+  }
   o += "</section>\n";
   return o;
 }

@@ -177,6 +177,9 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
   for (int f = 0; f < flight::kFates; ++f)
     fates[flight::fate_name(static_cast<flight::Fate>(f))] = {
         {"nails", sum.fates[f]}, {"fraction", sum.nails ? static_cast<double>(sum.fates[f]) / static_cast<double>(sum.nails) : 0.0}};
+  json cut_off_by = json::object();
+  for (int k = 1; k < flight::kCutOffReasons; ++k)
+    cut_off_by[flight::cut_off_name(static_cast<flight::CutOff>(k))] = sum.cut_off_by[static_cast<std::size_t>(k)];
   json assumed = json::array();
   for (const auto& x : assumptions(s)) assumed.push_back({{"assumption", x.what}, {"source", x.source}});
   const double tip_speed = s.tip_speed();
@@ -185,6 +188,8 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"verdict", verdict_word(sum)},
       {"verdict_settled", sum.validity.valid && sum.settled},
       {"invalid_because", sum.validity.reasons},
+      {"warnings", sum.warnings},
+      {"cut_off_by_limit", cut_off_by},
       {"pass_probability", interval_json(sum.pass)},
       {"pass_probability_exact", exact_json(sum.exact)},
       {"nail_outcomes_by_station", outcomes_json(a.outcomes)},
@@ -209,7 +214,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
        {{"mean", a.exit_speed.mean() / tip_speed},
         {"q05", a.exit_speed.quantile(0.05) / tip_speed},
         {"q95", a.exit_speed.quantile(0.95) / tip_speed},
-        {"published_range", {0.8, 1.4}},
+        {"published_range", {assess::kPublishedThrownOverTip[0], assess::kPublishedThrownOverTip[1]}},
         {"published_source", "Chazen and Chamberlain, New England Journal of Medicine, 1962, as widely reported"}}},
       {"launch_elevation_deg", histogram_json(a.launch_elevation, "deg")},
       {"contacts_per_pass",
@@ -347,9 +352,10 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
   const double tip = s.tip_speed();
   out += fmt::format(
       "  thrown at {:.2f} x the blade tip speed ({:.1f} m/s) on average (published thrown-object speeds: "
-      "0.8-1.4 x)\n",
-      sum.exit_speed_mean / tip, tip);
+      "{:g}-{:g} x)\n",
+      sum.exit_speed_mean / tip, tip, assess::kPublishedThrownOverTip[0], assess::kPublishedThrownOverTip[1]);
   for (const auto& d : departures_from_j232(s)) out += fmt::format("  DEPARTS FROM SAE J232: {}\n", d);
+  for (const auto& w : sum.warnings) out += fmt::format("  WARNING: {}\n", w);
   return out;
 }
 

@@ -76,7 +76,8 @@ json uncertainty_json(const study::UncertaintyResult& r) {
                              : passing == 0.0 ? "fails at every draw"
                                               : "depends on the inputs"},
           {"outputs", outputs},
-          {"sensitivity", sensitivity}};
+          {"sensitivity", sensitivity},
+          {"warnings", r.warnings}};
 }
 
 std::string uncertainty_csv(const study::UncertaintyResult& r) {
@@ -119,6 +120,11 @@ std::string uncertainty_html(const json& j) {
       number("assessments", j["assessments"], "{}"), number("replicates_per_assessment", j["replicates_per_assessment"], "{}"),
       number("base_draws", j["base_draws"], "{}"), number("seed", j["seed"], "{}"),
       j["default_inputs"].get<bool>() ? " (j232's default set of estimated inputs: the scenario has no [uncertainty])" : "");
+  if (j.contains("warnings") && !j["warnings"].empty()) {
+    o += "<p><strong>Before trusting every draw, note:</strong></p>\n<ul class=\"warnings\">\n";
+    for (const auto& w : j["warnings"]) o += fmt::format("<li>{}</li>\n", escape(w.get<std::string>()));
+    o += "</ul>\n";
+  }
   const auto& inputs = j["inputs"];
   for (std::size_t i = 0; i < inputs.size(); ++i)
     o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", i + 1,

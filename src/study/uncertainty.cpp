@@ -37,6 +37,15 @@ Written split(const std::string& text, const std::string& file, std::optional<in
   w.unit.erase(0, w.unit.find_first_not_of(' '));
   return w;
 }
+// "restitution = 0.62, crush_depth = 1.2": a draw's inputs, as numbers written in the
+// inputs' units.
+std::string draw_inputs(const UncertaintyPlan& plan, const std::vector<double>& values) {
+  std::string out;
+  for (std::size_t i = 0; i < plan.inputs.size() && i < values.size(); ++i)
+    out += fmt::format("{}{} = {:.4g}", i ? ", " : "", plan.inputs[i].parameter, values[i]);
+  return out;
+}
+
 }  // namespace
 
 double InputDistribution::quantile(double u) const {
@@ -164,7 +173,8 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     r.values.push_back(values);
     if (journal && journal->recall)
       if (const auto kept = journal->recall(run)) {
-        r.outputs.push_back(*kept);
+        r.runs.push_back(*kept);
+        r.outputs.push_back(kept->outputs);
         continue;
       }
     scenario::Scenario sc = scenario::read_scenario(doc, file);
@@ -175,15 +185,31 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     const auto a = assess::run_assessment(sim, threads);
     const auto sum = assess::summarise(a, sc);
     if (!sum.validity.valid)
-      throw InputError(file, std::nullopt, "uncertainty", fmt::format("draw {}", run + 1),
+      throw InputError(file, std::nullopt, "uncertainty", fmt::format("draw {} ({})", run + 1, draw_inputs(r.plan, values)),
                        "the simulated test is invalid at this draw: " + sum.validity.reasons.front());
     // (From every nail where it can be computed; else, for the `marks` denominator, the
     // replicates' share, as uq.json says.)
-    r.outputs.push_back({sum.pass.estimate, sum.exact.computed ? sum.exact.value : sum.pass.estimate, sum.criteria[0].mean_share,
-                         sum.criteria[1].mean_share, sum.criteria[2].mean_share, sum.criteria[3].mean_share,
-                         sum.pass.estimate >= r.required ? 1.0 : 0.0});
-    if (journal && journal->record) journal->record(run, r.outputs.back());
+    UqRun out;
+    out.outputs = {sum.pass.estimate, sum.exact.computed ? sum.exact.value : sum.pass.estimate, sum.criteria[0].mean_share,
+                   sum.criteria[1].mean_share, sum.criteria[2].mean_share, sum.criteria[3].mean_share,
+                   sum.pass.estimate >= r.required ? 1.0 : 0.0};
+    const auto cut = sum.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
+    out.cut_off_share = sum.struck ? static_cast<double>(cut) / static_cast<double>(sum.struck) : 0.0;
+    for (int why = 1; why < flight::kCutOffReasons; ++why)
+      if (sum.cut_off_by[static_cast<std::size_t>(why)] > sum.cut_off_by[static_cast<std::size_t>(out.cut_off_limit)]) out.cut_off_limit = why;
+    r.runs.push_back(out);
+    r.outputs.push_back(out.outputs);
+    if (journal && journal->record) journal->record(run, out);
   }
+  for (std::size_t run = 0; run < r.runs.size(); ++run)
+    if (r.runs[run].cut_off_share >= assess::kWarnCutOffShare) {
+      const std::string inputs = draw_inputs(r.plan, r.values[run]);
+      r.warnings.push_back(fmt::format(
+          "draw {} ({}): {:.2f} % of struck nails were cut off still moving, mostly by {}, nearing the {:g} % at which a run is "
+          "invalid",
+          run + 1, inputs, 100 * r.runs[run].cut_off_share, flight::cut_off_name(static_cast<flight::CutOff>(r.runs[run].cut_off_limit)),
+          100 * assess::kMaxCutOffShare));
+    }
   for (int o = 0; o < kUqOutputs; ++o) {
     std::vector<double> f;
     for (const auto& out : r.outputs) f.push_back(out[static_cast<std::size_t>(o)]);

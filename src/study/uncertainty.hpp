@@ -35,6 +35,14 @@ inline constexpr const char* kUqOutputNames[kUqOutputs] = {"p_pass",       "p_pa
                                                            "hits_outside", "punctures_outside", "passes"};
 inline constexpr int kUqProbabilityOutputs = 2;  // the first two are probabilities, the shares follow
 
+// One assessment of the study: its outputs, and the share of its struck nails that the run's
+// limits cut off with the commonest of those limits (flight::CutOff), for its warnings.
+struct UqRun {
+  std::array<double, kUqOutputs> outputs{};
+  double cut_off_share = 0;
+  int cut_off_limit = 0;
+};
+
 struct UncertaintyResult {
   UncertaintyPlan plan;
   std::string scenario_file, title;
@@ -44,6 +52,10 @@ struct UncertaintyResult {
   std::vector<std::vector<double>> values;              // per run, per input: the value set (SI or the number written)
   std::vector<std::array<double, kUqOutputs>> outputs;  // per run
   std::array<SobolIndices, kUqOutputs> indices;
+  std::vector<UqRun> runs;  // per run: outputs (as `outputs`) and cut-off share
+  // A draw whose cut-off share neared the invalidity limit, naming the draw's inputs and
+  // the limit that cut its nails off, one sentence each.
+  std::vector<std::string> warnings;
 };
 
 // An input's distribution over [low, high], in the numbers written (their unit aside).
@@ -62,8 +74,8 @@ struct InputDistribution {
 // they were recorded, `record(i, outputs)` is told each newly finished run. Outputs are
 // kept exactly, so a resumed study gives the same result, bit for bit.
 struct UncertaintyJournal {
-  std::function<std::optional<std::array<double, kUqOutputs>>(std::size_t)> recall;
-  std::function<void(std::size_t, const std::array<double, kUqOutputs>&)> record;
+  std::function<std::optional<UqRun>(std::size_t)> recall;
+  std::function<void(std::size_t, const UqRun&)> record;
 };
 
 // Runs the study of the scenario file. `on_run(i, n)` is told before run i of n.
