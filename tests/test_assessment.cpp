@@ -251,6 +251,28 @@ TEST_CASE("similarity: thrown speed follows blade speed when the feed scales wit
   CHECK(a_same.launch_elevation.mean() > a_slow.launch_elevation.mean() + 10.0);
 }
 
+TEST_CASE("trace: the way out is the last crossing of the deck's outline; the first is kept", "[assess][trace]") {
+  // Chains hang across the openings: a nail that slips under the deck's edge and is turned
+  // back by the chains or the turf, then leaves elsewhere, is named by where it finally left.
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted-chains.toml"));
+  const assess::Simulator sim(s);
+  int differ = 0, came_back = 0, marked = 0;
+  for (std::uint64_t r = 0; r < 20; ++r)
+    for (int n = 0; n < s.feed.nails; ++n) {
+      const auto o = sim.simulate(r, n);
+      const auto& t = o.flight.trace;
+      if (t.exit != flight::Exit::Inside) CHECK(t.first_exit != flight::Exit::Inside);  // it left, so it first left
+      if (o.flight.mark_count > 0) {
+        ++marked;
+        CHECK(t.exit != flight::Exit::Inside);  // a marking nail left for good
+      }
+      if (t.first_exit != flight::Exit::Inside && t.exit == flight::Exit::Inside) ++came_back;
+      if (t.exit != flight::Exit::Inside && (t.first_exit != t.exit || t.first_exit_index != t.exit_index)) ++differ;
+    }
+  CHECK(marked > 10);
+  CHECK(came_back + differ > 0);  // some nails crossed out and back
+}
+
 TEST_CASE("trace: every mark's trail is consistent and the ways out add up", "[assess][trace]") {
   // The deck with a side discharge: counted marks leave by the opening.
   auto deck = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <random>
 
+#include <fmt/format.h>
+
+#include "scenario/scenario.hpp"
 #include "units/quantity.hpp"
 #include "units/sin_cos.hpp"
 
@@ -85,4 +88,14 @@ TEST_CASE("sin_cos agrees with the library's sin and cos to 2e-16 over the angle
   CHECK(worst < 2e-16 * 8);  // a few ulp of 1 at 1e6 rad, where the library's own reduction differs
   CHECK(sin_cos(0.0).sin == 0.0);
   CHECK(sin_cos(0.0).cos == 1.0);
+}
+
+TEST_CASE("defaults given in degrees print back as the degrees they are", "[units]") {
+  // A default held as a rounded radian (0.0873 for 5 deg) printed back as 5.00192 deg.
+  const auto deg = [](double rad) { return fmt::format("{:g}", rad / degree); };
+  CHECK(deg(j232::scenario::FeedSpec{}.tilt_max) == "5");
+  CHECK(deg(j232::scenario::EdgeSpec{}.bevel_angle) == "30");
+  CHECK(deg(j232::scenario::EdgeSpec{}.sail_angle) == "45");
+  CHECK(deg(j232::scenario::GroundSpec{}.roughness) == "10");
+  CHECK(deg(parse("5 deg", Kind::Angle)) == "5");
 }

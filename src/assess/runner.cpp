@@ -203,6 +203,9 @@ void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t cou
   }
   for (const auto& [key, n] : into.exits.nails)
     if (!into.exit_names.count(key)) into.exit_names[key] = sim.exit_name(exit_of(key), exit_index(key));
+  for (const MarkRow& m : into.mark_sample)  // where the sampled marks' nails first left, too
+    if (const auto key = exit_key(m.trace.first_exit, m.trace.first_exit_index); !into.exit_names.count(key))
+      into.exit_names[key] = sim.exit_name(m.trace.first_exit, m.trace.first_exit_index);
 }
 
 Assessment run_assessment(const Simulator& sim, int threads, Progress* progress, const MarkSink& sink,

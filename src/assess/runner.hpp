@@ -120,7 +120,7 @@ struct Assessment : NailHistograms {
   std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
   double wall_seconds = 0;
   int threads = 0;
-  std::map<std::uint32_t, std::string> exit_names;  // every exit path in `exits`, in words
+  std::map<std::uint32_t, std::string> exit_names;  // every exit path in `exits` and first exit in the mark sample, in words
   // Filled after the run when asked for (run --trajectories): chosen nails' paths, and how
   // many notable nails (zone marks, punctures) were not kept beyond the cap.
   std::vector<Trajectory> trajectories;

@@ -47,18 +47,7 @@ int compare(const CompareOptions& o) {
   report::write_atomically(out.staged("compare.html"), report::comparison_html(j));
   report::write_atomically(out.staged("compare.json"), j.dump(2) + "\n");
   out.commit();
-  static const char* names[] = {"hits in the zone", "punctures in the zone", "hits outside", "punctures outside"};
-  for (std::size_t d = 1; d < c.designs.size(); ++d) {
-    const auto& v = c.versus_first[d - 1];
-    fmt::print("design {} minus design 1 (95 % interval; independent runs would give +/-):\n", d + 1);
-    fmt::print("  P(pass)                {:+.3f} ({:+.3f} to {:+.3f}; +/-{:.3f})\n", v.pass.mean, v.pass.low, v.pass.high,
-               v.independent_pass_half_width);
-    for (int k = 0; k < assess::kCategories; ++k) {
-      const auto& m = v.shares[static_cast<std::size_t>(k)];
-      fmt::print("  {:<23}{:+.3f} % ({:+.3f} to {:+.3f} %; +/-{:.3f} %)\n", names[k], 100 * m.mean, 100 * m.low, 100 * m.high,
-                 100 * v.independent_half_width[static_cast<std::size_t>(k)]);
-    }
-  }
+  fmt::print("{}", report::comparison_text(c));
   fmt::print("Wrote {}/compare.html, compare.json and compare.csv\n", terminal_safe(o.out));
   return kOk;
 }

@@ -137,6 +137,10 @@ int run(const TraceOptions& o) {
              flight::fate_name(f.fate), f.strikes, f.bounces, f.mark_count - f.uncounted_marks, f.hits_zone, f.punctures_zone,
              f.hits_outside, f.punctures_outside);
   if (f.trace.exit != flight::Exit::Inside) fmt::print("left the deck: {}\n", sim.exit_name(f.trace.exit, f.trace.exit_index));
+  if (f.trace.first_exit != flight::Exit::Inside &&
+      (f.trace.first_exit != f.trace.exit || f.trace.first_exit_index != f.trace.exit_index))
+    fmt::print("first left by: {}{}\n", sim.exit_name(f.trace.first_exit, f.trace.first_exit_index),
+               f.trace.exit == flight::Exit::Inside ? " (and came back in)" : "");
   if (!o.json.empty()) {
     nlohmann::json j{{"program", "j232 trace"},
                      {"scenario", s.title},

@@ -181,6 +181,7 @@ struct NailFlight {
     last_touch = t;
   }
   void moved(const Vec3& from, const Vec3& to);
+  void leave_deck(const Vec3& from, const Vec3& to);
   std::optional<strike::Contact> blade_contact(const strike::Motion& chord, double until);
   Vec3 meet(const PlaneTouch& at, const strike::Motion& chord);
   void restrike(const strike::Contact& k);
@@ -201,16 +202,33 @@ struct NailFlight {
   Fate fate() const;
 };
 
-// The nail moved straight from `from` to `to`: if that took it out of the deck's outline
-// for the first time, where and how (a guard it had just passed, an opening, under the
-// skirt, over the deck).
+// The nail moved straight from `from` to `to`: if that took it out of the deck's outline,
+// where and how (a guard it had just passed, an opening, under the skirt, over the deck);
+// if back in, it has not left yet. The last crossing out is the way out; the first is kept.
 void NailFlight::moved(const Vec3& from, const Vec3& to) {
   NailTrace& trace = r.trace;
   if (ctx.path) ctx.path->push_back(to);
-  if (!in_deck || ctx.deck_outline->contains(to.x(), to.y())) return;
+  if (!ctx.deck_outline || ctx.deck_outline->empty()) return;
+  const bool inside = ctx.deck_outline->contains(to.x(), to.y());
+  if (!in_deck) {
+    // Back inside the outline (turned back by a guard, or over the plate and down): it has
+    // not left, until it crosses again.
+    if (inside) in_deck = true, trace.exit = Exit::Inside, trace.exit_index = 0;
+    return;
+  }
+  if (inside) return;
   in_deck = false;
+  leave_deck(from, to);
+  if (trace.first_exit == Exit::Inside) trace.first_exit = trace.exit, trace.first_exit_index = trace.exit_index;
+}
+
+// The crossing of the deck's outline going out between `from` and `to`: where, and what it
+// went through.
+void NailFlight::leave_deck(const Vec3& from, const Vec3& to) {
+  NailTrace& trace = r.trace;
   const Vec3 c = from + ctx.deck_outline->exit_fraction(from, to) * (to - from);
   log(FlightEvent::Kind::LeftDeck, c);
+  trace.exit_index = 0;
   trace.exit_azimuth = std::atan2(c.y(), c.x());
   trace.exit_height = c.z();
   if (last_touch == Touch::GuardPass) {

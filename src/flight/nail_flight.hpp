@@ -82,19 +82,24 @@ enum class Touch : std::uint8_t { Blade, Housing, Deflector, GuardBounce, GuardP
 inline constexpr int kTouchKinds = 7;
 const char* touch_name(Touch t);  // "blade", "housing", "deflector", "guard", "guard-pass", "ground", "board"
 
-// Where the nail first crossed the deck's outline going out: under the skirt, through a
+// Where the nail crossed the deck's outline going out: under the skirt, through a
 // discharge opening, through a guard's curtain, over the deck; the deck's edge of a mesh
-// deck (its openings are not named); or it never left.
+// deck (its openings are not named); or it never left (or came back in and stayed).
 enum class Exit : std::uint8_t { Inside, UnderSkirt, Opening, Guard, OverDeck, DeckEdge };
 
 struct NailTrace {
   static constexpr int kMaxTouches = 24;  // further touches are counted, not listed
   std::array<Touch, kMaxTouches> touches{};
   int touch_count = 0;
+  // The way out: the last crossing of the outline going out, after which the nail stayed out
+  // (reached the board, came to rest outside, left the test); a nail a guard turned back
+  // in after it first crossed is not named as leaving there.
   Exit exit = Exit::Inside;
   std::uint16_t exit_index = 0;  // the opening (housing.openings) or guard (the scene's guard index)
   double exit_azimuth = 0;       // rad, about the origin, where it crossed the outline
   double exit_height = 0;        // m above ground there
+  Exit first_exit = Exit::Inside;  // the first crossing going out, whether or not it stayed out
+  std::uint16_t first_exit_index = 0;
   double last_strike_speed = 0;  // m/s off the last blade strike
 
   void touch(Touch t) {

@@ -132,7 +132,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   write_atomically(folder.staged("report.html"), html);
   write_atomically(folder.staged("result.json"), outcome.result.dump(2) + "\n");
   folder.commit();
-  if (recorder) outcome.design = std::move(*recorder).finish(s, a);
+  if (recorder) outcome.design = std::move(*recorder).finish(s, a, &sum);
   return outcome;
 }
 

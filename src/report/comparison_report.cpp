@@ -25,9 +25,23 @@ json comparison_json(const study::Comparison& c) {
       criteria.push_back({{"name", assess::category_name(k)},
                           {"limit", d.limits[static_cast<std::size_t>(k)]},
                           {"share", interval(d.shares[static_cast<std::size_t>(k)])}});
+    const auto k = static_cast<std::size_t>(d.deciding);
     designs.push_back({{"scenario", d.file},
                        {"title", d.title},
+                       {"verdict", d.verdict},
+                       {"verdict_settled", d.settled},
+                       {"invalid_because", d.invalid_because},
+                       {"required_pass_probability", d.required},
                        {"pass_probability", {{"estimate", d.pass.estimate}, {"low", d.pass.low}, {"high", d.pass.high}}},
+                       {"pass_probability_exact",
+                        d.exact.computed ? json{{"computed", true}, {"estimate", d.exact.value}, {"low", d.exact.low}, {"high", d.exact.high}}
+                                         : json{{"computed", false}, {"why_not", d.exact.not_computed}}},
+                       {"deciding_criterion",
+                        {{"name", assess::category_name(d.deciding)},
+                         {"limit", d.limits[k]},
+                         {"mean_share", d.shares[k].mean},
+                         {"margin", d.limits[k] - d.shares[k].mean},
+                         {"pass_probability", d.deciding_pass}}},
                        {"criteria", criteria},
                        {"marks", d.marks},
                        {"nails", d.nails}});
@@ -56,24 +70,71 @@ json comparison_json(const study::Comparison& c) {
           {"differences", diffs}};
 }
 
+// One row per design and measure: first each design's P(pass) (its verdict, both
+// estimates), then each criterion's share (marking the one that decides the design's
+// verdict, with its margin to the limit), each with the design's difference from design 1.
 std::string comparison_csv(const study::Comparison& c) {
   std::string out =
-      "criterion,design,scenario,limit,share,share_low,share_high,minus_design_1,difference_low,difference_high,"
+      "measure,design,scenario,verdict,limit,value,low,high,decides,margin,minus_design_1,difference_low,difference_high,"
       "independent_runs_half_width\n";
+  const auto differences = [&](std::size_t d, const study::MeanInterval& m, double independent) {
+    return d == 0 ? std::string(",,,") : fmt::format("{:.6g},{:.6g},{:.6g},{:.6g}", m.mean, m.low, m.high, independent);
+  };
+  for (std::size_t d = 0; d < c.designs.size(); ++d) {
+    const auto& x = c.designs[d];
+    const study::MeanInterval none;
+    out += fmt::format("p_pass,{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},,,{}\n", d + 1, csv_text_cell(x.file), x.verdict, x.required,
+                       x.pass.estimate, x.pass.low, x.pass.high,
+                       d == 0 ? differences(0, none, 0) : differences(d, c.versus_first[d - 1].pass, c.versus_first[d - 1].independent_pass_half_width));
+    if (x.exact.computed)
+      out += fmt::format("p_pass_exact,{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},,,,,,\n", d + 1, csv_text_cell(x.file), x.verdict, x.required,
+                         x.exact.value, x.exact.low, x.exact.high);
+  }
   for (int k = 0; k < 4; ++k)
     for (std::size_t d = 0; d < c.designs.size(); ++d) {
       const auto& x = c.designs[d];
-      const auto& s = x.shares[static_cast<std::size_t>(k)];
-      out += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},", assess::category_name(k), d + 1, csv_text_cell(x.file),
-                         x.limits[static_cast<std::size_t>(k)], s.mean, s.low, s.high);
-      if (d == 0) {
-        out += ",,,\n";
-        continue;
-      }
-      const auto& v = c.versus_first[d - 1];
-      const auto& m = v.shares[static_cast<std::size_t>(k)];
-      out += fmt::format("{:.6g},{:.6g},{:.6g},{:.6g}\n", m.mean, m.low, m.high, v.independent_half_width[static_cast<std::size_t>(k)]);
+      const auto kk = static_cast<std::size_t>(k);
+      const auto& s = x.shares[kk];
+      const bool decides = x.deciding == k;
+      out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{},", assess::category_name(k), d + 1, csv_text_cell(x.file), x.verdict,
+                         x.limits[kk], s.mean, s.low, s.high, decides ? 1 : 0, decides ? fmt::format("{:.6g}", x.limits[kk] - s.mean) : "");
+      out += d == 0 ? differences(0, {}, 0) : differences(d, c.versus_first[d - 1].shares[kk], c.versus_first[d - 1].independent_half_width[kk]);
+      out += "\n";
     }
+  return out;
+}
+
+std::string comparison_text(const study::Comparison& c) {
+  std::string out;
+  for (std::size_t d = 0; d < c.designs.size(); ++d) {
+    const auto& x = c.designs[d];
+    std::string verdict = x.verdict == "invalid" ? "NO VERDICT (invalid)" : x.verdict == "passes" ? "PASSES" : "FAILS";
+    if (x.verdict != "invalid" && !x.settled) verdict += ", not settled";
+    out += fmt::format("design {}: {}  {}\n", d + 1, verdict, terminal_safe(x.title));
+    if (x.verdict == "invalid") {
+      for (const auto& why : x.invalid_because) out += fmt::format("  - {}\n", terminal_safe(why));
+      continue;
+    }
+    out += fmt::format("  P(pass one test) {:.3f} ({:.3f} to {:.3f})", x.pass.estimate, x.pass.low, x.pass.high);
+    if (x.exact.computed) out += fmt::format("; from every nail {:.3f} ({:.3f} to {:.3f})", x.exact.value, x.exact.low, x.exact.high);
+    out += fmt::format("; required {:.2f}\n", x.required);
+    const auto k = static_cast<std::size_t>(x.deciding);
+    out += fmt::format("  decided by {}: mean {:.2f} % against its {:.1f} % limit (margin {:+.2f} points; the criterion passes in {:.1f} % of tests)\n",
+                       assess::category_name(x.deciding), 100 * x.shares[k].mean, 100 * x.limits[k], 100 * (x.limits[k] - x.shares[k].mean),
+                       100 * x.deciding_pass);
+  }
+  static const char* names[] = {"hits in the zone", "punctures in the zone", "hits outside", "punctures outside"};
+  for (std::size_t d = 1; d < c.designs.size(); ++d) {
+    const auto& v = c.versus_first[d - 1];
+    out += fmt::format("design {} minus design 1 (95 % interval; independent runs would give +/-):\n", d + 1);
+    out += fmt::format("  P(pass)                {:+.3f} ({:+.3f} to {:+.3f}; +/-{:.3f})\n", v.pass.mean, v.pass.low, v.pass.high,
+                       v.independent_pass_half_width);
+    for (int k = 0; k < assess::kCategories; ++k) {
+      const auto& m = v.shares[static_cast<std::size_t>(k)];
+      out += fmt::format("  {:<23}{:+.3f} % ({:+.3f} to {:+.3f} %; +/-{:.3f} %)\n", names[k], 100 * m.mean, 100 * m.low, 100 * m.high,
+                         100 * v.independent_half_width[static_cast<std::size_t>(k)]);
+    }
+  }
   return out;
 }
 
@@ -95,6 +156,37 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
       "by replicate and their intervals are far tighter than those of independent runs (shown for "
       "comparison).</p>\n",
       number("replicates", c["replicates"], "{}"), number("seed", c["seed"], "{}"));
+  // Each design's own verdict first, as its run would give it.
+  o += "<h2>Each design's verdict</h2>\n<table class=\"numbers\"><thead><tr><th>design</th><th>verdict</th><th>P(pass one test)</th>"
+       "<th>from every nail</th><th>decided by</th><th>mean share</th><th>limit</th><th>margin</th></tr></thead><tbody>\n";
+  for (std::size_t d = 0; d < designs.size(); ++d) {
+    const auto& x = designs[d];
+    const std::string key = fmt::format("designs.{}.", d);
+    if (!x.contains("verdict")) continue;
+    const std::string verdict = x["verdict"].get<std::string>();
+    if (verdict == "invalid") {
+      std::string why;
+      for (const auto& w : x["invalid_because"]) why += (why.empty() ? "" : "; ") + w.get<std::string>();
+      o += fmt::format("<tr><td>{}</td><td>no verdict (invalid)</td><td colspan=\"6\">{}</td></tr>\n", d + 1, escape(why));
+      continue;
+    }
+    const auto& p = x["pass_probability"];
+    const auto& e = x["pass_probability_exact"];
+    const auto& dc = x["deciding_criterion"];
+    o += fmt::format("<tr><td>{}</td><td>{}{}</td><td>{} ({} to {})</td><td>{}</td><td>{}</td><td>{} %</td><td>{} %</td><td>{} points</td></tr>\n",
+                     d + 1, number(key + "verdict", x["verdict"], "{}"), x["verdict_settled"].get<bool>() ? "" : " (not settled)",
+                     number(key + "pass_probability.estimate", p["estimate"], "{:.3f}"), number(key + "pass_probability.low", p["low"], "{:.3f}"),
+                     number(key + "pass_probability.high", p["high"], "{:.3f}"),
+                     e.value("computed", false)
+                         ? fmt::format("{} ({} to {})", number(key + "pass_probability_exact.estimate", e["estimate"], "{:.3f}"),
+                                       number(key + "pass_probability_exact.low", e["low"], "{:.3f}"),
+                                       number(key + "pass_probability_exact.high", e["high"], "{:.3f}"))
+                         : std::string("&mdash;"),
+                     escape(dc["name"].get<std::string>()), number(key + "deciding_criterion.mean_share", dc["mean_share"], "{:.2f}", 100),
+                     number(key + "deciding_criterion.limit", dc["limit"], "{:.1f}", 100),
+                     number(key + "deciding_criterion.margin", dc["margin"], "{:+.2f}", 100));
+  }
+  o += "</tbody></table>\n";
   // P(pass)
   o += "<h2>P(pass one test)</h2>\n<table class=\"numbers\"><thead><tr><th>design</th><th>P(pass)</th><th>95 % interval</th>"
        "<th>minus design 1</th><th>95 % interval</th><th>independent runs: &plusmn;</th></tr></thead><tbody>\n";

@@ -11,6 +11,9 @@ namespace j232::report {
 
 nlohmann::ordered_json comparison_json(const study::Comparison& c);
 std::string comparison_csv(const study::Comparison& c);
+// For the terminal: each design's verdict, P(pass) (both estimates) and deciding criterion
+// with its margin, then each design's differences from design 1.
+std::string comparison_text(const study::Comparison& c);
 std::string comparison_html(const nlohmann::ordered_json& c);
 // The page's body (designs, tables, a chart per criterion), its numbers keyed `prefix` + the
 // key in `c`, for a page whose JSON holds `c` under a key (the batch summary's "comparison.").

@@ -209,8 +209,10 @@ std::string exits_section(const json& r) {
     first = false;
   }
   if (first) o += "no counted marks";
-  o += ". The way out is where the nail first crossed the deck's outline; marks.csv gives every mark's trail (feed station, "
-       "strikes, speed off the last strike, surfaces touched in order, way out, flight time).</p>\n</section>\n";
+  o += ". The way out is the nail's last crossing of the deck's outline going out, after which it stayed out (a nail a guard "
+       "turned back in and that left again elsewhere is named by where it finally left); marks.csv gives every mark's trail "
+       "(feed station, strikes, speed off the last strike, surfaces touched in order, way out, where it first left, flight "
+       "time).</p>\n</section>\n";
   return o;
 }
 

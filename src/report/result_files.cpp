@@ -130,6 +130,7 @@ json mark_examples_json(const assess::Assessment& a) {
     for (int i = 0; i < std::min(t.touch_count, flight::NailTrace::kMaxTouches); ++i)
       path.push_back(flight::touch_name(t.touches[static_cast<std::size_t>(i)]));
     const auto name = a.exit_names.find(assess::exit_key(t.exit, t.exit_index));
+    const auto first = a.exit_names.find(assess::exit_key(t.first_exit, t.first_exit_index));
     out.push_back({{"replicate", m.replicate},
                    {"nail", m.nail},
                    {"point_m", {m.mark.point.x(), m.mark.point.y(), m.mark.point.z()}},
@@ -145,6 +146,7 @@ json mark_examples_json(const assess::Assessment& a) {
                    {"exit", name != a.exit_names.end() ? name->second : std::string("unnamed")},
                    {"exit_azimuth_deg", t.exit_azimuth / units::degree},
                    {"exit_height_m", t.exit_height},
+                   {"first_left_by", first != a.exit_names.end() ? first->second : std::string("unnamed")},
                    {"flight_time_s", m.flight_time}});
   }
   return out;
@@ -275,7 +277,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
 
 std::string marks_csv_header() {
   return "replicate,nail,x_m,y_m,z_m,azimuth_deg,height_m,zone,normal_energy_J,mark,counted,"
-         "spindle,station,strikes,speed_off_last_strike_m_s,exit,exit_azimuth_deg,exit_height_m,flight_time_s,path\n";
+         "spindle,station,strikes,speed_off_last_strike_m_s,exit,exit_azimuth_deg,exit_height_m,first_left_by,flight_time_s,path\n";
 }
 
 void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const assess::Simulator& sim) {
@@ -294,9 +296,9 @@ void append_marks_csv_row(std::string& out, const assess::MarkRow& m, const asse
   }
   if (t.touch_count > flight::NailTrace::kMaxTouches) path += ";...";
   const double exit_az = t.exit_azimuth / units::degree;
-  fmt::format_to(std::back_inserter(out), "{},{},{},{:.3f},{},{:.2f},{:.4f},{:.5f},{}\n", m.spindle + 1, m.station + 1, m.strikes,
-                 t.last_strike_speed, csv_text_cell(sim.exit_name(t.exit, t.exit_index)), exit_az, t.exit_height, m.flight_time,
-                 csv_text_cell(path));
+  fmt::format_to(std::back_inserter(out), "{},{},{},{:.3f},{},{:.2f},{:.4f},{},{:.5f},{}\n", m.spindle + 1, m.station + 1, m.strikes,
+                 t.last_strike_speed, csv_text_cell(sim.exit_name(t.exit, t.exit_index)), exit_az, t.exit_height,
+                 csv_text_cell(sim.exit_name(t.first_exit, t.first_exit_index)), m.flight_time, csv_text_cell(path));
 }
 
 const char* verdict_word(const assess::Summary& sum) {

@@ -21,6 +21,9 @@
 
 namespace j232::scenario {
 
+// Angles given in degrees are held as radians exactly (30 deg prints back as 30 deg).
+inline constexpr double kDegree = std::numbers::pi / 180;
+
 struct NailSpec {                    // uncoated 6d steel box nail
   double length = 0.0508;            // 2 in
   double diameter = 0.00251;         // 0.099 in shank
@@ -41,7 +44,7 @@ struct FeedSpec {
   double drop_height = 0.30;          // funnel outlet above the top of the blade, m
   double outlet_diameter = 0.025;     // funnel outlet, m: uniform position within it
   double outlet_speed_max = 0.5;      // speed leaving the outlet, uniform in [0, max], m/s
-  double tilt_max = 0.0873;           // nail axis within this cone about vertical (5 deg)
+  double tilt_max = 5 * kDegree;      // nail axis within this cone about vertical
   double ground_speed = 0.0;          // mower travel speed; the nail drifts backward relative to the mower, m/s
 };
 
@@ -49,11 +52,11 @@ struct FeedSpec {
 // the impulse on a nail. Defaults are estimates (docs/model.md §8).
 struct EdgeSpec {
   enum class Side { Top, Bottom };
-  double bevel_angle = 0.5236;  // between the bevel face and the blade plane, rad (30 deg); 90 deg: square edge
+  double bevel_angle = 30 * kDegree;  // between the bevel face and the blade plane, rad; 90 deg: square edge
   Side bevel_side = Side::Top;  // the face the bevel is ground on (top: the sharp edge on the bottom face)
   double width = 0.100;         // the plate behind the edge, m
   double sail_height = 0.0;     // the turned-up trailing strip, m above the top face (0: none)
-  double sail_angle = 0.7854;   // the sail against the blade plane, rad (45 deg)
+  double sail_angle = 45 * kDegree;   // the sail against the blade plane, rad
   double friction = 0.4;        // nail on blade, Coulomb (steel on steel)
 };
 
@@ -136,7 +139,7 @@ struct GroundSpec {  // turf
   double angle_exponent = 1.03;    // 0: one constant e_n at every angle
   double max_restitution = 0.8;    // cap at shallow impacts (estimate)
   double friction = 0.5;
-  double roughness = 0.1745;  // std. dev. of the local surface normal's tilt, rad (10 deg)
+  double roughness = 10 * kDegree;  // std. dev. of the local surface normal's tilt, rad
   // e_n for an impact whose path makes `angle` (rad, 0-pi/2) with the surface.
   double restitution_at(double angle) const {
     if (angle_exponent == 0.0) return restitution;

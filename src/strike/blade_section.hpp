@@ -17,10 +17,10 @@ using Vec2 = Eigen::Vector2d;
 struct EdgeShape {
   double thickness = 0.006;    // m
   double width = 0.10;         // m, the plate behind the edge
-  double bevel_angle = 0.5236;  // rad, between the bevel face and the blade plane (pi/2: square)
+  double bevel_angle = 30 * 3.141592653589793 / 180;  // rad, between the bevel face and the blade plane (pi/2: square)
   bool bevel_on_top = true;    // the sharp edge on the bottom face, the bevel face up
   double sail_height = 0.0;    // m above the top face (0: no sail)
-  double sail_angle = 0.7854;  // rad, of the sail against the blade plane
+  double sail_angle = 45 * 3.141592653589793 / 180;  // rad, of the sail against the blade plane
 };
 
 struct ConvexPolygon {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "assess/summary.hpp"
+
 namespace j232::study {
 
 namespace {
@@ -16,9 +18,12 @@ struct Moments {
   double mean() const { return n > 0 ? sum / n : 0.0; }
   double variance() const { return n > 1 ? std::max(0.0, (sum_sq - sum * sum / n) / (n - 1)) : 0.0; }
   // Clipped to the values the quantity can take: [0, 1] for a share, [-1, 1] for a difference.
+  // Rounding noise of a sum of shares (a difference of 1e-19 where every replicate gave
+  // zero) is shown as the zero it is.
   MeanInterval interval(double lowest, double highest) const {
     const double half = n > 1 ? kZ * std::sqrt(variance() / n) : 0.0;
-    return {mean(), std::max(lowest, mean() - half), std::min(highest, mean() + half)};
+    const auto clean = [](double x) { return std::abs(x) < 1e-12 ? 0.0 : x; };
+    return {clean(mean()), clean(std::max(lowest, mean() - half)), clean(std::min(highest, mean() + half))};
   }
 };
 }  // namespace
@@ -31,11 +36,19 @@ assess::ReplicateSink DesignRecorder::sink() {
   };
 }
 
-DesignRecord DesignRecorder::finish(const scenario::Scenario& s, const assess::Assessment& a) && {
+DesignRecord DesignRecorder::finish(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary* summary) && {
   DesignResult& res = record.result;
   res.file = s.file;
   res.title = s.title;
   res.pass = assess::wilson(a.passed, a.replicates);
+  const assess::Summary sum = summary ? *summary : assess::summarise(a, s, assess::kExactDraws);
+  res.verdict = !sum.validity.valid ? "invalid" : sum.passes ? "passes" : "fails";
+  res.invalid_because = sum.validity.reasons;
+  res.settled = sum.validity.valid && sum.settled;
+  res.required = sum.required;
+  res.exact = sum.exact;
+  res.deciding = sum.deciding;
+  res.deciding_pass = sum.criteria[static_cast<std::size_t>(sum.deciding)].pass.estimate;
   for (int k = 0; k < assess::kCategories; ++k) {
     Moments m;
     for (const auto& row : record.per_replicate) m.add(row[static_cast<std::size_t>(k)]);

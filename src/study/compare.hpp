@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "assess/exact_pass.hpp"
 #include "assess/runner.hpp"
+#include "assess/summary.hpp"
 #include "assess/statistics.hpp"
 #include "scenario/scenario.hpp"
 
@@ -21,6 +23,16 @@ struct MeanInterval {
 
 struct DesignResult {
   std::string file, title;
+  // Its own verdict, as `j232 run` would give it: "passes", "fails" or "invalid" (no
+  // verdict: invalid_because says why), whether its interval settles it, P(pass) from
+  // every nail, and the criterion that decides it with that criterion's mean share.
+  std::string verdict = "invalid";
+  std::vector<std::string> invalid_because;
+  bool settled = false;
+  double required = 0.9;
+  assess::ExactPass exact;
+  int deciding = 0;
+  double deciding_pass = 0;  // P(the deciding criterion passes)
   assess::Interval pass;  // P(pass), Wilson
   std::array<MeanInterval, assess::kCategories> shares;
   std::array<double, assess::kCategories> limits{};
@@ -55,7 +67,8 @@ struct DesignRecorder {
   DesignRecord record;
   explicit DesignRecorder(std::uint64_t replicates) { record.per_replicate.resize(replicates); }
   assess::ReplicateSink sink();
-  DesignRecord finish(const scenario::Scenario& s, const assess::Assessment& a) &&;
+  // (`summary`: the run's own, when it has one; else it is worked out here.)
+  DesignRecord finish(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary* summary = nullptr) &&;
 };
 // The comparison of designs run with the same seed and replicates (each design minus the first).
 Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned long long seed);
