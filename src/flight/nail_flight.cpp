@@ -255,8 +255,8 @@ void NailFlight::leave_deck(const Vec3& from, const Vec3& to) {
     trace.exit = Exit::UnderSkirt;
     return;
   }
-  // Through the skirt's height: a gap in it, which is an opening's (the skirt is cut by
-  // whole pieces, so an opening reaches a little past its azimuths): the nearest one.
+  // Through the skirt's height outside every opening's azimuths (beside a chute, along its
+  // side wall): the nearest opening's.
   trace.exit = Exit::DeckEdge;
   double nearest = HUGE_VAL;
   for (std::size_t i = 0; i < openings.size(); ++i)

@@ -137,11 +137,14 @@ json feed_json(const scenario::FeedSpec& f) {
 
 // A housing mesh replaces the generated deck, its skirt and openings: only what still
 // applies is echoed.
-json housing_json(const scenario::HousingSpec& h, bool from_mesh) {
+json housing_json(const scenario::HousingSpec& h, bool from_mesh, const std::vector<double>& opening_widths) {
   json guards = json::array(), deflectors = json::array(), openings = json::array();
   for (const auto& g : h.guards) guards.push_back(guard_json(g));
   for (const auto& d : h.deflectors) deflectors.push_back(deflector_json(d));
-  for (const auto& o : h.openings) openings.push_back(opening_json(o));
+  for (std::size_t i = 0; i < h.openings.size(); ++i) {
+    openings.push_back(opening_json(h.openings[i]));
+    if (i < opening_widths.size()) openings.back()["width_m"] = opening_widths[i];  // as cut, along the outline
+  }
   if (from_mesh)
     return {{"generated", false},
             {"restitution", restitution_json(h.restitution)},
@@ -205,7 +208,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"length_tolerance_m", s.nail.length_tolerance},
         {"mass_tolerance_kg", s.nail.mass_tolerance}}},
       {"feed", feed_json(s.feed)},
-      {"housing", housing_json(s.housing, roles.housing)},
+      {"housing", housing_json(s.housing, roles.housing, scene::opening_widths(s))},
       {"ground",
        {{"restitution", s.ground.restitution},
         {"angle_exponent", s.ground.angle_exponent},
@@ -274,7 +277,30 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     a.push_back({fmt::format("Target ring {:.0f} mm outside the tip circle, {:.0f} to {:.0f} mm above ground", s.target.distance * 1e3,
                              s.target.bottom * 1e3, s.target.top * 1e3),
                  fmt::format("{} (ANSI B71.1 enclosure wording as stand-in)", params)});
-  if (scene::mesh_roles(s).housing) a.push_back({"Deck and skirt: the scenario's mesh(es)", "scenario (user geometry)"});
+  if (scene::mesh_roles(s).housing) {
+    a.push_back({"Deck and skirt: the scenario's mesh(es)", "scenario (user geometry)"});
+  } else {
+    std::string deck = fmt::format("Deck: skirt from {:.0f} mm to {:.0f} mm above ground", s.housing.skirt_bottom * 1e3,
+                                   (s.housing.skirt_bottom + s.housing.skirt_depth) * 1e3);
+    const auto widths = scene::opening_widths(s);
+    for (std::size_t i = 0; i < s.housing.openings.size(); ++i) {
+      const auto& o = s.housing.openings[i];
+      deck += fmt::format("; opening '{}' {:g} to {:g} deg up to {:.0f} mm, {:.0f} mm wide as cut along the outline", o.name,
+                          o.azimuth_from / units::degree, o.azimuth_to / units::degree, o.top * 1e3, widths[i] * 1e3);
+    }
+    a.push_back({deck, "scenario"});
+  }
+  // Every guard with every parameter the flight uses, given or default.
+  for (const auto& g : s.housing.guards)
+    a.push_back({fmt::format("Guard '{}' ({}): {:.0f} to {:.0f} mm above ground; nails pass between its links with probability "
+                             "{:g}, keeping {:g} of their speed; restitution {:g}, friction {:g}",
+                             g.name,
+                             g.along.empty() ? fmt::format("below the skirt from {:g} to {:g} deg", g.azimuth_from / units::degree,
+                                                           g.azimuth_to / units::degree)
+                                             : fmt::format("along a {}-point polyline", g.along.size()),
+                             g.bottom * 1e3, (g.along.empty() ? s.housing.skirt_bottom : g.top) * 1e3, g.openness, g.pass_speed_factor,
+                             g.restitution, g.friction),
+                 "scenario, or estimates where not given (openness, speed kept: no published chain-curtain figures)"});
   a.push_back({s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector
                    ? std::string("Operator zone: explicit sector of the board")
                    : fmt::format("Operator zone: board seen from the blade toward the 95th-percentile reach envelope of "

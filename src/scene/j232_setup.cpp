@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
 #include <stdexcept>
 
 #include "scenario/input_error.hpp"
@@ -222,10 +223,64 @@ bool in_arc(double a, double from, double to) {
   return std::fmod(std::fmod(a - from, units::two_pi) + units::two_pi, units::two_pi) < arc_span(from, to);
 }
 
+// Where the ray from the origin at `azimuth` crosses the segment p -> q, as the fraction
+// of the way along it (none when it misses the segment's inside).
+std::optional<double> ray_crossing(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double azimuth) {
+  const Eigen::Vector2d d(std::cos(azimuth), std::sin(azimuth)), e = q - p;
+  const double denom = d.x() * e.y() - d.y() * e.x();  // d x e
+  if (std::abs(denom) < 1e-15) return std::nullopt;
+  const double t = (p.x() * d.y() - p.y() * d.x()) / denom;  // p + t e on the ray's line
+  const Eigen::Vector2d x = p + t * e;
+  if (!(t > 1e-12 && t < 1 - 1e-12) || x.dot(d) <= 0) return std::nullopt;
+  return t;
+}
+
+}  // namespace
+
+std::vector<SkirtPiece> skirt_pieces(const scenario::Scenario& s) {
+  const auto& h = s.housing;
+  const auto outline = deck_outline(s);
+  // Every azimuth a piece must end at: each opening's and each guard's (given by azimuths).
+  std::vector<double> cuts;
+  for (const auto& o : h.openings) cuts.insert(cuts.end(), {o.azimuth_from, o.azimuth_to});
+  for (const auto& g : h.guards)
+    if (g.along.empty()) cuts.insert(cuts.end(), {g.azimuth_from, g.azimuth_to});
+  std::vector<SkirtPiece> out;
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const auto& p = outline[i];
+    const auto& q = outline[(i + 1) % outline.size()];
+    const int pieces = std::max(1, static_cast<int>(std::ceil((q - p).norm() / 0.1)));
+    std::vector<double> at;
+    for (int k = 0; k <= pieces; ++k) at.push_back(static_cast<double>(k) / pieces);
+    for (const double a : cuts)
+      if (const auto t = ray_crossing(p, q, a)) at.push_back(*t);
+    std::sort(at.begin(), at.end());
+    for (std::size_t k = 0; k + 1 < at.size(); ++k) {
+      if (at[k + 1] - at[k] < 1e-9) continue;  // a cut at a piece's end
+      const Eigen::Vector2d a = p + (q - p) * at[k], b = p + (q - p) * at[k + 1], m = 0.5 * (a + b);
+      out.push_back({a, b, std::atan2(m.y(), m.x()), i});
+    }
+  }
+  return out;
+}
+
+std::vector<double> opening_widths(const scenario::Scenario& s) {
+  std::vector<double> widths(s.housing.openings.size(), 0.0);
+  if (mesh_roles(s).housing) return widths;
+  if (s.spindles.size() == 1 && s.spindles.front().x == 0.0 && s.spindles.front().y == 0.0 && s.housing.openings.empty()) return widths;
+  for (const auto& piece : skirt_pieces(s))
+    for (std::size_t o = 0; o < s.housing.openings.size(); ++o)
+      if (in_arc(piece.azimuth, s.housing.openings[o].azimuth_from, s.housing.openings[o].azimuth_to)) widths[o] += (piece.b - piece.a).norm();
+  return widths;
+}
+
+namespace {
+
 // A deck whose outline is a polygon (several spindles, or openings cut in the skirt): the
 // plate fanned from the centroid, the skirt in pieces of at most 0.1 m along the outline,
-// each piece cut away where an opening is, guards hanging below it (and across an
-// opening, up to its top).
+// split where an opening or a guard begins or ends (so that each is cut exactly at its
+// azimuths), each piece cut away where an opening is, guards hanging below it (and across
+// an opening, up to its top).
 void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_guard) {
   const auto& h = s.housing;
   const double deck_top = h.skirt_bottom + h.skirt_depth;
@@ -239,10 +294,11 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
     const auto& p = outline[i];
     const auto& q = outline[(i + 1) % outline.size()];
     soup.add_triangle(c, soup.add_point({p.x(), p.y(), deck_top}), soup.add_point({q.x(), q.y(), deck_top}), Surface::Housing);
-    const int pieces = std::max(1, static_cast<int>(std::ceil((q - p).norm() / 0.1)));
-    for (int k = 0; k < pieces; ++k) {
-      const Eigen::Vector2d a = p + (q - p) * k / pieces, b = p + (q - p) * (k + 1) / pieces, m = 0.5 * (a + b);
-      const double azimuth = std::atan2(m.y(), m.x());
+  }
+  {
+    for (const SkirtPiece& piece : skirt_pieces(s)) {
+      const Eigen::Vector2d &a = piece.a, &b = piece.b;
+      const double azimuth = piece.azimuth;
       auto quad = [&](double z0, double z1, Surface label, std::uint16_t guard) {
         if (z1 - z0 < 1e-6) return;
         soup.add_quad(soup.add_point({a.x(), a.y(), z0}), soup.add_point({b.x(), b.y(), z0}), soup.add_point({b.x(), b.y(), z1}),

@@ -35,6 +35,17 @@ DeckFootprint deck_footprint(const scenario::Scenario& s, const Soup& soup);
 // Beyond this horizontal distance a nail has left the test: 1 m past the farthest of
 // the board ring and every mesh surface but the ground.
 double escape_radius(const scenario::Scenario& s, const Soup& soup);
+// A generated polygon deck's skirt, piece by piece along its outline: pieces of at most
+// 0.1 m, split where an opening or a guard given by azimuths begins or ends, so that each
+// is cut exactly at its azimuths. `azimuth`: of the piece's middle, about the origin.
+struct SkirtPiece {
+  Eigen::Vector2d a, b;
+  double azimuth = 0;
+  std::size_t edge = 0;  // of the outline
+};
+std::vector<SkirtPiece> skirt_pieces(const scenario::Scenario& s);
+// Each opening's width as cut, along the deck's outline, m (0 on a mesh deck).
+std::vector<double> opening_widths(const scenario::Scenario& s);
 // The horizontal distance of the board's nearest point from the deck's centre (HUGE_VAL
 // without a board): a nail at rest nearer than it has not gone past the board.
 double board_near_radius(const Soup& soup);
