@@ -349,3 +349,37 @@ TEST_CASE("deck: an opening is cut exactly at its azimuths, and its width as cut
     CHECK(cut == Approx(walked).epsilon(1e-6));
   }
 }
+
+TEST_CASE("deck: a flap given by azimuths hangs across an opening to any height above the turf", "[deck][housing][input]") {
+  using Catch::Contains;
+  const std::string deck = kThree + R"(
+[housing]
+skirt_bottom = "1.5 in"
+[[housing.openings]]
+name = "rear"
+azimuth_from = "160 deg"
+azimuth_to = "200 deg"
+top = "5 in"
+)";
+  // A flap across the opening, its lower edge 2.5 in above the turf (above the skirt's foot).
+  const auto s = read(deck + "[[housing.guards]]\nname = \"flap\"\nazimuth_from = \"155 deg\"\nazimuth_to = \"205 deg\"\nbottom = \"2.5 in\"\n");
+  const auto soup = scene::build_scene_soup(s);
+  double lowest = HUGE_VAL, highest = 0, min_az = HUGE_VAL, max_az = -HUGE_VAL;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (soup.labels[t] == scene::Surface::Guard)
+      for (auto v : soup.triangles[t]) {
+        const auto& p = soup.points[v];
+        lowest = std::min(lowest, p.z()), highest = std::max(highest, p.z());
+        const double az = std::fmod(std::atan2(p.y(), p.x()) / units::degree + 360, 360);
+        min_az = std::min(min_az, az), max_az = std::max(max_az, az);
+      }
+  CHECK(lowest == Approx(2.5 * 0.0254));
+  CHECK(highest == Approx(5 * 0.0254));
+  CHECK(min_az == Approx(160).margin(1e-9));  // only across the opening: the skirt stands beside it
+  CHECK(max_az == Approx(200).margin(1e-9));
+  // Above the skirt's foot and spanning no opening (or above the opening's top), it would hang nowhere.
+  CHECK_THROWS_WITH(read(deck + "[[housing.guards]]\nazimuth_from = \"10 deg\"\nazimuth_to = \"50 deg\"\nbottom = \"2.5 in\"\n"),
+                    Contains("housing.guards[1].bottom") && Contains("would hang nowhere"));
+  CHECK_THROWS_WITH(read(deck + "[[housing.guards]]\nazimuth_from = \"150 deg\"\nazimuth_to = \"210 deg\"\nbottom = \"5.5 in\"\n"),
+                    Contains("would hang nowhere"));
+}

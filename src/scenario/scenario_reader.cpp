@@ -22,6 +22,20 @@ namespace {
 // Azimuths may be written beyond one turn ("-90 deg", "450 deg"), but not absurdly so.
 constexpr Range kAnyAzimuth = Range::between(-4 * units::pi, 4 * units::pi);
 
+// Whether two counter-clockwise arcs (from -> to) share more than an end: one's start lies
+// strictly inside the other.
+bool arcs_overlap(double from_a, double to_a, double from_b, double to_b) {
+  const auto span = [](double from, double to) {
+    const double s = std::fmod(std::fmod(to - from, units::two_pi) + units::two_pi, units::two_pi);
+    return s == 0 ? units::two_pi : s;
+  };
+  const auto inside = [&](double x, double from, double to) {
+    const double rel = std::fmod(std::fmod(x - from, units::two_pi) + units::two_pi, units::two_pi);
+    return rel > 0 && rel < span(from, to);
+  };
+  return inside(from_a, from_b, to_b) || inside(from_b, from_a, to_a) || std::abs(std::remainder(from_a - from_b, units::two_pi)) < 1e-12;
+}
+
 void read_nail(const TableReader& t, NailSpec& n) {
   // Plausible for any nail or similar small object a J232-like test could drop.
   n.length = t.quantity_or("length", Kind::Length, n.length, Range::between(0.005, 0.3));
@@ -94,15 +108,14 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
   h.skirt_depth = t.quantity_or("skirt_depth", Kind::Length, h.skirt_depth, Range::between(0.001, 1));
   h.friction = t.quantity_or("friction", Kind::Dimensionless, h.friction, Range::between(0, 2));
   if (auto r = t.table("restitution")) h.restitution = read_restitution(*r);
-  for (const auto& g : t.array_of_tables("guards")) {
+  const auto guard_tables = t.array_of_tables("guards");
+  for (const auto& g : guard_tables) {
     GuardSpec guard;
     read_guard(g, guard, true);
     if (!guard.along.empty()) {
       if (guard.top == 0.0) guard.top = h.skirt_bottom + h.skirt_depth;
       if (guard.bottom >= guard.top)
         throw g.error("bottom", fmt::format("expected the curtain's lower edge below its top ({} m)", guard.top));
-    } else if (guard.bottom >= h.skirt_bottom) {
-      throw g.error("bottom", fmt::format("expected the curtain's lower edge below the skirt bottom ({} m)", h.skirt_bottom));
     }
     g.refuse_unknown_keys();
     h.guards.push_back(guard);
@@ -122,6 +135,21 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
       throw o.error("chute_end_top", fmt::format("expected the chute's mouth above the skirt's bottom ({} m)", h.skirt_bottom));
     o.refuse_unknown_keys();
     h.openings.push_back(op);
+  }
+  // A guard given by azimuths hangs below the skirt and across the openings it spans, up
+  // to their tops: its lower edge may stand above the skirt's bottom (a flap hung across an
+  // opening to any height) only where it spans an opening whose top is above it.
+  for (std::size_t i = 0; i < h.guards.size(); ++i) {
+    const GuardSpec& guard = h.guards[i];
+    if (!guard.along.empty() || guard.bottom < h.skirt_bottom) continue;
+    bool hangs = false;
+    for (const auto& op : h.openings)
+      hangs = hangs || (arcs_overlap(guard.azimuth_from, guard.azimuth_to, op.azimuth_from, op.azimuth_to) && guard.bottom < op.top);
+    if (!hangs)
+      throw guard_tables[i].error(
+          "bottom", fmt::format("expected the curtain's lower edge below the skirt bottom ({} m), or below the top of an opening "
+                                "its azimuths span (it would hang nowhere)",
+                                h.skirt_bottom));
   }
   for (const auto& d : t.array_of_tables("deflectors")) {
     DeflectorSpec def;
