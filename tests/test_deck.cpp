@@ -383,3 +383,14 @@ top = "5 in"
   CHECK_THROWS_WITH(read(deck + "[[housing.guards]]\nazimuth_from = \"150 deg\"\nazimuth_to = \"210 deg\"\nbottom = \"5.5 in\"\n"),
                     Contains("would hang nowhere"));
 }
+
+TEST_CASE("deck: deck_top holds the plate where it is while the skirt's foot moves", "[deck][housing][input]") {
+  using Catch::Contains;
+  const auto with = [&](const std::string& housing) { return read(kThree + "[housing]\n" + housing); };
+  const auto low = with("skirt_bottom = \"1 in\"\ndeck_top = \"6 in\"\n"), high = with("skirt_bottom = \"3 in\"\ndeck_top = \"6 in\"\n");
+  CHECK(low.housing.skirt_bottom + low.housing.skirt_depth == Approx(6 * 0.0254));
+  CHECK(high.housing.skirt_bottom + high.housing.skirt_depth == Approx(6 * 0.0254));
+  CHECK(high.housing.skirt_depth == Approx(3 * 0.0254));
+  CHECK_THROWS_WITH(with("deck_top = \"6 in\"\nskirt_depth = \"4 in\"\n"), Contains("housing.deck_top") && Contains("not both"));
+  CHECK_THROWS_WITH(with("skirt_bottom = \"7 in\"\ndeck_top = \"6 in\"\n"), Contains("housing.deck_top") && Contains("above the skirt's bottom"));
+}

@@ -157,6 +157,7 @@ json housing_json(const scenario::HousingSpec& h, bool from_mesh, const std::vec
           {"openings", openings},
           {"skirt_bottom_m", h.skirt_bottom},
           {"skirt_depth_m", h.skirt_depth},
+          {"deck_top_m", h.skirt_bottom + h.skirt_depth},
           {"restitution", restitution_json(h.restitution)},
           {"friction", h.friction},
           {"guards", guards},

@@ -105,6 +105,16 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
     throw t.error("deck_radius", "with several spindles the deck's outline follows their tip circles; set housing.margin instead");
   if (auto r = t.optional_quantity("deck_radius", Kind::Length, Range::positive_up_to(10))) h.deck_radius = *r;
   h.skirt_bottom = t.quantity_or("skirt_bottom", Kind::Length, h.skirt_bottom, Range::between(0, 1));
+  // The deck plate's height may be given instead of the skirt's depth: then the skirt's
+  // bottom moves alone (a sweep of housing.skirt_bottom keeps the plate where it is; with
+  // skirt_depth it moves the whole deck).
+  if (t.has("deck_top") && t.has("skirt_depth"))
+    throw t.error("deck_top", "give either deck_top (the plate's height above ground) or skirt_depth, not both");
+  if (auto top = t.optional_quantity("deck_top", Kind::Length, Range::between(0.001, 2))) {
+    if (!(*top - h.skirt_bottom >= 0.001))
+      throw t.error("deck_top", fmt::format("expected the deck plate at least 1 mm above the skirt's bottom ({} m)", h.skirt_bottom));
+    h.skirt_depth = *top - h.skirt_bottom;
+  }
   h.skirt_depth = t.quantity_or("skirt_depth", Kind::Length, h.skirt_depth, Range::between(0.001, 1));
   h.friction = t.quantity_or("friction", Kind::Dimensionless, h.friction, Range::between(0, 2));
   if (auto r = t.table("restitution")) h.restitution = read_restitution(*r);
@@ -361,7 +371,7 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
   if (const MeshFile* deck = first([](MeshLabel l) { return l == MeshLabel::Housing; }))
     if (auto h = root.table("housing")) {
       const std::string replaces = fmt::format("the housing mesh {} replaces the generated deck and skirt", deck->path);
-      for (const char* key : {"deck_radius", "skirt_bottom", "skirt_depth", "margin", "openings"})
+      for (const char* key : {"deck_radius", "skirt_bottom", "skirt_depth", "deck_top", "margin", "openings"})
         if (h->has(key)) throw h->error(key, replaces + "; remove this key (housing.restitution and housing.friction still apply)");
       // Guards along the generated outline have no outline to follow; along a polyline
       // (with its own top) they hang anywhere. Deflectors stand on their own.
