@@ -394,3 +394,30 @@ TEST_CASE("deck: deck_top holds the plate where it is while the skirt's foot mov
   CHECK_THROWS_WITH(with("deck_top = \"6 in\"\nskirt_depth = \"4 in\"\n"), Contains("housing.deck_top") && Contains("not both"));
   CHECK_THROWS_WITH(with("skirt_bottom = \"7 in\"\ndeck_top = \"6 in\"\n"), Contains("housing.deck_top") && Contains("above the skirt's bottom"));
 }
+
+TEST_CASE("target: a board of shape outline stands its distance outside every tip circle", "[deck][housing][input]") {
+  using Catch::Contains;
+  auto s = read(kThree + "[target]\nshape = \"outline\"\ndistance = \"0.5 m\"\n");
+  REQUIRE(s.target.shape == scenario::TargetSpec::Shape::Outline);
+  const auto soup = scene::build_scene_soup(s);
+  std::vector<double> nearest(s.spindles.size(), HUGE_VAL);
+  std::size_t board = 0;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if (scene::is_target(soup.labels[t]))
+      for (auto v : soup.triangles[t]) {
+        ++board;
+        const auto& p = soup.points[v];
+        for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+          const double d = std::hypot(p.x() - s.spindles[k].x, p.y() - s.spindles[k].y) - s.spindles[k].blade.tip_radius();
+          nearest[k] = std::min(nearest[k], d);
+          CHECK(d >= 0.5 * std::cos(units::pi / 96) - 0.02);  // never nearer than the distance (a polygon's side aside)
+        }
+      }
+  REQUIRE(board > 100);
+  for (const double d : nearest) CHECK(d == Approx(0.5).margin(0.005));  // it follows every tip circle at the distance
+  // A ring about the centre stands that far outside the farthest tip only.
+  const auto ring = read(kThree + "[target]\ndistance = \"0.5 m\"\n");
+  CHECK(scene::target_radius(ring) == Approx(ring.reach() + 0.5));
+  CHECK(scene::target_radius(s) < ring.reach() + 0.5 + 1e-9);
+  CHECK_THROWS_WITH(read(kThree + "[target]\nshape = \"square\"\n"), Contains("target.shape") && Contains("outline"));
+}

@@ -279,8 +279,21 @@ std::string trajectories_side_svg(const scenario::Scenario& s, const std::vector
     chart.polyline(r, z, path_colour(t.why), labelled.insert(t.why).second ? "path: " + t.why : "", 1.0, 0.6);
   }
   if (!scene_has_target_mesh(s)) {
-    const double ring = s.reach() + s.target.distance;
-    chart.segments({ring}, {s.target.bottom}, {ring}, {s.target.top}, kBoardColour, "target board", 3);
+    if (s.target.shape == scenario::TargetSpec::Shape::Circle) {
+      const double ring = s.reach() + s.target.distance;
+      chart.segments({ring}, {s.target.bottom}, {ring}, {s.target.top}, kBoardColour, "target board", 3);
+    } else {  // a board along the deck stands at a range of distances from the centre
+      double nearest = HUGE_VAL, farthest = 0;
+      for (const auto& p : scene::board_outline(s)) farthest = std::max(farthest, p.norm());
+      const auto outline = scene::board_outline(s);
+      for (std::size_t i = 0; i < outline.size(); ++i) {  // nearest: to each side, not only to the corners
+        const Eigen::Vector2d &a = outline[i], &b = outline[(i + 1) % outline.size()], d = b - a;
+        const double t = std::clamp(-a.dot(d) / std::max(d.squaredNorm(), 1e-18), 0.0, 1.0);
+        nearest = std::min(nearest, (a + t * d).norm());
+      }
+      chart.segments({nearest, farthest}, {s.target.bottom, s.target.bottom}, {nearest, farthest}, {s.target.top, s.target.top}, kBoardColour,
+                     "target board (nearest and farthest)", 3);
+    }
   }
   chart.hline(s.blade_plane(), "#000", fmt::format("blade plane ({:.0f} mm)", 1000 * s.blade_plane()));
   chart.caption(paths_caption(paths, not_kept) + " Distance is from the origin, so a path that turns about it doubles back.");

@@ -166,8 +166,11 @@ json housing_json(const scenario::HousingSpec& h, bool from_mesh, const std::vec
 
 json target_json(const scenario::Scenario& s, bool from_mesh) {
   if (from_mesh) return {{"generated", false}};
-  return {{"generated", true},           {"distance_m", s.target.distance}, {"radius_m", s.reach() + s.target.distance},
-          {"bottom_m", s.target.bottom}, {"top_m", s.target.top},           {"segments", s.target.segments}};
+  if (s.target.shape == scenario::TargetSpec::Shape::Outline)
+    return {{"generated", true},        {"shape", "outline"}, {"distance_m", s.target.distance}, {"farthest_m", scene::target_radius(s)},
+            {"bottom_m", s.target.bottom}, {"top_m", s.target.top}, {"segments", s.target.segments}};
+  return {{"generated", true},           {"shape", "circle"},     {"distance_m", s.target.distance}, {"radius_m", s.reach() + s.target.distance},
+          {"bottom_m", s.target.bottom}, {"top_m", s.target.top}, {"segments", s.target.segments}};
 }
 
 json criteria_json(const scenario::CriteriaSpec& c) {
@@ -275,7 +278,10 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   if (scene::mesh_roles(s).target)
     a.push_back({"Target board: the scenario's target mesh(es)", "scenario (user geometry)"});
   else
-    a.push_back({fmt::format("Target ring {:.0f} mm outside the tip circle, {:.0f} to {:.0f} mm above ground", s.target.distance * 1e3,
+    a.push_back({fmt::format("Target {} {:.0f} mm outside {}, {:.0f} to {:.0f} mm above ground",
+                             s.target.shape == scenario::TargetSpec::Shape::Outline ? "board following the deck" : "ring about the deck's centre",
+                             s.target.distance * 1e3,
+                             s.target.shape == scenario::TargetSpec::Shape::Outline ? "every tip circle" : "the farthest tip",
                              s.target.bottom * 1e3, s.target.top * 1e3),
                  fmt::format("{} (ANSI B71.1 enclosure wording as stand-in)", params)});
   if (scene::mesh_roles(s).housing) {

@@ -164,6 +164,9 @@ struct MeshFile {
 };
 
 struct TargetSpec {
+  // A ring about the deck's centre at `distance` outside the farthest tip, or a wall that
+  // follows the deck: `distance` outside every spindle's tip circle (their convex hull).
+  enum class Shape { Circle, Outline } shape = Shape::Circle;
   double distance = 0.610;  // board wall outside the tip circle, m
   double bottom = 0.0;      // board bottom above ground, m
   double top = 0.0;         // default: blade height + 0.610 m

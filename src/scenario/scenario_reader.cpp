@@ -385,7 +385,7 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
     }
   if (const MeshFile* board = first(is_board))
     if (auto t = root.table("target"))
-      for (const char* key : {"distance", "bottom", "top", "segments"})
+      for (const char* key : {"distance", "bottom", "top", "segments", "shape"})
         if (t->has(key))
           throw t->error(key, fmt::format("the target mesh {} replaces the generated board ring; remove this key", board->path));
 }
@@ -408,6 +408,8 @@ void read_target(const TableReader& t, TargetSpec& target, double reach, double 
   target.bottom = t.quantity_or("bottom", Kind::Length, target.bottom, Range::between(0, 5));
   target.top = t.quantity_or("top", Kind::Length, target.top, Range::positive_up_to(10));
   target.segments = static_cast<int>(t.integer_or("segments", target.segments, 16, 3600));
+  const std::string shape = t.string_or("shape", "circle", {"circle", "outline"});
+  target.shape = shape == "outline" ? TargetSpec::Shape::Outline : TargetSpec::Shape::Circle;
   if (target.top <= target.bottom) throw t.error("top", "expected the board's top above its bottom");
   if (reach + target.distance <= deck_radius) throw t.error("distance", "expected the board outside the mower deck");
   t.refuse_unknown_keys();

@@ -78,15 +78,43 @@ void add_ground(Soup& soup, double half) {
   soup.add_quad(a, b, c, d, Surface::Ground);
 }
 
+std::optional<double> ray_crossing(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double azimuth);
+
 void add_target_ring(Soup& soup, const scenario::Scenario& s, const OperatorZone& zone) {
   std::vector<double> extra_az, extra_z;
   if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector) {
     extra_az = {s.zone.azimuth_from, s.zone.azimuth_to};
     extra_z = {s.zone.bottom, s.zone.top};
   }
-  const auto az = arc_breaks(0.0, units::two_pi, units::two_pi / s.target.segments, extra_az);
   const auto hz = height_breaks(s.target.bottom, s.target.top, 0.05, extra_z);
-  add_wall(soup, target_radius(s), az, hz, [&](const Vec3& c) { return zone.contains(c) ? Surface::TargetZone : Surface::TargetOutside; });
+  const auto label = [&](const Vec3& c) { return zone.contains(c) ? Surface::TargetZone : Surface::TargetOutside; };
+  if (s.target.shape == scenario::TargetSpec::Shape::Circle) {
+    const auto az = arc_breaks(0.0, units::two_pi, units::two_pi / s.target.segments, extra_az);
+    add_wall(soup, target_radius(s), az, hz, label);
+    return;
+  }
+  // Along the deck: the hull of the tip circles widened by the distance, in pieces as long
+  // as the ring's would be, split where an explicit zone's sector begins or ends.
+  const auto outline = board_outline(s);
+  const double piece = units::two_pi * target_radius(s) / s.target.segments;
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Eigen::Vector2d &p = outline[i], &q = outline[(i + 1) % outline.size()];
+    std::vector<double> at;
+    const int pieces = std::max(1, static_cast<int>(std::ceil((q - p).norm() / piece)));
+    for (int k = 0; k <= pieces; ++k) at.push_back(static_cast<double>(k) / pieces);
+    for (const double a : extra_az)
+      if (const auto t = ray_crossing(p, q, a)) at.push_back(*t);
+    std::sort(at.begin(), at.end());
+    for (std::size_t k = 0; k + 1 < at.size(); ++k) {
+      if (at[k + 1] - at[k] < 1e-9) continue;
+      const Eigen::Vector2d a = p + (q - p) * at[k], b = p + (q - p) * at[k + 1];
+      for (std::size_t h = 0; h + 1 < hz.size(); ++h) {
+        const Vec3 centre(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (hz[h] + hz[h + 1]));
+        soup.add_quad(soup.add_point({a.x(), a.y(), hz[h]}), soup.add_point({b.x(), b.y(), hz[h]}), soup.add_point({b.x(), b.y(), hz[h + 1]}),
+                      soup.add_point({a.x(), a.y(), hz[h + 1]}), label(centre));
+      }
+    }
+  }
 }
 
 // Splits triangles in four until no edge is longer than max_edge, so that a target
@@ -146,6 +174,18 @@ std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points) {
   }
   hull.resize(k - 1);
   return hull;
+}
+
+// The convex hull, counter-clockwise, of every spindle's tip circle widened by `distance`
+// (each circle a polygon of `segments` sides).
+std::vector<Eigen::Vector2d> widened_tip_hull(const scenario::Scenario& s, double distance, int segments) {
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& sp : s.spindles)
+    for (int i = 0; i < segments; ++i) {
+      const double a = units::two_pi * i / segments, r = sp.blade.tip_radius() + distance;
+      points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
+    }
+  return convex_hull(std::move(points));
 }
 
 // The deck's outline seen from above, counter-clockwise: the convex hull of every
@@ -340,7 +380,16 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
 
 }  // namespace
 
-double target_radius(const scenario::Scenario& s) { return s.reach() + s.target.distance; }
+std::vector<Eigen::Vector2d> board_outline(const scenario::Scenario& s) {
+  return widened_tip_hull(s, s.target.distance, std::max(96, s.target.segments / static_cast<int>(s.spindles.size())));
+}
+
+double target_radius(const scenario::Scenario& s) {
+  if (s.target.shape == scenario::TargetSpec::Shape::Circle) return s.reach() + s.target.distance;
+  double farthest = 0;
+  for (const auto& p : board_outline(s)) farthest = std::max(farthest, p.norm());
+  return farthest;
+}
 
 DeckFootprint deck_footprint(const scenario::Scenario& s, const Soup& soup) {
   DeckFootprint f;

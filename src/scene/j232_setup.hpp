@@ -12,7 +12,11 @@ namespace j232::scene {
 Soup build_scene_soup(const scenario::Scenario& s);
 
 // The radius of the generated target ring.
+// The generated board's farthest horizontal distance from the deck's centre (a ring's radius).
 double target_radius(const scenario::Scenario& s);
+// A board of shape "outline" seen from above, counter-clockwise: the convex hull of every
+// tip circle widened by the target's distance.
+std::vector<Eigen::Vector2d> board_outline(const scenario::Scenario& s);
 
 // What the scenario's meshes replace of the standard set-up: a ground mesh the generated
 // turf, a housing mesh the generated deck, skirt, guards and deflectors, a target (or
