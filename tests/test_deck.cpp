@@ -264,7 +264,7 @@ TEST_CASE("deck: a solid flap hung 6 mm behind an opening lets few more nails by
   // outside it: a channel narrower than a tumbling nail. Counted punctures outside the zone,
   // by the same random numbers. A point nail threads the channel (at d027670 the flush flap
   // let none by and the 6-mm one 0.31 % of nails); the capsule touching the skirt's and the
-  // flap's planes must not (docs/validation.md §3: 0.41 % and 0.48 % at 1000 replicates).
+  // flap's planes must not (docs/validation.md §3: 0.155 % and 0.253 % at 1000 replicates).
   std::ifstream in(scenario_path("highway-pivoted.toml"));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const auto replace = [&](std::string& s, const std::string& from, const std::string& to) {
@@ -288,6 +288,9 @@ TEST_CASE("deck: a solid flap hung 6 mm behind an opening lets few more nails by
                                           along));
     auto sc = read(s);
     sc.run.replicates = 150;
+    // Closed all round 1/4 in above the turf, a nail may ride round the skirt for hundreds
+    // of grazing bounces before it settles: the bounce limit is raised so that none is cut off.
+    sc.run.max_bounces = 1000;
     return sc;
   };
   const auto punctures_outside = [](const scenario::Scenario& sc) {
@@ -299,8 +302,8 @@ TEST_CASE("deck: a solid flap hung 6 mm behind an opening lets few more nails by
   };
   const auto flush = punctures_outside(with_flap(0.0)), gap = punctures_outside(with_flap(0.006));
   INFO("punctures outside the zone: " << flush << " with the flap flush, " << gap << " with it 6 mm out (of 22 500 nails)");
-  CHECK(flush > 30);
-  CHECK(gap < 2 * flush);  // measured 1.18x at 1000 replicates; the issue's bound is 3x
+  CHECK(flush > 15);
+  CHECK(gap < 3 * flush);  // measured 1.63x at 1000 replicates; the issue's bound is 3x
 }
 
 TEST_CASE("deck: an opening is cut exactly at its azimuths, and its width as cut is its stretch of the outline", "[deck][housing]") {
@@ -420,4 +423,32 @@ TEST_CASE("target: a board of shape outline stands its distance outside every ti
   CHECK(scene::target_radius(ring) == Approx(ring.reach() + 0.5));
   CHECK(scene::target_radius(s) < ring.reach() + 0.5 + 1e-9);
   CHECK_THROWS_WITH(read(kThree + "[target]\nshape = \"square\"\n"), Contains("target.shape") && Contains("outline"));
+}
+
+TEST_CASE("flap: a belting flap across the discharge turns nails back; none passes through it", "[deck][housing]") {
+  auto s = scenario::read_scenario(scenario_path("deck-72in-discharge-flap.toml"));
+  REQUIRE(s.housing.guards.size() == 1);
+  const auto& flap = s.housing.guards[0];
+  REQUIRE(flap.kind == scenario::GuardSpec::Kind::Flap);
+  const auto f = scene::flap_geometry(s, flap);
+  CHECK(f.hinge == Approx(6.5 * 0.0254));  // hung from the opening's top
+  CHECK(f.width == Approx(scene::opening_widths(s)[0]));
+  const assess::Simulator sim(s);
+  int flap_hits = 0, through_opening = 0;
+  for (std::uint64_t r = 0; r < 10; ++r)
+    for (int n = 0; n < s.feed.nails; ++n) {
+      const auto o = sim.simulate(r, n);
+      const auto& t = o.flight.trace;
+      for (int i = 0; i < std::min(t.touch_count, flight::NailTrace::kMaxTouches); ++i) {
+        CHECK(t.touches[static_cast<std::size_t>(i)] != flight::Touch::GuardPass);  // a solid plate
+        flap_hits += t.touches[static_cast<std::size_t>(i)] == flight::Touch::GuardBounce;
+      }
+      if (t.exit == flight::Exit::Opening) {
+        ++through_opening;
+        // Only under the flap: the centre within the nail's reach of its lower edge.
+        CHECK(t.exit_height < flap.bottom + 0.5 * s.nail.length + s.nail.diameter);
+      }
+    }
+  CHECK(flap_hits > 100);
+  CHECK(through_opening > 0);
 }

@@ -411,3 +411,21 @@ TEST_CASE("rebound: a tumbling rod off a wall creates no energy, separates, keep
   }
   CHECK(bounced > 1000);
 }
+
+TEST_CASE("rebound off a flap: a head-on strike is the 1-D collision with the flap's mass at the contact", "[flight][bounce]") {
+  const auto nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);
+  const Vec3 n(-1, 0, 0);  // the flap's face, facing the nail coming along +x
+  for (const double flap_mass : {1e9, 0.01, 0.002, 0.0005}) {
+    for (const double e : {0.0, 0.3, 1.0}) {
+      Vec3 v(30, 0, 0), w = Vec3::Zero();
+      // The nail's centre strikes (no arm): v' = v (m - e M) / (m + M).
+      flight::rebound(nail, Vec3::UnitZ(), Vec3::Zero(), n, e, 0.0, v, w, 1.0 / flap_mass);
+      const double m = nail.mass;
+      INFO("flap mass " << flap_mass << " kg, e " << e);
+      CHECK(v.x() == Approx(30 * (m - e * flap_mass) / (m + flap_mass)).margin(1e-9));
+      // No energy is created: what the nail lost, the flap took (and e < 1 dissipated).
+      const double flap_v = (30 - v.x()) * m / flap_mass;
+      CHECK(0.5 * m * v.squaredNorm() + 0.5 * flap_mass * flap_v * flap_v <= 0.5 * m * 900 * (1 + 1e-12));
+    }
+  }
+}

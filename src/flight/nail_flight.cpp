@@ -161,6 +161,7 @@ struct NailFlight {
     std::optional<strike::Contact> contact;
     std::optional<PlaneTouch> again;
     std::optional<scene::Hit> hit;
+    std::optional<PlaneTouch> touch;  // the capsule's first touch of the hit's plane (none: the centre's arrival)
   };
   bool event_check(double t_end, int& steps);
   Chord event_advance(double t_end) const;
@@ -191,11 +192,13 @@ struct NailFlight {
   }
   void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
   void reach_board(const scene::Hit& hit, const PlaneTouch& at, const Vec3& velocity);
-  std::optional<PlaneTouch> surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const;
+  std::optional<PlaneTouch> surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives,
+                                          double until = HUGE_VAL) const;
+  std::optional<PlaneTouch> plane_touch(const scene::Hit& hit, const strike::Motion& chord, double from, double until) const;
   // `arm`: the touching point from the centre (in flight; null: the nail slides on the
   // ground and bounces as a point).
   bool respond(const scene::Hit& hit, const Vec3* arm = nullptr);
-  void bounce_off(const Vec3& n, double e, double mu, const Vec3* arm);
+  void bounce_off(const Vec3& n, double e, double mu, const Vec3* arm, double surface_inverse_mass = 0.0);
   bool slide(const scene::Hit& hit);
   bool after_bounce(const scene::Hit& hit);
   std::optional<scene::Hit> last_plane{};  // the surface last bounced off (not a guard passed through)
@@ -350,15 +353,20 @@ void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool p
 // the time the centre was that far from the plane, but never before the chord's start:
 // what happened before it is history (its events are told), and a capsule already on the
 // plane there meets it there.
-std::optional<PlaneTouch> NailFlight::surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives) const {
+std::optional<PlaneTouch> NailFlight::surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives,
+                                                    double until) const {
   const double closing = std::max(1e-3, -hit.normal.dot(chord.velocity(centre_arrives)));
   const double reach = nail.half_segment() + nail.radius() + 1e-3;
-  const double from = std::max(chord.t0, centre_arrives - 2 * reach / closing);
+  return plane_touch(hit, chord, std::max(chord.t0, centre_arrives - 2 * reach / closing), std::min(centre_arrives, until));
+}
+
+// The capsule's first touch of the plane of `hit` within [from, until].
+std::optional<PlaneTouch> NailFlight::plane_touch(const scene::Hit& hit, const strike::Motion& chord, double from, double until) const {
   // The plane it last bounced off (its face or a face beside it in that plane): the touch it
   // is leaving is no new one.
   const bool same_plane = last_plane && last_plane->normal.dot(hit.normal) > 1 - 1e-12 &&
                           std::abs(hit.normal.dot(hit.point - last_plane->point)) < 1e-9;
-  return first_plane_touch(chord, nail, hit.point, hit.normal, from, centre_arrives, same_plane);
+  return first_plane_touch(chord, nail, hit.point, hit.normal, from, until, same_plane);
 }
 
 // The nail moved along the chord to where it touches a surface; returns the touching
@@ -418,11 +426,14 @@ void NailFlight::reach_board(const scene::Hit& hit, const PlaneTouch& at, const 
 // What the surface at `hit` does to the nail arriving as `b`. Returns false when the nail stops.
 // A bounce with restitution e and friction mu off the surface with normal n: at the touching
 // point as a rigid body when there is one, else at the centre.
-void NailFlight::bounce_off(const Vec3& n, double e, double mu, const Vec3* arm) {
+// A surface that gives (a flap on its hinge) has the inverse of its mass at the contact.
+void NailFlight::bounce_off(const Vec3& n, double e, double mu, const Vec3* arm, double surface_inverse_mass) {
   // A touching point that does not move into the surface while the centre does (found on
   // the plane already): the centre's bounce, so that no surface is crossed.
   if (arm && (b.velocity + b.spin.cross(*arm)).dot(n) < 0)
-    rebound(nail, b.axis, *arm, n, e, mu, b.velocity, b.spin);
+    rebound(nail, b.axis, *arm, n, e, mu, b.velocity, b.spin, surface_inverse_mass);
+  else if (surface_inverse_mass > 0 && b.velocity.dot(n) < 0)
+    rebound(nail, b.axis, Vec3::Zero(), n, e, mu, b.velocity, b.spin, surface_inverse_mass);
   else
     b.velocity = bounce(b.velocity, n, e, mu);
 }
@@ -448,6 +459,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
         return true;
       }
       break;  // else it bounces off the curtain
+    case SurfaceMaterial::Response::Flap:
     case SurfaceMaterial::Response::Bounce: break;
   }
   // The facet the nail meets: on a rough surface the local normal, tilted at random; one it
@@ -464,7 +476,12 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
     const double speed = v_in.norm();
     if (speed > 0) angle = std::asin(std::clamp(-v_in.dot(facet) / speed, 0.0, 1.0));
   }
-  bounce_off(facet, material.restitution(std::max(-v_in.dot(n), 1e-9), angle), material.friction, arm);
+  // A flap swings about its hinge: at the contact's depth below it, it moves as a mass
+  // I / d^2 along its normal (at rest before the impact: it is taken to have swung back
+  // between one nail's contacts, a stated simplification).
+  const double contact_height = arm ? b.position.z() + arm->z() : hit.point.z();
+  const double give = material.response == SurfaceMaterial::Response::Flap ? 1.0 / material.flap_mass_at(contact_height) : 0.0;
+  bounce_off(facet, material.restitution(std::max(-v_in.dot(n), 1e-9), angle), material.friction, arm, give);
   // A rough facet cannot send a point-like bounce into the surface. (A tumbling rod's centre
   // may still move into it after a rigid rebound at one end: its next touch is searched.)
   if (material.roughness > 0) {
@@ -614,9 +631,24 @@ NailFlight::NextEvent NailFlight::event_find(const Chord& c) {
   NextEvent e;
   const double chord_end = b.time + c.dt;
   ++r.queries;
-  e.hit = ctx.scene->first_hit(b.position, c.step / c.len, c.len, skip);
+  // The centre's ray looks beyond the chord's end by a few of the nail's reaches: a surface
+  // met there is the chord's event when the tumbling capsule reaches its plane within the
+  // chord (its end crosses a wall the centre has yet to reach), so that no part of the nail
+  // is through a wall when its centre's ray finds it.
+  const double look_ahead = 4 * (nail.half_segment() + nail.radius());
+  e.hit = ctx.scene->first_hit(b.position, c.step / c.len, c.len + look_ahead, skip);
   // The centre meets the surface at the share of the chord's time its ray has travelled.
-  const double hit_time = e.hit ? b.time + c.dt * e.hit->distance / c.len : chord_end;
+  double hit_time = chord_end;
+  if (e.hit) {
+    const double centre_arrives = b.time + c.dt * e.hit->distance / c.len;
+    e.touch = surface_touch(*e.hit, c.motion, centre_arrives, chord_end);
+    if (e.touch)
+      hit_time = e.touch->time;
+    else if (e.hit->distance <= c.len)
+      hit_time = centre_arrives;  // (never expected: the centre reaching the plane means the capsule did)
+    else
+      e.hit.reset();  // beyond the chord, and not reached within it
+  }
   if (last_plane && last_plane->normal.dot(b.position - last_plane->point) < nail.half_segment() + nail.radius() + c.len)
     e.again = first_plane_touch(c.motion, nail, last_plane->point, last_plane->normal, b.time, chord_end, true);
   if (e.again && !(e.again->time < hit_time)) e.again.reset();
@@ -655,14 +687,20 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
   const scene::Hit& hit = *e.hit;
   touched_scene();
   // The capsule touches the surface's plane before its centre gets there (by up to half
-  // its length), at the point its tumbling has turned nearest.
+  // its length), at the point its tumbling has turned nearest (found with the event).
   const double to_hit = c.dt * hit.distance / c.len;
-  const auto at = surface_touch(hit, c.motion, b.time + to_hit);
+  const auto& at = e.touch;
   if (set.materials.of(hit.surface, hit.guard).response == SurfaceMaterial::Response::Board) {
+    if (at) {
+      const Vec3 velocity = c.motion.velocity(at->time);
+      meet(*at, c.motion);
+      reach_board(hit, *at, velocity);
+      return false;
+    }
     moved(b.position, hit.point);
     b = advance(b, to_hit, c.drag, c.accel);
     b.position = hit.point;
-    reach_board(hit, at ? *at : centre_touching(b, hit.point), at ? c.motion.velocity(at->time) : b.velocity);
+    reach_board(hit, centre_touching(b, hit.point), b.velocity);
     return false;
   }
   skip = {};

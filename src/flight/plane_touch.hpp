@@ -37,12 +37,14 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
 //     1 / m_eff = n . (I / m - [r]x I^-1 [r]x) n = 1/m + (r x n) . I^-1 (r x n).
 double effective_mass(const projectile::Projectile& nail, const Vec3& axis, const Vec3& r, const Vec3& n);
 
-// The nail's rebound off an immovable surface with normal n (facing the nail) at the point
-// `arm` from its centre: Poisson's restitution e and Coulomb friction mu through the impulse
-// of strike/impulse.hpp with the surface's compliance zero, so that the bounce changes the
-// spin as well as the velocity (docs/model.md §5.3). The spin about the nail's own axis is
-// left out, as after a blade contact. Nothing happens when that point is not approaching.
+// The nail's rebound off a surface with normal n (facing the nail) at the point `arm` from
+// its centre: Poisson's restitution e and Coulomb friction mu through the impulse of
+// strike/impulse.hpp, so that the bounce changes the spin as well as the velocity
+// (docs/model.md §5.3). The surface is immovable, or (a flap swinging on its hinge) moves
+// along n only, as a mass 1 / surface_inverse_mass at the contact, at rest before it. The
+// spin about the nail's own axis is left out, as after a blade contact. Nothing happens
+// when that point is not approaching.
 void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& arm, const Vec3& n, double e, double mu, Vec3& velocity,
-             Vec3& spin);
+             Vec3& spin, double surface_inverse_mass = 0.0);
 
 }  // namespace j232::flight

@@ -1,5 +1,7 @@
 #include "flight/surface_material.hpp"
 
+#include "scene/j232_setup.hpp"
+
 namespace j232::flight {
 
 SurfaceMaterials::SurfaceMaterials(const scenario::Scenario& s, const std::vector<scenario::GuardSpec>& guards) {
@@ -19,15 +21,22 @@ SurfaceMaterials::SurfaceMaterials(const scenario::Scenario& s, const std::vecto
   board.response = SurfaceMaterial::Response::Board;
   kinds_[static_cast<std::size_t>(scene::Surface::TargetOutside)] = board;
   kinds_[static_cast<std::size_t>(scene::Surface::TargetZone)] = board;
-  SurfaceMaterial curtain;
-  curtain.response = SurfaceMaterial::Response::Curtain;
   // (No row of kinds_ for guards: every guard has its own, below; of() looks there.)
   for (const auto& g : guards) {
-    curtain.by_speed = blade::Restitution::constant(g.restitution);
-    curtain.friction = g.friction;
-    curtain.openness = g.openness;
-    curtain.pass_speed_factor = g.pass_speed_factor;
-    guards_.push_back(curtain);
+    SurfaceMaterial guard;
+    guard.response = g.kind == scenario::GuardSpec::Kind::Flap ? SurfaceMaterial::Response::Flap : SurfaceMaterial::Response::Curtain;
+    guard.by_speed = blade::Restitution::constant(g.restitution);
+    guard.friction = g.friction;
+    guard.openness = g.openness;
+    guard.pass_speed_factor = g.pass_speed_factor;
+    if (g.kind == scenario::GuardSpec::Kind::Flap) {
+      const scene::FlapGeometry f = scene::flap_geometry(s, g);
+      const double width = g.panel_width > 0 ? std::min(g.panel_width, f.width) : f.width;
+      const double height = f.hinge - f.bottom, mass = g.density * g.thickness * width * height;
+      guard.hinge_height = f.hinge;
+      guard.flap_inertia = mass * height * height / 3;  // a uniform plate about its edge
+    }
+    guards_.push_back(guard);
   }
 }
 

@@ -5,11 +5,14 @@
 // scenario's sections. The rows:
 //   housing, deflector: steel plate; restitution falls with the normal speed (a power law),
 //       Coulomb friction;
-//   guard: a chain or belting curtain; a nail slips between the links with probability
+//   guard, chains: a curtain; a nail slips between the links with probability
 //       `openness` keeping `pass_speed_factor` of its speed, or bounces (constant e);
+//   guard, flap: a plate hinged at its top that the nail's impulse swings (the flap's mass
+//       felt at the contact, I_hinge / d^2), with its restitution and friction;
 //   ground: turf; restitution by the impact's angle to the surface, friction, and a
 //       random tilt of the local normal (roughness); it holds a nail up (rest and sliding);
 //   board (target, operator zone): judged by the board model, not bounced off.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -21,7 +24,7 @@
 namespace j232::flight {
 
 struct SurfaceMaterial {
-  enum class Response : std::uint8_t { Bounce, Curtain, Board };
+  enum class Response : std::uint8_t { Bounce, Curtain, Flap, Board };
   Response response = Response::Bounce;
   // Normal restitution: by the normal approach speed, or (turf) by the impact's angle.
   bool by_angle = false;
@@ -31,6 +34,14 @@ struct SurfaceMaterial {
   double roughness = 0.0;  // rad: std. dev. of the local normal's tilt (0: smooth)
   double openness = 0.0, pass_speed_factor = 1.0;  // a curtain's
   bool holds_up = false;  // a nail can slide and come to rest on it
+  // A flap (Response::Flap): a plate hinged at `hinge_height` with moment of inertia
+  // `flap_inertia` about its hinge (kg m^2, of the width that swings as one). Struck at
+  // depth d below the hinge along its normal it moves as a mass I / d^2 there.
+  double hinge_height = 0, flap_inertia = 0;
+  double flap_mass_at(double height) const {
+    const double d = std::max(hinge_height - height, 1e-3);
+    return flap_inertia / (d * d);
+  }
 
   // e for an impact at normal speed `normal_speed` whose path makes `angle` (rad) with the surface.
   double restitution(double normal_speed, double angle) const {

@@ -68,11 +68,12 @@ json guard_json(const scenario::GuardSpec& g) {
     j.update({{"azimuth_from_deg", g.azimuth_from / units::degree}, {"azimuth_to_deg", g.azimuth_to / units::degree}});
   else
     j.update({{"along_m", g.along}, {"top_m", g.top}});
-  j.update({{"bottom_m", g.bottom},
-            {"openness", g.openness},
-            {"pass_speed_factor", g.pass_speed_factor},
-            {"restitution", g.restitution},
-            {"friction", g.friction}});
+  j.update({{"kind", g.kind == scenario::GuardSpec::Kind::Flap ? "flap" : "chains"}, {"bottom_m", g.bottom}});
+  if (g.kind == scenario::GuardSpec::Kind::Flap)
+    j.update({{"thickness_m", g.thickness}, {"density_kg_m3", g.density}, {"panel_width_m", g.panel_width}});
+  else
+    j.update({{"openness", g.openness}, {"pass_speed_factor", g.pass_speed_factor}});
+  j.update({{"restitution", g.restitution}, {"friction", g.friction}});
   return j;
 }
 
@@ -298,7 +299,18 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     a.push_back({deck, "scenario"});
   }
   // Every guard with every parameter the flight uses, given or default.
-  for (const auto& g : s.housing.guards)
+  for (const auto& g : s.housing.guards) {
+    if (g.kind == scenario::GuardSpec::Kind::Flap) {
+      const auto f = scene::flap_geometry(s, g);
+      const double width = g.panel_width > 0 ? std::min(g.panel_width, f.width) : f.width;
+      a.push_back({fmt::format("Flap '{}': a plate hinged {:.0f} mm above ground, down to {:.0f} mm, {:.0f} mm wide swinging as one; "
+                               "{:.1f} mm thick at {:g} kg/m3 ({:.3f} kg); restitution {:g}, friction {:g}; taken at rest at each "
+                               "impact (swung back between contacts); nails do not pass it",
+                               g.name, f.hinge * 1e3, f.bottom * 1e3, width * 1e3, g.thickness * 1e3, g.density,
+                               g.density * g.thickness * width * (f.hinge - f.bottom), g.restitution, g.friction),
+                   "scenario, or estimates where not given (belting 6 mm, 1200 kg/m3)"});
+      continue;
+    }
     a.push_back({fmt::format("Guard '{}' ({}): {:.0f} to {:.0f} mm above ground; nails pass between its links with probability "
                              "{:g}, keeping {:g} of their speed; restitution {:g}, friction {:g}",
                              g.name,
@@ -308,6 +320,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                              g.bottom * 1e3, (g.along.empty() ? s.housing.skirt_bottom : g.top) * 1e3, g.openness, g.pass_speed_factor,
                              g.restitution, g.friction),
                  "scenario, or estimates where not given (openness, speed kept: no published chain-curtain figures)"});
+  }
   a.push_back({s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector
                    ? std::string("Operator zone: explicit sector of the board")
                    : fmt::format("Operator zone: board seen from the blade toward the 95th-percentile reach envelope of "

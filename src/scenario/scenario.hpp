@@ -93,8 +93,15 @@ struct OpeningSpec {  // a discharge opening: the skirt is cut away between two 
   double chute_end_top = 0.0;  // roof height at the chute's mouth (default: the opening's top)
 };
 
-struct GuardSpec {  // chain or belting curtain
+struct GuardSpec {  // a chain curtain, or a belting flap
   std::string name = "guard";
+  // Chains: a porous curtain (openness, pass_speed_factor). A flap: a solid plate hinged at
+  // its top edge that a nail swings as it strikes it (docs/model.md §5.3): its thickness,
+  // density, and the width that swings as one (0: the whole flap).
+  enum class Kind { Chains, Flap } kind = Kind::Chains;
+  double thickness = 0.006;  // m, flap: belting (estimate: 1/4 in conveyor belting)
+  double density = 1200;     // kg/m^3, flap: rubber belting (estimate: 1100-1400 for rubber compounds)
+  double panel_width = 0.0;  // m, flap: the width that swings as one plate (0: the whole flap)
   // Where it hangs: below the skirt along the deck's outline between two azimuths (rad,
   // counter-clockwise from -> to), or, when `along` is given, along that polyline from
   // `top` down to `bottom` (a curtain on its own bracket; any deck, meshes included).

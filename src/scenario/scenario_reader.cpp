@@ -91,6 +91,19 @@ void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry) {
     }
     g.bottom = t.quantity_or("bottom", Kind::Length, g.bottom, Range::between(0, 1));
   }
+  const std::string kind = t.string_or("kind", "chains", {"chains", "flap"});
+  g.kind = kind == "flap" ? GuardSpec::Kind::Flap : GuardSpec::Kind::Chains;
+  if (g.kind == GuardSpec::Kind::Flap) {
+    for (const char* key : {"openness", "pass_speed_factor"})
+      if (t.has(key)) throw t.error(key, "a flap is a solid plate: nails do not pass between links (set kind = \"chains\" for a curtain)");
+    g.openness = 0.0, g.pass_speed_factor = 1.0;
+    g.thickness = t.quantity_or("thickness", Kind::Length, g.thickness, Range::between(0.0005, 0.05));
+    g.density = t.quantity_or("density", Kind::Density, g.density, Range::between(100, 10000));
+    g.panel_width = t.quantity_or("panel_width", Kind::Length, 0.0, Range::between(0.01, 10));
+  } else {
+    for (const char* key : {"thickness", "density", "panel_width"})
+      if (t.has(key)) throw t.error(key, "only a flap (kind = \"flap\") has this; a chain curtain has openness and pass_speed_factor");
+  }
   g.openness = t.quantity_or("openness", Kind::Dimensionless, g.openness, Range::UnitInterval);
   g.pass_speed_factor = t.quantity_or("pass_speed_factor", Kind::Dimensionless, g.pass_speed_factor, Range::UnitInterval);
   g.restitution = t.quantity_or("restitution", Kind::Dimensionless, g.restitution, Range::UnitInterval);

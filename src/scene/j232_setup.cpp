@@ -304,6 +304,27 @@ std::vector<SkirtPiece> skirt_pieces(const scenario::Scenario& s) {
   return out;
 }
 
+FlapGeometry flap_geometry(const scenario::Scenario& s, const scenario::GuardSpec& g) {
+  FlapGeometry f;
+  f.bottom = g.bottom;
+  if (!g.along.empty()) {
+    f.hinge = g.top;
+    for (std::size_t i = 0; i + 1 < g.along.size(); ++i) f.width += std::hypot(g.along[i + 1][0] - g.along[i][0], g.along[i + 1][1] - g.along[i][1]);
+    return f;
+  }
+  f.hinge = s.housing.skirt_bottom;  // below the skirt it hangs from the skirt's foot
+  for (const auto& piece : skirt_pieces(s)) {
+    if (!in_arc(piece.azimuth, g.azimuth_from, g.azimuth_to)) continue;
+    double top = s.housing.skirt_bottom;
+    for (const auto& o : s.housing.openings)
+      if (in_arc(piece.azimuth, o.azimuth_from, o.azimuth_to)) top = std::max(top, o.top);
+    if (top <= g.bottom) continue;  // it hangs nowhere here
+    f.hinge = std::max(f.hinge, top);
+    f.width += (piece.b - piece.a).norm();
+  }
+  return f;
+}
+
 std::vector<double> opening_widths(const scenario::Scenario& s) {
   std::vector<double> widths(s.housing.openings.size(), 0.0);
   if (mesh_roles(s).housing) return widths;

@@ -48,6 +48,13 @@ struct SkirtPiece {
   std::size_t edge = 0;  // of the outline
 };
 std::vector<SkirtPiece> skirt_pieces(const scenario::Scenario& s);
+// A flap's hinge (its top edge's height above ground), lower edge, and width along where it
+// hangs: along a polyline, its top and the polyline's length; given by azimuths, across the
+// openings it spans, up to their tops, the skirt pieces it hangs on.
+struct FlapGeometry {
+  double hinge = 0, bottom = 0, width = 0;
+};
+FlapGeometry flap_geometry(const scenario::Scenario& s, const scenario::GuardSpec& g);
 // Each opening's width as cut, along the deck's outline, m (0 on a mesh deck).
 std::vector<double> opening_widths(const scenario::Scenario& s);
 // The horizontal distance of the board's nearest point from the deck's centre (HUGE_VAL
