@@ -620,7 +620,7 @@ TEST_CASE("warnings: a cut-off share nearing the invalidity limit names the limi
   const auto near = with_cut_offs(2, 3);
   CHECK(near.validity.valid);
   REQUIRE(mentions(near.warnings, "cut off"));
-  CHECK(mentions(near.warnings, "3 by [run] max_bounces (100), 2 by [run] time_limit (3 s)"));
+  CHECK(mentions(near.warnings, "3 by [run] max_bounces (400), 2 by [run] time_limit (3 s)"));
   CHECK(near.cut_off_by[static_cast<std::size_t>(flight::CutOff::MaxBounces)] == 3);
   // 1.5 %: invalid, and the reason names them too.
   const auto invalid = with_cut_offs(15, 0);

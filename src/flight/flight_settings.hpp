@@ -13,7 +13,7 @@ namespace j232::flight {
 struct FlightSettings {
   double chord_tolerance = 0.001;  // m: the most a chord may sag from the path
   double time_limit = 3.0;         // s of flight per nail
-  int max_bounces = 100;
+  int max_bounces = 400;
   double rest_speed = 0.3;  // m/s: slower after a bounce (and turning slower at its ends) is at rest
   scenario::BoardSpec board;
   // The generated deck's discharge openings, for naming the way out.

@@ -231,7 +231,7 @@ struct RunSpec {
   long long max_replicates = 100000;
   double chord_tolerance = 0.001;  // max sag of a flight chord, m
   double time_limit = 3.0;         // s of flight per nail
-  int max_bounces = 100;
+  int max_bounces = 400;  // a tumbling rod bounces about 15 times a flight; nails riding round a closed skirt, hundreds
   double rest_speed = 0.3;  // m/s: slower after a bounce is at rest
   // How blade contacts are searched: conservative advancement, or the fixed-step reference
   // it is validated against (about 300 times slower; docs/validation.md).
