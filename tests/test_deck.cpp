@@ -16,6 +16,7 @@
 #include "scenario/scenario_reader.hpp"
 #include "scene/j232_setup.hpp"
 #include "units/quantity.hpp"
+#include "report/scenario_json.hpp"
 
 using namespace j232;
 
@@ -451,4 +452,21 @@ TEST_CASE("flap: a belting flap across the discharge turns nails back; none pass
     }
   CHECK(flap_hits > 100);
   CHECK(through_opening > 0);
+}
+
+TEST_CASE("estimates: inputs the author marks as estimates are listed among the assumptions as written", "[deck][input]") {
+  using Catch::Contains;
+  const auto s = read("estimates = [\"housing.skirt_bottom\", \"blades.bar.speed\"]\n" + kThree + "[housing]\nskirt_bottom = \"1.5 in\"\n");
+  REQUIRE(s.estimates.size() == 2);
+  const auto listed = report::assumptions(s);
+  const auto has = [&](const std::string& what) {
+    return std::any_of(listed.begin(), listed.end(), [&](const report::Assumption& a) { return a.what == what && a.source.find("estimate") != std::string::npos; });
+  };
+  CHECK(has("housing.skirt_bottom = 1.5 in"));
+  CHECK(has("blades.bar.speed = 2700 rpm"));
+  // A key naming no value (a misspelling, a table, an array of tables) is refused.
+  CHECK_THROWS_WITH(read("estimates = [\"housing.skirt_botom\"]\n" + kThree + "[housing]\nskirt_bottom = \"1.5 in\"\n"),
+                    Contains("estimates") && Contains("housing.skirt_botom") && Contains("names no value"));
+  CHECK_THROWS_WITH(read("estimates = [\"spindles\"]\n" + kThree), Contains("names no value"));
+  CHECK_THROWS_WITH(read("estimates = \"housing\"\n" + kThree), Contains("array of"));
 }

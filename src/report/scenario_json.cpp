@@ -298,6 +298,10 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     }
     a.push_back({deck, "scenario"});
   }
+  for (const auto& e : s.estimates) {
+    const bool quoted = e.value.size() >= 2 && e.value.front() == '"' && e.value.back() == '"';
+    a.push_back({fmt::format("{} = {}", e.key, quoted ? e.value.substr(1, e.value.size() - 2) : e.value), "the scenario's author: an estimate"});
+  }
   // Every guard with every parameter the flight uses, given or default.
   for (const auto& g : s.housing.guards) {
     if (g.kind == scenario::GuardSpec::Kind::Flap) {

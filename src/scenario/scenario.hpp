@@ -261,6 +261,12 @@ struct UncertaintySpec {
 struct Scenario {
   std::string file;
   std::string title;
+  // Inputs the scenario's author marks as estimates (`estimates = ["housing.skirt_bottom"]`):
+  // each key and its value as written, listed among the report's assumptions.
+  struct MarkedEstimate {
+    std::string key, value;
+  };
+  std::vector<MarkedEstimate> estimates;
   std::vector<SpindleSpec> spindles = std::vector<SpindleSpec>(1);     // at least one; [blade]: one at the origin
   blade::Restitution restitution = blade::Restitution::constant(0.9);  // nail on blade
   NailSpec nail;

@@ -524,6 +524,14 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto a = root.table("air")) read_air(*a, s.air);
   if (auto r = root.table("run")) read_run(*r, s.run);
   if (auto u = root.table("uncertainty")) read_uncertainty(*u, s.uncertainty);
+  for (const auto& key : root.strings("estimates")) {
+    const auto value = root.value_at(key);
+    if (!value)
+      throw root.error("estimates", fmt::format("\"{}\" names no value of this scenario; expected dotted keys of values it sets, "
+                                                "such as \"housing.skirt_bottom\" or \"blade.speed\"",
+                                                key));
+    s.estimates.push_back({key, *value});
+  }
   root.refuse_unknown_keys();
   return s;
 }

@@ -166,6 +166,36 @@ std::string TableReader::string_or(std::string_view key, std::string fallback, c
   throw error(key, fmt::format("expected one of {}", choices));
 }
 
+std::vector<std::string> TableReader::strings(std::string_view key, std::size_t max) const {
+  const toml::node* n = node(key);
+  std::vector<std::string> out;
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (!a || a->size() > max) throw error(key, fmt::format("expected an array of at most {} strings", max));
+  for (const auto& item : *a) {
+    auto s = item.value_exact<std::string>();
+    if (!s) throw error(key, "expected an array of strings");
+    out.push_back(*s);
+  }
+  return out;
+}
+
+std::optional<std::string> TableReader::value_at(std::string_view dotted) const {
+  const toml::node* n = table_;
+  std::size_t from = 0;
+  while (n) {
+    const std::size_t dot = dotted.find('.', from);
+    const std::string_view part = dotted.substr(from, dot == std::string_view::npos ? std::string_view::npos : dot - from);
+    const toml::table* t = n->as_table();
+    if (!t || part.empty()) return std::nullopt;
+    n = t->get(part);
+    if (dot == std::string_view::npos) break;
+    from = dot + 1;
+  }
+  if (!n || n->is_table() || n->is_array_of_tables()) return std::nullopt;
+  return shown(*n);
+}
+
 double TableReader::percentage_or(std::string_view key, double fallback) const {
   const toml::node* n = node(key);
   if (!n) return fallback;

@@ -60,6 +60,11 @@ class TableReader {
                                             std::size_t max_points) const;
 
   std::string string_or(std::string_view key, std::string fallback, const std::vector<std::string>& allowed) const;
+  // An array of strings (none: empty).
+  std::vector<std::string> strings(std::string_view key, std::size_t max = 256) const;
+  // The value at a dotted path below this table ("housing.skirt_bottom"), as the user wrote
+  // it; none when the path names no value (a table, an array of tables, nothing).
+  std::optional<std::string> value_at(std::string_view dotted) const;
   bool boolean_or(std::string_view key, bool fallback) const;
   // A percentage written with its unit ("0.5 %"), 0 to 100 %, as a fraction.
   double percentage_or(std::string_view key, double fallback) const;
