@@ -192,8 +192,7 @@ struct NailFlight {
   }
   void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
   void reach_board(const scene::Hit& hit, const PlaneTouch& at, const Vec3& velocity);
-  std::optional<PlaneTouch> surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives,
-                                          double until = HUGE_VAL) const;
+  std::optional<PlaneTouch> surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives, double until) const;
   std::optional<PlaneTouch> plane_touch(const scene::Hit& hit, const strike::Motion& chord, double from, double until) const;
   // `arm`: the touching point from the centre (in flight; null: the nail slides on the
   // ground and bounces as a point).

@@ -31,8 +31,7 @@ SurfaceMaterials::SurfaceMaterials(const scenario::Scenario& s, const std::vecto
     guard.pass_speed_factor = g.pass_speed_factor;
     if (g.kind == scenario::GuardSpec::Kind::Flap) {
       const scene::FlapGeometry f = scene::flap_geometry(s, g);
-      const double width = g.panel_width > 0 ? std::min(g.panel_width, f.width) : f.width;
-      const double height = f.hinge - f.bottom, mass = g.density * g.thickness * width * height;
+      const double height = f.hinge - f.bottom, mass = g.density * g.thickness * f.swinging * height;
       guard.hinge_height = f.hinge;
       guard.flap_inertia = mass * height * height / 3;  // a uniform plate about its edge
     }

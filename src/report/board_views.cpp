@@ -284,8 +284,8 @@ std::string trajectories_side_svg(const scenario::Scenario& s, const std::vector
       chart.segments({ring}, {s.target.bottom}, {ring}, {s.target.top}, kBoardColour, "target board", 3);
     } else {  // a board along the deck stands at a range of distances from the centre
       double nearest = HUGE_VAL, farthest = 0;
-      for (const auto& p : scene::board_outline(s)) farthest = std::max(farthest, p.norm());
       const auto outline = scene::board_outline(s);
+      for (const auto& p : outline) farthest = std::max(farthest, p.norm());
       for (std::size_t i = 0; i < outline.size(); ++i) {  // nearest: to each side, not only to the corners
         const Eigen::Vector2d &a = outline[i], &b = outline[(i + 1) % outline.size()], d = b - a;
         const double t = std::clamp(-a.dot(d) / std::max(d.squaredNorm(), 1e-18), 0.0, 1.0);

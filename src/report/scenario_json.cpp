@@ -306,7 +306,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
   for (const auto& g : s.housing.guards) {
     if (g.kind == scenario::GuardSpec::Kind::Flap) {
       const auto f = scene::flap_geometry(s, g);
-      const double width = g.panel_width > 0 ? std::min(g.panel_width, f.width) : f.width;
+      const double width = f.swinging;
       a.push_back({fmt::format("Flap '{}': a plate hinged {:.0f} mm above ground, down to {:.0f} mm, {:.0f} mm wide swinging as one; "
                                "{:.1f} mm thick at {:g} kg/m3 ({:.3f} kg); restitution {:g}, friction {:g}; taken at rest at each "
                                "impact (swung back between contacts); nails do not pass it",

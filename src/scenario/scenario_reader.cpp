@@ -12,6 +12,7 @@
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "scenario/toml_reader.hpp"
+#include "units/arc.hpp"
 
 namespace j232::scenario {
 
@@ -21,20 +22,6 @@ namespace {
 
 // Azimuths may be written beyond one turn ("-90 deg", "450 deg"), but not absurdly so.
 constexpr Range kAnyAzimuth = Range::between(-4 * units::pi, 4 * units::pi);
-
-// Whether two counter-clockwise arcs (from -> to) share more than an end: one's start lies
-// strictly inside the other.
-bool arcs_overlap(double from_a, double to_a, double from_b, double to_b) {
-  const auto span = [](double from, double to) {
-    const double s = std::fmod(std::fmod(to - from, units::two_pi) + units::two_pi, units::two_pi);
-    return s == 0 ? units::two_pi : s;
-  };
-  const auto inside = [&](double x, double from, double to) {
-    const double rel = std::fmod(std::fmod(x - from, units::two_pi) + units::two_pi, units::two_pi);
-    return rel > 0 && rel < span(from, to);
-  };
-  return inside(from_a, from_b, to_b) || inside(from_b, from_a, to_a) || std::abs(std::remainder(from_a - from_b, units::two_pi)) < 1e-12;
-}
 
 void read_nail(const TableReader& t, NailSpec& n) {
   // Plausible for any nail or similar small object a J232-like test could drop.
@@ -167,7 +154,7 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
     if (!guard.along.empty() || guard.bottom < h.skirt_bottom) continue;
     bool hangs = false;
     for (const auto& op : h.openings)
-      hangs = hangs || (arcs_overlap(guard.azimuth_from, guard.azimuth_to, op.azimuth_from, op.azimuth_to) && guard.bottom < op.top);
+      hangs = hangs || (units::arcs_overlap(guard.azimuth_from, guard.azimuth_to, op.azimuth_from, op.azimuth_to) && guard.bottom < op.top);
     if (!hangs)
       throw guard_tables[i].error(
           "bottom", fmt::format("expected the curtain's lower edge below the skirt bottom ({} m), or below the top of an opening "

@@ -9,17 +9,15 @@
 #include "scenario/input_error.hpp"
 #include "scene/mesh_io.hpp"
 #include "scene/operator_zone.hpp"
+#include "units/arc.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::scene {
 
-namespace {
+using units::arc_span;
+using units::in_arc;
 
-double arc_span(double from, double to) {
-  double span = std::fmod(to - from, units::two_pi);
-  if (span <= 0) span += units::two_pi;
-  return span;
-}
+namespace {
 
 // A vertical cylindrical patch from azimuth `from` counter-clockwise over `span`,
 // between heights z0 and z1, cut at the given azimuths and heights; each quad labelled
@@ -258,11 +256,6 @@ void add_chute(Soup& soup, const scenario::OpeningSpec& o, double skirt_bottom,
                   Surface::Housing);
 }
 
-// Whether azimuth a (about the origin) lies in the arc from -> to (counter-clockwise).
-bool in_arc(double a, double from, double to) {
-  return std::fmod(std::fmod(a - from, units::two_pi) + units::two_pi, units::two_pi) < arc_span(from, to);
-}
-
 // Where the ray from the origin at `azimuth` crosses the segment p -> q, as the fraction
 // of the way along it (none when it misses the segment's inside).
 std::optional<double> ray_crossing(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double azimuth) {
@@ -310,6 +303,7 @@ FlapGeometry flap_geometry(const scenario::Scenario& s, const scenario::GuardSpe
   if (!g.along.empty()) {
     f.hinge = g.top;
     for (std::size_t i = 0; i + 1 < g.along.size(); ++i) f.width += std::hypot(g.along[i + 1][0] - g.along[i][0], g.along[i + 1][1] - g.along[i][1]);
+    f.swinging = g.panel_width > 0 ? std::min(g.panel_width, f.width) : f.width;
     return f;
   }
   f.hinge = s.housing.skirt_bottom;  // below the skirt it hangs from the skirt's foot
@@ -322,6 +316,7 @@ FlapGeometry flap_geometry(const scenario::Scenario& s, const scenario::GuardSpe
     f.hinge = std::max(f.hinge, top);
     f.width += (piece.b - piece.a).norm();
   }
+  f.swinging = g.panel_width > 0 ? std::min(g.panel_width, f.width) : f.width;
   return f;
 }
 

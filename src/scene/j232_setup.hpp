@@ -50,9 +50,10 @@ struct SkirtPiece {
 std::vector<SkirtPiece> skirt_pieces(const scenario::Scenario& s);
 // A flap's hinge (its top edge's height above ground), lower edge, and width along where it
 // hangs: along a polyline, its top and the polyline's length; given by azimuths, across the
-// openings it spans, up to their tops, the skirt pieces it hangs on.
+// openings it spans, up to their tops, the skirt pieces it hangs on. `swinging`: the width
+// that swings as one plate (its panel_width, or the whole flap).
 struct FlapGeometry {
-  double hinge = 0, bottom = 0, width = 0;
+  double hinge = 0, bottom = 0, width = 0, swinging = 0;
 };
 FlapGeometry flap_geometry(const scenario::Scenario& s, const scenario::GuardSpec& g);
 // Each opening's width as cut, along the deck's outline, m (0 on a mesh deck).

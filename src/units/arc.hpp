@@ -1,0 +1,25 @@
+#pragma once
+// Azimuth ranges (rad, counter-clockwise from `from` to `to`, about the deck's centre), as
+// openings, guards and the board's pieces are given: one set of rules for every stage.
+#include <cmath>
+
+#include "units/quantity.hpp"
+
+namespace j232::units {
+
+// The arc's extent in (0, 2 pi]: from == to is the whole turn.
+inline double arc_span(double from, double to) {
+  double span = std::fmod(to - from, two_pi);
+  if (span <= 0) span += two_pi;
+  return span;
+}
+
+// Whether azimuth a lies in the arc, its start included and its end not.
+inline bool in_arc(double a, double from, double to) { return std::fmod(std::fmod(a - from, two_pi) + two_pi, two_pi) < arc_span(from, to); }
+
+// Whether two arcs share more than an end: one's start lies in the other.
+inline bool arcs_overlap(double from_a, double to_a, double from_b, double to_b) {
+  return in_arc(from_a, from_b, to_b) || in_arc(from_b, from_a, to_a);
+}
+
+}  // namespace j232::units
