@@ -91,9 +91,20 @@ TEST_CASE("scene: user meshes are read, scaled and labelled; bad ones are refuse
   CHECK_THROWS_WITH(scene::read_mesh("no-such-mesh.stl", scene::Surface::Housing, 1.0), Catch::Contains("no such mesh file"));
   const auto text = write("scene-test-mesh.txt", "hello\n");
   CHECK_THROWS_WITH(scene::read_mesh(text, scene::Surface::Housing, 1.0), Catch::Contains("unknown mesh format"));
+  // Plain OFF with comments and a colour after a face's corners; a huge index after a
+  // comment on the OFF line: the counts are the next line's (CGAL's own scanner read that
+  // file differently and overflowed on the index).
+  const auto coloured = write("scene-test-coloured.off", "OFF # a quad\n# counts\n4 1 0\n0 0 0\n2 0 0\n2 2 0\n0 2 0 # last\n4 0 1 2 3 255 0 0\n");
+  const auto quad = scene::read_mesh(coloured, scene::Surface::Guard, 0.5);
+  CHECK(quad.triangles.size() == 2);
+  CHECK(quad.points[2].y() == Approx(1.0));
+  const auto huge = write("scene-test-huge.off", "OFF#5 4 0\n0 0 0\n1 0 0\n0 0 0 1 2 0 1\n4 3 24444444444444444444444\n");
+  CHECK_THROWS_WITH(scene::read_mesh(huge, scene::Surface::Housing, 1.0), Catch::Contains("scene-test-huge.off: the mesh has no faces"));
   const auto broken = write("scene-test-broken.off", "OFF\n3 1 0\n0 0 0\n1 0\n");
   CHECK_THROWS_WITH(scene::read_mesh(broken, scene::Surface::Housing, 1.0), Catch::Contains("scene-test-broken.off"));
-  for (const char* f : {"scene-test-quad.obj", "scene-test-degenerate.off", "scene-test-mesh.txt", "scene-test-broken.off"}) std::remove(f);
+  for (const char* f : {"scene-test-quad.obj", "scene-test-degenerate.off", "scene-test-mesh.txt", "scene-test-broken.off",
+                        "scene-test-coloured.off", "scene-test-huge.off"})
+    std::remove(f);
 }
 
 TEST_CASE("scene: export writes a labelled PLY and a grouped OBJ that read back, with the mower's lines", "[scene][export]") {

@@ -79,10 +79,19 @@ std::string ply_header_problem(const std::string& path) {
   return "no end_header";
 }
 
-// CGAL 5.5's OFF scanner converts a face's vertex index to an integer without checking
-// it (a huge or fractional index is undefined behaviour; found by fuzzing): plain OFF is
-// checked token by token first. Empty when sound.
-std::string off_problem(const std::string& path) {
+// Plain OFF is read here rather than by CGAL 5.5, whose scanner converts a face's vertex
+// index to an integer without checking it (a huge or fractional index is undefined
+// behaviour) and reads comments by rules of its own, so that a check made beforehand
+// could pass a file CGAL then reads differently (all found by fuzzing). Every token is
+// checked as it is read.
+struct PlainOff {
+  std::string problem;  // empty when sound
+  std::vector<CGAL::Simple_cartesian<double>::Point_3> points;
+  std::vector<std::vector<std::size_t>> polygons;
+};
+
+PlainOff read_plain_off(const std::string& path) {
+  PlainOff off;
   std::ifstream in(path, std::ios::binary);
   std::vector<std::vector<std::string>> lines;  // non-empty, comments stripped
   std::string line;
@@ -96,33 +105,51 @@ std::string off_problem(const std::string& path) {
     auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
     return ec == std::errc() && p == t.data() + t.size();
   };
-  if (lines.empty() || lines[0][0] != "OFF") return "expected a plain OFF file (first word OFF)";
+  const auto real = [](const std::string& t, double& v) {
+    auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    return ec == std::errc() && p == t.data() + t.size();
+  };
+  const auto refuse = [&off](std::string why) {
+    off.problem = std::move(why);
+    off.points.clear();
+    off.polygons.clear();
+    return std::move(off);
+  };
+  if (lines.empty() || lines[0][0] != "OFF") return refuse("expected a plain OFF file (first word OFF)");
   std::size_t k = 0;
   std::vector<std::string> counts(lines[0].begin() + 1, lines[0].end());
   if (counts.empty()) {
-    if (lines.size() < 2) return "no vertex, face and edge counts";
+    if (lines.size() < 2) return refuse("no vertex, face and edge counts");
     counts = lines[++k];
   }
   ++k;
-  // All three counts, on one line: CGAL reads a missing edge count from the next line and
-  // doubles it in an int (undefined behaviour for a large one; found by fuzzing).
   unsigned long long nv = 0, nf = 0, ne = 0;
   if (counts.size() != 3 || !whole(counts[0], nv) || !whole(counts[1], nf) || !whole(counts[2], ne))
-    return "expected the vertex, face and edge counts as three whole numbers on one line";
-  if (nv > 10'000'000 || nf > kMaxMeshFaces || ne > 100'000'000) return "too many vertices, faces or edges";
-  if (lines.size() < k + nv + nf) return "fewer vertex or face lines than the header says";
-  for (unsigned long long v = 0; v < nv; ++v)
-    if (lines[k + v].size() < 3) return fmt::format("vertex {}: expected three coordinates", v + 1);
+    return refuse("expected the vertex, face and edge counts as three whole numbers on one line");
+  if (nv > 10'000'000 || nf > kMaxMeshFaces || ne > 100'000'000) return refuse("too many vertices, faces or edges");
+  if (lines.size() < k + nv + nf) return refuse("fewer vertex or face lines than the header says");
+  off.points.reserve(nv);
+  for (unsigned long long v = 0; v < nv; ++v) {
+    const auto& w = lines[k + v];
+    double x = 0, y = 0, z = 0;
+    if (w.size() < 3 || !real(w[0], x) || !real(w[1], y) || !real(w[2], z))
+      return refuse(fmt::format("vertex {}: expected three coordinates", v + 1));
+    off.points.emplace_back(x, y, z);
+  }
   k += nv;
+  off.polygons.reserve(nf);
   for (unsigned long long f = 0; f < nf; ++f) {
     const auto& w = lines[k + f];
     unsigned long long n = 0, index = 0;
-    if (!whole(w[0], n) || n < 3 || n > 1000 || w.size() < n + 1) return fmt::format("face {}: bad corner count", f + 1);
-    for (unsigned long long c = 1; c <= n; ++c)  // a colour may follow the corners
+    if (!whole(w[0], n) || n < 3 || n > 1000 || w.size() < n + 1) return refuse(fmt::format("face {}: bad corner count", f + 1));
+    auto& polygon = off.polygons.emplace_back();
+    for (unsigned long long c = 1; c <= n; ++c) {  // a colour may follow the corners
       if (!whole(w[c], index) || index >= nv)
-        return fmt::format("face {}: a corner is not a vertex index from 0 to {}", f + 1, nv == 0 ? 0 : nv - 1);
+        return refuse(fmt::format("face {}: a corner is not a vertex index from 0 to {}", f + 1, nv == 0 ? 0 : nv - 1));
+      polygon.push_back(static_cast<std::size_t>(index));
+    }
   }
-  return {};
+  return off;
 }
 }  // namespace
 
@@ -145,29 +172,34 @@ Soup read_mesh(const std::string& path, Surface label, double scale, std::uint16
   if (ext == ".ply")
     if (const std::string problem = ply_header_problem(path); !problem.empty())
       throw std::runtime_error(fmt::format("{}: malformed PLY header: {}", path, problem));
-  if (ext == ".off")
-    if (const std::string problem = off_problem(path); !problem.empty())
-      throw std::runtime_error(fmt::format("{}: malformed OFF file: {}", path, problem));
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;
-  try {
-    if (ext == ".obj") {
-      // Line elements ("l", polylines such as `j232 scene --export` writes) are valid OBJ,
-      // but CGAL 5.5's reader refuses the file for them: they carry no faces, so skip them.
-      std::ifstream in(path);
-      std::string text, line;
-      while (std::getline(in, line)) {
-        if (line.size() > 1 && line[0] == 'l' && (line[1] == ' ' || line[1] == '\t')) line = "#";
-        text += line, text += '\n';
+  if (ext == ".off") {
+    PlainOff off = read_plain_off(path);
+    if (!off.problem.empty()) throw std::runtime_error(fmt::format("{}: malformed OFF file: {}", path, off.problem));
+    points = std::move(off.points);
+    polygons = std::move(off.polygons);
+    ok = true;
+  } else {
+    try {
+      if (ext == ".obj") {
+        // Line elements ("l", polylines such as `j232 scene --export` writes) are valid OBJ,
+        // but CGAL 5.5's reader refuses the file for them: they carry no faces, so skip them.
+        std::ifstream in(path);
+        std::string text, line;
+        while (std::getline(in, line)) {
+          if (line.size() > 1 && line[0] == 'l' && (line[1] == ' ' || line[1] == '\t')) line = "#";
+          text += line, text += '\n';
+        }
+        std::istringstream soup_text(text);
+        ok = CGAL::IO::read_OBJ(soup_text, points, polygons, CGAL::parameters::verbose(false));
+      } else {
+        ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
       }
-      std::istringstream soup_text(text);
-      ok = CGAL::IO::read_OBJ(soup_text, points, polygons, CGAL::parameters::verbose(false));
-    } else {
-      ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+    } catch (const std::exception& e) {
+      throw std::runtime_error(fmt::format("{}: cannot read the mesh: {}", path, e.what()));
     }
-  } catch (const std::exception& e) {
-    throw std::runtime_error(fmt::format("{}: cannot read the mesh: {}", path, e.what()));
   }
   if (!ok) throw std::runtime_error(fmt::format("{}: cannot read the mesh (malformed {} file)", path, ext));
   if (polygons.empty()) throw std::runtime_error(fmt::format("{}: the mesh has no faces", path));
