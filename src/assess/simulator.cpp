@@ -39,11 +39,7 @@ Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenar
   } catch (const std::invalid_argument& e) {
     throw scenario::InputError(s.file, std::nullopt, s.meshes.empty() ? "housing" : "meshes", "", e.what());
   }
-  // Numbered as the scene numbers them: mesh guards first, then the generated ones.
-  for (const auto& m : s.meshes)
-    if (m.label == scenario::MeshLabel::Guard) guards_.push_back(m.guard);
-  guards_.insert(guards_.end(), s.housing.guards.begin(), s.housing.guards.end());  // a mesh deck keeps only polyline guards
-  if (guards_.empty()) guards_.emplace_back();
+  guards_ = scene::scene_guards(scenario_);  // numbered as the scene numbers them
   flight_settings_ = flight::FlightSettings(scenario_, guards_);
   context_.scene = scene_.get();
   context_.settings = &flight_settings_;

@@ -1,6 +1,7 @@
-// `j232 scene`: build a scenario's labelled scene and export it for a mesh viewer, with the
-// blades' tip circles, the feed stations, the seat and reach envelope, and optionally the
-// nail paths a run kept (`j232 run --trajectories K`).
+// `j232 scene`: build a scenario's labelled scene and export it for a mesh viewer, or draw it
+// in 3D in a page of its own (--html), with the blades' tip circles, the feed stations, the
+// seat and reach envelope, and optionally the nail paths a run kept (`j232 run
+// --trajectories K`).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
 #include "report/board_views.hpp"
+#include "report/scene_view.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
@@ -23,7 +25,7 @@
 namespace j232::cli {
 namespace {
 struct SceneOptions {
-  std::string scenario, export_path, paths_from;
+  std::string scenario, export_path, html_path, paths_from;
 };
 
 // The paths kept in a run's result.json of the scenario titled `title`, coloured as the
@@ -55,9 +57,14 @@ std::vector<scene::Polyline> nail_paths(const std::string& result_file, const st
 
 int run(const SceneOptions& o) {
   // The options first: a mistake there is reported before any work.
-  if (!o.paths_from.empty() && o.export_path.empty())
+  if (!o.paths_from.empty() && o.export_path.empty() && o.html_path.empty())
     throw scenario::InputError("", std::nullopt, "--paths", o.paths_from,
-                               "--export PATH too: the paths are written into the exported scene");
+                               "--export PATH or --html PATH too: the paths are drawn into the exported scene or the 3D view");
+  if (!o.html_path.empty() && std::filesystem::path(o.html_path).extension() != ".html")
+    throw scenario::InputError("", std::nullopt, "--html", o.html_path, "a file name ending in .html");
+  if (!o.html_path.empty() && !report::scene_view_available())
+    throw scenario::InputError("", std::nullopt, "--html", o.html_path,
+                               "a build with three.js: install Debian's libjs-three (scripts/bootstrap does) and build again");
   const std::string ext = std::filesystem::path(o.export_path).extension().string();
   if (!o.export_path.empty() && ext != ".ply" && ext != ".obj")
     throw scenario::InputError("", std::nullopt, "--export", o.export_path, "a file name ending in .ply or .obj");
@@ -85,17 +92,24 @@ int run(const SceneOptions& o) {
                s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived ? ", the seat and reach envelope" : "",
                paths.empty() ? "" : fmt::format(", {} nail paths", paths.size()));
   }
+  if (!o.html_path.empty() && assess::cluster::is_writer()) {
+    report::write_atomically(o.html_path, report::scene_view_html(s, soup, scene::scene_guards(s), lines));
+    fmt::print("wrote {} (the scene in 3D: open it in a browser; drag to turn, wheel to zoom)\n", o.html_path);
+  }
   return kOk;
 }
 }  // namespace
 
 Runner add_scene_command(CLI::App& app) {
   auto o = std::make_shared<SceneOptions>();
-  CLI::App* cmd = app.add_subcommand("scene", "Build a scenario's labelled scene; --export writes it as PLY or OBJ");
+  CLI::App* cmd = app.add_subcommand("scene", "Build a scenario's labelled scene; --export writes it as PLY or OBJ, --html draws it in 3D");
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML)")->required();
   cmd->add_option("--export", o->export_path,
                   "Write the labelled scene to PATH (.ply with a label and colour per face, or .obj with groups), with the blades' "
                   "tip circles, feed stations, seat and reach envelope as lines");
+  cmd->add_option("--html", o->html_path,
+                  "Write a page (.html, self-contained) that draws the scene in 3D with the same markers: turn, zoom and pan with "
+                  "the mouse, show or hide each part and each guard from the legend");
   cmd->add_option("--paths", o->paths_from, "Add the nail paths kept in this result.json (from `j232 run --trajectories K`)");
   return [o] { return run(*o); };
 }

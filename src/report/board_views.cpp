@@ -4,9 +4,12 @@
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
 #include <set>
 
+#include "flight/deck_outline.hpp"
 #include "report/svg_chart.hpp"
+#include "scene/j232_setup.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::report {
@@ -174,11 +177,17 @@ void draw_mower_plan(Chart& chart, const scenario::Scenario& s, const scene::Sou
     std::vector<double> x0, y0, x1, y1, tx, ty;
     std::set<std::array<long long, 4>> seen;
   };
-  std::array<Layer, scene::kSurfaceKinds> layers;
+  // One layer per kind of surface, and one more for flaps (guards of kind "flap"), drawn
+  // apart from chain curtains.
+  constexpr std::size_t kFlapLayer = scene::kSurfaceKinds;
+  std::array<Layer, scene::kSurfaceKinds + 1> layers;
+  const std::vector<scenario::GuardSpec> guards = scene::scene_guards(s);
   for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
     const auto kind = soup.labels[t];
     if (kind == scene::Surface::Ground) continue;
-    Layer& layer = layers[static_cast<std::size_t>(kind)];
+    const bool flap = kind == scene::Surface::Guard && soup.guard_index[t] < guards.size() &&
+                      guards[soup.guard_index[t]].kind == scenario::GuardSpec::Kind::Flap;
+    Layer& layer = layers[flap ? kFlapLayer : static_cast<std::size_t>(kind)];
     const auto& p0 = soup.points[soup.triangles[t][0]];
     const auto& p1 = soup.points[soup.triangles[t][1]];
     const auto& p2 = soup.points[soup.triangles[t][2]];
@@ -204,17 +213,19 @@ void draw_mower_plan(Chart& chart, const scenario::Scenario& s, const scene::Sou
     layer.x1.push_back(v[best.second]->x()), layer.y1.push_back(v[best.second]->y());
   }
   struct Style {
-    scene::Surface kind;
+    std::size_t layer;
     const char* label;
     std::string colour;
     double width;
   };
-  for (const Style& st : {Style{scene::Surface::Housing, "housing (deck, skirt)", "#555555", 1.2},
-                          Style{scene::Surface::Deflector, "deflector", "#009E73", 2.0},
-                          Style{scene::Surface::Guard, "guard (chain, belting)", "#CC79A7", 2.5},
-                          Style{scene::Surface::TargetOutside, "target board", kBoardColour, 2.0},
-                          Style{scene::Surface::TargetZone, "operator zone board", kZoneColour, 3.0}}) {
-    const Layer& layer = layers[static_cast<std::size_t>(st.kind)];
+  const auto of = [](scene::Surface kind) { return static_cast<std::size_t>(kind); };
+  for (const Style& st : {Style{of(scene::Surface::Housing), "housing (deck, skirt)", "#555555", 1.2},
+                          Style{of(scene::Surface::Deflector), "deflector", "#009E73", 2.0},
+                          Style{of(scene::Surface::Guard), "chain guard", "#CC79A7", 2.5},
+                          Style{kFlapLayer, "flap (belting)", "#222222", 4.0},
+                          Style{of(scene::Surface::TargetOutside), "target board", kBoardColour, 2.0},
+                          Style{of(scene::Surface::TargetZone), "operator zone board", kZoneColour, 3.0}}) {
+    const Layer& layer = layers[st.layer];
     if (!layer.tx.empty()) chart.triangles(layer.tx, layer.ty, st.colour, 0.12, layer.x0.empty() ? st.label : "");
     if (!layer.x0.empty()) chart.segments(layer.x0, layer.y0, layer.x1, layer.y1, st.colour, st.label, st.width);
   }
@@ -235,6 +246,9 @@ std::string path_colour(const std::string& why) {
   const auto c = path_rgb(why);
   return fmt::format("#{:02X}{:02X}{:02X}", c[0], c[1], c[2]);
 }
+
+// The plan view draws at most this many paths of each kind: more make a blot inside the deck.
+constexpr std::size_t kPlanPathsPerKind = 20;
 
 std::string paths_caption(const std::vector<assess::Trajectory>& paths, std::uint64_t not_kept) {
   std::size_t n[3] = {0, 0, 0};
@@ -259,13 +273,35 @@ std::string trajectories_plan_svg(const scenario::Scenario& s, const scene::Soup
                                   std::uint64_t not_kept) {
   Chart chart("Paths of chosen nails, seen from above", "x, forward (m)", "y, left (m)", 620, 600);
   draw_mower_plan(chart, s, soup);
+  // A nail rattles inside the deck before it leaves: that part of each path is drawn faint,
+  // and from the last point inside the deck's outline on, bold, so that where nails go
+  // out and what they reach can be read.
+  const flight::DeckOutline deck(scene::deck_footprint(s, soup).outline);
   std::set<std::string> labelled;
+  std::map<std::string, std::size_t> drawn;
+  std::size_t left_out = 0;
   for (const auto& t : paths) {
-    std::vector<double> x, y;
-    for (const auto& p : t.points) x.push_back(p.x()), y.push_back(p.y());
-    chart.polyline(x, y, path_colour(t.why), labelled.insert(t.why).second ? "path: " + t.why : "", 1.0, 0.6);
+    if (++drawn[t.why] > kPlanPathsPerKind) {
+      ++left_out;
+      continue;
+    }
+    std::size_t last_inside = 0;
+    bool inside_ever = false;
+    for (std::size_t i = 0; i < t.points.size(); ++i)
+      if (!deck.empty() && deck.contains(t.points[i].x(), t.points[i].y())) last_inside = i, inside_ever = true;
+    std::vector<double> x, y, ox, oy;
+    for (std::size_t i = 0; i < t.points.size(); ++i) {
+      if (inside_ever && i <= last_inside) x.push_back(t.points[i].x()), y.push_back(t.points[i].y());
+      if (!inside_ever || i >= last_inside) ox.push_back(t.points[i].x()), oy.push_back(t.points[i].y());
+    }
+    const std::string colour = path_colour(t.why);
+    if (x.size() > 1) chart.polyline(x, y, colour, "", 0.6, 0.18);
+    if (ox.size() > 1) chart.polyline(ox, oy, colour, labelled.insert(t.why).second ? "path: " + t.why : "", 1.2, 0.75);
   }
-  chart.caption(paths_caption(paths, not_kept));
+  chart.caption(paths_caption(paths, not_kept) +
+                (deck.empty() ? std::string() : " Inside the deck's outline a path is drawn faint; from where it last left the deck, bold.") +
+                (left_out ? fmt::format(" Here at most {} of each kind ({} more in the side elevation).", kPlanPathsPerKind, left_out)
+                          : std::string()));
   return chart.svg();
 }
 

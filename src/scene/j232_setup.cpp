@@ -453,6 +453,15 @@ double board_near_radius(const Soup& soup) {
   return nearest;
 }
 
+std::vector<scenario::GuardSpec> scene_guards(const scenario::Scenario& s) {
+  std::vector<scenario::GuardSpec> guards;
+  for (const auto& m : s.meshes)
+    if (m.label == scenario::MeshLabel::Guard) guards.push_back(m.guard);
+  guards.insert(guards.end(), s.housing.guards.begin(), s.housing.guards.end());  // a mesh deck keeps only polyline guards
+  if (guards.empty()) guards.emplace_back();
+  return guards;
+}
+
 Soup build_scene_soup(const scenario::Scenario& s) {
   Soup soup;
   const OperatorZone zone(s.zone, s.blade_plane());

@@ -11,6 +11,11 @@ namespace j232::scene {
 // Throws scenario::InputError (bad mesh file) naming the scenario key.
 Soup build_scene_soup(const scenario::Scenario& s);
 
+// The guards as the scene numbers them (the soup's guard_index): the mesh guards in file
+// order, then housing.guards; a default one when there are none, so that the index 0 the
+// other faces carry names something.
+std::vector<scenario::GuardSpec> scene_guards(const scenario::Scenario& s);
+
 // The radius of the generated target ring.
 // The generated board's farthest horizontal distance from the deck's centre (a ring's radius).
 double target_radius(const scenario::Scenario& s);

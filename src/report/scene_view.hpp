@@ -1,0 +1,23 @@
+#pragma once
+// The 3D view of a scenario's scene (`j232 scene --html`): one self-contained HTML page
+// that draws the labelled surfaces a nail meets (ground, deck and skirt, deflectors, each
+// guard by name and kind, board, operator zone) and the markers (tip circles, feed
+// stations, seat and reach envelope, nail paths of a run) with three.js, which a user turns,
+// zooms and pans with the mouse, each part shown or hidden from the legend.
+#include <string>
+#include <vector>
+
+#include "scenario/scenario.hpp"
+#include "scene/soup.hpp"
+
+namespace j232::report {
+
+// Whether this build found three.js (Debian's libjs-three) at configure time.
+bool scene_view_available();
+
+// The page. `guards` as the scene numbers them (scene::scene_guards). Throws
+// std::runtime_error when this build has no three.js, saying how to get it.
+std::string scene_view_html(const scenario::Scenario& s, const scene::Soup& soup, const std::vector<scenario::GuardSpec>& guards,
+                            const std::vector<scene::Polyline>& lines);
+
+}  // namespace j232::report
