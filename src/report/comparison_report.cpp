@@ -44,7 +44,10 @@ json comparison_json(const study::Comparison& c) {
                          {"pass_probability", d.deciding_pass}}},
                        {"criteria", criteria},
                        {"marks", d.marks},
-                       {"nails", d.nails}});
+                       {"nails", d.nails},
+                       {"exit_speed_over_tip_speed", {{"mean", d.exit_speed_over_tip.mean}, {"standard_error", d.exit_speed_over_tip.standard_error}}},
+                       {"strikes_per_struck_nail",
+                        {{"mean", d.strikes_per_struck_nail.mean}, {"standard_error", d.strikes_per_struck_nail.standard_error}}}});
   }
   json diffs = json::array();
   for (std::size_t i = 0; i < c.versus_first.size(); ++i) {

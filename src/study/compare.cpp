@@ -57,6 +57,24 @@ DesignRecord DesignRecorder::finish(const scenario::Scenario& s, const assess::A
   res.limits = {s.criteria.hits_zone, s.criteria.punctures_zone, s.criteria.hits_outside, s.criteria.punctures_outside};
   res.marks = a.marks;
   res.nails = a.nails;
+  // Mean and standard error from a histogram's bin midpoints (0.5 m/s bins for the speed,
+  // whole strikes for the strikes: the spread is that of the nails, not of the binning).
+  const auto mean_error = [](const assess::Histogram& h, double scale) {
+    MeanError out;
+    if (h.total < 2) return out;
+    double sum1 = 0, sum2 = 0;  // of the binned values (a shift within the bins cancels)
+    for (std::size_t k = 0; k < h.counts.size(); ++k) {
+      const double mid = h.origin + (static_cast<double>(k) + 0.5) * h.bin_width, c = static_cast<double>(h.counts[k]);
+      sum1 += c * mid, sum2 += c * mid * mid;
+    }
+    const double n = static_cast<double>(h.total), binned = sum1 / n;
+    const double variance = std::max(0.0, (sum2 / n - binned * binned) * n / (n - 1));
+    out.mean = h.mean() * scale;  // exact
+    out.standard_error = std::sqrt(variance / n) * scale;
+    return out;
+  };
+  res.exit_speed_over_tip = mean_error(a.exit_speed, s.tip_speed() > 0 ? 1.0 / s.tip_speed() : 0.0);
+  res.strikes_per_struck_nail = mean_error(a.strikes, 1.0);
   return std::move(record);
 }
 

@@ -21,6 +21,9 @@ struct MeanInterval {
   double mean = 0, low = 0, high = 0;
 };
 
+struct MeanError {
+  double mean = 0, standard_error = 0;
+};
 struct DesignResult {
   std::string file, title;
   // Its own verdict, as `j232 run` would give it: "passes", "fails" or "invalid" (no
@@ -37,6 +40,10 @@ struct DesignResult {
   std::array<MeanInterval, assess::kCategories> shares;
   std::array<double, assess::kCategories> limits{};
   std::uint64_t marks = 0, nails = 0;
+  // Per-nail means with their standard errors (nails are independent: the errors of two
+  // designs' means add in quadrature, a conservative interval for their difference): the
+  // thrown speed over the tip speed, and blade strikes per struck nail.
+  MeanError exit_speed_over_tip, strikes_per_struck_nail;
 };
 
 // A design minus the first, replicate by replicate.
