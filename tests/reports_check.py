@@ -4,7 +4,8 @@ regeneration (scripts/make-reports REGENERATED), provenance aside:
   - every result.json and summary.json equal, ignoring "provenance";
   - every report.html and summary.html equal outside the provenance section;
   - every sweep CSV and SVG byte-identical;
-  - no file missing on either side (marks.csv is not shipped: it is large raw data)."""
+  - no file missing on either side (marks.csv and scene.html are not shipped: large raw
+    data, and a page that is mostly a copy of three.js)."""
 import json
 import os
 import re
@@ -18,7 +19,7 @@ def files(root):
     out = set()
     for d, _, names in os.walk(root):
         for n in names:
-            if n.endswith((".partial", ".log")) or n in ("marks.csv", "README.md", ".j232.lock"):
+            if n.endswith((".partial", ".log")) or n in ("marks.csv", "scene.html", "README.md", ".j232.lock"):
                 continue
             out.add(os.path.relpath(os.path.join(d, n), root))
     return out

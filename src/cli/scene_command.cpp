@@ -28,9 +28,10 @@ struct SceneOptions {
   std::string scenario, export_path, html_path, paths_from;
 };
 
-// The paths kept in a run's result.json of the scenario titled `title`, coloured as the
-// report draws them.
-std::vector<scene::Polyline> nail_paths(const std::string& result_file, const std::string& title) {
+// The paths kept in a run's result.json of the scenario titled `title`, with what the 3D
+// view shows on a click (the run's own scene.html also has each path's strikes, touches and
+// way out, from a replay).
+std::vector<report::ScenePath> nail_paths(const std::string& result_file, const std::string& title, const std::string& scenario_file) {
   auto refuse = [&](const std::string& expected) {
     throw scenario::InputError(result_file, std::nullopt, "--paths", result_file, expected);
   };
@@ -39,14 +40,18 @@ std::vector<scene::Polyline> nail_paths(const std::string& result_file, const st
   const auto j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object()) refuse("a result.json of `j232 run` (this is not JSON)");
   if (!j.contains("trajectories")) refuse("a result.json with nail paths: run `j232 run SCENARIO --trajectories K` first");
-  std::vector<scene::Polyline> out;
+  std::vector<report::ScenePath> out;
   try {
     const std::string run_title = j.at("scenario").at("title").get<std::string>();
     if (run_title != title) refuse(fmt::format("a run of this scenario (\"{}\"), not of \"{}\"", title, run_title));
     for (const auto& path : j.at("trajectories").at("paths")) {
-      const std::string why = path.at("why").get<std::string>();
-      scene::Polyline p{"nail_paths", report::path_rgb(why), {}, false};
+      report::ScenePath p;
+      p.why = path.at("why").get<std::string>();
       for (const auto& q : path.at("points_m")) p.points.emplace_back(q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>());
+      const auto replicate = path.at("replicate").get<std::uint64_t>();
+      const int nail = path.at("nail").get<int>();
+      p.info = {fmt::format("replicate {}, nail {} (kept: {})", replicate, nail, p.why), "fate: " + path.at("fate").get<std::string>(),
+                fmt::format("whole trail: j232 trace {} --replicate {} --nail {}", scenario_file, replicate, nail)};
       out.push_back(std::move(p));
     }
   } catch (const nlohmann::json::exception& e) {
@@ -69,9 +74,11 @@ int run(const SceneOptions& o) {
   if (!o.export_path.empty() && ext != ".ply" && ext != ".obj")
     throw scenario::InputError("", std::nullopt, "--export", o.export_path, "a file name ending in .ply or .obj");
   const scenario::Scenario s = scenario::read_scenario(o.scenario);
-  std::vector<scene::Polyline> lines = scene::mower_markers(s);
-  const std::vector<scene::Polyline> paths = o.paths_from.empty() ? std::vector<scene::Polyline>{} : nail_paths(o.paths_from, s.title);
-  lines.insert(lines.end(), paths.begin(), paths.end());
+  const std::vector<scene::Polyline> lines = scene::mower_markers(s);
+  const std::vector<report::ScenePath> paths =
+      o.paths_from.empty() ? std::vector<report::ScenePath>{} : nail_paths(o.paths_from, s.title, o.scenario);
+  std::vector<scene::Polyline> exported = lines;  // the export carries the paths as lines
+  for (const auto& p : paths) exported.push_back(scene::Polyline{"nail_paths", report::path_rgb(p.why), p.points, false});
   scene::Soup soup = scene::build_scene_soup(s);
   std::size_t counts[scene::kSurfaceKinds] = {};
   for (auto l : soup.labels) ++counts[static_cast<int>(l)];
@@ -85,7 +92,7 @@ int run(const SceneOptions& o) {
   for (int l = 0; l < scene::kSurfaceKinds; ++l)
     if (counts[l]) fmt::print("  {:<14} {:>7} faces\n", scene::name(static_cast<scene::Surface>(l)), counts[l]);
   if (!o.export_path.empty() && assess::cluster::is_writer()) {
-    report::write_atomically(o.export_path, scene::export_text(soup, lines, o.export_path));
+    report::write_atomically(o.export_path, scene::export_text(soup, exported, o.export_path));
     auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
     fmt::print("wrote {} (the scene, {} tip circle{}, {} feed station{}{}{})\n", o.export_path, s.spindles.size(),
                plural(s.spindles.size()), s.feed.stations.size(), plural(s.feed.stations.size()),
@@ -93,7 +100,7 @@ int run(const SceneOptions& o) {
                paths.empty() ? "" : fmt::format(", {} nail paths", paths.size()));
   }
   if (!o.html_path.empty() && assess::cluster::is_writer()) {
-    report::write_atomically(o.html_path, report::scene_view_html(s, soup, scene::scene_guards(s), lines));
+    report::write_atomically(o.html_path, report::scene_view_html(s, soup, scene::scene_guards(s), lines, paths));
     fmt::print("wrote {} (the scene in 3D: open it in a browser; drag to turn, wheel to zoom)\n", o.html_path);
   }
   return kOk;

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <thread>
 
 #include "assess/runner.hpp"
@@ -19,12 +20,15 @@
 #include "report/terminal_progress.hpp"
 #include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
+#include "report/scene_view.hpp"
 #include "report/uncertainty_report.hpp"
 #include "study/uncertainty.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "scenario/toml_reader.hpp"
+#include "scene/j232_setup.hpp"
+#include "scene/markers.hpp"
 
 #include "j232/version.hpp"
 
@@ -68,6 +72,37 @@ std::string inputs_digest(const std::string& scenario_file, const RunOverrides& 
   }
 }
 
+// A kept nail path for the 3D view, with its trail from a replay of the nail (the same
+// nail: replays are deterministic): what a click on it shows, and where it marked.
+ScenePath scene_path(const assess::Simulator& sim, const assess::Trajectory& t, const std::string& scenario_file) {
+  ScenePath out;
+  out.points = t.points;
+  out.why = t.why;
+  const assess::NailReplay replay = sim.replay(t.replicate, t.nail);
+  const flight::FlightResult& f = replay.outcome.flight;
+  std::map<std::string, int> touched;
+  for (const auto& e : replay.events) {
+    if (e.kind == flight::FlightEvent::Kind::Bounce) ++touched[std::string(scene::name(e.surface))];
+    if (e.kind == flight::FlightEvent::Kind::GuardPass) ++touched["through a guard"];
+    if (e.kind == flight::FlightEvent::Kind::Board && e.mark > 0) out.marks.emplace_back(e.point, e.mark);
+  }
+  std::string touches;
+  for (const auto& [what, n] : touched) touches += fmt::format("{}{} {}", touches.empty() ? "" : ", ", what, n);
+  out.info.push_back(fmt::format("replicate {}, nail {} (kept: {})", t.replicate, t.nail, t.why));
+  out.info.push_back(fmt::format("fate: {}", flight::fate_name(f.fate)));
+  out.info.push_back(fmt::format("blade strikes: {}; bounces: {}", f.strikes, f.bounces));
+  if (!touches.empty()) out.info.push_back("touched: " + touches);
+  if (f.trace.exit != flight::Exit::Inside) {
+    out.info.push_back("way out: " + sim.exit_name(f.trace.exit, f.trace.exit_index));
+    if (f.trace.first_exit != f.trace.exit || f.trace.first_exit_index != f.trace.exit_index)
+      out.info.push_back("first left by: " + sim.exit_name(f.trace.first_exit, f.trace.first_exit_index));
+  }
+  for (const auto& [p, kind] : out.marks)
+    out.info.push_back(fmt::format("{} of the board at {:.0f} mm up", kind == 2 ? "puncture" : "hit", 1000 * p.z()));
+  out.info.push_back(fmt::format("whole trail: j232 trace {} --replicate {} --nail {}", scenario_file, t.replicate, t.nail));
+  return out;
+}
+
 RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides& o, const std::string& out) {
   scenario::Scenario s = scenario::read_scenario(scenario_file);
   if (o.replicates > 0) s.run.replicates = o.replicates;
@@ -79,6 +114,9 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   // The folder is locked and checked before the simulation, so a bad --out costs nothing.
   std::vector<std::string> files = {"marks.csv", "report.html", "result.json"};
   if (o.uncertainty) files.insert(files.begin(), {"uq.csv", "uq.html", "uq.json"});
+  // The scene in 3D beside the report, when this build has three.js.
+  const bool view = scene_view_available();
+  if (view) files.insert(files.begin(), "scene.html");
   OutputFolder folder(out, files);
   StreamedFile marks(folder.staged("marks.csv"));
   marks.write(marks_csv_header());
@@ -130,6 +168,15 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   html_digest.add(html);
   outcome.result["provenance"]["files"].push_back({{"name", "report.html"}, {"bytes", html.size()}, {"fnv1a64", html_digest.hex()}});
   write_atomically(folder.staged("report.html"), html);
+  if (view) {
+    std::vector<ScenePath> paths;
+    for (const auto& t : a.trajectories) paths.push_back(scene_path(simulator, t, scenario_file));
+    const std::string page = scene_view_html(s, simulator.scene().soup(), scene::scene_guards(s), scene::mower_markers(s), paths);
+    Fnv page_digest;
+    page_digest.add(page);
+    outcome.result["provenance"]["files"].push_back({{"name", "scene.html"}, {"bytes", page.size()}, {"fnv1a64", page_digest.hex()}});
+    write_atomically(folder.staged("scene.html"), page);
+  }
   write_atomically(folder.staged("result.json"), outcome.result.dump(2) + "\n");
   folder.commit();
   if (recorder) outcome.design = std::move(*recorder).finish(s, a, &sum);

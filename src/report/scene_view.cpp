@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "report/board_views.hpp"
 #include "report/svg_chart.hpp"
 
 namespace j232::report {
@@ -17,7 +18,7 @@ namespace j232::report {
 namespace {
 using Json = nlohmann::ordered_json;
 
-std::string hex(int r, int g, int b) { return fmt::format("#{:02x}{:02x}{:02x}", r, g, b); }
+[[maybe_unused]] std::string hex(int r, int g, int b) { return fmt::format("#{:02x}{:02x}{:02x}", r, g, b); }
 
 // A part of the scene as the legend lists it: the faces of one label, or of one guard.
 struct Part {
@@ -28,7 +29,7 @@ struct Part {
 
 // The colours of the PLY export (scene/export.cpp; the ground paler), a flap dark as belting
 // rubber, and the board and operator zone see-through so that the mower inside shows.
-Part part_for(scene::Surface label) {
+[[maybe_unused]] Part part_for(scene::Surface label) {
   switch (label) {
     case scene::Surface::Ground: return {"ground", hex(150, 195, 120), 1.0, {}};
     case scene::Surface::Housing: return {"deck and skirt", hex(140, 140, 140), 1.0, {}};
@@ -40,7 +41,7 @@ Part part_for(scene::Surface label) {
   return {"?", hex(0, 0, 0), 1.0, {}};
 }
 
-std::string read_text(const std::string& path) {
+[[maybe_unused]] std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw std::runtime_error(fmt::format("cannot read {} (three.js, for the 3D view): reinstall Debian's libjs-three and run scripts/bootstrap again", path));
@@ -51,8 +52,8 @@ std::string read_text(const std::string& path) {
 
 // The scene as the page's script reads it: the points once (to 0.1 mm), each part's
 // triangles as indices into them, the lines by group.
-Json scene_data(const scenario::Scenario& s, const scene::Soup& soup, const std::vector<scenario::GuardSpec>& guards,
-                const std::vector<scene::Polyline>& lines) {
+[[maybe_unused]] Json scene_data(const scenario::Scenario& s, const scene::Soup& soup, const std::vector<scenario::GuardSpec>& guards,
+                const std::vector<scene::Polyline>& lines, const std::vector<ScenePath>& paths) {
   const auto rounded = [](double v) { return std::round(v * 1e4) / 1e4; };
   Json points = Json::array();
   for (const auto& p : soup.points)
@@ -91,16 +92,42 @@ Json scene_data(const scenario::Scenario& s, const scene::Soup& soup, const std:
       for (int k = 0; k < 3; ++k) xyz.push_back(rounded(p[k]));
     out_lines.push_back(Json{{"group", l.group}, {"colour", hex(l.colour[0], l.colour[1], l.colour[2])}, {"closed", l.closed}, {"points", xyz}});
   }
+  // Each blade as plates along its arms (the plate's width behind the edge, its
+  // thickness) at its height, turned by the page's slider in its own sense.
+  Json blades = Json::array();
+  for (const auto& sp : s.spindles) {
+    Json arms = Json::array();
+    for (const auto& arm : sp.blade.arms) arms.push_back(Json{{"azimuth", arm.azimuth}, {"tip", arm.tip_radius()}});
+    blades.push_back(Json{{"x", sp.x},
+                          {"y", sp.y},
+                          {"z", sp.geometry.height},
+                          {"sense", sp.sense},
+                          {"phase_deg", sp.phase ? *sp.phase * 180 / 3.14159265358979323846 : 0.0},
+                          {"width", sp.geometry.edge.width},
+                          {"thickness", sp.geometry.thickness},
+                          {"hub", sp.blade.hub.reach()},
+                          {"arms", arms}});
+  }
+  Json out_paths = Json::array();
+  for (const auto& path : paths) {
+    Json xyz = Json::array(), marks = Json::array();
+    for (const auto& p : path.points)
+      for (int k = 0; k < 3; ++k) xyz.push_back(rounded(p[k]));
+    for (const auto& [p, kind] : path.marks) marks.push_back(Json{rounded(p.x()), rounded(p.y()), rounded(p.z()), kind});
+    const auto c = path_rgb(path.why);
+    out_paths.push_back(Json{{"why", path.why}, {"colour", hex(c[0], c[1], c[2])}, {"points", xyz}, {"info", path.info}, {"marks", marks}});
+  }
   Json face_counts = Json::object();
   for (int l = 0; l < scene::kSurfaceKinds; ++l)
     if (faces[static_cast<std::size_t>(l)]) face_counts[std::string(scene::name(static_cast<scene::Surface>(l)))] = faces[static_cast<std::size_t>(l)];
-  return Json{{"title", s.title}, {"units", "m"}, {"faces", face_counts}, {"points", points}, {"parts", out_parts}, {"lines", out_lines}};
+  return Json{{"title", s.title}, {"units", "m"},       {"faces", face_counts}, {"points", points},
+              {"parts", out_parts}, {"lines", out_lines}, {"blades", blades},     {"paths", out_paths}};
 }
 
 // The page's own script: builds a mesh per part and a line per polyline, frames the mower,
 // lets the legend show and hide them, and writes what it drew into #status (JSON) for a
 // test to read.
-constexpr const char* kViewScript = R"JS(
+[[maybe_unused]] constexpr const char* kViewScript = R"JS(
 (function () {
   const data = JSON.parse(document.getElementById('scene-data').textContent);
   const status = document.getElementById('status');
@@ -125,8 +152,9 @@ constexpr const char* kViewScript = R"JS(
   const drawn = {parts: {}, lines: {}};
   const box = new THREE.Box3();
   const legend = document.getElementById('parts');
-  const toggle = (name, objects, visible) => {
+  const toggle = (name, objects, visible, label) => {
     const row = document.createElement('label');
+    if (label) row.dataset.label = label;
     const box_ = document.createElement('input');
     box_.type = 'checkbox';
     box_.checked = visible;
@@ -148,11 +176,12 @@ constexpr const char* kViewScript = R"JS(
     const material = new THREE.MeshLambertMaterial({color: part.colour, side: THREE.DoubleSide,
       transparent: part.opacity < 1, opacity: part.opacity, depthWrite: part.opacity >= 1});
     const mesh = new THREE.Mesh(geometry, material);
+    mesh.userData = {label: part.label};
     if (part.opacity < 1) mesh.renderOrder = 1;
     scene.add(mesh);
     if (part.label !== 'ground') { geometry.computeBoundingBox(); box.union(geometry.boundingBox); }
     drawn.parts[part.name] = t.length / 3;
-    toggle(part.name + ' (' + (t.length / 3) + ' faces)', [mesh], true);
+    toggle(part.name + ' (' + (t.length / 3) + ' faces)', [mesh], true, part.label);
   });
   const groups = {};
   data.lines.forEach((line) => {
@@ -161,6 +190,7 @@ constexpr const char* kViewScript = R"JS(
     const material = new THREE.LineBasicMaterial({color: line.colour});
     const object = line.closed ? new THREE.LineLoop(geometry, material) : new THREE.Line(geometry, material);
     object.renderOrder = 2;
+    object.userData = {label: line.group};
     scene.add(object);
     (groups[line.group] = groups[line.group] || []).push(object);
   });
@@ -168,8 +198,89 @@ constexpr const char* kViewScript = R"JS(
                  reach_envelope: 'reach envelope', nail_paths: 'nail paths (run --trajectories)'};
   Object.keys(groups).forEach((g) => {
     drawn.lines[g] = groups[g].length;
-    toggle((names[g] || g) + ' (' + groups[g].length + ')', groups[g], true);
+    toggle((names[g] || g) + ' (' + groups[g].length + ')', groups[g], true, g);
   });
+  // The blades: plates along each arm, turned together by the slider (each in its sense).
+  const bladeGroups = [];
+  data.blades.forEach((b) => {
+    const group = new THREE.Group();
+    group.position.set(b.x, b.y, b.z);
+    const material = new THREE.MeshLambertMaterial({color: 0x30343a});
+    b.arms.forEach((arm) => {
+      const plate = new THREE.Mesh(new THREE.BoxBufferGeometry(arm.tip, Math.min(b.width, 0.6 * arm.tip), b.thickness), material);
+      plate.position.set(0.5 * arm.tip * Math.cos(arm.azimuth), 0.5 * arm.tip * Math.sin(arm.azimuth), 0);
+      plate.rotation.z = arm.azimuth;
+      group.add(plate);
+    });
+    scene.add(group);
+    bladeGroups.push({group: group, b: b});
+  });
+  const turn = (deg) => {
+    bladeGroups.forEach((g) => { g.group.rotation.z = g.b.sense * (deg + g.b.phase_deg) * Math.PI / 180; });
+  };
+  turn(0);
+  drawn.blade_plates = data.blades.reduce((n, b) => n + b.arms.length, 0);
+  if (bladeGroups.length) {
+    drawn.lines.blades = bladeGroups.length;
+    toggle('blades (' + bladeGroups.length + ')', bladeGroups.map((g) => g.group), true);
+    const slider = document.getElementById('angle');
+    slider.addEventListener('input', () => { turn(Number(slider.value)); draw(); });
+  } else {
+    document.getElementById('angle-row').style.display = 'none';
+  }
+  // Nail paths kept by the run, coloured by why they were kept, with their marks; a click
+  // on one shows its trail.
+  const pathObjects = [], byKind = {};
+  data.paths.forEach((p, i) => {
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(p.points), 3));
+    const line = new THREE.Line(geometry, new THREE.LineBasicMaterial({color: p.colour}));
+    line.userData = {path: i};
+    line.renderOrder = 2;
+    const objects = [line];
+    p.marks.forEach((m) => {
+      const dot = new THREE.Mesh(new THREE.SphereBufferGeometry(0.012, 10, 8),
+                                 new THREE.MeshBasicMaterial({color: m[3] === 2 ? 0xd55e00 : 0x0072b2}));
+      dot.position.set(m[0], m[1], m[2]);
+      drawn.mark_triangles = (drawn.mark_triangles || 0) + dot.geometry.index.count / 3;
+      dot.userData = {path: i};
+      objects.push(dot);
+    });
+    objects.forEach((o) => { scene.add(o); pathObjects.push(o); });
+    (byKind[p.why] = byKind[p.why] || []).push(...objects);
+  });
+  Object.keys(byKind).forEach((k) => {
+    const n = data.paths.filter((p) => p.why === k).length;
+    drawn.lines['paths: ' + k] = n;
+    toggle('nail paths: ' + k + ' (' + n + ')', byKind[k], true);
+  });
+  const trail = document.getElementById('trail');
+  const ray = new THREE.Raycaster();
+  canvas.addEventListener('click', (event) => {
+    const r = canvas.getBoundingClientRect();
+    const at = new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1, -((event.clientY - r.top) / r.height) * 2 + 1);
+    ray.params.Line.threshold = 0.01 * size;
+    ray.setFromCamera(at, camera);
+    const hit = ray.intersectObjects(pathObjects.filter((o) => o.visible))[0];
+    if (!hit) { trail.style.display = 'none'; return; }
+    show_trail(hit.object.userData.path);
+  });
+  function show_trail(i) {
+    trail.textContent = data.paths[i].info.join('\n');
+    trail.style.display = 'block';
+  }
+  // #trail=i: path i's trail shown from the start (as a click on it would).
+  const start_trail = (location.hash.match(/trail=(\d+)/) || [])[1];
+  if (start_trail !== undefined && Number(start_trail) < data.paths.length) show_trail(Number(start_trail));
+  // #hide=label,label: parts (by label: ground, housing, guard, target, operator_zone) and
+  // line groups hidden from the start.
+  const hidden = ((location.hash.match(/hide=([^&]*)/) || [])[1] || '').split(',').filter((x) => x);
+  if (hidden.length) {
+    scene.traverse((o) => { if (o.userData && hidden.includes(o.userData.label)) o.visible = false; });
+    legend.querySelectorAll('label').forEach((row) => {
+      if (hidden.includes(row.dataset.label)) row.querySelector('input').checked = false;
+    });
+  }
   if (box.isEmpty()) box.setFromCenterAndSize(new THREE.Vector3(0, 0, 0), new THREE.Vector3(2, 2, 1));
   const centre = box.getCenter(new THREE.Vector3());
   const size = box.getSize(new THREE.Vector3()).length();
@@ -206,9 +317,35 @@ constexpr const char* kViewScript = R"JS(
   draw();
   const gl = renderer.getContext();
   report({webgl: true, renderer: String(gl.getParameter(gl.VERSION)), faces: data.faces, parts: drawn.parts, lines: drawn.lines,
+          blade_plates: drawn.blade_plates, mark_triangles: drawn.mark_triangles || 0,
           calls: renderer.info.render.calls, triangles: renderer.info.render.triangles});
 })();
 )JS";
+// three.js's licence, kept with the copy inlined into each page.
+[[maybe_unused]] constexpr const char* kThreeLicence = R"(/* three.js and its OrbitControls, from Debian's libjs-three, under the MIT licence:
+The MIT License
+
+Copyright (c) 2010-2019 three.js authors
+
+Permission is hereby granted, free of charge, to any person obtaining a copy
+of this software and associated documentation files (the "Software"), to deal
+in the Software without restriction, including without limitation the rights
+to use, copy, modify, merge, publish, distribute, sublicense, and/or sell
+copies of the Software, and to permit persons to whom the Software is
+furnished to do so, subject to the following conditions:
+
+The above copyright notice and this permission notice shall be included in
+all copies or substantial portions of the Software.
+
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER
+LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM,
+OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN
+THE SOFTWARE.
+*/
+)";
 }  // namespace
 
 bool scene_view_available() {
@@ -220,9 +357,9 @@ bool scene_view_available() {
 }
 
 std::string scene_view_html(const scenario::Scenario& s, const scene::Soup& soup, const std::vector<scenario::GuardSpec>& guards,
-                            const std::vector<scene::Polyline>& lines) {
+                            const std::vector<scene::Polyline>& lines, const std::vector<ScenePath>& paths) {
 #ifndef J232_THREE_JS_DIR
-  (void)s, (void)soup, (void)guards, (void)lines;
+  (void)s, (void)soup, (void)guards, (void)lines, (void)paths;
   throw std::runtime_error(
       "this j232 was built without three.js, which the 3D view needs: install Debian's libjs-three (scripts/bootstrap does) and "
       "build again");
@@ -232,7 +369,7 @@ std::string scene_view_html(const scenario::Scenario& s, const scene::Soup& soup
   const std::string orbit = read_text(dir + "/examples/js/controls/OrbitControls.js");
   // The data sits in a JSON script block: "</" is written "<\/" so that no name a user
   // gave (a guard's, the title) can close the block.
-  std::string data = scene_data(s, soup, guards, lines).dump();
+  std::string data = scene_data(s, soup, guards, lines, paths).dump();
   for (std::size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
   std::string page;
   page.reserve(three.size() + orbit.size() + data.size() + 8192);
@@ -252,17 +389,22 @@ html, body {{ margin: 0; height: 100%; font: 14px/1.4 system-ui, sans-serif; col
 #views button {{ margin-right: 4px; }}
 #no-webgl {{ display: none; position: absolute; top: 45%; width: 100%; text-align: center; font-size: 16px; }}
 #status {{ display: none; }}
+#trail {{ display: none; position: absolute; top: 10px; right: 10px; max-width: 420px; background: rgba(255,255,255,0.95);
+         border: 1px solid #c8d0d8; border-radius: 6px; padding: 8px 10px; font-size: 12px; white-space: pre-wrap; }}
 </style></head><body>
 <canvas id="view"></canvas>
 <div id="legend"><h1>{0}</h1><div id="parts"></div><div id="views">View: </div>
-<p>Drag to turn, right-drag (or shift-drag) to pan, wheel to zoom. z is up; lengths in metres.
+<div id="angle-row">Blade angle: <input id="angle" type="range" min="0" max="360" value="0"></div>
+<p>Drag to turn, right-drag (or shift-drag) to pan, wheel to zoom; click a nail path for its trail. z is up; lengths in metres.
 Written by <code>j232 scene --html</code> from {1}.</p></div>
+<pre id="trail"></pre>
 <div id="no-webgl">This browser could not start WebGL, which the 3D view needs.</div>
 <pre id="status">{{}}</pre>
 <script type="application/json" id="scene-data">)",
                       escape(s.title), escape(s.file.empty() ? std::string("the scenario") : s.file));
   page += data;
-  page += "</script>\n<script>/* three.js (MIT licence), from Debian's libjs-three */\n";
+  page += "</script>\n<script>\n";
+  page += kThreeLicence;
   page += three;
   page += "\n</script>\n<script>/* three.js OrbitControls (MIT licence) */\n";
   page += orbit;
