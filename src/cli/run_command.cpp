@@ -5,6 +5,7 @@
 #include "cli/run_options.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "report/scene_view.hpp"
 #include "report/text_safety.hpp"
 
 namespace j232::cli {
@@ -23,10 +24,11 @@ int run(const RunOptions& o) {
   const auto& p = outcome.result["provenance"];
   fmt::print("{}", terminal_safe(outcome.summary_text));
   fmt::print(
-      "  {:.2f} s on {} thread(s){}: {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv{}\n",
+      "  {:.2f} s on {} thread(s){}: {:.0f} nails/s.\n  Wrote {}/report.html, {}/result.json and {}/marks.csv{}{}\n",
       p["wall_time_s"].get<double>(), p["threads"].get<int>(),
       p["ranks"].get<int>() > 1 ? fmt::format(" in each of {} MPI ranks", p["ranks"].get<int>()) : "", p["nails_per_second"].get<double>(),
       terminal_safe(o.out), terminal_safe(o.out), terminal_safe(o.out),
+      report::scene_view_available() ? fmt::format(", the scene in 3D in {}/scene.html", terminal_safe(o.out)) : "",
       o.overrides.uncertainty ? fmt::format(", and the uncertainty study in {}/uq.html, uq.json and uq.csv", terminal_safe(o.out)) : "");
   const auto& verdict = outcome.result["verdict"];
   return verdict == "passes" ? kOk : verdict == "invalid" ? kInvalid : kFails;
