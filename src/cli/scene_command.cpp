@@ -47,10 +47,11 @@ std::vector<report::ScenePath> nail_paths(const std::string& result_file, const 
     for (const auto& path : j.at("trajectories").at("paths")) {
       report::ScenePath p;
       p.why = path.at("why").get<std::string>();
+      p.fate = path.at("fate").get<std::string>();
       for (const auto& q : path.at("points_m")) p.points.emplace_back(q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>());
       const auto replicate = path.at("replicate").get<std::uint64_t>();
       const int nail = path.at("nail").get<int>();
-      p.info = {fmt::format("replicate {}, nail {} (kept: {})", replicate, nail, p.why), "fate: " + path.at("fate").get<std::string>(),
+      p.info = {fmt::format("replicate {}, nail {} (kept: {})", replicate, nail, p.why), "fate: " + p.fate,
                 fmt::format("whole trail: j232 trace {} --replicate {} --nail {}", scenario_file, replicate, nail)};
       out.push_back(std::move(p));
     }

@@ -78,6 +78,7 @@ ScenePath scene_path(const assess::Simulator& sim, const assess::Trajectory& t, 
   ScenePath out;
   out.points = t.points;
   out.why = t.why;
+  out.fate = flight::fate_name(t.fate);
   const assess::NailReplay replay = sim.replay(t.replicate, t.nail);
   const flight::FlightResult& f = replay.outcome.flight;
   std::map<std::string, int> touched;

@@ -41,6 +41,18 @@ struct Part {
   return {"?", hex(0, 0, 0), 1.0, {}};
 }
 
+// A path's colour by its fate (a colour-blind-safe palette): marks orange, the board reached
+// without a mark blue, flights past or short of it light blue and green, kept in the deck grey,
+// turned back by a guard purple, cut off black.
+[[maybe_unused]] std::string fate_colour(const std::string& fate) {
+  static const std::map<std::string, std::string> kColours = {
+      {"marked_board", "#d55e00"},          {"marked_below_counted_height", "#e69f00"}, {"reached_board_unmarked", "#0072b2"},
+      {"over_board", "#56b4e9"},            {"at_rest_short_of_board", "#009e73"},      {"contained_by_housing", "#666666"},
+      {"stopped_by_guard", "#cc79a7"},      {"cut_off", "#000000"},                     {"not_struck", "#999999"}};
+  const auto it = kColours.find(fate);
+  return it == kColours.end() ? "#000000" : it->second;
+}
+
 [[maybe_unused]] std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -114,8 +126,8 @@ struct Part {
     for (const auto& p : path.points)
       for (int k = 0; k < 3; ++k) xyz.push_back(rounded(p[k]));
     for (const auto& [p, kind] : path.marks) marks.push_back(Json{rounded(p.x()), rounded(p.y()), rounded(p.z()), kind});
-    const auto c = path_rgb(path.why);
-    out_paths.push_back(Json{{"why", path.why}, {"colour", hex(c[0], c[1], c[2])}, {"points", xyz}, {"info", path.info}, {"marks", marks}});
+    out_paths.push_back(
+        Json{{"why", path.why}, {"fate", path.fate}, {"colour", fate_colour(path.fate)}, {"points", xyz}, {"info", path.info}, {"marks", marks}});
   }
   Json face_counts = Json::object();
   for (int l = 0; l < scene::kSurfaceKinds; ++l)
@@ -152,9 +164,10 @@ struct Part {
   const drawn = {parts: {}, lines: {}};
   const box = new THREE.Box3();
   const legend = document.getElementById('parts');
-  const toggle = (name, objects, visible, label) => {
+  const toggle = (name, objects, visible, label, colour) => {
     const row = document.createElement('label');
     if (label) row.dataset.label = label;
+    if (colour) row.style.color = colour;
     const box_ = document.createElement('input');
     box_.type = 'checkbox';
     box_.checked = visible;
@@ -247,12 +260,14 @@ struct Part {
       objects.push(dot);
     });
     objects.forEach((o) => { scene.add(o); pathObjects.push(o); });
-    (byKind[p.why] = byKind[p.why] || []).push(...objects);
+    (byKind[p.fate] = byKind[p.fate] || []).push(...objects);
   });
   Object.keys(byKind).forEach((k) => {
-    const n = data.paths.filter((p) => p.why === k).length;
+    const n = data.paths.filter((p) => p.fate === k).length;
     drawn.lines['paths: ' + k] = n;
-    toggle('nail paths: ' + k + ' (' + n + ')', byKind[k], true);
+    const swatch = '\u25A0 ';
+    toggle(swatch + 'nail paths, ' + k.replace(/_/g, ' ') + ' (' + n + ')', byKind[k], true, null,
+           data.paths.find((p) => p.fate === k).colour);
   });
   const trail = document.getElementById('trail');
   const ray = new THREE.Raycaster();
@@ -396,7 +411,7 @@ html, body {{ margin: 0; height: 100%; font: 14px/1.4 system-ui, sans-serif; col
 <div id="legend"><h1>{0}</h1><div id="parts"></div><div id="views">View: </div>
 <div id="angle-row">Blade angle: <input id="angle" type="range" min="0" max="360" value="0"></div>
 <p>Drag to turn, right-drag (or shift-drag) to pan, wheel to zoom; click a nail path for its trail. z is up; lengths in metres.
-Written by <code>j232 scene --html</code> from {1}.</p></div>
+Written by j232 from {1}.</p></div>
 <pre id="trail"></pre>
 <div id="no-webgl">This browser could not start WebGL, which the 3D view needs.</div>
 <pre id="status">{{}}</pre>

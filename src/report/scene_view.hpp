@@ -12,12 +12,13 @@
 
 namespace j232::report {
 
-// A nail's path as the 3D view draws it: coloured as the report colours its kind, with what
+// A nail's path as the 3D view draws it: coloured by its fate, with what
 // a click on it shows (its replicate and number, fate, strikes, surfaces touched, way out)
 // and its marks on the board.
 struct ScenePath {
   std::vector<scene::Vec3> points;
-  std::string why;                // "sample", "operator zone", "puncture"
+  std::string why;                // why it was kept: "sample", "operator zone", "puncture"
+  std::string fate;               // flight::fate_name: "marked_board", "over_board", ...
   std::vector<std::string> info;  // lines of its trail
   std::vector<std::pair<scene::Vec3, int>> marks;  // where it marked the board: 1 hit, 2 puncture
 };

@@ -13,28 +13,17 @@ Standard library only."""
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from headless import chromium, fail  # noqa: E402
+
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync",
          "--hide-scrollbars"]
-
-
-def fail(msg):
-    print(f"check_page: FAIL: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
-def chromium():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    fail("no chromium on PATH: install it with `scripts/bootstrap --tests` (Debian package chromium)")
 
 
 def run_chromium(args, profile):

@@ -24,22 +24,12 @@ import sys
 import tempfile
 import zlib
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from headless import chromium, fail  # noqa: E402
+
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
          "--disable-quic", "--no-first-run", "--disable-background-networking", "--disable-component-update",
          "--disable-sync", "--hide-scrollbars", "--virtual-time-budget=15000", "--window-size=1200,800"]
-
-
-def fail(msg):
-    print(f"check_scene: FAIL: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
-def chromium():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    fail("no chromium on PATH: install it with `scripts/bootstrap --tests` (Debian package chromium)")
 
 
 def png_pixels(path):
