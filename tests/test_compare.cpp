@@ -26,6 +26,9 @@ TEST_CASE("compare: a design against itself differs by exactly nothing", "[compa
   }
   // ...while independent runs of it would leave a real interval on the outside shares.
   CHECK(c.versus_first[0].independent_half_width[assess::PuncturesOutside] > 0.005);
+  // No replicate differs, and the comparison says how many could have: 1 - 0.025^(1/40).
+  CHECK(c.versus_first[0].replicates_differing == 0);
+  CHECK(c.versus_first[0].differing_at_most == Approx(0.0881).epsilon(0.01));
 }
 
 TEST_CASE("compare: common random numbers make a small design change measurable", "[compare][statistics]") {
@@ -49,6 +52,8 @@ TEST_CASE("compare: common random numbers make a small design change measurable"
     CHECK(d.mean == Approx(c.designs[1].shares[static_cast<std::size_t>(k)].mean - c.designs[0].shares[static_cast<std::size_t>(k)].mean)
                         .margin(1e-12));
   }
-  // Both ran with the first's seed and replicates.
+  // Both ran with the first's seed and replicates; many replicates differ, so no bound is given.
   CHECK(c.replicates == 200);
+  CHECK(v.replicates_differing > 20);
+  CHECK(v.differing_at_most == 0.0);
 }

@@ -61,6 +61,8 @@ json comparison_json(const study::Comparison& c) {
                      {"minus_design", 1},
                      {"pass_probability", interval(v.pass)},
                      {"independent_runs_pass_half_width", v.independent_pass_half_width},
+                     {"replicates_differing", v.replicates_differing},
+                     {"differing_at_most", v.differing_at_most},
                      {"criteria", criteria}});
   }
   return {{"program", "j232 compare"},
@@ -130,6 +132,13 @@ std::string comparison_text(const study::Comparison& c) {
   for (std::size_t d = 1; d < c.designs.size(); ++d) {
     const auto& v = c.versus_first[d - 1];
     out += fmt::format("design {} minus design 1 (95 % interval; independent runs would give +/-):\n", d + 1);
+    if (v.replicates_differing == 0)
+      out += fmt::format(
+          "  no replicate differs: every share and verdict the same in all {} (the share of replicates that could differ is at "
+          "most {:.2g}, 95 %)\n",
+          c.replicates, v.differing_at_most);
+    else
+      out += fmt::format("  {} of {} replicates differ in a share or the verdict\n", v.replicates_differing, c.replicates);
     out += fmt::format("  P(pass)                {:+.3f} ({:+.3f} to {:+.3f}; +/-{:.3f})\n", v.pass.mean, v.pass.low, v.pass.high,
                        v.independent_pass_half_width);
     for (int k = 0; k < assess::kCategories; ++k) {
@@ -211,6 +220,19 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
                      number(dk + ".independent_runs_pass_half_width", v["independent_runs_pass_half_width"], "{:.3f}"));
   }
   o += "</tbody></table>\n";
+  // How many replicates differ at all: a zero-wide interval below means none did.
+  for (std::size_t d = 1; d < designs.size(); ++d) {
+    const auto& v = c["differences"][d - 1];
+    if (!v.contains("replicates_differing")) continue;
+    const std::string dk = fmt::format("differences.{}", d - 1);
+    o += v["replicates_differing"].get<std::uint64_t>() == 0
+             ? fmt::format("<p>Design {}: no replicate differs from design 1 in any share or its verdict, so its paired intervals are "
+                           "zero-wide; the share of replicates that could differ is at most {} (95 %), and so is the difference "
+                           "in P(pass).</p>\n",
+                           d + 1, number(dk + ".differing_at_most", v["differing_at_most"], "{:.2g}"))
+             : fmt::format("<p>Design {}: {} of {} replicates differ from design 1 in a share or the verdict.</p>\n", d + 1,
+                           number(dk + ".replicates_differing", v["replicates_differing"], "{}"), c["replicates"].get<std::uint64_t>());
+  }
   // Each criterion: a table row per design and a chart with the limit.
   for (int k = 0; k < 4; ++k) {
     o += fmt::format(

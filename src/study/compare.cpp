@@ -89,6 +89,10 @@ Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned lo
   }
   for (std::size_t d = 1; d < designs.size(); ++d) {
     Difference diff;
+    for (std::uint64_t r = 0; r < c.replicates; ++r)
+      if (designs[0].per_replicate[r] != designs[d].per_replicate[r]) ++diff.replicates_differing;
+    if (diff.replicates_differing == 0 && c.replicates > 0)
+      diff.differing_at_most = 1.0 - std::pow(0.025, 1.0 / static_cast<double>(c.replicates));
     for (int k = 0; k <= assess::kCategories; ++k) {
       Moments paired, first, other;
       for (std::uint64_t r = 0; r < c.replicates; ++r) {

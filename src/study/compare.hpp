@@ -54,6 +54,12 @@ struct Difference {
   // own spreads), to show what the pairing gained.
   std::array<double, assess::kCategories> independent_half_width{};
   double independent_pass_half_width = 0;
+  // Replicates in which a share or the verdict differs. When none does, the paired
+  // intervals are zero-wide: they say what this run saw, and `differing_at_most` bounds
+  // what it could have missed, the share of replicates that could differ (95 %, exact
+  // binomial: 1 - 0.025^(1/R), about 3.7 / R); P(pass) can differ by no more than that.
+  std::uint64_t replicates_differing = 0;
+  double differing_at_most = 0;
 };
 
 struct Comparison {
