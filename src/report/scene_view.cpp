@@ -10,8 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "report/board_views.hpp"
 #include "report/svg_chart.hpp"
+#include "scene/scene.hpp"
 
 namespace j232::report {
 
@@ -27,18 +27,29 @@ struct Part {
   std::vector<std::uint32_t> corners;
 };
 
-// The colours of the PLY export (scene/export.cpp; the ground paler), a flap dark as belting
-// rubber, and the board and operator zone see-through so that the mower inside shows.
+// The export's colours (scene::label_rgb; the ground paler, so that the mower stands out), a
+// flap dark as belting rubber (below), and the board and operator zone see-through so that the
+// mower inside shows.
 [[maybe_unused]] Part part_for(scene::Surface label) {
+  const auto c = scene::label_rgb(label);
+  Part part{"?", hex(c[0], c[1], c[2]), 1.0, {}};
   switch (label) {
-    case scene::Surface::Ground: return {"ground", hex(150, 195, 120), 1.0, {}};
-    case scene::Surface::Housing: return {"deck and skirt", hex(140, 140, 140), 1.0, {}};
-    case scene::Surface::Deflector: return {"deflectors", hex(60, 90, 200), 1.0, {}};
-    case scene::Surface::Guard: return {"guard", hex(140, 90, 40), 1.0, {}};
-    case scene::Surface::TargetOutside: return {"board (outside the operator zone)", hex(235, 235, 225), 0.35, {}};
-    case scene::Surface::TargetZone: return {"board (operator zone)", hex(220, 40, 40), 0.75, {}};
+    case scene::Surface::Ground: part.name = "ground", part.colour = hex(150, 195, 120); break;
+    case scene::Surface::Housing: part.name = "deck and skirt"; break;
+    case scene::Surface::Deflector: part.name = "deflectors"; break;
+    case scene::Surface::Guard: part.name = "guard"; break;
+    case scene::Surface::TargetOutside: part.name = "board (outside the operator zone)", part.opacity = 0.35; break;
+    case scene::Surface::TargetZone: part.name = "board (operator zone)", part.opacity = 0.75; break;
   }
-  return {"?", hex(0, 0, 0), 1.0, {}};
+  return part;
+}
+
+// Points as the page reads them: x, y, z one after another, to 0.1 mm.
+[[maybe_unused]] Json flat(const std::vector<scene::Vec3>& points) {
+  Json xyz = Json::array();
+  for (const auto& p : points)
+    for (int k = 0; k < 3; ++k) xyz.push_back(std::round(p[k] * 1e4) / 1e4);
+  return xyz;
 }
 
 // A path's colour by its fate (a colour-blind-safe palette): marks orange, the board reached
@@ -66,10 +77,7 @@ struct Part {
 // triangles as indices into them, the lines by group.
 [[maybe_unused]] Json scene_data(const scenario::Scenario& s, const scene::Soup& soup, const std::vector<scenario::GuardSpec>& guards,
                 const std::vector<scene::Polyline>& lines, const std::vector<ScenePath>& paths) {
-  const auto rounded = [](double v) { return std::round(v * 1e4) / 1e4; };
-  Json points = Json::array();
-  for (const auto& p : soup.points)
-    for (int k = 0; k < 3; ++k) points.push_back(rounded(p[k]));
+  const Json points = flat(soup.points);
   // Parts in label order, each guard its own part (named, and coloured by kind).
   std::map<std::pair<int, int>, Part> parts;
   std::array<std::size_t, scene::kSurfaceKinds> faces{};
@@ -98,12 +106,9 @@ struct Part {
                              {"opacity", part.opacity},
                              {"triangles", part.corners}});
   Json out_lines = Json::array();
-  for (const auto& l : lines) {
-    Json xyz = Json::array();
-    for (const auto& p : l.points)
-      for (int k = 0; k < 3; ++k) xyz.push_back(rounded(p[k]));
-    out_lines.push_back(Json{{"group", l.group}, {"colour", hex(l.colour[0], l.colour[1], l.colour[2])}, {"closed", l.closed}, {"points", xyz}});
-  }
+  for (const auto& l : lines)
+    out_lines.push_back(
+        Json{{"group", l.group}, {"colour", hex(l.colour[0], l.colour[1], l.colour[2])}, {"closed", l.closed}, {"points", flat(l.points)}});
   // Each blade as plates along its arms (the plate's width behind the edge, its
   // thickness) at its height, turned by the page's slider in its own sense.
   Json blades = Json::array();
@@ -114,20 +119,21 @@ struct Part {
                           {"y", sp.y},
                           {"z", sp.geometry.height},
                           {"sense", sp.sense},
-                          {"phase_deg", sp.phase ? *sp.phase * 180 / 3.14159265358979323846 : 0.0},
+                          {"phase_deg", sp.phase ? *sp.phase / scenario::kDegree : 0.0},
                           {"width", sp.geometry.edge.width},
                           {"thickness", sp.geometry.thickness},
-                          {"hub", sp.blade.hub.reach()},
                           {"arms", arms}});
   }
   Json out_paths = Json::array();
   for (const auto& path : paths) {
-    Json xyz = Json::array(), marks = Json::array();
-    for (const auto& p : path.points)
-      for (int k = 0; k < 3; ++k) xyz.push_back(rounded(p[k]));
-    for (const auto& [p, kind] : path.marks) marks.push_back(Json{rounded(p.x()), rounded(p.y()), rounded(p.z()), kind});
-    out_paths.push_back(
-        Json{{"why", path.why}, {"fate", path.fate}, {"colour", fate_colour(path.fate)}, {"points", xyz}, {"info", path.info}, {"marks", marks}});
+    Json marks = Json::array();
+    for (const auto& [p, kind] : path.marks) {
+      Json mark = flat({p});
+      mark.push_back(kind);
+      marks.push_back(mark);
+    }
+    out_paths.push_back(Json{
+        {"why", path.why}, {"fate", path.fate}, {"colour", fate_colour(path.fate)}, {"points", flat(path.points)}, {"info", path.info}, {"marks", marks}});
   }
   Json face_counts = Json::object();
   for (int l = 0; l < scene::kSurfaceKinds; ++l)

@@ -9,9 +9,6 @@
 namespace j232::scene {
 
 namespace {
-// Colours a viewer shows per label: ground green, housing grey, deflector blue,
-// guard brown, target white, operator zone red.
-constexpr int kColour[kSurfaceKinds][3] = {{90, 160, 70}, {140, 140, 140}, {60, 90, 200}, {140, 90, 40}, {235, 235, 225}, {220, 40, 40}};
 
 std::size_t segment_count(const Polyline& p) {
   if (p.points.size() < 2) return 0;
@@ -43,8 +40,8 @@ std::string ply(const Soup& soup, const std::vector<Polyline>& lines) {
     for (const auto& p : l.points) fmt::format_to(out, "{} {} {}\n", p.x(), p.y(), p.z());
   for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
     const int l = static_cast<int>(soup.labels[t]);
-    fmt::format_to(out, "3 {} {} {} {} {} {} {}\n", soup.triangles[t][0], soup.triangles[t][1], soup.triangles[t][2], l, kColour[l][0],
-                   kColour[l][1], kColour[l][2]);
+    const auto c = label_rgb(soup.labels[t]);
+    fmt::format_to(out, "3 {} {} {} {} {} {} {}\n", soup.triangles[t][0], soup.triangles[t][1], soup.triangles[t][2], l, c[0], c[1], c[2]);
   }
   std::size_t first = soup.points.size();
   for (const auto& l : lines) {
@@ -88,6 +85,13 @@ std::string obj(const Soup& soup, const std::vector<Polyline>& lines) {
   return o;
 }
 }  // namespace
+
+std::array<std::uint8_t, 3> label_rgb(Surface label) {
+  static constexpr std::uint8_t kColour[kSurfaceKinds][3] = {{90, 160, 70},  {140, 140, 140}, {60, 90, 200},
+                                                            {140, 90, 40}, {235, 235, 225}, {220, 40, 40}};
+  const auto& c = kColour[static_cast<std::size_t>(label)];
+  return {c[0], c[1], c[2]};
+}
 
 std::string export_text(const Soup& soup, const std::vector<Polyline>& lines, const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();

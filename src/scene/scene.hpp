@@ -3,6 +3,8 @@
 // queries (docs/model.md §5.3–5.4) by CGAL's AABB tree or Embree's BVH. CGAL stays inside
 // scene.cpp and Embree inside embree_index.cpp; this header is all the rest of the
 // program sees.
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -70,5 +72,8 @@ class Scene {
 // (one group per label, then one per group of lines, as OBJ line elements). Throws
 // std::invalid_argument for another extension.
 std::string export_text(const Soup& soup, const std::vector<Polyline>& lines, const std::string& path);
+// The colour a viewer shows a label in (the export's, and the 3D view's): ground green,
+// housing grey, deflector blue, guard brown, target white, operator zone red.
+std::array<std::uint8_t, 3> label_rgb(Surface label);
 
 }  // namespace j232::scene
