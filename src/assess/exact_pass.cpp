@@ -51,46 +51,64 @@ int allowed_count(const scenario::CriteriaSpec& criteria, int category, int nail
 }
 
 double pass_probability(const std::vector<OutcomeDistribution>& stations, int nails, const std::array<int, kCategories>& allowed) {
-  std::array<std::size_t, kCategories> dim{};
+  std::array<int, kCategories> dim{};
   std::size_t states = 1;
   for (int c = 0; c < kCategories; ++c) {
     if (allowed[static_cast<std::size_t>(c)] < 0) return 0.0;  // not even a clean test passes
-    dim[static_cast<std::size_t>(c)] = static_cast<std::size_t>(allowed[static_cast<std::size_t>(c)]) + 1;
-    states *= dim[static_cast<std::size_t>(c)];
+    dim[static_cast<std::size_t>(c)] = allowed[static_cast<std::size_t>(c)] + 1;
+    states *= static_cast<std::size_t>(dim[static_cast<std::size_t>(c)]);
   }
-  // Strides of the flattened count vector (a, b, c, d).
-  const std::size_t s3 = 1, s2 = dim[3], s1 = dim[2] * s2, s0 = dim[1] * s1;
+  // Strides of the flattened count vector (a, b, c, d), d contiguous.
+  const std::array<std::size_t, kCategories> stride{static_cast<std::size_t>(dim[1] * dim[2] * dim[3]), static_cast<std::size_t>(dim[2] * dim[3]),
+                                                    static_cast<std::size_t>(dim[3]), 1};
   std::vector<double> mass(states, 0.0), next(states, 0.0);
   mass[0] = 1.0;
   // Counts reached so far in each category: the loops need go no further.
   std::array<int, kCategories> reach{};
   for (int i = 0; i < nails; ++i) {
     const OutcomeDistribution& d = stations[static_cast<std::size_t>(i) % stations.size()];
-    std::fill(next.begin(), next.end(), 0.0);
-    std::array<int, kCategories> most{};
+    std::array<int, kCategories> grown{};
     for (const auto& [o, p] : d)
-      for (int c = 0; c < kCategories; ++c) most[static_cast<std::size_t>(c)] = std::max(most[static_cast<std::size_t>(c)], o[static_cast<std::size_t>(c)]);
-    for (int a = 0; a <= reach[0]; ++a)
-      for (int b = 0; b <= reach[1]; ++b)
-        for (int c = 0; c <= reach[2]; ++c)
-          for (int e = 0; e <= reach[3]; ++e) {
-            const std::size_t at = static_cast<std::size_t>(a) * s0 + static_cast<std::size_t>(b) * s1 + static_cast<std::size_t>(c) * s2 +
-                                   static_cast<std::size_t>(e) * s3;
-            const double m = mass[at];
-            if (m == 0.0) continue;
-            for (const auto& [o, p] : d) {
-              const int na = a + o[0], nb = b + o[1], nc = c + o[2], ne = e + o[3];
-              if (na > allowed[0] || nb > allowed[1] || nc > allowed[2] || ne > allowed[3]) continue;  // this test fails
-              next[static_cast<std::size_t>(na) * s0 + static_cast<std::size_t>(nb) * s1 + static_cast<std::size_t>(nc) * s2 +
-                   static_cast<std::size_t>(ne) * s3] += m * p;
-            }
+      for (std::size_t c = 0; c < kCategories; ++c)
+        if (o[c] <= allowed[c]) grown[c] = std::max(grown[c], std::min(allowed[c], reach[c] + o[c]));
+    // Clear the box the new counts may reach, then add each outcome's shifted copy of the
+    // box reached so far (the part of it that stays within the limits; the rest fails).
+    for (int a = 0; a <= grown[0]; ++a)
+      for (int b = 0; b <= grown[1]; ++b)
+        for (int c = 0; c <= grown[2]; ++c) {
+          double* row = &next[static_cast<std::size_t>(a) * stride[0] + static_cast<std::size_t>(b) * stride[1] + static_cast<std::size_t>(c) * stride[2]];
+          std::fill(row, row + grown[3] + 1, 0.0);
+        }
+    for (const auto& [o, p] : d) {
+      std::array<int, kCategories> top{};
+      bool fits = true;
+      for (std::size_t c = 0; c < kCategories; ++c) {
+        top[c] = std::min(reach[c], allowed[c] - o[c]);
+        fits = fits && top[c] >= 0;
+      }
+      if (!fits) continue;
+      const std::size_t shift = static_cast<std::size_t>(o[0]) * stride[0] + static_cast<std::size_t>(o[1]) * stride[1] +
+                                static_cast<std::size_t>(o[2]) * stride[2] + static_cast<std::size_t>(o[3]);
+      const double w = p;
+      for (int a = 0; a <= top[0]; ++a)
+        for (int b = 0; b <= top[1]; ++b)
+          for (int c = 0; c <= top[2]; ++c) {
+            const std::size_t at = static_cast<std::size_t>(a) * stride[0] + static_cast<std::size_t>(b) * stride[1] + static_cast<std::size_t>(c) * stride[2];
+            const double* from = &mass[at];
+            double* to = &next[at + shift];
+            for (int e = 0; e <= top[3]; ++e) to[e] += w * from[e];
           }
-    for (int c = 0; c < kCategories; ++c)
-      reach[static_cast<std::size_t>(c)] = std::min(allowed[static_cast<std::size_t>(c)], reach[static_cast<std::size_t>(c)] + most[static_cast<std::size_t>(c)]);
+    }
+    reach = grown;
     mass.swap(next);
   }
   double total = 0;
-  for (const double m : mass) total += m;
+  for (int a = 0; a <= reach[0]; ++a)
+    for (int b = 0; b <= reach[1]; ++b)
+      for (int c = 0; c <= reach[2]; ++c)
+        for (int e = 0; e <= reach[3]; ++e)
+          total += mass[static_cast<std::size_t>(a) * stride[0] + static_cast<std::size_t>(b) * stride[1] + static_cast<std::size_t>(c) * stride[2] +
+                        static_cast<std::size_t>(e)];
   return std::min(1.0, total);
 }
 
