@@ -183,23 +183,57 @@ TEST_CASE("performance: simulating a nail allocates nothing", "[assess][allocati
   CHECK(test::allocations::stop() == 1);
 }
 
-TEST_CASE("stop rule: batches run until the P(pass) interval is narrow enough", "[assess][stop]") {
+TEST_CASE("stop rule: batches run until the verdict's interval is narrow enough", "[assess][stop]") {
   auto s = scenario::read_scenario(scenario_path("highway-pivoted-raised-skirt.toml"));
   s.run.replicates = 16;
   s.run.target_half_width = 0.02;
   s.run.max_replicates = 400;
+  s.run.estimator = scenario::RunSpec::Estimator::Replicates;
   const assess::Simulator sim(s);
   const auto a = assess::run_assessment(sim, 2);
-  const auto sum = assess::summarise(a, s);
-  CHECK(a.replicates % 16 == 0);
+  const auto sum = assess::summarise(a, s, assess::kExactDraws);
+  // Batches grow by half the replicates so far (at least the first batch's 16).
+  std::vector<std::uint64_t> sizes{16};
+  while (sizes.back() < 400) sizes.push_back(std::min<std::uint64_t>(400, sizes.back() + std::max<std::uint64_t>(16, sizes.back() / 2)));
+  CHECK(std::find(sizes.begin(), sizes.end(), a.replicates) != sizes.end());
   CHECK(a.replicates > 16);  // one batch of 16 cannot reach +/- 0.02
-  const bool narrow = 0.5 * (sum.pass.high - sum.pass.low) <= 0.02;
-  CHECK((narrow || a.replicates == 400));
+  CHECK(a.looks == static_cast<int>(std::find(sizes.begin(), sizes.end(), a.replicates) - sizes.begin()) + 1);
+  const bool narrow = 0.5 * (sum.verdict.pass.high - sum.verdict.pass.low) <= 0.02;
+  CHECK(a.stopped_by == (narrow ? "target_half_width" : "max_replicates"));
+  CHECK(sum.verdict.basis == assess::Basis::Replicates);
   // ...and it stopped at the first batch that was narrow enough.
+  const auto at = std::find(sizes.begin(), sizes.end(), a.replicates);
   assess::Assessment shorter;
-  assess::run_replicates(sim, 0, a.replicates - 16, shorter, nullptr);
-  const auto before = assess::summarise(shorter, s);
-  CHECK(0.5 * (before.pass.high - before.pass.low) > 0.02);
+  assess::run_replicates(sim, 0, *(at - 1), shorter, nullptr);
+  const auto before = assess::summarise(shorter, s, assess::kExactDraws);
+  CHECK(0.5 * (before.verdict.pass.high - before.verdict.pass.low) > 0.02);
+}
+
+TEST_CASE("stop rule: until settled, the exact estimate settles a verdict with fewer replicates than the replicates' share", "[assess][stop]") {
+  auto s = scenario::read_scenario(scenario_path("highway-pivoted.toml"));
+  s.run.replicates = 20;
+  s.run.until_settled = true;
+  s.run.max_replicates = 2000;
+  const auto settle = [&](scenario::RunSpec::Estimator e) {
+    s.run.estimator = e;
+    const auto a = assess::run_assessment(assess::Simulator(s), 2);
+    const auto sum = assess::summarise(a, s, assess::kExactDraws);
+    // The interval the report shows is the one that stopped the run.
+    CHECK(a.stopped_by == "settled");
+    CHECK(sum.settled);
+    CHECK(sum.passes);
+    return a.replicates;
+  };
+  const auto exact = settle(scenario::RunSpec::Estimator::EveryNail);
+  const auto replicates = settle(scenario::RunSpec::Estimator::Replicates);
+  INFO("settled after " << exact << " replicates from every nail, " << replicates << " from the replicates' share");
+  CHECK(exact < replicates);
+  // A verdict that cannot settle within max_replicates says so.
+  s.run.max_replicates = 20;
+  s.run.estimator = scenario::RunSpec::Estimator::Replicates;
+  const auto a = assess::run_assessment(assess::Simulator(s), 2);
+  CHECK(a.replicates == 20);
+  CHECK(a.stopped_by == "max_replicates");
 }
 
 TEST_CASE("re-strikes: in a closed deck some nails come back into the blade's disc and are struck again", "[assess][restrike]") {

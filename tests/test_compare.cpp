@@ -4,6 +4,8 @@
 
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
+#include "assess/statistics.hpp"
+#include "random/stream.hpp"
 #include "study/compare.hpp"
 
 using namespace j232;
@@ -29,6 +31,43 @@ TEST_CASE("compare: a design against itself differs by exactly nothing", "[compa
   // No replicate differs, and the comparison says how many could have: 1 - 0.025^(1/40).
   CHECK(c.versus_first[0].replicates_differing == 0);
   CHECK(c.versus_first[0].differing_at_most == Approx(0.0881).epsilon(0.01));
+  // P(pass)'s difference (Newcombe's paired interval) is zero but not zero-wide.
+  const auto& p = c.versus_first[0].pass;
+  CHECK(p.mean == 0.0);
+  CHECK(p.low < -0.01);
+  CHECK(p.high > 0.01);
+}
+
+TEST_CASE("compare: Newcombe's paired interval is never zero-wide and covers the true difference about 95 % of the time",
+          "[compare][statistics]") {
+  // No pair differs: an interval about 0 of about the Wilson width of n.
+  const auto none = assess::newcombe_paired(30, 0, 0, 10);
+  CHECK(none.estimate == 0.0);
+  CHECK(none.low < 0.0);
+  CHECK(none.high > 0.0);
+  // Swapping the designs negates it.
+  const auto ab = assess::newcombe_paired(50, 7, 2, 41), ba = assess::newcombe_paired(50, 2, 7, 41);
+  CHECK(ab.estimate == Approx(-ba.estimate));
+  CHECK(ab.low == Approx(-ba.high));
+  CHECK(ab.high == Approx(-ba.low));
+  // Coverage: pairs that pass together with probability 0.85, one only with 0.04 and 0.01
+  // (difference -0.03), 200 pairs a trial, 4000 trials.
+  random::Stream rng(9, 0, 0, random::Purpose::Test);
+  int covered = 0;
+  const int trials = 4000;
+  for (int t = 0; t < trials; ++t) {
+    std::uint64_t n[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 200; ++i) {
+      const double u = rng.uniform();
+      ++n[u < 0.85 ? 0 : u < 0.89 ? 1 : u < 0.90 ? 2 : 3];
+    }
+    const auto i = assess::newcombe_paired(n[0], n[1], n[2], n[3]);
+    covered += i.low <= -0.03 && -0.03 <= i.high;
+  }
+  const double coverage = static_cast<double>(covered) / trials;
+  INFO("coverage " << coverage);
+  CHECK(coverage > 0.93);
+  CHECK(coverage < 0.975);
 }
 
 TEST_CASE("compare: common random numbers make a small design change measurable", "[compare][statistics]") {

@@ -58,7 +58,7 @@ TEST_CASE("feed: a mis-sampled phase fails the KS test (the test has teeth)", "[
 
 TEST_CASE("random streams: keyed by (seed, replicate, nail, purpose), independent of order", "[random]") {
   random::Stream a(1, 2, 3, random::Purpose::Feed), b(1, 2, 3, random::Purpose::Feed);
-  random::Stream c(1, 2, 4, random::Purpose::Feed), d(1, 2, 3, random::Purpose::Flight);
+  random::Stream c(1, 2, 4, random::Purpose::Feed), d(1, 2, 3, random::Purpose::Roughness);
   const auto a1 = a(), b1 = b();
   CHECK(a1 == b1);
   CHECK(c() != a1);
@@ -67,4 +67,30 @@ TEST_CASE("random streams: keyed by (seed, replicate, nail, purpose), independen
   random::Stream e(5, 0, 0, random::Purpose::Test);
   for (int i = 0; i < 50000; ++i) u.push_back(e.uniform());
   CHECK(test::ks_statistic(u, [](double x) { return x; }) < test::ks_critical_001(u.size()));
+}
+
+TEST_CASE("random streams: a flight event's draw depends on its number among its purpose's events, not on what came before", "[random]") {
+  // Two histories of one nail: the second meets two guards before its first rough bounce.
+  random::EventDraws one(7, 3, 11), two(7, 3, 11);
+  const double rough_one = one.next(random::Purpose::Roughness).uniform();
+  two.next(random::Purpose::GuardPass), two.next(random::Purpose::GuardPass);
+  CHECK(two.next(random::Purpose::Roughness).uniform() == rough_one);
+  // ...and its second guard draw is the other's second, however many bounces came between.
+  random::EventDraws three(7, 3, 11), four(7, 3, 11);
+  const double first_guard = three.next(random::Purpose::GuardPass).uniform();
+  four.next(random::Purpose::GuardPass);
+  for (int i = 0; i < 5; ++i) four.next(random::Purpose::Roughness);
+  const double second_three = three.next(random::Purpose::GuardPass).uniform();
+  CHECK(four.next(random::Purpose::GuardPass).uniform() == second_three);
+  CHECK(second_three != first_guard);  // the second guard is not the first again
+  // Events of one purpose are independent of each other and uniform.
+  std::vector<double> u;
+  random::EventDraws many(5, 0, 0);
+  for (int i = 0; i < 50000; ++i) u.push_back(many.next(random::Purpose::Roughness).uniform());
+  CHECK(test::ks_statistic(u, [](double x) { return x; }) < test::ks_critical_001(u.size()));
+  // Different nails, replicates and seeds draw differently for the same event.
+  const double base = random::EventDraws(1, 2, 3).next(random::Purpose::GuardPass).uniform();
+  CHECK(random::EventDraws(1, 2, 4).next(random::Purpose::GuardPass).uniform() != base);
+  CHECK(random::EventDraws(1, 3, 3).next(random::Purpose::GuardPass).uniform() != base);
+  CHECK(random::EventDraws(2, 2, 3).next(random::Purpose::GuardPass).uniform() != base);
 }

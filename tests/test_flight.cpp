@@ -36,7 +36,7 @@ flight::FlightResult land(const scene::Scene& ground, const flight::Body& start,
   static const flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
   flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
   ctx.board_near = board_near;
-  random::Stream rng(1, 0, 0, random::Purpose::Test);
+  random::EventDraws rng(1, 0, 0);
   // A small sphere touches the ground where its centre's parabola meets the height of its
   // radius (a rod would touch earlier, at its end; test_flight's board-touch case has that).
   return flight::fly(start, projectile::Projectile::sphere(kRadius * 2, 0.002), drag, ctx, {}, {}, rng);

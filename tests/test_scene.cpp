@@ -196,7 +196,8 @@ TEST_CASE("scene: the operator-zone share converges to the sector's fraction of 
     b.position = {0, 0, s.spindles[0].geometry.height};
     b.velocity = {100 * std::cos(a), 100 * std::sin(a), 0};
     b.axis = Vec3::UnitZ();  // broadside to the board
-    const auto r = flight::fly(b, projectile::Projectile::capsule(0.0508, 0.00251, 0.002), {}, ctx, {}, {}, rng);
+    random::EventDraws draws(17, 0, static_cast<std::uint64_t>(i));
+    const auto r = flight::fly(b, projectile::Projectile::capsule(0.0508, 0.00251, 0.002), {}, ctx, {}, {}, draws);
     marks += r.mark_count;
     zone += r.hits_zone + r.punctures_zone;
   }
@@ -214,7 +215,7 @@ TEST_CASE("counted height: J232 counts only marks above the blade plane", "[scen
   const double counted = s.spindles[0].geometry.height;
   const flight::FlightContext ctx{&sc, &settings, 100.0, 0.65, counted};
   for (const double dz : {0.05, -0.05}) {
-    random::Stream rng(3, 0, 0, random::Purpose::Test);
+    random::EventDraws rng(3, 0, 0);
     flight::Body b;
     b.position = {0.9, 0, counted + dz};  // outside the deck, inside the board
     b.velocity = {100, 0, 0};

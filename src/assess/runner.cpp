@@ -1,5 +1,7 @@
 #include "assess/runner.hpp"
 
+#include "assess/summary.hpp"
+
 #include "assess/chunk.hpp"
 #include "assess/cluster.hpp"
 
@@ -223,16 +225,34 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress,
   a.threads = used;
   const auto start = std::chrono::steady_clock::now();
   const auto first_batch = static_cast<std::uint64_t>(run.replicates);
-  if (progress) progress->total = run.target_half_width ? run.max_replicates : run.replicates;
+  const bool stop_rule = run.target_half_width || run.until_settled;
+  const auto most = static_cast<std::uint64_t>(std::max(run.max_replicates, run.replicates));
+  if (progress) progress->total = static_cast<long long>(stop_rule ? most : first_batch);
   arena.execute([&] {
     run_replicates(sim, 0, first_batch, a, progress, sink, replicate_sink);
-    if (!run.target_half_width) return;
-    // Batches of the first batch's size until the interval is narrow enough.
+    if (!stop_rule) return;
+    // Looks at the verdict's estimate (the interval the report will show: the same draws)
+    // after batches that grow by half the replicates so far, so that the looks stay few
+    // (their number grows as the logarithm of the replicates) and each costs little beside
+    // the batch before it.
     for (;;) {
-      const Interval i = wilson(a.passed, a.replicates);
-      if (0.5 * (i.high - i.low) <= *run.target_half_width || a.replicates >= static_cast<std::uint64_t>(run.max_replicates)) break;
-      run_replicates(sim, a.replicates, std::min(first_batch, static_cast<std::uint64_t>(run.max_replicates) - a.replicates), a, progress,
-                     sink, replicate_sink);
+      ++a.looks;
+      const Interval i = verdict_estimate(a, sim.scenario(), kExactDraws).pass;
+      const double required = sim.scenario().criteria.required_pass_probability;
+      if (run.target_half_width && 0.5 * (i.high - i.low) <= *run.target_half_width) {
+        a.stopped_by = "target_half_width";
+        break;
+      }
+      if (run.until_settled && (i.low >= required || i.high < required)) {
+        a.stopped_by = "settled";
+        break;
+      }
+      if (a.replicates >= most) {
+        a.stopped_by = "max_replicates";
+        break;
+      }
+      const std::uint64_t batch = std::min(std::max(first_batch, a.replicates / 2), most - a.replicates);
+      run_replicates(sim, a.replicates, batch, a, progress, sink, replicate_sink);
     }
   });
   a.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

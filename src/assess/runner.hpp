@@ -120,6 +120,11 @@ struct Assessment : NailHistograms {
   std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
   double wall_seconds = 0;
   int threads = 0;
+  // With a stop rule (run.target_half_width, run.until_settled): how many times the
+  // estimate was looked at, and what stopped the batches ("target_half_width", "settled",
+  // "max_replicates"); empty without one.
+  int looks = 0;
+  std::string stopped_by;
   std::map<std::uint32_t, std::string> exit_names;  // every exit path in `exits` and first exit in the mark sample, in words
   // Filled after the run when asked for (run --trajectories): chosen nails' paths, and how
   // many notable nails (zone marks, punctures) were not kept beyond the cap.
@@ -132,8 +137,8 @@ struct Progress {
   std::atomic<long long> total{0};
 };
 
-// Runs the scenario's replicates (or, with a target half-width, batches until the
-// P(pass) interval is that narrow or max_replicates is reached).
+// Runs the scenario's replicates (or, with a stop rule, batches until the verdict's P(pass)
+// interval is narrow enough or settled, or max_replicates is reached).
 Assessment run_assessment(const Simulator& simulator, int threads, Progress* progress = nullptr, const MarkSink& marks = {},
                           const ReplicateSink& replicates = {});
 

@@ -145,7 +145,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   drag.air = {-s.feed.ground_speed, 0.0, 0.0};  // still air, seen from the moving mower
   drag.spin_average = s.air.spin_average;
 
-  random::Stream flight_rng(s.run.seed, replicate, static_cast<std::uint64_t>(nail), random::Purpose::Flight);
+  random::EventDraws flight_draws(s.run.seed, replicate, static_cast<std::uint64_t>(nail));
   // The other blades' angles at time 0: locked to the feeding one on a timed deck, else
   // independent and random (belt-driven spindles drift apart).
   strike::BladePhases phases;
@@ -161,7 +161,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   flight::FlightContext context = context_;
   context.path = path;
   if (replay) replay->struck = true, context.events = &replay->events;
-  out.flight = flight::fly(body, rod, drag, context, phases, {k0, contact->edge}, flight_rng);
+  out.flight = flight::fly(body, rod, drag, context, phases, {k0, contact->edge}, flight_draws);
   const Vec3& launch = out.flight.launch_velocity;
   out.exit_speed = launch.norm();
   out.launch_elevation = std::atan2(launch.z(), std::hypot(launch.x(), launch.y()));

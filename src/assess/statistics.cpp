@@ -14,6 +14,21 @@ Interval wilson(std::uint64_t k, std::uint64_t n, double z) {
   return {p, k == 0 ? 0.0 : std::max(0.0, centre - half), k == n ? 1.0 : std::min(1.0, centre + half)};
 }
 
+Interval newcombe_paired(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d, double z) {
+  const std::uint64_t n = a + b + c + d;
+  if (n == 0) return {0, -1, 1};
+  const Interval first = wilson(a + b, n, z), second = wilson(a + c, n, z);
+  const double p1 = first.estimate, p2 = second.estimate, delta = p2 - p1;
+  // The phi coefficient of the 2 x 2 table; 0 when a margin is empty.
+  const double margins = static_cast<double>(a + b) * static_cast<double>(c + d) * static_cast<double>(a + c) * static_cast<double>(b + d);
+  const double phi = margins > 0 ? (static_cast<double>(a) * static_cast<double>(d) - static_cast<double>(b) * static_cast<double>(c)) / std::sqrt(margins)
+                                 : 0.0;
+  const double dl2 = p2 - second.low, du1 = first.high - p1, du2 = second.high - p2, dl1 = p1 - first.low;
+  const double low = delta - std::sqrt(std::max(0.0, dl2 * dl2 - 2 * phi * dl2 * du1 + du1 * du1));
+  const double high = delta + std::sqrt(std::max(0.0, du2 * du2 - 2 * phi * du2 * dl1 + dl1 * dl1));
+  return {delta, std::max(-1.0, low), std::min(1.0, high)};
+}
+
 double quantile_sorted(const std::vector<double>& v, double p) {
   if (v.empty()) return 0;
   const double h = (static_cast<double>(v.size()) - 1) * p;

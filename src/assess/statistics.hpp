@@ -13,6 +13,15 @@ struct Interval {
 // k = 0 and k = n, where the normal approximation collapses to zero width.
 Interval wilson(std::uint64_t successes, std::uint64_t trials, double z = 1.959963984540054);
 
+// The difference p2 - p1 of two proportions measured on the same n pairs (Newcombe 1998,
+// "Improved confidence intervals for the difference between binomial proportions based on
+// paired data", Statistics in Medicine 17, method 10): from the Wilson intervals of both
+// and the correlation of the pairs. `both`: pairs with 1 in both; `only_first`, `only_second`:
+// 1 in one only; `neither`. Never zero-wide, also when no pair differs (then it says how
+// large a difference n pairs could have missed).
+Interval newcombe_paired(std::uint64_t both, std::uint64_t only_first, std::uint64_t only_second, std::uint64_t neither,
+                         double z = 1.959963984540054);
+
 // Quantile p of values (sorted ascending), linear interpolation between order
 // statistics (Hyndman & Fan type 7, as R and NumPy by default).
 double quantile_sorted(const std::vector<double>& sorted, double p);

@@ -89,6 +89,39 @@ std::vector<std::string> warnings(const Assessment& a, const scenario::Scenario&
 
 }  // namespace
 
+const char* basis_name(Basis b) { return b == Basis::EveryNail ? "every_nail" : "replicates"; }
+
+VerdictEstimate verdict_estimate(const Assessment& a, const scenario::Scenario& scenario, int exact_draws) {
+  using Estimator = scenario::RunSpec::Estimator;
+  VerdictEstimate v;
+  v.replicates = wilson(a.passed, a.replicates);
+  v.pass = v.replicates;
+  const Estimator asked = scenario.run.estimator;
+  if (asked == Estimator::Replicates) {
+    v.why_basis = "run.estimator = \"replicates\"";
+    return v;
+  }
+  v.exact = exact_pass(a.outcomes, scenario.feed.nails, scenario.criteria, scenario.run.seed, exact_draws);
+  if (!v.exact.computed) {
+    v.why_basis = "P(pass) from every nail was not computed: " + v.exact.not_computed;
+    return v;
+  }
+  if (exact_draws <= 0) {
+    v.why_basis = "P(pass) from every nail was computed without its interval";
+    return v;
+  }
+  const Interval exact{v.exact.value, v.exact.low, v.exact.high};
+  const bool narrower = exact.high - exact.low < v.replicates.high - v.replicates.low;
+  if (asked == Estimator::EveryNail || narrower) {
+    v.basis = Basis::EveryNail;
+    v.pass = exact;
+    v.why_basis = asked == Estimator::EveryNail ? "run.estimator = \"every_nail\"" : "its interval is the narrower";
+  } else {
+    v.why_basis = "its interval is the narrower";
+  }
+  return v;
+}
+
 Summary summarise(const Assessment& a, const scenario::Scenario& scenario, int exact_draws) {
   const scenario::CriteriaSpec& criteria = scenario.criteria;
   Summary s;
@@ -100,9 +133,16 @@ Summary summarise(const Assessment& a, const scenario::Scenario& scenario, int e
   s.uncounted_marks = a.uncounted_marks;
   s.fates = a.fates;
   s.passed = a.passed;
-  s.pass = wilson(a.passed, s.replicates);
-  s.passes = s.pass.estimate >= s.required;
-  s.settled = s.pass.low >= s.required || s.pass.high < s.required;
+  s.verdict = verdict_estimate(a, scenario, exact_draws);
+  s.looks = a.looks;
+  s.stopped_by = a.stopped_by;
+  s.pass = s.verdict.replicates;
+  // Shown beside the verdict's basis even when the replicates were asked to decide.
+  s.exact = scenario.run.estimator == scenario::RunSpec::Estimator::Replicates
+                ? exact_pass(a.outcomes, scenario.feed.nails, criteria, scenario.run.seed, exact_draws)
+                : s.verdict.exact;
+  s.passes = s.verdict.pass.estimate >= s.required;
+  s.settled = s.verdict.pass.low >= s.required || s.verdict.pass.high < s.required;
   for (int c = 0; c < kCategories; ++c) {
     const ShareDistribution& d = a.shares[c];
     CriterionSummary& cs = s.criteria[c];
@@ -132,7 +172,6 @@ Summary summarise(const Assessment& a, const scenario::Scenario& scenario, int e
   s.warnings = warnings(a, scenario, s.validity);
   for (int k = 0; k < flight::kCutOffReasons && k < static_cast<int>(a.cut_off_by.counts.size()); ++k)
     s.cut_off_by[static_cast<std::size_t>(k)] = a.cut_off_by.counts[static_cast<std::size_t>(k)];
-  s.exact = exact_pass(a.outcomes, scenario.feed.nails, criteria, scenario.run.seed, exact_draws);
   return s;
 }
 

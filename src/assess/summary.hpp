@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "assess/exact_pass.hpp"
 #include "assess/runner.hpp"
 
 namespace j232::assess {
@@ -30,12 +31,35 @@ struct Validity {
   std::vector<std::string> reasons;  // one sentence each, for the terminal, report and result.json
 };
 
+// The P(pass) a verdict rests on (run.estimator): the share of replicates that passed, or
+// the exact sum over every nail's outcome (assess/exact_pass.hpp), whichever has the
+// narrower interval by default.
+enum class Basis { Replicates, EveryNail };
+const char* basis_name(Basis b);  // "replicates", "every_nail"
+
+struct VerdictEstimate {
+  Basis basis = Basis::Replicates;
+  Interval pass;          // the basis's estimate and 95 % interval
+  Interval replicates;    // the replicates' share (Wilson)
+  ExactPass exact;        // the exact estimate (its interval with draws > 0)
+  std::string why_basis;  // one clause: why this basis
+};
+
+// The verdict's estimate for the run so far, with `exact_draws` bootstrap draws for the
+// exact one's interval (0: the exact value alone, and the replicates decide). Also the
+// stop rules' test between batches.
+VerdictEstimate verdict_estimate(const Assessment& a, const scenario::Scenario& scenario, int exact_draws);
+
 struct Summary {
   std::uint64_t replicates = 0, passed = 0, nails = 0, struck = 0, marks = 0, uncounted_marks = 0;
-  Interval pass;
+  Interval pass;  // the share of replicates that passed (Wilson)
   double required = 0;
+  // The verdict: P(pass) on its basis (verdict.pass) against the required probability.
+  VerdictEstimate verdict;
+  int looks = 0;           // a stop rule's looks at it, and what stopped the batches (Assessment's)
+  std::string stopped_by;
   bool passes = false;
-  bool settled = false;  // the 95 % interval lies wholly on one side of `required`
+  bool settled = false;  // the verdict's 95 % interval lies wholly on one side of `required`
   std::array<CriterionSummary, kCategories> criteria;
   int deciding = 0;  // the criterion least likely to pass
   double marks_per_nail = 0;
@@ -49,7 +73,7 @@ struct Summary {
   std::vector<std::string> warnings;
   std::array<std::uint64_t, flight::kCutOffReasons> cut_off_by{};
   // P(pass) computed exactly from every nail's outcome (assess/exact_pass.hpp): the value,
-  // and with exact_draws > 0 its 95 % interval.
+  // and with exact_draws > 0 its 95 % interval (also in `verdict`).
   ExactPass exact;
 };
 

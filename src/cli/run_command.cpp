@@ -42,6 +42,7 @@ Runner add_run_command(CLI::App& app) {
       app.add_subcommand("run", "Simulate the SAE J232 test of a scenario and judge it (exit 0 passes, 1 fails, 4 invalid: no verdict)");
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML); see scenarios/")->required();
   add_run_overrides(*cmd, o->overrides, "the scenario's");
+  add_stop_rule_options(*cmd, o->overrides);
   add_trajectories_option(*cmd, o->overrides);
   add_uncertainty_option(*cmd, o->overrides);
   cmd->add_option("--out", o->out, "Output folder for report.html, result.json and marks.csv")->capture_default_str();

@@ -34,4 +34,26 @@ void add_run_overrides(CLI::App& cmd, RunOverrides& o, const std::string& whose)
   cmd.add_option("--threads", o.threads, "Worker threads, 0 = all cores (overrides [run] threads)")->check(CLI::Range(0, 1024));
 }
 
+void add_stop_rule_options(CLI::App& cmd, RunOverrides& o) {
+  cmd.add_flag("--until-settled", o.until_settled,
+               "Run batches (the first of --replicates, then growing by half the replicates so far) until the verdict's 95 % interval "
+               "lies on one side of the required probability, or [run] max_replicates (sets [run] until_settled)");
+  cmd.add_option_function<double>(
+         "--target-half-width", [&o](double w) { o.target_half_width = w; },
+         "Run batches (as --until-settled) until the verdict's 95 % interval is at most this far either side of its estimate, "
+         "or [run] max_replicates (overrides [run] target_half_width)")
+      ->check(CLI::Range(0.001, 0.5))
+      ->type_name("W");
+  cmd.add_option_function<std::string>(
+         "--estimator",
+         [&o](const std::string& text) {
+           using E = scenario::RunSpec::Estimator;
+           o.estimator = text == "replicates" ? E::Replicates : text == "every-nail" ? E::EveryNail : E::Narrower;
+         },
+         "The P(pass) the verdict rests on: narrower (default: the narrower interval of the two), replicates (the share of "
+         "replicates that passed) or every-nail (the exact sum over every nail's outcome) (overrides [run] estimator)")
+      ->check(CLI::IsMember({"narrower", "replicates", "every-nail"}))
+      ->type_name("NAME");
+}
+
 }  // namespace j232::cli

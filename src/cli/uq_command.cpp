@@ -145,9 +145,23 @@ int uq(const UqOptions& o) {
     std::vector<std::size_t> order(r.plan.inputs.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](auto a, auto b) { return s.total[a].estimate > s.total[b].estimate; });
-    for (auto i : order)
-      fmt::print("  {:<34} {:.3f} ({:.3f} to {:.3f})\n", terminal_safe(r.plan.inputs[i].parameter), s.total[i].estimate, s.total[i].low,
-                 s.total[i].high);
+    bool flagged = false;
+    for (auto i : order) {
+      const bool noise = study::leaves_unit_interval(s.total[i]);
+      flagged = flagged || noise;
+      fmt::print("  {:<34} {:.3f} ({:.3f} to {:.3f}){}\n", terminal_safe(r.plan.inputs[i].parameter), s.total[i].estimate, s.total[i].low,
+                 s.total[i].high, noise ? "  (!)" : "");
+    }
+    if (flagged)
+      fmt::print("  (!) the interval leaves [0, 1], where an index lies, by more than 0.05: at {} base draws it is as much noise as effect\n",
+                 r.plan.base_draws);
+    if (r.half_indices) {
+      double moved = 0;
+      const auto& half = (*r.half_indices)[1];
+      if (half.variance > 0)
+        for (std::size_t i = 0; i < order.size(); ++i) moved = std::max(moved, std::abs(half.total[i].estimate - s.total[i].estimate));
+      fmt::print("  from {} to {} base draws the total indices moved by at most {:.3f}\n", r.plan.base_draws / 2, r.plan.base_draws, moved);
+    }
   }
   for (std::size_t i = 0; i < r.warnings.size() && i < 5; ++i) fmt::print("WARNING: {}\n", terminal_safe(r.warnings[i]));
   if (r.warnings.size() > 5) fmt::print("WARNING: {} more draws like these (uq.json lists them)\n", r.warnings.size() - 5);

@@ -117,7 +117,7 @@ struct NailFlight {
   const FlightContext& ctx;
   const strike::BladePhases& phases;
   const FirstContact& first;
-  random::Stream& rng;
+  random::EventDraws& draws;
   const double length = nail.length, diameter = nail.diameter, mass = nail.mass;
   const FlightSettings& set = *ctx.settings;
 
@@ -181,10 +181,12 @@ struct NailFlight {
     r.trace.touch(t);
     last_touch = t;
   }
-  void moved(const Vec3& from, const Vec3& to);
+  // `along`: where the chord's straight segment (the centre's ray, which decided what the
+  // nail met) is at that time, when `to` is off it (up to the chord's sag).
+  void moved(const Vec3& from, const Vec3& to, const Vec3* along = nullptr);
   void leave_deck(const Vec3& from, const Vec3& to);
   std::optional<strike::Contact> blade_contact(const strike::Motion& chord, double until);
-  Vec3 meet(const PlaneTouch& at, const strike::Motion& chord);
+  Vec3 meet(const PlaneTouch& at, const Chord& chord);
   void restrike(const strike::Contact& k);
   void touched_scene() { on_blade = false; }
   void close_pass() {
@@ -207,10 +209,13 @@ struct NailFlight {
 // The nail moved straight from `from` to `to`: if that took it out of the deck's outline,
 // where and how (a guard it had just passed, an opening, under the skirt, over the deck);
 // if back in, it has not left yet. The last crossing out is the way out; the first is kept.
-void NailFlight::moved(const Vec3& from, const Vec3& to) {
+void NailFlight::moved(const Vec3& from, const Vec3& to_centre, const Vec3* along) {
   NailTrace& trace = r.trace;
-  if (ctx.path) ctx.path->push_back(to);
+  if (ctx.path) ctx.path->push_back(to_centre);
   if (!ctx.deck_outline || ctx.deck_outline->empty()) return;
+  // Where it left is judged on the segment the scene was queried along, so that a centre
+  // whose ray passed under the skirt's edge is not said to have gone through it.
+  const Vec3& to = along ? *along : to_centre;
   const bool inside = ctx.deck_outline->contains(to.x(), to.y());
   if (!in_deck) {
     // Back inside the outline (turned back by a guard, or over the plate and down): it has
@@ -370,10 +375,11 @@ std::optional<PlaneTouch> NailFlight::plane_touch(const scene::Hit& hit, const s
 
 // The nail moved along the chord to where it touches a surface; returns the touching
 // point from its centre.
-Vec3 NailFlight::meet(const PlaneTouch& at, const strike::Motion& chord) {
+Vec3 NailFlight::meet(const PlaneTouch& at, const Chord& chord) {
   const Vec3 from = b.position;
-  b.position = at.centre, b.velocity = chord.velocity(at.time), b.axis = at.axis, b.time = at.time;
-  moved(from, b.position);
+  const Vec3 on_segment = from + chord.step * std::clamp((at.time - b.time) / chord.dt, 0.0, 1.0);
+  b.position = at.centre, b.velocity = chord.motion.velocity(at.time), b.axis = at.axis, b.time = at.time;
+  moved(from, b.position, &on_segment);
   last_event = b.time;
   return at.point - at.centre;
 }
@@ -450,7 +456,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
       reach_board(hit, centre_touching(b, hit.point), b.velocity);
       return false;
     case SurfaceMaterial::Response::Curtain:
-      if (rng.uniform() < material.openness) {
+      if (random::Stream pass = draws.next(random::Purpose::GuardPass); pass.uniform() < material.openness) {
         b.velocity *= material.pass_speed_factor;  // slips between the links, losing speed
         touch(Touch::GuardPass);
         last_guard_passed = hit.guard;
@@ -465,6 +471,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   // would meet from behind is no facet it can meet, and is drawn again.
   Vec3 facet = n;
   if (material.roughness > 0) {
+    random::Stream rng = draws.next(random::Purpose::Roughness);  // this bounce's, and its redraws
     facet = rough_normal(n, material.roughness, rng);
     for (int tries = 0; tries < 16 && v_in.dot(facet) >= 0; ++tries) facet = rough_normal(n, material.roughness, rng);
     if (v_in.dot(facet) >= 0) facet = n;
@@ -667,7 +674,7 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
       return true;
     case NextEvent::Kind::PlaneAgain: {
       const scene::Hit plane = *last_plane;
-      const Vec3 arm = meet(*e.again, c.motion);
+      const Vec3 arm = meet(*e.again, c);
       return respond(plane, &arm) && after_bounce(plane);
     }
     case NextEvent::Kind::Blade: {
@@ -692,7 +699,7 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
   if (set.materials.of(hit.surface, hit.guard).response == SurfaceMaterial::Response::Board) {
     if (at) {
       const Vec3 velocity = c.motion.velocity(at->time);
-      meet(*at, c.motion);
+      meet(*at, c);
       reach_board(hit, *at, velocity);
       return false;
     }
@@ -705,7 +712,7 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
   skip = {};
   skip.add(hit.face);
   if (at) {
-    const Vec3 arm = meet(*at, c.motion);
+    const Vec3 arm = meet(*at, c);
     if (!respond(hit, &arm)) return false;
   } else {  // (never expected: the centre reaching the plane means the capsule did)
     moved(b.position, hit.point);
@@ -745,8 +752,8 @@ FlightResult NailFlight::run() {
 }  // namespace
 
 FlightResult fly(const Body& start, const projectile::Projectile& nail, const Drag& drag, const FlightContext& ctx,
-                 const strike::BladePhases& phases, const FirstContact& first, random::Stream& rng) {
-  return NailFlight{start, nail, drag, ctx, phases, first, rng}.run();
+                 const strike::BladePhases& phases, const FirstContact& first, random::EventDraws& draws) {
+  return NailFlight{start, nail, drag, ctx, phases, first, draws}.run();
 }
 
 }  // namespace j232::flight

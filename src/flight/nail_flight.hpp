@@ -194,6 +194,6 @@ struct FirstContact {
 // `drag` already scaled to this nail's mass; `phases`: the blades' angles at time 0 of the
 // nail's clock (start.time is on it).
 FlightResult fly(const Body& start, const projectile::Projectile& nail, const Drag& drag, const FlightContext& context,
-                 const strike::BladePhases& phases, const FirstContact& first, random::Stream& rng);
+                 const strike::BladePhases& phases, const FirstContact& first, random::EventDraws& draws);
 
 }  // namespace j232::flight

@@ -1,7 +1,10 @@
 #pragma once
 // Random numbers as a pure function of indices (docs/model.md §5.7, after pbrt-v4 and
 // OpenMC): every nail's stream is keyed by (scenario seed, replicate, nail, purpose),
-// so results are bit-identical for any thread count and any order of work.
+// so results are bit-identical for any thread count and any order of work. In flight each
+// random event has its own stream, keyed further by its number among the nail's events of
+// that purpose (EventDraws), so that two designs compared with common random numbers draw
+// the same numbers for the same event even after an earlier event has gone differently.
 //
 // Engine: xoshiro256++ (Blackman & Vigna, 2019), 256-bit state seeded through
 // SplitMix64 from the key. Distributions come from Boost.Random, whose algorithms are
@@ -19,7 +22,7 @@ inline constexpr std::uint64_t splitmix64(std::uint64_t& state) {
 }
 
 // What a stream is used for; separate purposes never share numbers.
-enum class Purpose : std::uint64_t { Feed = 1, Flight = 2, Estimator = 3, Test = 99 };
+enum class Purpose : std::uint64_t { Feed = 1, Estimator = 3, GuardPass = 4, Roughness = 5, Test = 99 };
 
 class Stream {
  public:
@@ -37,6 +40,12 @@ class Stream {
     key = splitmix64(s) ^ static_cast<std::uint64_t>(purpose);
     s = key;
     for (auto& word : state_) word = splitmix64(s);
+  }
+  // The stream of one event: the key above, and the event's number.
+  Stream(std::uint64_t seed, std::uint64_t replicate, std::uint64_t nail, Purpose purpose, std::uint64_t event)
+      : Stream(seed, replicate, nail, purpose) {
+    std::uint64_t s = state_[0] ^ state_[3] ^ (event * 0x9FB21C651E98DF25ULL);
+    for (auto& word : state_) word ^= splitmix64(s);
   }
 
   result_type operator()() {
@@ -58,6 +67,21 @@ class Stream {
  private:
   static constexpr std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   std::uint64_t state_[4];
+};
+
+// One nail's random events in flight: the n-th event of a purpose draws from the stream
+// keyed (seed, replicate, nail, purpose, n), whatever came before it.
+class EventDraws {
+ public:
+  EventDraws(std::uint64_t seed, std::uint64_t replicate, std::uint64_t nail) : seed_(seed), replicate_(replicate), nail_(nail) {}
+  Stream next(Purpose purpose) {
+    std::uint64_t& n = purpose == Purpose::GuardPass ? guard_passes_ : purpose == Purpose::Roughness ? rough_facets_ : others_;
+    return Stream(seed_, replicate_, nail_, purpose, n++);
+  }
+
+ private:
+  std::uint64_t seed_, replicate_, nail_;
+  std::uint64_t guard_passes_ = 0, rough_facets_ = 0, others_ = 0;
 };
 
 }  // namespace j232::random

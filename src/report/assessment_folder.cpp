@@ -58,6 +58,9 @@ std::string digest(const std::string& scenario_file, const std::vector<scenario:
   if (o.trajectories > 0) f.add(fmt::format(" trajectories {}", o.trajectories));
   if (o.uncertainty) f.add(" uncertainty");
   if (o.for_comparison) f.add(" no stop rule");
+  if (o.until_settled) f.add(" until settled");
+  if (o.target_half_width) f.add(fmt::format(" half-width {:.17g}", *o.target_half_width));
+  if (o.estimator) f.add(fmt::format(" estimator {}", static_cast<int>(*o.estimator)));
   separator();
   return f.hex();
 }
@@ -109,7 +112,10 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   if (o.replicates > 0) s.run.replicates = o.replicates;
   if (o.seed) s.run.seed = *o.seed;
   if (o.threads >= 0) s.run.threads = o.threads;
-  if (o.for_comparison) s.run.target_half_width.reset();  // every design runs the same replicates
+  if (o.until_settled) s.run.until_settled = true;
+  if (o.target_half_width) s.run.target_half_width = o.target_half_width;
+  if (o.estimator) s.run.estimator = *o.estimator;
+  if (o.for_comparison) s.run.target_half_width.reset(), s.run.until_settled = false;  // every design runs the same replicates
   const assess::Simulator simulator(s);
 
   // The folder is locked and checked before the simulation, so a bad --out costs nothing.

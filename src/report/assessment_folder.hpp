@@ -18,6 +18,9 @@ struct RunOverrides {
   std::size_t trajectories = 0;       // sampled nail paths to keep (plus notable ones); 0: none
   bool uncertainty = false;           // also run the scenario's uncertainty study (run --uncertainty)
   bool for_comparison = false;        // keep what a comparison of designs needs; no stop rule (batch --compare)
+  bool until_settled = false;         // run.until_settled = true
+  std::optional<double> target_half_width;  // none: the scenario's run.target_half_width
+  std::optional<scenario::RunSpec::Estimator> estimator;  // none: the scenario's run.estimator
 };
 
 struct RunOutcome {

@@ -14,6 +14,14 @@ namespace {
 using json = nlohmann::ordered_json;
 
 std::string verdict_of(const BatchRow& r) { return r.result ? (*r.result)["verdict"].get<std::string>() : "error"; }
+
+// The P(pass) a result's verdict rests on (the replicates' share for a result written
+// before the verdict had a basis).
+json verdict_pass(const json& x) {
+  if (!x.contains("verdict_basis")) return x["pass_probability"];
+  const json& b = x["verdict_basis"];
+  return {{"estimate", b["estimate"]}, {"low", b["low"]}, {"high", b["high"]}};
+}
 }  // namespace
 
 json batch_summary_json(const std::vector<BatchRow>& rows, const json& comparison) {
@@ -27,7 +35,10 @@ json batch_summary_json(const std::vector<BatchRow>& rows, const json& compariso
       if (x["verdict"] == "invalid") row["invalid_because"] = x["invalid_because"];
       row["title"] = x["scenario"]["title"];
       row["verdict_settled"] = x["verdict_settled"];
-      row["pass_probability"] = x["pass_probability"];
+      // The P(pass) each verdict rests on, named (the replicates' share for a result
+      // written before the verdict had a basis).
+      row["pass_probability"] = verdict_pass(x);
+      row["pass_probability_basis"] = x.contains("verdict_basis") ? x["verdict_basis"]["name"] : json("replicates");
       row["required_pass_probability"] = x["required_pass_probability"];
       row["deciding_criterion"] = x["deciding_criterion"];
       json shares;
@@ -57,18 +68,19 @@ json batch_summary_json(const std::vector<BatchRow>& rows, const json& compariso
 
 std::string batch_summary_csv(const std::vector<BatchRow>& rows) {
   std::string o =
-      "scenario,title,verdict,settled,p_pass,p_pass_low,p_pass_high,required,hits_zone,punctures_zone,hits_outside,"
+      "scenario,title,verdict,settled,p_pass,p_pass_low,p_pass_high,p_pass_basis,required,hits_zone,punctures_zone,hits_outside,"
       "punctures_outside,deciding_criterion,replicates,report,error\n";
   for (const auto& r : rows) {
     if (!r.result) {
-      o += fmt::format("{},,error,,,,,,,,,,,,,{}\n", csv_text_cell(r.scenario), csv_text_cell(r.error));
+      o += fmt::format("{},,error,,,,,,,,,,,,,,{}\n", csv_text_cell(r.scenario), csv_text_cell(r.error));
       continue;
     }
     const json& x = *r.result;
-    const json& p = x["pass_probability"];
-    o += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:g}", csv_text_cell(r.scenario),
+    const json p = verdict_pass(x);
+    o += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{},{:g}", csv_text_cell(r.scenario),
                      csv_text_cell(x["scenario"]["title"].get<std::string>()), verdict_of(r), x["verdict_settled"].get<bool>(),
                      p["estimate"].get<double>(), p["low"].get<double>(), p["high"].get<double>(),
+                     x.contains("verdict_basis") ? x["verdict_basis"]["name"].get<std::string>() : "replicates",
                      x["required_pass_probability"].get<double>());
     for (std::size_t c = 0; c < 4; ++c) o += fmt::format(",{:.6g}", x["criteria"][c]["mean_share"].get<double>());
     o += fmt::format(",{},{},{},{}\n", x["deciding_criterion"].get<std::string>(), x["replicates"].get<long long>(),
@@ -88,7 +100,7 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
       "verdict); {} refused as bad input.</p></section>\n",
       all ? "pass" : "fail", number("passed", summary["passed"], "{}"), number("scenarios", summary["scenarios"], "{}"),
       number("failed", summary["failed"], "{}"), number("invalid", summary["invalid"], "{}"), number("refused", summary["refused"], "{}"));
-  o += "<table class=\"numbers\"><thead><tr><th>scenario</th><th>verdict</th><th>P(pass)</th><th>95 % interval</th><th>required</th>"
+  o += "<table class=\"numbers\"><thead><tr><th>scenario</th><th>verdict</th><th>P(pass)<br><small>the verdict's basis</small></th><th>95 % interval</th><th>required</th>"
        "<th>hits, zone</th><th>punctures, zone</th><th>hits, outside</th><th>punctures, outside</th><th>replicates</th><th>report</th>"
        "</tr></thead><tbody>\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -104,9 +116,9 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
         "<tr class=\"{}\"><td>{}<br><small>{}</small></td><td class=\"verdict-cell\">{}{}</td><td>{}</td><td>{} – {}</td><td>{}</td>",
         verdict_of(r), escape(x["scenario"]["title"].get<std::string>()), escape(r.scenario), verdict_of(r),
         verdict_of(r) != "invalid" && !x["verdict_settled"].get<bool>() ? " (not settled)" : "",
-        number(k + "pass_probability.estimate", x["pass_probability"]["estimate"], "{:.3f}"),
-        number(k + "pass_probability.low", x["pass_probability"]["low"], "{:.3f}"),
-        number(k + "pass_probability.high", x["pass_probability"]["high"], "{:.3f}"),
+        number(k + "pass_probability.estimate", verdict_pass(x)["estimate"], "{:.3f}"),
+        number(k + "pass_probability.low", verdict_pass(x)["low"], "{:.3f}"),
+        number(k + "pass_probability.high", verdict_pass(x)["high"], "{:.3f}"),
         number(k + "required_pass_probability", x["required_pass_probability"], "{:.2f}"));
     for (std::size_t c = 0; c < 4; ++c)
       o += fmt::format("<td>{} %</td>", number(k + "mean_shares." + assess::category_name(static_cast<int>(c)),

@@ -30,6 +30,7 @@ json comparison_json(const study::Comparison& c) {
                        {"title", d.title},
                        {"verdict", d.verdict},
                        {"verdict_settled", d.settled},
+                       {"verdict_basis", d.basis},
                        {"invalid_because", d.invalid_because},
                        {"required_pass_probability", d.required},
                        {"pass_probability", {{"estimate", d.pass.estimate}, {"low", d.pass.low}, {"high", d.pass.high}}},
@@ -122,7 +123,7 @@ std::string comparison_text(const study::Comparison& c) {
     }
     out += fmt::format("  P(pass one test) {:.3f} ({:.3f} to {:.3f})", x.pass.estimate, x.pass.low, x.pass.high);
     if (x.exact.computed) out += fmt::format("; from every nail {:.3f} ({:.3f} to {:.3f})", x.exact.value, x.exact.low, x.exact.high);
-    out += fmt::format("; required {:.2f}\n", x.required);
+    out += fmt::format("; required {:.2f}; the verdict on {}\n", x.required, x.basis == "every_nail" ? "every nail" : "the replicates");
     const auto k = static_cast<std::size_t>(x.deciding);
     out += fmt::format("  decided by {}: mean {:.2f} % against its {:.1f} % limit (margin {:+.2f} points; the criterion passes in {:.1f} % of tests)\n",
                        assess::category_name(x.deciding), 100 * x.shares[k].mean, 100 * x.limits[k], 100 * (x.limits[k] - x.shares[k].mean),
@@ -226,9 +227,9 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
     if (!v.contains("replicates_differing")) continue;
     const std::string dk = fmt::format("differences.{}", d - 1);
     o += v["replicates_differing"].get<std::uint64_t>() == 0
-             ? fmt::format("<p>Design {}: no replicate differs from design 1 in any share or its verdict, so its paired intervals are "
-                           "zero-wide; the share of replicates that could differ is at most {} (95 %), and so is the difference "
-                           "in P(pass).</p>\n",
+             ? fmt::format("<p>Design {}: no replicate differs from design 1 in any share or its verdict, so its shares' paired "
+                           "intervals are zero-wide; the share of replicates that could differ is at most {} (95 %). (P(pass)'s "
+                           "difference has Newcombe's paired interval, which says how large a difference the run could have missed.)</p>\n",
                            d + 1, number(dk + ".differing_at_most", v["differing_at_most"], "{:.2g}"))
              : fmt::format("<p>Design {}: {} of {} replicates differ from design 1 in a share or the verdict.</p>\n", d + 1,
                            number(dk + ".replicates_differing", v["replicates_differing"], "{}"), c["replicates"].get<std::uint64_t>());

@@ -52,28 +52,47 @@ std::string verdict_section(const assess::Summary& sum, const json& r, int nails
     return o + "</ul>\n</section>\n";
   }
   std::string o = fmt::format("<section class=\"verdict {}\" id=\"verdict\">\n", sum.passes ? "pass" : "fail");
+  // The verdict line carries the estimate the verdict rests on, named; the other follows.
+  const auto& e = r["pass_probability_exact"];
+  const bool every_nail = sum.verdict.basis == assess::Basis::EveryNail;
+  const std::string replicates_sentence =
+      fmt::format("{} of {} simulated tests (replicates of {}-nail feeds) met all four criteria: P(pass one test) = {} (95 % interval {} to {}, Wilson).",
+                  number("replicates_passed", r["replicates_passed"], "{}"), number("replicates", r["replicates"], "{}"), nails_per_test,
+                  number("pass_probability.estimate", p["estimate"], "{:.3f}"), number("pass_probability.low", p["low"], "{:.3f}"),
+                  number("pass_probability.high", p["high"], "{:.3f}"));
+  const std::string exact_sentence =
+      e.value("computed", false)
+          ? fmt::format("From every nail rather than every test: P(pass) = {} (95 % interval {} to {}), the exact probability that a "
+                        "{}-nail feed stays within all four limits when each feed station's nails make each combination of marks as "
+                        "often as the run's nails did (interval by Bayesian bootstrap).",
+                        number("pass_probability_exact.estimate", e["estimate"], "{:.3f}"),
+                        number("pass_probability_exact.low", e["low"], "{:.3f}"), number("pass_probability_exact.high", e["high"], "{:.3f}"),
+                        nails_per_test)
+          : fmt::format("P(pass) from every nail was not computed: {}.", escape(e.value("why_not", std::string())));
+  const std::string lead = every_nail ? "P(pass) from every nail" : "P(pass one test)";
+  const auto& lead_json = every_nail ? e : p;
+  const std::string key = every_nail ? "pass_probability_exact." : "pass_probability.";
   o += fmt::format(
       "<p class=\"verdict-line\"><span class=\"caps\">{}</span> SAE J232 (as simulated): "
-      "P(pass one test) = {} (95 % interval {} to {}); required ≥ {}.</p>\n",
-      number("verdict", r["verdict"], "{}"), number("pass_probability.estimate", p["estimate"], "{:.3f}"),
-      number("pass_probability.low", p["low"], "{:.3f}"), number("pass_probability.high", p["high"], "{:.3f}"),
+      "{} = {} (95 % interval {} to {}); required ≥ {}.</p>\n",
+      number("verdict", r["verdict"], "{}"), lead, number(key + "estimate", lead_json["estimate"], "{:.3f}"),
+      number(key + "low", lead_json["low"], "{:.3f}"), number(key + "high", lead_json["high"], "{:.3f}"),
       number("required_pass_probability", r["required_pass_probability"], "{:.2f}"));
-  o += fmt::format("<p>{} of {} simulated tests (replicates of {}-nail feeds) met all four criteria. {}</p>\n",
-                   number("replicates_passed", r["replicates_passed"], "{}"), number("replicates", r["replicates"], "{}"), nails_per_test,
+  o += fmt::format("<p>{} {}</p>\n",
                    sum.settled ? "The verdict is settled: the whole 95 % interval lies on one side of the required probability."
                                : "<strong>Not settled:</strong> the 95 % interval straddles the required probability; run more "
-                                 "replicates (or set run.target_half_width) before filing.");
-  const auto& e = r["pass_probability_exact"];
-  if (e.value("computed", false))
-    o += fmt::format(
-        "<p>From every nail rather than every test: P(pass) = {} (95 % interval {} to {}), the exact probability that a "
-        "{}-nail feed stays within all four limits when each feed station's nails make each combination of marks as often "
-        "as the run's nails did{} (interval by Bayesian bootstrap).</p>\n",
-        number("pass_probability_exact.estimate", e["estimate"], "{:.3f}"), number("pass_probability_exact.low", e["low"], "{:.3f}"),
-        number("pass_probability_exact.high", e["high"], "{:.3f}"), nails_per_test,
-        e["high"].get<double>() - e["low"].get<double>() < p["high"].get<double>() - p["low"].get<double>() ? "; narrower than the replicates' interval" : "");
-  else
-    o += fmt::format("<p>P(pass) from every nail was not computed: {}.</p>\n", escape(e.value("why_not", std::string())));
+                                 "replicates (or set run.until_settled) before filing.",
+                   fmt::format("The verdict rests on {} ({}).", every_nail ? "the exact estimate from every nail" : "the share of replicates that passed",
+                               escape(sum.verdict.why_basis)));
+  o += fmt::format("<p>{}</p>\n<p>{}</p>\n", every_nail ? exact_sentence : replicates_sentence, every_nail ? replicates_sentence : exact_sentence);
+  if (!sum.stopped_by.empty())
+    o += fmt::format("<p>Stop rule: {} after {} replicates, the verdict's interval looked at {} times (batches growing by half the "
+                     "replicates so far). A run stopped when its interval first met the rule covers a little less often than a "
+                     "fixed-size run's; so few looks keep that small.</p>\n",
+                     sum.stopped_by == "settled"             ? "settled"
+                     : sum.stopped_by == "target_half_width" ? "the interval as narrow as run.target_half_width"
+                                                              : "<strong>not met</strong>: stopped at run.max_replicates",
+                     sum.replicates, sum.looks);
   if (!sum.warnings.empty()) {
     o += "<p><strong>Before filing, note:</strong></p>\n<ul class=\"warnings\">\n";
     for (const auto& w : sum.warnings) o += fmt::format("<li>{}</li>\n", escape(w));

@@ -20,6 +20,16 @@ json interval_json(const assess::Interval& i) {
 }
 
 // P(pass) from every nail (assess/exact_pass.hpp), or why it was not computed.
+// Which stop rule ran, how many times it looked and what stopped it.
+json stop_rule_json(const scenario::RunSpec& run, const assess::Assessment& a) {
+  if (!run.target_half_width && !run.until_settled) return nullptr;
+  return {{"target_half_width", run.target_half_width ? json(*run.target_half_width) : json(nullptr)},
+          {"until_settled", run.until_settled},
+          {"max_replicates", run.max_replicates},
+          {"looks", a.looks},
+          {"stopped_by", a.stopped_by}};
+}
+
 json exact_json(const assess::ExactPass& e) {
   if (!e.computed) return {{"computed", false}, {"why_not", e.not_computed}};
   return {{"computed", true},
@@ -189,6 +199,14 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"program", "j232 run"},
       {"verdict", verdict_word(sum)},
       {"verdict_settled", sum.validity.valid && sum.settled},
+      // The P(pass) the verdict rests on: which estimate, why, and its value and interval.
+      {"verdict_basis",
+       {{"name", assess::basis_name(sum.verdict.basis)},
+        {"why", sum.verdict.why_basis},
+        {"estimate", sum.verdict.pass.estimate},
+        {"low", sum.verdict.pass.low},
+        {"high", sum.verdict.pass.high}}},
+      {"stop_rule", stop_rule_json(s.run, a)},
       {"invalid_because", sum.validity.reasons},
       {"warnings", sum.warnings},
       {"cut_off_by_limit", cut_off_by},
@@ -316,11 +334,19 @@ void require_finite(const json& j, const std::string& where) {
 }
 
 std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum) {
+  // The verdict's estimate first, the other below it, each saying what it is.
   const auto exact_line = [&]() -> std::string {
     if (!sum.exact.computed) return fmt::format("  P(pass) from every nail: not computed ({})\n", sum.exact.not_computed);
-    const bool narrower = sum.exact.high - sum.exact.low < sum.pass.high - sum.pass.low;
-    return fmt::format("  P(pass) from every nail = {:.3f}  (95 % interval {:.3f} to {:.3f}; the exact sum over each station's nail outcomes{})\n",
-                       sum.exact.value, sum.exact.low, sum.exact.high, narrower ? ", narrower" : "");
+    const bool lead = sum.verdict.basis == assess::Basis::EveryNail;
+    return fmt::format("  P(pass) from every nail = {:.3f}  (95 % interval {:.3f} to {:.3f}; required {:.2f}; the exact sum over each station's "
+                       "nail outcomes{})\n",
+                       sum.exact.value, sum.exact.low, sum.exact.high, sum.required, lead ? "; the verdict's basis: " + sum.verdict.why_basis : "");
+  };
+  const auto replicates_line = [&]() -> std::string {
+    const bool lead = sum.verdict.basis == assess::Basis::Replicates;
+    return fmt::format("  P(pass one test) = {:.3f}  (95 % interval {:.3f} to {:.3f}; {} of {} replicates passed{})\n", sum.pass.estimate,
+                       sum.pass.low, sum.pass.high, sum.passed, sum.replicates,
+                       lead ? fmt::format("; required {:.2f}; the verdict's basis: {}", sum.required, sum.verdict.why_basis) : "");
   };
   std::string out;
   out += fmt::format("{}\n", terminal_safe(s.title));
@@ -336,9 +362,16 @@ std::string summary_text(const scenario::Scenario& s, const assess::Summary& sum
                        sum.struck, sum.fates[static_cast<std::size_t>(flight::Fate::CutOff)]);
     return out;
   }
-  out += fmt::format("  P(pass one test) = {:.3f}  (95 % interval {:.3f} to {:.3f}; required {:.2f}; {} replicates)\n", sum.pass.estimate,
-                     sum.pass.low, sum.pass.high, sum.required, sum.replicates);
-  out += exact_line();
+  if (sum.verdict.basis == assess::Basis::EveryNail)
+    out += exact_line() + replicates_line();
+  else
+    out += replicates_line() + exact_line();
+  if (!sum.stopped_by.empty())
+    out += fmt::format("  stop rule: {} after {} replicates ({} look{} at the verdict's interval)\n",
+                       sum.stopped_by == "settled"             ? "settled"
+                       : sum.stopped_by == "target_half_width" ? "interval as narrow as run.target_half_width"
+                                                                : "NOT MET: stopped at run.max_replicates",
+                       sum.replicates, sum.looks, sum.looks == 1 ? "" : "s");
   out += fmt::format("  {:<20} {:>8} {:>10} {:>17} {:>10}\n", "criterion", "limit", "mean", "5-95 % range", "P(pass)");
   for (int c = 0; c < assess::kCategories; ++c) {
     const auto& cs = sum.criteria[c];

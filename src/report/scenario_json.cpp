@@ -182,10 +182,21 @@ json criteria_json(const scenario::CriteriaSpec& c) {
   return j;
 }
 
+const char* estimator_name(scenario::RunSpec::Estimator e) {
+  switch (e) {
+    case scenario::RunSpec::Estimator::Replicates: return "replicates";
+    case scenario::RunSpec::Estimator::EveryNail: return "every_nail";
+    case scenario::RunSpec::Estimator::Narrower: break;
+  }
+  return "narrower";
+}
+
 json run_json(const scenario::RunSpec& r) {
   return {{"replicates", r.replicates},
           {"seed", r.seed},
+          {"estimator", estimator_name(r.estimator)},
           {"target_half_width", r.target_half_width ? json(*r.target_half_width) : json(nullptr)},
+          {"until_settled", r.until_settled},
           {"max_replicates", r.max_replicates},
           {"chord_tolerance_m", r.chord_tolerance},
           {"time_limit_s", r.time_limit},

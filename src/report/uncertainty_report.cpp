@@ -51,10 +51,23 @@ json uncertainty_json(const study::UncertaintyResult& r) {
                                          {"max", v.back()}};
     const auto& idx = r.indices[static_cast<std::size_t>(o)];
     json rows = json::array();
-    for (std::size_t i = 0; i < r.plan.inputs.size(); ++i)
-      rows.push_back(
-          {{"input", r.plan.inputs[i].parameter}, {"first_order", index_json(idx.first[i])}, {"total", index_json(idx.total[i])}});
-    sensitivity[study::kUqOutputNames[o]] = {{"variance", idx.variance}, {"indices", rows}};
+    double moved = 0;  // the largest change of an index from N/2 to N base draws
+    for (std::size_t i = 0; i < r.plan.inputs.size(); ++i) {
+      json row = {{"input", r.plan.inputs[i].parameter},
+                  {"first_order", index_json(idx.first[i])},
+                  {"total", index_json(idx.total[i])},
+                  {"flagged", study::leaves_unit_interval(idx.first[i]) || study::leaves_unit_interval(idx.total[i])}};
+      if (r.half_indices) {
+        const auto& half = (*r.half_indices)[static_cast<std::size_t>(o)];
+        row["at_half_the_draws"] = {{"first_order", half.first[i].estimate}, {"total", half.total[i].estimate}};
+        if (half.variance > 0)
+          moved = std::max({moved, std::abs(half.first[i].estimate - idx.first[i].estimate), std::abs(half.total[i].estimate - idx.total[i].estimate)});
+      }
+      rows.push_back(row);
+    }
+    sensitivity[study::kUqOutputNames[o]] = {{"variance", idx.variance},
+                                             {"indices", rows},
+                                             {"largest_change_from_half_the_draws", r.half_indices ? json(moved) : json(nullptr)}};
   }
   const double passing = outputs["passes"]["mean"].get<double>();
   return {{"program", "j232 uq"},
@@ -67,6 +80,7 @@ json uncertainty_json(const study::UncertaintyResult& r) {
           {"inputs", inputs},
           {"default_inputs", r.plan.defaults},
           {"base_draws", r.plan.base_draws},
+          {"base_draws_default", study::UncertaintyPlan{}.base_draws},
           {"assessments", r.outputs.size()},
           {"replicates_per_assessment", r.plan.replicates},
           {"seed", r.seed},
@@ -114,11 +128,15 @@ std::string uncertainty_html(const json& j) {
       escape(j["robust_verdict"].get<std::string>()), number("required_pass_probability", j["required_pass_probability"], "{:g}"),
       number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
   o += fmt::format(
-      "<p>{} assessments of {} replicates each (Saltelli scheme, {} base draws; common random numbers, seed {}). "
+      "<p>{} assessments of {} replicates each (Saltelli scheme, {} base draws{}; common random numbers, seed {}). "
       "Inputs{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th><th>distribution</th>"
       "<th>basis of the range</th></tr></thead><tbody>\n",
       number("assessments", j["assessments"], "{}"), number("replicates_per_assessment", j["replicates_per_assessment"], "{}"),
-      number("base_draws", j["base_draws"], "{}"), number("seed", j["seed"], "{}"),
+      number("base_draws", j["base_draws"], "{}"),
+      j["base_draws"].get<std::size_t>() < j["base_draws_default"].get<std::size_t>()
+          ? fmt::format(", fewer than the default {}, as the scenario asks", j["base_draws_default"].get<std::size_t>())
+          : "",
+      number("seed", j["seed"], "{}"),
       j["default_inputs"].get<bool>() ? " (j232's default set of estimated inputs: the scenario has no [uncertainty])" : "");
   if (j.contains("warnings") && !j["warnings"].empty()) {
     o += "<p><strong>Before trusting every draw, note:</strong></p>\n<ul class=\"warnings\">\n";
@@ -165,10 +183,13 @@ std::string uncertainty_html(const json& j) {
     }
     Chart chart(fmt::format("Sobol' indices: {}", kWords[k]), "input (numbered as in the table above)", "index", 640, 300);
     std::vector<double> x1, y1, l1, h1, x2, y2, l2, h2;
+    const bool half = !s["largest_change_from_half_the_draws"].is_null();
+    bool any_flagged = false;
+    for (const auto& row : s["indices"]) any_flagged = any_flagged || row["flagged"].get<bool>();
     o += fmt::format(
-        "<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>"
+        "<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>{}<th></th>"
         "</tr></thead><tbody>\n",
-        kWords[k]);
+        kWords[k], half ? fmt::format("<th>first / total at N = {}</th>", j["base_draws"].get<std::size_t>() / 2) : "");
     for (std::size_t i = 0; i < s["indices"].size(); ++i) {
       const auto& row = s["indices"][i];
       const std::string key = fmt::format("sensitivity.{}.indices.{}", name, i);
@@ -177,14 +198,30 @@ std::string uncertainty_html(const json& j) {
       x2.push_back(static_cast<double>(i + 1) + 0.12), y2.push_back(row["total"]["estimate"]), l2.push_back(row["total"]["low"]),
           h2.push_back(row["total"]["high"]);
       o += fmt::format(
-          "<tr><td>{} {}</td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} to {}</td></tr>\n", i + 1,
+          "<tr><td>{} {}</td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} to {}</td>{}<td>{}</td></tr>\n", i + 1,
           escape(row["input"].get<std::string>()), number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
           number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
           number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}"),
           number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"), number(key + ".total.low", row["total"]["low"], "{:.3f}"),
-          number(key + ".total.high", row["total"]["high"], "{:.3f}"));
+          number(key + ".total.high", row["total"]["high"], "{:.3f}"),
+          half ? fmt::format("<td>{} / {}</td>", number(key + ".at_half_the_draws.first_order", row["at_half_the_draws"]["first_order"], "{:.3f}"),
+                             number(key + ".at_half_the_draws.total", row["at_half_the_draws"]["total"], "{:.3f}"))
+               : "",
+          row["flagged"].get<bool>() ? "&#9873; interval leaves [0, 1] by more than 0.05" : "");
     }
     o += "</tbody></table>\n";
+    if (any_flagged)
+      o += fmt::format(
+          "<p>&#9873; An index lies between 0 and 1; an interval that leaves [0, 1] by more than 0.05 says that at N = {} base draws the estimate is "
+          "as much the estimator's noise as the input's effect: read it as no more precise than its interval, or run more base "
+          "draws ([uncertainty] base_draws).</p>\n",
+          j["base_draws"].get<std::size_t>());
+    if (half)
+      o += fmt::format("<p>Convergence: from N = {} to N = {} base draws the indices moved by at most {}{}.</p>\n",
+                       j["base_draws"].get<std::size_t>() / 2, number("base_draws", j["base_draws"], "{}"),
+                       number(fmt::format("sensitivity.{}.largest_change_from_half_the_draws", name), s["largest_change_from_half_the_draws"], "{:.3f}"),
+                       s["largest_change_from_half_the_draws"].get<double>() > 0.05 ? " (more than 0.05: more base draws would still move them)"
+                                                                                   : "");
     std::vector<double> ticks;
     for (std::size_t i = 0; i < s["indices"].size(); ++i) ticks.push_back(static_cast<double>(i + 1));
     chart.x_range(0.5, static_cast<double>(ticks.size()) + 0.5);

@@ -258,7 +258,12 @@ void read_run(const TableReader& t, RunSpec& r) {
   r.threads = static_cast<int>(t.integer_or("threads", r.threads, 0, 1024));
   // Narrower than 0.001 needs millions of replicates; 0 would never be met.
   r.target_half_width = t.optional_quantity("target_half_width", Kind::Dimensionless, Range::between(0.001, 0.5));
+  r.until_settled = t.boolean_or("until_settled", r.until_settled);
   r.max_replicates = t.integer_or("max_replicates", r.max_replicates, 1, 100'000'000);
+  const std::string estimator = t.string_or("estimator", "narrower", {"narrower", "replicates", "every_nail"});
+  r.estimator = estimator == "replicates" ? RunSpec::Estimator::Replicates
+                : estimator == "every_nail" ? RunSpec::Estimator::EveryNail
+                                            : RunSpec::Estimator::Narrower;
   // Below 10 um the chord count (and run time) explodes for no gain in accuracy.
   r.chord_tolerance = t.quantity_or("chord_tolerance", Kind::Length, r.chord_tolerance, Range::between(1e-5, 0.1));
   // A nail thrown at blade speed reaches the board in well under 0.1 s; shorter limits cut

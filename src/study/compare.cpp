@@ -47,6 +47,7 @@ DesignRecord DesignRecorder::finish(const scenario::Scenario& s, const assess::A
   res.settled = sum.validity.valid && sum.settled;
   res.required = sum.required;
   res.exact = sum.exact;
+  res.basis = assess::basis_name(sum.verdict.basis);
   res.deciding = sum.deciding;
   res.deciding_pass = sum.criteria[static_cast<std::size_t>(sum.deciding)].pass.estimate;
   for (int k = 0; k < assess::kCategories; ++k) {
@@ -105,7 +106,15 @@ Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned lo
       const double n = static_cast<double>(c.replicates);
       const double independent = n > 1 ? kZ * std::sqrt((first.variance() + other.variance()) / n) : 0.0;
       if (k == assess::kCategories) {
-        diff.pass = paired.interval(-1.0, 1.0);
+        // The pass indicators' difference: Newcombe's paired interval, which does not
+        // collapse to zero width when few or no replicates differ.
+        std::uint64_t both = 0, only_first = 0, only_other = 0, neither = 0;
+        for (std::uint64_t r = 0; r < c.replicates; ++r) {
+          const bool x = designs[0].per_replicate[r][static_cast<std::size_t>(k)] > 0.5, y = designs[d].per_replicate[r][static_cast<std::size_t>(k)] > 0.5;
+          (x && y ? both : x ? only_first : y ? only_other : neither) += 1;
+        }
+        const assess::Interval nc = assess::newcombe_paired(both, only_first, only_other, neither);
+        diff.pass = {nc.estimate, nc.low, nc.high};
         diff.independent_pass_half_width = independent;
       } else {
         diff.shares[static_cast<std::size_t>(k)] = paired.interval(-1.0, 1.0);

@@ -34,6 +34,7 @@ struct DesignResult {
   bool settled = false;
   double required = 0.9;
   assess::ExactPass exact;
+  std::string basis = "replicates";  // the P(pass) its verdict rests on (assess::basis_name)
   int deciding = 0;
   double deciding_pass = 0;  // P(the deciding criterion passes)
   assess::Interval pass;  // P(pass), Wilson

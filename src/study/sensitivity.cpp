@@ -100,4 +100,16 @@ SobolIndices sobol_indices(const SaltelliDesign& d, const std::vector<double>& f
   return out;
 }
 
+SobolIndices sobol_indices_prefix(const SaltelliDesign& d, const std::vector<double>& f, std::size_t base, int resamples, std::uint64_t seed) {
+  SaltelliDesign prefix;
+  prefix.inputs = d.inputs;
+  prefix.base = std::min(base, d.base);
+  prefix.a.assign(d.a.begin(), d.a.begin() + static_cast<std::ptrdiff_t>(prefix.base));
+  prefix.b.assign(d.b.begin(), d.b.begin() + static_cast<std::ptrdiff_t>(prefix.base));
+  std::vector<double> g;
+  for (std::size_t block = 0; block < d.inputs + 2; ++block)
+    for (std::size_t j = 0; j < prefix.base; ++j) g.push_back(f[block * d.base + j]);
+  return sobol_indices(prefix, g, resamples, seed);
+}
+
 }  // namespace j232::study

@@ -35,4 +35,15 @@ struct SobolIndices {
 // the N base rows, from a fixed `seed`.
 SobolIndices sobol_indices(const SaltelliDesign& design, const std::vector<double>& outputs, int resamples = 500, std::uint64_t seed = 1);
 
+// The same from the design's first `base` base draws only (a prefix of the Sobol' sequence
+// is itself a design): the indices at N/2 beside those at N show whether N is enough.
+SobolIndices sobol_indices_prefix(const SaltelliDesign& design, const std::vector<double>& outputs, std::size_t base, int resamples = 500,
+                                  std::uint64_t seed = 1);
+
+// Whether an index's interval leaves [0, 1], where an index lies, by more than
+// kUnitSlack: at that N the estimate is as much the estimator's noise as the input's
+// effect. (An interval reaching a little below 0 is what an index near 0 shows at any N.)
+inline constexpr double kUnitSlack = 0.05;
+inline bool leaves_unit_interval(const Index& i) { return i.low < -kUnitSlack || i.high > 1.0 + kUnitSlack; }
+
 }  // namespace j232::study

@@ -181,6 +181,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     for (const auto& st : settings) apply(st, sc);
     sc.run.replicates = r.plan.replicates;  // common random numbers: the same seed and replicates at every draw
     sc.run.target_half_width.reset();
+    sc.run.until_settled = false;
     const assess::Simulator sim(sc);
     const auto a = assess::run_assessment(sim, threads);
     const auto sum = assess::summarise(a, sc);
@@ -192,7 +193,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     UqRun out;
     out.outputs = {sum.pass.estimate, sum.exact.computed ? sum.exact.value : sum.pass.estimate, sum.criteria[0].mean_share,
                    sum.criteria[1].mean_share, sum.criteria[2].mean_share, sum.criteria[3].mean_share,
-                   sum.pass.estimate >= r.required ? 1.0 : 0.0};
+                   (sum.exact.computed ? sum.exact.value : sum.pass.estimate) >= r.required ? 1.0 : 0.0};
     const auto cut = sum.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
     out.cut_off_share = sum.struck ? static_cast<double>(cut) / static_cast<double>(sum.struck) : 0.0;
     for (int why = 1; why < flight::kCutOffReasons; ++why)
@@ -214,6 +215,14 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     std::vector<double> f;
     for (const auto& out : r.outputs) f.push_back(out[static_cast<std::size_t>(o)]);
     r.indices[static_cast<std::size_t>(o)] = sobol_indices(r.design, f, 500, 1);
+  }
+  if (r.design.base >= 4) {
+    r.half_indices.emplace();
+    for (int o = 0; o < kUqOutputs; ++o) {
+      std::vector<double> f;
+      for (const auto& out : r.outputs) f.push_back(out[static_cast<std::size_t>(o)]);
+      (*r.half_indices)[static_cast<std::size_t>(o)] = sobol_indices_prefix(r.design, f, r.design.base / 2, 500, 1);
+    }
   }
   return r;
 }

@@ -22,8 +22,8 @@ namespace j232::study {
 struct UncertaintyPlan {
   std::vector<scenario::UncertainInput> inputs;
   bool defaults = false;
-  std::size_t base_draws = 32;
-  long long replicates = 200;
+  std::size_t base_draws = 256;
+  long long replicates = 50;
 };
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s);
 
@@ -52,6 +52,8 @@ struct UncertaintyResult {
   std::vector<std::vector<double>> values;              // per run, per input: the value set (SI or the number written)
   std::vector<std::array<double, kUqOutputs>> outputs;  // per run
   std::array<SobolIndices, kUqOutputs> indices;
+  // From the first half of the base draws: the check that N is enough (none below N = 4).
+  std::optional<std::array<SobolIndices, kUqOutputs>> half_indices;
   std::vector<UqRun> runs;  // per run: outputs (as `outputs`) and cut-off share
   // A draw whose cut-off share neared the invalidity limit, naming the draw's inputs and
   // the limit that cut its nails off, one sentence each.
