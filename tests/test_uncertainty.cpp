@@ -84,6 +84,52 @@ TEST_CASE("uncertainty: bad inputs are refused with the key and what was expecte
                   scenario::InputError);  // no basis
 }
 
+TEST_CASE("uncertainty: a discrete input takes each of its values, equally often, and is ranked like any other", "[uncertainty][discrete]") {
+  using Catch::Contains;
+  const auto file = with_uncertainty("uq-discrete.toml", R"(
+[uncertainty]
+base_draws = 8
+replicates = 12
+[[uncertainty.inputs]]
+parameter = "bevel_angle"
+values = ["20 deg", "45 deg"]
+basis = "test: two edges on offer"
+[[uncertainty.inputs]]
+parameter = "air.cd_axial"
+low = 0.7
+high = 0.9
+basis = "test"
+)");
+  const auto r = study::run_uncertainty(file, 2);
+  REQUIRE(r.values.size() == 8 * 4);
+  int first = 0, second = 0;
+  for (const auto& v : r.values) {
+    CHECK((v[0] == 0.0 || v[0] == 1.0));  // the index of the value drawn
+    (v[0] == 0.0 ? first : second) += 1;
+  }
+  CHECK(first >= 8);  // a Sobol' sequence splits [0, 1) evenly
+  CHECK(second >= 8);
+  // The bevel decides how this mower's nails leave, as a range does (the test above).
+  REQUIRE(r.indices[5].variance > 0);
+  CHECK(r.indices[5].total[0].estimate > 0.5);
+  const auto j = report::uncertainty_json(r);
+  CHECK(j["inputs"][0]["values"].size() == 2);
+  CHECK(j["inputs"][0]["distribution"].get<std::string>().find("discrete") == 0);
+  // A discrete input with a range, or one value, or a value the key cannot take, is refused.
+  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty(
+                        "uq-discrete-bad1.toml",
+                        "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"bevel_angle\"\nvalues = [\"20 deg\", \"30 deg\"]\nlow = \"20 deg\"\nbasis = \"x\"\n")),
+                    Contains("low") && Contains("not both"));
+  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty(
+                        "uq-discrete-bad2.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"bevel_angle\"\nvalues = [\"20 deg\"]\nbasis = \"x\"\n")),
+                    Contains("values") && Contains("at least two"));
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-discrete-bad3.toml",
+                                                            "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"bevel_angle\"\nvalues = "
+                                                            "[\"20 deg\", \"95 deg\"]\nbasis = \"x\"\n"),
+                                           1),
+                    Contains("uncertainty.inputs[1].values") && Contains("95 deg"));
+}
+
 TEST_CASE("uncertainty: inputs drawn uniform, triangular or normal (truncated) over their range", "[uncertainty][distribution]") {
   using K = study::InputDistribution::Kind;
   const study::InputDistribution uniform{K::Uniform, 2, 6, 4, 1}, triangle{K::Triangular, 0, 10, 2, 0},

@@ -25,7 +25,19 @@ json index_json(const study::Index& i) { return {{"estimate", i.estimate}, {"low
 
 json uncertainty_json(const study::UncertaintyResult& r) {
   json inputs = json::array();
-  for (const auto& in : r.plan.inputs)
+  for (const auto& in : r.plan.inputs) {
+    if (!in.values.empty()) {
+      // A discrete input: its values (uq.csv gives the index of the one drawn).
+      std::string listed;
+      for (const auto& v : in.values) listed += (listed.empty() ? "" : ", ") + v;
+      inputs.push_back({{"parameter", in.parameter},
+                        {"low", "one of: " + listed},
+                        {"high", ""},
+                        {"values", in.values},
+                        {"distribution", fmt::format("discrete: each of its {} values equally likely (uq.csv: the index, from 0)", in.values.size())},
+                        {"basis", in.basis}});
+      continue;
+    }
     inputs.push_back(
         {{"parameter", in.parameter},
          {"low", in.low},
@@ -35,6 +47,7 @@ json uncertainty_json(const study::UncertaintyResult& r) {
                                                                       in.sd.empty() ? "a quarter of the range" : in.sd)
                                                           : "uniform"},
          {"basis", in.basis}});
+  }
   json outputs, sensitivity;
   for (int o = 0; o < study::kUqOutputs; ++o) {
     std::vector<double> v;

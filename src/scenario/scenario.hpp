@@ -258,6 +258,9 @@ struct UncertainInput {
   // quarter of the range), truncated to the range. mode and sd are written like low.
   std::string distribution = "uniform";
   std::string mode, sd;
+  // A discrete input instead of a range (rotation sense, a choice of guard): the values the
+  // key takes, as written, each drawn with equal probability; low and high are then unused.
+  std::vector<std::string> values;
 };
 struct UncertaintySpec {
   std::vector<UncertainInput> inputs;

@@ -194,7 +194,21 @@ void read_uncertainty(const TableReader& t, UncertaintySpec& u) {
     UncertainInput in;
     in.parameter = i.string_or("parameter", "", {});
     if (in.parameter.empty()) throw i.error("parameter", "missing; expected a sweep parameter or a dotted key of this file");
-    if (!i.has("low")) throw i.error("low", "missing; expected the range's low end as the key takes it (\"0.7\", \"0 deg\")");
+    if (i.has("values")) {
+      // A discrete input: its values as the key takes them, drawn with equal probability.
+      in.values = i.strings("values", 16);
+      if (in.values.size() < 2) throw i.error("values", "expected at least two values for the key to take, as strings (\"cw\", \"ccw\")");
+      for (const char* k : {"low", "high", "distribution", "mode", "sd"})
+        if (i.has(k)) throw i.error(k, "a discrete input (values = [...]) has no range or distribution; give values or low/high, not both");
+      in.distribution = "discrete";
+      in.basis = i.string_or("basis", "", {});
+      if (in.basis.empty()) throw i.error("basis", "missing; say what the choice rests on (a source, or \"estimate: ...\")");
+      in.line = i.line_of("parameter");
+      i.refuse_unknown_keys();
+      u.inputs.push_back(in);
+      continue;
+    }
+    if (!i.has("low")) throw i.error("low", "missing; expected the range's low end as the key takes it (\"0.7\", \"0 deg\"), or values = [...]");
     if (!i.has("high")) throw i.error("high", "missing; expected the range's high end as the key takes it");
     in.low = value_text(i, "low");
     in.high = value_text(i, "high");

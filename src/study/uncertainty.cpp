@@ -41,8 +41,13 @@ Written split(const std::string& text, const std::string& file, std::optional<in
 // inputs' units.
 std::string draw_inputs(const UncertaintyPlan& plan, const std::vector<double>& values) {
   std::string out;
-  for (std::size_t i = 0; i < plan.inputs.size() && i < values.size(); ++i)
-    out += fmt::format("{}{} = {:.4g}", i ? ", " : "", plan.inputs[i].parameter, values[i]);
+  for (std::size_t i = 0; i < plan.inputs.size() && i < values.size(); ++i) {
+    const auto& choices = plan.inputs[i].values;
+    if (!choices.empty())
+      out += fmt::format("{}{} = {}", i ? ", " : "", plan.inputs[i].parameter, choices[std::min(choices.size() - 1, static_cast<std::size_t>(values[i]))]);
+    else
+      out += fmt::format("{}{} = {:.4g}", i ? ", " : "", plan.inputs[i].parameter, values[i]);
+  }
   return out;
 }
 
@@ -118,6 +123,23 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     const UncertainInput& in = r.plan.inputs[i];
     const std::string key = r.plan.defaults ? fmt::format("(default) {}", in.parameter) : fmt::format("uncertainty.inputs[{}]", i + 1);
     info.push_back(parameter_info(in.parameter));
+    if (!in.values.empty()) {
+      // A discrete input: every value it may take must make a scenario the reader accepts.
+      ends.emplace_back(Written{}, Written{});
+      spread.push_back({});
+      for (const std::string& text : in.values) {
+        const Setting setting = make_setting(info.back(), text, file, in.line, key + ".values");
+        toml::table doc = base;
+        apply_to_document(setting, doc, file);
+        auto sc = scenario::read_scenario(doc, file);
+        try {
+          apply(setting, sc);
+        } catch (const std::invalid_argument& e) {
+          throw InputError(file, in.line, key + ".values", text, e.what());
+        }
+      }
+      continue;
+    }
     const Written lo = split(in.low, file, in.line, key + ".low"), hi = split(in.high, file, in.line, key + ".high");
     if (lo.unit != hi.unit)
       throw InputError(file, in.line, key + ".high", in.high, fmt::format("expected the same unit as low (\"{}\")", lo.unit));
@@ -164,8 +186,14 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     std::vector<Setting> settings;
     std::vector<double> values;
     for (std::size_t i = 0; i < k; ++i) {
-      const double v = spread[i].quantile(runs[run][i]);
-      const std::string text = ends[i].first.unit.empty() ? fmt::format("{:.17g}", v) : fmt::format("{:.17g} {}", v, ends[i].first.unit);
+      const auto& choices = r.plan.inputs[i].values;
+      // A discrete input takes value floor(u n) of its n (recorded as that index); a range,
+      // its distribution's quantile at u.
+      const double v = choices.empty() ? spread[i].quantile(runs[run][i])
+                                       : std::min(static_cast<double>(choices.size() - 1), std::floor(runs[run][i] * static_cast<double>(choices.size())));
+      const std::string text = !choices.empty()              ? choices[static_cast<std::size_t>(v)]
+                               : ends[i].first.unit.empty() ? fmt::format("{:.17g}", v)
+                                                            : fmt::format("{:.17g} {}", v, ends[i].first.unit);
       settings.push_back(make_setting(info[i], text, file, r.plan.inputs[i].line, r.plan.inputs[i].parameter));
       values.push_back(v);
       apply_to_document(settings.back(), doc, file);
