@@ -9,8 +9,16 @@
 // time of the full assessment; the mean number of scene queries per nail; and the raw
 // query rate on the same scene with chords like the nails' (ns per query), so the cost of
 // everything beyond the queries is visible.
+//
+//   build/j232_bench --uq [N]
+//
+// times the raised-skirt mower's uncertainty study (j232's default inputs) at N base draws
+// (default 256, the study's default) of 50 replicates on 2 threads: seconds in all, per
+// assessment, and nails per second.
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -21,6 +29,9 @@
 #include "random/stream.hpp"
 #include "scene/j232_setup.hpp"
 #include "scenario/scenario_reader.hpp"
+#include "scenario/toml_override.hpp"
+#include "scenario/toml_reader.hpp"
+#include "study/uncertainty.hpp"
 
 using namespace j232;
 using Clock = std::chrono::steady_clock;
@@ -31,19 +42,25 @@ static double median(std::vector<double> v) {
 }
 
 static void bench(const std::string& path, long long replicates, const std::vector<scene::Engine>& engines);
+static void bench_uq(long long base_draws);
 
 int main(int argc, char** argv) {
   std::vector<std::string> paths;
   long long replicates = 3000;
   std::string engine_choice = "both";
+  long long uq_draws = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
       std::printf(
           "usage: j232_bench [SCENARIO...] [--replicates N] [--engine cgal|embree|both]\n"
+          "       j232_bench --uq [N]   (the raised-skirt uncertainty study at N base draws, default 256)\n"
           "  defaults: highway-pivoted and the three-spindle deck, 3000 replicates, every engine built in\n");
       return 0;
     }
-    if (!std::strcmp(argv[i], "--replicates") && i + 1 < argc) {
+    if (!std::strcmp(argv[i], "--uq")) {
+      uq_draws = 256;
+      if (i + 1 < argc && std::atoll(argv[i + 1]) > 0) uq_draws = std::atoll(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--replicates") && i + 1 < argc) {
       replicates = std::atoll(argv[++i]);
     } else if (!std::strcmp(argv[i], "--engine") && i + 1 < argc) {
       const std::string e = argv[++i];
@@ -66,6 +83,15 @@ int main(int argc, char** argv) {
   if (replicates < 1) {
     std::fprintf(stderr, "j232_bench: --replicates expects a positive number\n");
     return 2;
+  }
+  if (uq_draws > 0) {
+    try {
+      bench_uq(uq_draws);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "j232_bench: %s\n", e.what());
+      return 2;
+    }
+    return 0;
   }
   if (paths.empty())
     for (const char* name : {"highway-pivoted.toml", "deck-72in-three-spindle.toml"})
@@ -131,4 +157,22 @@ static void bench(const std::string& path, long long replicates, const std::vect
     std::printf("    so queries alone would allow %.0f nails/s on 1 thread\n", rate / queries_per_nail);
   }
   if (two_thread_rates.size() == 2) std::printf("  embree / cgal, 2 threads: %.2fx\n", two_thread_rates[1] / two_thread_rates[0]);
+}
+
+static void bench_uq(long long base_draws) {
+  const std::string source = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted-raised-skirt.toml";
+  toml::table doc = scenario::parse_toml_file(source);
+  scenario::set_key(doc, "uncertainty.base_draws", std::to_string(base_draws), "j232_bench");
+  scenario::set_key(doc, "uncertainty.replicates", "50", "j232_bench");
+  const auto file = std::filesystem::temp_directory_path() / "j232_bench_uq.toml";
+  std::ofstream(file) << doc << "\n";
+  const auto start = Clock::now();
+  const auto r = study::run_uncertainty(file.string(), 2);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  std::filesystem::remove(file);
+  const double nails = static_cast<double>(r.outputs.size()) * 50.0 * 150.0;
+  std::printf("j232_bench --uq: %s\n  %zu inputs, %lld base draws, %zu assessments of 50 replicates on 2 threads: %.1f s (%.3f s per "
+              "assessment, %.0f nails/s)\n",
+              r.title.c_str(), r.plan.inputs.size(), base_draws, r.outputs.size(), seconds, seconds / static_cast<double>(r.outputs.size()),
+              nails / seconds);
 }
