@@ -14,6 +14,8 @@
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
+#include "scenario/toml_override.hpp"
+#include "scenario/toml_reader.hpp"
 #include "scene/j232_setup.hpp"
 #include "units/quantity.hpp"
 #include "report/scenario_json.hpp"
@@ -493,4 +495,28 @@ TEST_CASE("deck: no nail passes through the skirt: every way out within its heig
     }
   CHECK(through_skirt == 0);
   CHECK(left > 1000);
+}
+
+TEST_CASE("deck: a guard described but not fitted (present = false) is checked, named, and not built", "[deck][housing][guards]") {
+  toml::table doc = scenario::parse_toml_file(scenario_path("highway-pivoted-chains.toml"));
+  scenario::set_key(doc, "housing.guards.present", "false", "test");
+  const auto without = scenario::read_scenario(doc, "chains-absent.toml");
+  CHECK(without.housing.guards.empty());
+  REQUIRE(without.housing.absent_guards.size() == 2);
+  CHECK(without.housing.absent_guards[0] == "front chains");
+  // The same mower as the one shipped without guards, nail for nail.
+  auto plain = scenario::read_scenario(scenario_path("highway-pivoted.toml"));
+  auto absent = without;
+  plain.run.replicates = absent.run.replicates = 20;
+  const auto a = assess::run_assessment(assess::Simulator(plain), 2), b = assess::run_assessment(assess::Simulator(absent), 2);
+  CHECK(a.passed == b.passed);
+  CHECK(a.marks == b.marks);
+  CHECK(a.fates == b.fates);
+  // ...and the report says so.
+  bool named = false;
+  for (const auto& x : report::assumptions(without)) named = named || x.what.find("'front chains' is described but not fitted") != std::string::npos;
+  CHECK(named);
+  // A bad guard is refused even when it is not fitted.
+  scenario::set_key(doc, "housing.guards.openness", "2", "test");
+  CHECK_THROWS_AS(scenario::read_scenario(doc, "chains-absent.toml"), scenario::InputError);
 }

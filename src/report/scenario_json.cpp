@@ -313,6 +313,8 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     const bool quoted = e.value.size() >= 2 && e.value.front() == '"' && e.value.back() == '"';
     a.push_back({fmt::format("{} = {}", e.key, quoted ? e.value.substr(1, e.value.size() - 2) : e.value), "the scenario's author: an estimate"});
   }
+  for (const auto& name : s.housing.absent_guards)
+    a.push_back({fmt::format("Guard '{}' is described but not fitted (present = false): nails meet no guard there", name), "scenario"});
   // Every guard with every parameter the flight uses, given or default.
   for (const auto& g : s.housing.guards) {
     if (g.kind == scenario::GuardSpec::Kind::Flap) {

@@ -133,6 +133,7 @@ struct HousingSpec {
   double margin = 0.050;  // deck outline outside every tip circle (several spindles)
   std::vector<OpeningSpec> openings;
   std::vector<GuardSpec> guards;
+  std::vector<std::string> absent_guards;  // guards given with present = false: described, not fitted
   std::vector<DeflectorSpec> deflectors;
 };
 

@@ -118,10 +118,19 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
   h.skirt_depth = t.quantity_or("skirt_depth", Kind::Length, h.skirt_depth, Range::between(0.001, 1));
   h.friction = t.quantity_or("friction", Kind::Dimensionless, h.friction, Range::between(0, 2));
   if (auto r = t.table("restitution")) h.restitution = read_restitution(*r);
-  const auto guard_tables = t.array_of_tables("guards");
-  for (const auto& g : guard_tables) {
+  const auto all_guard_tables = t.array_of_tables("guards");
+  std::vector<TableReader> guard_tables;  // of the guards present, in order
+  for (const auto& g : all_guard_tables) {
     GuardSpec guard;
     read_guard(g, guard, true);
+    // A guard described but not fitted (present = false: a design without it, or an
+    // uncertainty study's discrete input): checked as any other, named in the report, not built.
+    if (!g.boolean_or("present", true)) {
+      g.refuse_unknown_keys();
+      h.absent_guards.push_back(guard.name);
+      continue;
+    }
+    guard_tables.push_back(g);
     if (!guard.along.empty()) {
       if (guard.top == 0.0) guard.top = h.skirt_bottom + h.skirt_depth;
       if (guard.bottom >= guard.top)
