@@ -123,21 +123,23 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     const UncertainInput& in = r.plan.inputs[i];
     const std::string key = r.plan.defaults ? fmt::format("(default) {}", in.parameter) : fmt::format("uncertainty.inputs[{}]", i + 1);
     info.push_back(parameter_info(in.parameter));
+    // A value the input may take must make a scenario the reader (and the parameter) accepts.
+    const auto check_value = [&](const std::string& text, const std::string& where) {
+      const Setting setting = make_setting(info.back(), text, file, in.line, where);
+      toml::table doc = base;
+      apply_to_document(setting, doc, file);
+      auto sc = scenario::read_scenario(doc, file);
+      try {
+        apply(setting, sc);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(file, in.line, where, text, e.what());
+      }
+    };
     if (!in.values.empty()) {
       // A discrete input: every value it may take must make a scenario the reader accepts.
       ends.emplace_back(Written{}, Written{});
       spread.push_back({});
-      for (const std::string& text : in.values) {
-        const Setting setting = make_setting(info.back(), text, file, in.line, key + ".values");
-        toml::table doc = base;
-        apply_to_document(setting, doc, file);
-        auto sc = scenario::read_scenario(doc, file);
-        try {
-          apply(setting, sc);
-        } catch (const std::invalid_argument& e) {
-          throw InputError(file, in.line, key + ".values", text, e.what());
-        }
-      }
+      for (const std::string& text : in.values) check_value(text, key + ".values");
       continue;
     }
     const Written lo = split(in.low, file, in.line, key + ".low"), hi = split(in.high, file, in.line, key + ".high");
@@ -165,18 +167,8 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     }
     spread.push_back(d);
     // Both ends must make a scenario the reader accepts.
-    for (const Written& w : {lo, hi}) {
-      const std::string text = w.unit.empty() ? fmt::format("{:.17g}", w.number) : fmt::format("{:.17g} {}", w.number, w.unit);
-      const Setting setting = make_setting(info.back(), text, file, in.line, key);
-      toml::table doc = base;
-      apply_to_document(setting, doc, file);
-      auto sc = scenario::read_scenario(doc, file);
-      try {
-        apply(setting, sc);
-      } catch (const std::invalid_argument& e) {
-        throw InputError(file, in.line, key, text, e.what());
-      }
-    }
+    for (const Written& w : {lo, hi})
+      check_value(w.unit.empty() ? fmt::format("{:.17g}", w.number) : fmt::format("{:.17g} {}", w.number, w.unit), key);
   }
   r.design = saltelli_design(k, r.plan.base_draws);
   const auto runs = r.design.runs();
