@@ -227,7 +227,7 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress,
   const auto first_batch = static_cast<std::uint64_t>(run.replicates);
   const bool stop_rule = run.target_half_width || run.until_settled;
   const auto most = static_cast<std::uint64_t>(std::max(run.max_replicates, run.replicates));
-  if (progress) progress->total = static_cast<long long>(stop_rule ? most : first_batch);
+  if (progress) progress->total = static_cast<long long>(first_batch);
   arena.execute([&] {
     run_replicates(sim, 0, first_batch, a, progress, sink, replicate_sink);
     if (!stop_rule) return;
@@ -252,6 +252,7 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress,
         break;
       }
       const std::uint64_t batch = std::min(std::max(first_batch, a.replicates / 2), most - a.replicates);
+      if (progress) progress->looks = a.looks, progress->total = static_cast<long long>(a.replicates + batch);
       run_replicates(sim, a.replicates, batch, a, progress, sink, replicate_sink);
     }
   });

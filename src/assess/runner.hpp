@@ -134,7 +134,8 @@ struct Assessment : NailHistograms {
 
 struct Progress {
   std::atomic<long long> done{0};
-  std::atomic<long long> total{0};
+  std::atomic<long long> total{0};  // with a stop rule: the end of the batch under way
+  std::atomic<int> looks{0};        // a stop rule's looks so far (0: none, or no stop rule)
 };
 
 // Runs the scenario's replicates (or, with a stop rule, batches until the verdict's P(pass)

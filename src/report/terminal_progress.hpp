@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <fmt/format.h>
 #include <cstdio>
+#include <string>
 #include <thread>
 #include <unistd.h>
 
@@ -18,7 +20,7 @@ class StepCounter {
  public:
   explicit StepCounter(const char* label) : label_(label), on_(isatty(fileno(stderr)) != 0) {}
   ~StepCounter() {
-    if (on_) std::fprintf(stderr, "\r%70s\r", "");
+    if (on_) std::fprintf(stderr, "\r%100s\r", "");
   }
   StepCounter(const StepCounter&) = delete;
   StepCounter& operator=(const StepCounter&) = delete;
@@ -40,7 +42,7 @@ class ProgressBar {
   ~ProgressBar() {
     stop_ = true;
     if (thread_.joinable()) thread_.join();
-    if (on_) std::fprintf(stderr, "\r%70s\r", "");
+    if (on_) std::fprintf(stderr, "\r%100s\r", "");
   }
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
@@ -55,8 +57,11 @@ class ProgressBar {
       const double frac = std::min(1.0, static_cast<double>(done) / static_cast<double>(total));
       const int width = 30, filled = static_cast<int>(frac * width);
       const double eta = done > 0 ? elapsed * static_cast<double>(total - done) / static_cast<double>(done) : 0;
-      std::fprintf(stderr, "\r[%s%s] %3.0f%%  %lld/%lld replicates  %.1f s  ETA %.0f s ", std::string(filled, '#').c_str(),
-                   std::string(width - filled, ' ').c_str(), 100 * frac, done, total, elapsed, eta);
+      // With a stop rule the bar is the batch under way, after the looks that did not stop it.
+      const int looks = progress_.looks;
+      std::fprintf(stderr, "\r[%s%s] %3.0f%%  %lld/%lld replicates  %.1f s  ETA %.0f s%s ", std::string(filled, '#').c_str(),
+                   std::string(width - filled, ' ').c_str(), 100 * frac, done, total, elapsed, eta,
+                   looks > 0 ? fmt::format(" (batch {} of a stop rule)", looks + 1).c_str() : "");
       std::fflush(stderr);
     }
   }
