@@ -62,8 +62,20 @@ double pass_probability(const std::vector<OutcomeDistribution>& stations, int na
   // Strides of the flattened count vector (a, b, c, d), d contiguous.
   const std::array<std::size_t, kCategories> stride{static_cast<std::size_t>(dim[1] * dim[2] * dim[3]), static_cast<std::size_t>(dim[2] * dim[3]),
                                                     static_cast<std::size_t>(dim[3]), 1};
+  const auto at = [&](int a, int b, int c) {
+    return static_cast<std::size_t>(a) * stride[0] + static_cast<std::size_t>(b) * stride[1] + static_cast<std::size_t>(c) * stride[2];
+  };
   std::vector<double> mass(states, 0.0), next(states, 0.0);
   mass[0] = 1.0;
+  // The probability held by the counts from lo to hi (inclusive) in every category.
+  const auto box_sum = [&](const std::array<int, kCategories>& lo, const std::array<int, kCategories>& hi) {
+    double sum = 0;
+    for (int a = lo[0]; a <= hi[0]; ++a)
+      for (int b = lo[1]; b <= hi[1]; ++b)
+        for (int c = lo[2]; c <= hi[2]; ++c)
+          for (int e = lo[3]; e <= hi[3]; ++e) sum += mass[at(a, b, c) + static_cast<std::size_t>(e)];
+    return sum;
+  };
   // Counts reached so far in each category: the loops need go no further.
   std::array<int, kCategories> reach{};
   for (int i = 0; i < nails; ++i) {
@@ -77,7 +89,7 @@ double pass_probability(const std::vector<OutcomeDistribution>& stations, int na
     for (int a = 0; a <= grown[0]; ++a)
       for (int b = 0; b <= grown[1]; ++b)
         for (int c = 0; c <= grown[2]; ++c) {
-          double* row = &next[static_cast<std::size_t>(a) * stride[0] + static_cast<std::size_t>(b) * stride[1] + static_cast<std::size_t>(c) * stride[2]];
+          double* row = &next[at(a, b, c)];
           std::fill(row, row + grown[3] + 1, 0.0);
         }
     for (const auto& [o, p] : d) {
@@ -88,15 +100,13 @@ double pass_probability(const std::vector<OutcomeDistribution>& stations, int na
         fits = fits && top[c] >= 0;
       }
       if (!fits) continue;
-      const std::size_t shift = static_cast<std::size_t>(o[0]) * stride[0] + static_cast<std::size_t>(o[1]) * stride[1] +
-                                static_cast<std::size_t>(o[2]) * stride[2] + static_cast<std::size_t>(o[3]);
+      const std::size_t shift = at(o[0], o[1], o[2]) + static_cast<std::size_t>(o[3]);
       const double w = p;
       for (int a = 0; a <= top[0]; ++a)
         for (int b = 0; b <= top[1]; ++b)
           for (int c = 0; c <= top[2]; ++c) {
-            const std::size_t at = static_cast<std::size_t>(a) * stride[0] + static_cast<std::size_t>(b) * stride[1] + static_cast<std::size_t>(c) * stride[2];
-            const double* from = &mass[at];
-            double* to = &next[at + shift];
+            const double* from = &mass[at(a, b, c)];
+            double* to = &next[at(a, b, c) + shift];
             for (int e = 0; e <= top[3]; ++e) to[e] += w * from[e];
           }
     }
@@ -107,32 +117,15 @@ double pass_probability(const std::vector<OutcomeDistribution>& stations, int na
     // low by at most that per slice (under 1e-11 in all for 150 nails that mark a few times
     // each), and the box stays the counts that matter (an operator-zone hit at 1 in 10 000
     // nails never needs 30 of them): 4-5 times fewer states on the shipped scenarios.
-    for (std::size_t k = 0; k < kCategories; ++k) {
-      std::array<int, kCategories> lo{}, hi = reach;
+    for (std::size_t k = 0; k < kCategories; ++k)
       while (reach[k] > 0) {
-        lo[k] = hi[k] = reach[k];
-        double slice = 0;
-        for (int a = lo[0]; a <= hi[0]; ++a)
-          for (int b = lo[1]; b <= hi[1]; ++b)
-            for (int c = lo[2]; c <= hi[2]; ++c)
-              for (int e = lo[3]; e <= hi[3]; ++e)
-                slice += mass[static_cast<std::size_t>(a) * stride[0] + static_cast<std::size_t>(b) * stride[1] +
-                              static_cast<std::size_t>(c) * stride[2] + static_cast<std::size_t>(e)];
-        if (slice > kNegligible) break;
+        std::array<int, kCategories> lo{};  // the slice of the box at its largest count of k
+        lo[k] = reach[k];
+        if (box_sum(lo, reach) > kNegligible) break;
         --reach[k];
-        hi = reach;
-        lo = {};
       }
-    }
   }
-  double total = 0;
-  for (int a = 0; a <= reach[0]; ++a)
-    for (int b = 0; b <= reach[1]; ++b)
-      for (int c = 0; c <= reach[2]; ++c)
-        for (int e = 0; e <= reach[3]; ++e)
-          total += mass[static_cast<std::size_t>(a) * stride[0] + static_cast<std::size_t>(b) * stride[1] + static_cast<std::size_t>(c) * stride[2] +
-                        static_cast<std::size_t>(e)];
-  return std::min(1.0, total);
+  return std::min(1.0, box_sum({}, reach));
 }
 
 ExactPass exact_pass(const StationOutcomes& outcomes, int nails, const scenario::CriteriaSpec& criteria, std::uint64_t seed, int draws,

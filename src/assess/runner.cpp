@@ -1,9 +1,8 @@
 #include "assess/runner.hpp"
 
-#include "assess/summary.hpp"
-
 #include "assess/chunk.hpp"
 #include "assess/cluster.hpp"
+#include "assess/summary.hpp"
 
 #include "units/quantity.hpp"
 
@@ -235,10 +234,10 @@ Assessment run_assessment(const Simulator& sim, int threads, Progress* progress,
     // after batches that grow by half the replicates so far, so that the looks stay few
     // (their number grows as the logarithm of the replicates) and each costs little beside
     // the batch before it.
+    const double required = sim.scenario().criteria.required_pass_probability;
     for (;;) {
       ++a.looks;
       const Interval i = verdict_estimate(a, sim.scenario(), kExactDraws).pass;
-      const double required = sim.scenario().criteria.required_pass_probability;
       if (run.target_half_width && 0.5 * (i.high - i.low) <= *run.target_half_width) {
         a.stopped_by = "target_half_width";
         break;

@@ -11,7 +11,7 @@ using report::RunOverrides;
 
 // --replicates, --seed (any unsigned 64-bit value, or refused) and --threads on `cmd`.
 void add_run_overrides(CLI::App& cmd, RunOverrides& overrides, const std::string& whose);
-// --until-settled and --estimator (run and batch: a comparison runs fixed replicates).
+// --until-settled, --target-half-width and --estimator (run and batch: a comparison runs fixed replicates).
 void add_stop_rule_options(CLI::App& cmd, RunOverrides& overrides);
 // --trajectories K (run and batch).
 void add_trajectories_option(CLI::App& cmd, RunOverrides& overrides);
