@@ -33,26 +33,19 @@ std::vector<strike::Spindle> make_spindles(const scenario::Scenario& s) {
 }
 }  // namespace
 
-Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenario_(s), spindles_(make_spindles(s)) {
-  try {
-    scene_ = std::make_unique<scene::Scene>(scene::build_scene_soup(scenario_), engine);
-  } catch (const std::invalid_argument& e) {
-    throw scenario::InputError(s.file, std::nullopt, s.meshes.empty() ? "housing" : "meshes", "", e.what());
-  }
-  guards_ = scene::scene_guards(scenario_);  // numbered as the scene numbers them
-  flight_settings_ = flight::FlightSettings(scenario_, guards_);
-  context_.scene = scene_.get();
-  context_.settings = &flight_settings_;
-  context_.deck_radius = scene::mesh_roles(s).housing ? s.reach() + 0.05 : s.housing.deck_radius;
-  context_.counted_height = s.counted_height();
-  context_.escape_radius = scene::escape_radius(s, scene_->soup());
-  context_.board_near = scene::board_near_radius(scene_->soup());
-  footprint_ = scene::deck_footprint(s, scene_->soup());
-  deck_outline_ = flight::DeckOutline(footprint_.outline);
-  context_.deck_outline = &deck_outline_;
-  context_.generated_deck = footprint_.generated;
-  context_.skirt_bottom = footprint_.skirt_bottom;
-  context_.deck_top = footprint_.top;
+namespace {
+// A field scenario has no test rig: it is assessed with `j232 hazard`.
+const scenario::Scenario& test_rig(const scenario::Scenario& s) {
+  if (s.field.present)
+    throw scenario::InputError(s.file, std::nullopt, "field", "",
+                               "this scenario describes a mower in a field ([field]), not the J232 test: run it with `j232 hazard`");
+  return s;
+}
+}  // namespace
+
+Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenario_(test_rig(s)), spindles_(make_spindles(s)) {
+  mower_ = std::make_unique<flight::Mower>(scenario_, engine);
+  context_ = mower_->context();
   context_.spindles = &spindles_;
   // A derived operator zone on a board with no zone mesh of its own.
   bool zone_mesh = false;
@@ -71,7 +64,7 @@ std::string Simulator::exit_name(flight::Exit exit, std::uint16_t index) const {
     case flight::Exit::DeckEdge: return "deck edge";
     case flight::Exit::Opening:
       return "opening: " + (index < scenario_.housing.openings.size() ? scenario_.housing.openings[index].name : std::string("?"));
-    case flight::Exit::Guard: return "guard: " + (index < guards_.size() ? guards_[index].name : std::string("?"));
+    case flight::Exit::Guard: return "guard: " + (index < mower_->guards().size() ? mower_->guards()[index].name : std::string("?"));
   }
   return "unknown";
 }

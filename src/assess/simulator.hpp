@@ -11,6 +11,7 @@
 #include "blade/impact.hpp"
 #include "feed/feed.hpp"
 #include "strike/spindle.hpp"
+#include "flight/mower.hpp"
 #include "flight/nail_flight.hpp"
 #include "scenario/scenario.hpp"
 #include "scene/j232_setup.hpp"
@@ -54,9 +55,9 @@ class Simulator {
   NailReplay replay(std::uint64_t replicate, int nail) const;
 
   const scenario::Scenario& scenario() const { return scenario_; }
-  const scene::Scene& scene() const { return *scene_; }
+  const scene::Scene& scene() const { return mower_->scene(); }
   double deck_radius() const { return context_.deck_radius; }
-  const scene::DeckFootprint& deck_footprint() const { return footprint_; }
+  const scene::DeckFootprint& deck_footprint() const { return mower_->footprint(); }
   // How a nail left the deck, in words: "under the skirt", "opening: side discharge",
   // "guard: front chains", "over the deck", "deck edge", "never left the deck".
   std::string exit_name(flight::Exit exit, std::uint16_t index) const;
@@ -66,11 +67,7 @@ class Simulator {
   NailOutcome run_nail(std::uint64_t replicate, int nail, std::vector<flight::Vec3>* path, NailReplay* replay = nullptr) const;
   scenario::Scenario scenario_;
   std::vector<strike::Spindle> spindles_;
-  std::unique_ptr<scene::Scene> scene_;
-  std::vector<scenario::GuardSpec> guards_;
-  flight::FlightSettings flight_settings_;  // built once from the scenario and the guards
-  scene::DeckFootprint footprint_;
-  flight::DeckOutline deck_outline_;  // footprint_.outline, indexed for the flight
+  std::unique_ptr<flight::Mower> mower_;  // the scene, the flight's settings, the deck
   std::optional<scene::OperatorZone> zone_;  // a derived zone, judged from the throwing blade
   flight::FlightContext context_;
 };

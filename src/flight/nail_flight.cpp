@@ -164,6 +164,7 @@ struct NailFlight {
     std::optional<PlaneTouch> touch;  // the capsule's first touch of the hit's plane (none: the centre's arrival)
   };
   bool event_check(double t_end, int& steps);
+  void observe(const Chord& c, const NextEvent& e) const;
   Chord event_advance(double t_end) const;
   NextEvent event_find(const Chord& c);
   bool event_collide(const Chord& c, const NextEvent& e);
@@ -467,6 +468,8 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
     case SurfaceMaterial::Response::Flap:
     case SurfaceMaterial::Response::Bounce: break;
   }
+  if (ctx.observer && hit.surface == scene::Surface::Ground)
+    ctx.observer->met_ground(b.time, arm ? Vec3(b.position + *arm) : hit.point, b.velocity, in_deck);
   // The facet the nail meets: on a rough surface the local normal, tilted at random; one it
   // would meet from behind is no facet it can meet, and is drawn again.
   Vec3 facet = n;
@@ -724,6 +727,27 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
   return after_bounce(hit);
 }
 
+// The free stretch from where the nail is to the event that ends the chord, told to the
+// context's observer.
+void NailFlight::observe(const Chord& c, const NextEvent& e) const {
+  double t1 = c.next.time;
+  Vec3 p1 = c.next.position, v1 = c.next.velocity;
+  switch (e.kind) {
+    case NextEvent::Kind::ChordEnd: break;
+    case NextEvent::Kind::Blade: t1 = e.contact->time, p1 = e.contact->centre, v1 = c.motion.velocity(t1); break;
+    case NextEvent::Kind::PlaneAgain: t1 = e.again->time, p1 = e.again->centre, v1 = c.motion.velocity(t1); break;
+    case NextEvent::Kind::Surface:
+      if (e.touch) {
+        t1 = e.touch->time, p1 = e.touch->centre;
+      } else {
+        t1 = b.time + c.dt * e.hit->distance / c.len, p1 = e.hit->point;
+      }
+      v1 = c.motion.velocity(t1);
+      break;
+  }
+  ctx.observer->flew(b.time, b.position, b.velocity, t1, p1, v1);
+}
+
 // The flight as a loop of named events (as OpenMC's event_advance / event_collide): check
 // that it goes on, plan the next chord, find what ends it, and let that act on the nail.
 FlightResult NailFlight::run() {
@@ -739,7 +763,9 @@ FlightResult NailFlight::run() {
       continue;
     }
     const NextEvent e = event_find(c);
-    if (cut_off || !event_collide(c, e)) break;
+    if (cut_off) break;
+    if (ctx.observer) observe(c, e);
+    if (!event_collide(c, e)) break;
   }
   close_pass();
   r.flight_time = b.time - start.time;

@@ -161,6 +161,19 @@ struct FlightEvent {
 };
 const char* event_name(FlightEvent::Kind k);  // "strike", "bounce", "guard-pass", "slide", "rest", "board", "left-deck", "end"
 
+// Watches a flight as it goes (j232 hazard tallies where thrown objects cross planes and
+// land around the mower); null in a J232 run. Times are on the blades' clock.
+class FlightObserver {
+ public:
+  virtual ~FlightObserver() = default;
+  // The centre flew freely from p0 (at t0, velocity v0) to p1 (at t1, arriving with v1):
+  // every stretch of free flight, in order, up to the event that ends it.
+  virtual void flew(double t0, const Vec3& p0, const Vec3& v0, double t1, const Vec3& p1, const Vec3& v1) = 0;
+  // It met the ground at `point` arriving with `velocity` (before the bounce); `in_deck`:
+  // under the mower's deck (inside its outline).
+  virtual void met_ground(double t, const Vec3& point, const Vec3& velocity, bool in_deck) = 0;
+};
+
 // What the flight needs beyond the body: the scene, its settings (limits, board, the
 // surfaces' materials), and the deck.
 struct FlightContext {
@@ -184,6 +197,7 @@ struct FlightContext {
   std::vector<Vec3>* path = nullptr;
   // When set, every event of the flight is appended (replaying one nail; null in a run).
   std::vector<FlightEvent>* events = nullptr;
+  FlightObserver* observer = nullptr;  // when set, told of every free stretch and ground contact
 };
 
 // The blade contact the flight starts from (the feed's strike): its pass goes on.

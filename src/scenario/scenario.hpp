@@ -269,6 +269,51 @@ struct UncertaintySpec {
   long long replicates = 50;   // per assessment (its P(pass) from every nail is smooth; see docs/model.md §6b)
 };
 
+// A mower at work over a field strewn with objects (`j232 hazard`, docs/model.md §9): no
+// board; the ground around the mower and vertical planes beside it are what is tallied.
+// Defaults are estimates unless a source is named (docs/model.md §8).
+struct FieldObjectSpec {
+  std::string name;                       // as reports name it ("gravel")
+  enum class Kind { Stone, SteelBall } kind = Kind::Stone;
+  // Size: the diameter of the sphere of the same volume, lognormal by its median and
+  // geometric standard deviation (1: all the same), cut to [min_size, max_size].
+  double median_size = 0.015, spread = 1.5, min_size = 0.005, max_size = 0.040;  // m
+  double density = 2650;                   // kg/m^3 (quartz and granite, 2600-2700)
+  double per_area = 0.5;                   // objects per m^2 of ground mowed
+  double embedment = 0.25;                 // share of its size sunk into the turf (0: lying on top)
+  // On the blade, Poisson's: stone on steel 0.5 (an estimate); none: the scenario's
+  // [restitution] (steel on steel, a steel ball's default).
+  std::optional<double> restitution = 0.5;
+  double friction = 0.4;                   // on the blade, Coulomb
+  double drag_coefficient = 0.6;           // on its cross-section (a smooth sphere: 0.47)
+};
+
+struct FieldPlaneSpec {  // a vertical plane beside the mower's path: a lane, a fence, a footpath
+  std::string name;
+  enum class Side { Left, Right, Front, Rear } side = Side::Right;
+  double distance = 3.0;  // from the mower's centre line (left, right) or centre (front, rear), m
+  enum class Receptor { Person, Vehicle } receptor = Receptor::Person;
+};
+
+struct FieldSpec {
+  bool present = false;                       // the scenario has a [field] table
+  double ground_speed = 8.0 / 3.6;            // m/s, the mower's travel (8 km/h: an estimate)
+  std::vector<FieldObjectSpec> objects;
+  std::vector<FieldPlaneSpec> planes;
+  double range = 100;                         // m: the ground tallied out to this in every direction
+  double cell = 1.0;                          // m: the tally's grid
+  long long objects_simulated = 100000;       // objects met by the blades in one hazard run
+  // A person (DDESB Technical Paper 12): struck hazardously by an object of at least
+  // person_energy; presented area; one hazardous impact per acceptable_area is acceptable.
+  double person_energy = 79.0;                // J (58 ft lb)
+  double presented_area = 0.58;               // m^2
+  double acceptable_area = 55.74;             // m^2 (600 ft^2)
+  double person_height = 1.8;                 // m: the band a person stands in at a plane
+  // A vehicle in a lane: hazardous impacts on the windshield's band (estimates).
+  double vehicle_energy = 2.0;                // J
+  double windshield_bottom = 0.9, windshield_top = 1.5;  // m above ground
+};
+
 struct Scenario {
   std::string file;
   std::string title;
@@ -292,6 +337,7 @@ struct Scenario {
   AirSpec air;
   RunSpec run;
   UncertaintySpec uncertainty;
+  FieldSpec field;  // present: a hazard scenario (j232 hazard), not a J232 test
 
   // Marks below this height (m above ground) are not counted (CriteriaSpec::counted_height).
   double counted_height() const { return criteria.counted_height.value_or(blade_plane()); }

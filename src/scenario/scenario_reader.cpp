@@ -476,6 +476,109 @@ void read_air(const TableReader& a, AirSpec& air) {
   a.refuse_unknown_keys();
 }
 
+
+// The field a hazard scenario mows (FieldSpec). `s` has its blades and deck read.
+void read_field(const TableReader& t, const Scenario& s, FieldSpec& f) {
+  f.present = true;
+  f.ground_speed = t.quantity_or("ground_speed", Kind::Speed, f.ground_speed, Range::positive_up_to(15));
+  f.range = t.quantity_or("range", Kind::Length, f.range, Range::between(5, 500));
+  f.cell = t.quantity_or("cell", Kind::Length, f.cell, Range::between(0.1, 10));
+  if (f.range / f.cell > 1000) throw t.error("cell", fmt::format("expected at most 1000 cells across the range ({:g} m): a coarser cell", f.range));
+  f.objects_simulated = t.integer_or("objects_simulated", f.objects_simulated, 1, 1'000'000'000);
+  f.person_energy = t.quantity_or("person_energy", Kind::Energy, f.person_energy, Range::between(0.01, 1e5));
+  f.presented_area = t.quantity_or("presented_area", Kind::Area, f.presented_area, Range::between(0.01, 10));
+  f.acceptable_area = t.quantity_or("acceptable_area", Kind::Area, f.acceptable_area, Range::between(0.1, 1e6));
+  f.person_height = t.quantity_or("person_height", Kind::Length, f.person_height, Range::between(0.3, 2.5));
+  f.vehicle_energy = t.quantity_or("vehicle_energy", Kind::Energy, f.vehicle_energy, Range::between(0.001, 1e5));
+  f.windshield_bottom = t.quantity_or("windshield_bottom", Kind::Length, f.windshield_bottom, Range::between(0, 5));
+  f.windshield_top = t.quantity_or("windshield_top", Kind::Length, f.windshield_top, Range::between(0, 5));
+  if (f.windshield_top <= f.windshield_bottom) throw t.error("windshield_top", "expected the windshield's top above its bottom");
+
+  // Where a blade can reach an object: its lower face; where the deck stops one: the skirt.
+  double lowest_face = HUGE_VAL;
+  for (const auto& sp : s.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
+  const auto tables = t.array_of_tables("objects", 16);
+  if (tables.empty())
+    throw t.error("objects", "missing: a field without objects throws nothing; expected [[field.objects]] tables with kind, "
+                             "median_size and per_area");
+  for (const auto& o : tables) {
+    FieldObjectSpec obj;
+    const std::string kind = o.string_or("kind", "stone", {"stone", "steel_ball"});
+    obj.kind = kind == "steel_ball" ? FieldObjectSpec::Kind::SteelBall : FieldObjectSpec::Kind::Stone;
+    obj.name = o.string_or("name", kind == "steel_ball" ? "steel balls" : "stones", {});
+    if (obj.kind == FieldObjectSpec::Kind::SteelBall) {
+      // A ball bearing: one size, steel, smooth, the blade's own restitution on steel.
+      obj.density = 7850, obj.spread = 1.0, obj.drag_coefficient = 0.47, obj.embedment = 0.0;
+      obj.restitution.reset();
+    }
+    obj.median_size = o.quantity_or("median_size", Kind::Length, obj.median_size, Range::between(0.001, 0.3));
+    obj.spread = o.quantity_or("spread", Kind::Dimensionless, obj.spread, Range::between(1, 5));
+    const bool one_size = obj.spread == 1.0;
+    obj.min_size = o.quantity_or("min_size", Kind::Length, one_size ? obj.median_size : std::min(obj.min_size, obj.median_size),
+                                 Range::between(0.001, 0.3));
+    obj.max_size = o.quantity_or("max_size", Kind::Length, one_size ? obj.median_size : std::max(obj.max_size, obj.median_size),
+                                 Range::between(0.001, 0.3));
+    if (!(obj.min_size <= obj.median_size && obj.median_size <= obj.max_size))
+      throw o.error("median_size", fmt::format("expected min_size ({:g} m) <= median_size ({:g} m) <= max_size ({:g} m)", obj.min_size,
+                                               obj.median_size, obj.max_size));
+    obj.density = o.quantity_or("density", Kind::Density, obj.density, Range::between(500, 20000));
+    if (!o.has("per_area")) throw o.error("per_area", "missing: how many of these objects lie on a square metre, such as \"0.5 m^-2\"");
+    obj.per_area = o.quantity("per_area", Kind::PerArea, Range::positive_up_to(10000));
+    obj.embedment = o.quantity_or("embedment", Kind::Dimensionless, obj.embedment, Range::between(0, 0.9));
+    if (auto e = o.optional_quantity("restitution", Kind::Dimensionless, Range::UnitInterval)) obj.restitution = *e;
+    obj.friction = o.quantity_or("friction", Kind::Dimensionless, obj.friction, Range::between(0, 2));
+    obj.drag_coefficient = o.quantity_or("drag_coefficient", Kind::Dimensionless, obj.drag_coefficient, Range::between(0, 3));
+    o.refuse_unknown_keys();
+    const double top = obj.max_size * (1 - obj.embedment);
+    if (top >= s.housing.skirt_bottom)
+      throw o.error("max_size", fmt::format("objects standing {:.3g} m above the turf cannot pass under the deck's skirt ({:.3g} m above "
+                                            "the turf): the skirt pushes them along; expected a smaller max_size or a higher skirt",
+                                            top, s.housing.skirt_bottom));
+    if (top <= lowest_face)
+      throw o.error("max_size", fmt::format("no object stands up to the blade: the largest stands {:.3g} m above the turf, the blade's "
+                                            "lower face {:.3g} m; the mower passes over them all (expected larger objects, less "
+                                            "embedment or a lower cut)",
+                                            top, lowest_face));
+    f.objects.push_back(obj);
+  }
+  const double deck = s.housing.deck_radius;
+  for (const auto& p : t.array_of_tables("planes", 16)) {
+    FieldPlaneSpec plane;
+    const std::string side = p.string_or("side", "", {"left", "right", "front", "rear"});
+    if (side.empty()) throw p.error("side", "missing; expected left, right, front or rear");
+    plane.side = side == "left" ? FieldPlaneSpec::Side::Left : side == "right" ? FieldPlaneSpec::Side::Right
+                 : side == "front" ? FieldPlaneSpec::Side::Front : FieldPlaneSpec::Side::Rear;
+    plane.name = p.string_or("name", side, {});
+    plane.distance = p.quantity("distance", Kind::Length, Range::positive_up_to(500));
+    if (plane.distance <= deck)
+      throw p.error("distance", fmt::format("the plane stands inside the mower's deck ({:.3g} m from its centre); expected a distance "
+                                            "beyond it",
+                                            deck));
+    if (plane.distance >= f.range)
+      throw p.error("distance", fmt::format("expected a plane within field.range ({:g} m)", f.range));
+    plane.receptor = p.string_or("receptor", "person", {"person", "vehicle"}) == "vehicle" ? FieldPlaneSpec::Receptor::Vehicle
+                                                                                          : FieldPlaneSpec::Receptor::Person;
+    p.refuse_unknown_keys();
+    f.planes.push_back(plane);
+  }
+  t.refuse_unknown_keys();
+}
+
+// A hazard scenario has no test rig: the J232 tables would be silently unused, so they are refused.
+void refuse_test_rig(const TableReader& root, const std::vector<MeshFile>& meshes) {
+  for (const char* table : {"nail", "feed", "target", "operator_zone", "board", "criteria"})
+    if (root.has(table))
+      throw root.error(table, fmt::format("a field scenario ([field]) has no J232 test rig, so [{}] has no meaning in it; remove it "
+                                          "(j232 run assesses a scenario without [field])",
+                                          table));
+  for (std::size_t i = 0; i < meshes.size(); ++i)
+    if (is_board(meshes[i].label))
+      throw root.error("meshes", fmt::format("meshes[{}] is a board ({}); a field scenario has no board", i + 1, mesh_label_name(meshes[i].label)));
+  if (auto r = root.table("run"))
+    for (const char* key : {"replicates", "estimator", "until_settled", "target_half_width", "max_replicates"})
+      if (r->has(key))
+        throw r->error(key, "a field scenario simulates field.objects_simulated objects, not replicates of the J232 test; remove it");
+}
 }  // namespace
 
 double Scenario::blade_plane() const {
@@ -538,6 +641,12 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto c = root.table("criteria")) read_criteria(*c, s.criteria);
   if (auto a = root.table("air")) read_air(*a, s.air);
   if (auto r = root.table("run")) read_run(*r, s.run);
+  if (auto f = root.table("field")) {
+    refuse_test_rig(root, s.meshes);
+    read_field(*f, s, s.field);
+    // An object thrown across a field flies for seconds, not the board's fraction of one.
+    if (!(root.table("run") && root.table("run")->has("time_limit"))) s.run.time_limit = 20.0;
+  }
   if (auto u = root.table("uncertainty")) read_uncertainty(*u, s.uncertainty);
   for (const auto& key : root.strings("estimates")) {
     const auto value = root.value_at(key);

@@ -76,6 +76,8 @@ std::string bound(units::Kind kind, double v) {
     case Kind::EnergyPerLength: return fmt::format("{:g} J/m", v);
     case Kind::Acceleration: return fmt::format("{:g} m/s^2", v);
     case Kind::Density: return fmt::format("{:g} kg/m^3", v);
+    case Kind::Area: return fmt::format("{:g} m^2", v);
+    case Kind::PerArea: return fmt::format("{:g} m^-2", v);
     case Kind::Dimensionless: return fmt::format("{:g}", v);
   }
   return fmt::format("{:g}", v);

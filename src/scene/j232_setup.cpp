@@ -438,6 +438,8 @@ MeshRoles mesh_roles(const scenario::Scenario& s) {
 }
 
 double escape_radius(const scenario::Scenario& s, const Soup& soup) {
+  // A field's objects are followed until they leave its tallied square (corners included).
+  if (s.field.present) return field_ground_half(s);
   double reach = target_radius(s);
   for (std::size_t t = 0; t < soup.triangles.size(); ++t)
     if (soup.labels[t] != Surface::Ground)
@@ -501,20 +503,23 @@ Soup build_scene_soup(const scenario::Scenario& s) {
       for (const auto& p : part.points) mesh_reach = std::max(mesh_reach, std::hypot(p.x(), p.y()));
     soup.append(part);
   }
+  // A field has no board, and its turf reaches beyond the tallied square.
+  const bool board = !s.field.present;
+  const double ground_half = board ? target_radius(s) + 2.0 : field_ground_half(s) + 2.0;
   if (!s.meshes.empty()) {
     // Only what the meshes leave to be generated; the generated guards follow the mesh guards.
     Soup generated;
-    if (!replaced.ground) add_ground(generated, std::max(target_radius(s), mesh_reach) + 2.0);
+    if (!replaced.ground) add_ground(generated, board ? std::max(ground_half, mesh_reach + 2.0) : ground_half);
     if (!replaced.housing) add_housing(generated, s, guard);
     add_free_parts(generated, s.housing, guard);
-    if (!replaced.target) add_target_ring(generated, s, zone);
+    if (!replaced.target && board) add_target_ring(generated, s, zone);
     soup.append(generated);
     return soup;
   }
-  add_ground(soup, target_radius(s) + 2.0);
+  add_ground(soup, ground_half);
   add_housing(soup, s, 0);
   add_free_parts(soup, s.housing, 0);
-  add_target_ring(soup, s, zone);
+  if (board) add_target_ring(soup, s, zone);
   return soup;
 }
 

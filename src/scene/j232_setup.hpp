@@ -42,8 +42,13 @@ struct DeckFootprint {
 DeckFootprint deck_footprint(const scenario::Scenario& s, const Soup& soup);
 
 // Beyond this horizontal distance a nail has left the test: 1 m past the farthest of
-// the board ring and every mesh surface but the ground.
+// the board ring and every mesh surface but the ground (a field: field_ground_half).
 double escape_radius(const scenario::Scenario& s, const Soup& soup);
+// How far a field's objects are followed from the mower (in its frame): past the corners
+// of the tallied square, and as far again as the mower travels in a flight's time limit.
+inline double field_ground_half(const scenario::Scenario& s) {
+  return 1.5 * s.field.range + s.field.ground_speed * s.run.time_limit;
+}
 // A generated polygon deck's skirt, piece by piece along its outline: pieces of at most
 // 0.1 m, split where an opening or a guard given by azimuths begins or ends, so that each
 // is cut exactly at its azimuths. `azimuth`: of the piece's middle, about the origin.

@@ -94,6 +94,8 @@ Dimension dimension_of(Kind kind) {
     case Kind::EnergyPerLength: return {1, 1, -2, 0};
     case Kind::Acceleration: return {0, 1, -2, 0};
     case Kind::Density: return {1, -3, 0, 0};
+    case Kind::Area: return {0, 2, 0, 0};
+    case Kind::PerArea: return {0, -2, 0, 0};
   }
   return kNone;
 }
@@ -112,6 +114,8 @@ std::string_view describe(Kind kind) {
     case Kind::EnergyPerLength: return "an energy per length such as \"110 J/m\"";
     case Kind::Acceleration: return "an acceleration such as \"9.81 m/s^2\"";
     case Kind::Density: return "a density such as \"1.2 kg/m^3\"";
+    case Kind::Area: return "an area such as \"0.58 m^2\" or \"600 ft^2\"";
+    case Kind::PerArea: return "a number per area such as \"0.5 m^-2\" or \"0.05 ft^-2\"";
   }
   return "a quantity";
 }

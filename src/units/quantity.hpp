@@ -19,7 +19,7 @@ struct Dimension {
 
 // The kinds of quantity a scenario asks for. Each names its dimension and an
 // example a user can copy when they get it wrong.
-enum class Kind { Dimensionless, Angle, Length, Mass, Time, Speed, AngularSpeed, Inertia, Energy, EnergyPerLength, Acceleration, Density };
+enum class Kind { Dimensionless, Angle, Length, Mass, Time, Speed, AngularSpeed, Inertia, Energy, EnergyPerLength, Acceleration, Density, Area, PerArea };
 
 Dimension dimension_of(Kind kind);
 std::string_view describe(Kind kind);  // "a speed such as \"440 ft/min\""

@@ -10,7 +10,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   using j232::units::Kind;
-  const auto kind = static_cast<Kind>(data[0] % (static_cast<int>(Kind::Density) + 1));
+  const auto kind = static_cast<Kind>(data[0] % (static_cast<int>(Kind::PerArea) + 1));
   const std::string_view text(reinterpret_cast<const char*>(data + 1), size - 1);
   try {
     const double v = j232::units::parse(text, kind);
