@@ -32,6 +32,7 @@ int run_command_line(int argc, char** argv) {
   const Runner uq = add_uq_command(app);
   const Runner calibrate = add_calibrate_command(app);
   const Runner trace = add_trace_command(app);
+  const Runner hazard = add_hazard_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -48,6 +49,7 @@ int run_command_line(int argc, char** argv) {
     if (app.got_subcommand("uq")) return uq();
     if (app.got_subcommand("calibrate")) return calibrate();
     if (app.got_subcommand("trace")) return trace();
+    if (app.got_subcommand("hazard")) return hazard();
   } catch (const j232::scenario::InputError& e) {
     if (reporter) fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
     return kBadInput;

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "assess/simulator.hpp"
+#include "field/field_simulator.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
@@ -25,6 +26,7 @@ struct TraceOptions {
   std::string scenario, find, json;
   std::uint64_t replicate = 0;
   int nail = 0;
+  std::optional<std::uint64_t> object;  // a field scenario's object
   std::optional<std::uint64_t> seed;
 };
 
@@ -91,7 +93,60 @@ nlohmann::json event_json(const flight::FlightEvent& e) {
   return j;
 }
 
+// One object of a field scenario (j232 hazard) with its whole trail. --find looks among the
+// scenario's field.objects_simulated objects: cut-off, restruck, contained, thrown.
+int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
+  const field::FieldSimulator sim(s);
+  std::uint64_t index = o.object.value_or(0);
+  if (!o.find.empty()) {
+    auto matches = [&](const field::ObjectOutcome& out) {
+      if (o.find == "cut-off") return out.fate == field::ObjectFate::CutOff;
+      if (o.find == "restruck") return out.fate == field::ObjectFate::Thrown && out.flight.strikes > 1;
+      if (o.find == "contained") return out.flight.fate == flight::Fate::Contained;
+      if (o.find == "thrown") return out.fate == field::ObjectFate::Thrown;
+      throw scenario::InputError("", std::nullopt, "--find", o.find, "expected, for a field scenario, one of cut-off, restruck, contained, thrown");
+    };
+    bool found = false;
+    for (std::uint64_t i = 0; i < static_cast<std::uint64_t>(s.field.objects_simulated) && !found; ++i)
+      if (matches(sim.simulate(i))) index = i, found = true;
+    if (!found) {
+      fmt::print("no object of the {} of \"{}\" (seed {}) is of the kind {}\n", s.field.objects_simulated, s.title, s.run.seed, o.find);
+      return kOk;
+    }
+  }
+  std::vector<flight::FlightEvent> events;
+  const field::ObjectOutcome out = sim.simulate(index, nullptr, &events);
+  const auto& e = out.encounter;
+  fmt::print("{}\nobject {} (seed {}); times on the blades' clock, positions in metres in the mower's frame\n", s.title, index, s.run.seed);
+  fmt::print("{} '{}': {:.1f} mm, {:.1f} g, {:.3f} m across the cut, centre {:.1f} mm above the turf{}\n",
+             s.field.objects[e.kind].kind == scenario::FieldObjectSpec::Kind::SteelBall ? "steel ball" : "stone", s.field.objects[e.kind].name,
+             1e3 * e.body.diameter, 1e3 * e.body.mass, e.lateral, 1e3 * e.height, e.lifted ? " (lifted by the updraft)" : "");
+  fmt::print("{}: thrown at {:.2f} m/s (ground frame), elevation {:.1f} deg\n", field::object_fate_name(out.fate), out.exit_speed,
+             out.launch_elevation / units::degree);
+  fmt::print("{:>10}  {:<10}  {:<26}  {:>9}  {:>9}  {}\n", "t (ms)", "event", "centre after (m)", "v (m/s)", "w (rad/s)", "detail");
+  for (const auto& ev : events)
+    fmt::print("{:>10.3f}  {:<10}  {:<26}  {:>9.2f}  {:>9.0f}  {}\n", 1e3 * ev.time, flight::event_name(ev.kind), vec(ev.centre),
+               ev.velocity.norm(), ev.spin.norm(), detail(ev));
+  const auto& f = out.flight;
+  fmt::print("fate: {}{}; {} strike(s), {} bounce(s)\n", flight::fate_name(f.fate),
+             f.fate == flight::Fate::CutOff ? fmt::format(" ({})", flight::cut_off_name(f.cut_off)) : "", f.strikes, f.bounces);
+  if (!o.json.empty()) {
+    nlohmann::json j{{"program", "j232 trace"}, {"scenario", s.title}, {"seed", s.run.seed}, {"object", index},
+                     {"fate", field::object_fate_name(out.fate)}, {"events", nlohmann::json::array()}};
+    for (const auto& ev : events) j["events"].push_back(event_json(ev));
+    report::write_atomically(o.json, j.dump(1) + "\n");
+    fmt::print("wrote {}\n", o.json);
+  }
+  return kOk;
+}
+
 int run(const TraceOptions& o) {
+  if (const scenario::Scenario s = scenario::read_scenario(o.scenario); s.field.present) {
+    scenario::Scenario with_seed = s;
+    if (o.seed) with_seed.run.seed = *o.seed;
+    return trace_object(o, with_seed);
+  }
+  if (o.object) throw scenario::InputError("", std::nullopt, "--object", std::to_string(*o.object), "only a field scenario ([field]) has objects; replay a nail with --replicate and --nail");
   const FindKind* find = nullptr;
   for (const auto& k : kFindKinds)
     if (o.find == k.name) find = &k;
@@ -161,11 +216,13 @@ int run(const TraceOptions& o) {
 
 Runner add_trace_command(CLI::App& app) {
   auto o = std::make_shared<TraceOptions>();
-  CLI::App* cmd = app.add_subcommand("trace", "Replay one nail of an assessment with its whole trail: its feed, strike and every contact");
+  CLI::App* cmd = app.add_subcommand("trace", "Replay one nail of an assessment (or one object of a field scenario) with its whole trail: its feed, strike and every contact");
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML)")->required();
   cmd->add_option("--replicate", o->replicate, "Replicate (0-based, as marks.csv numbers them)");
   cmd->add_option("--nail", o->nail, "Nail within the replicate (0-based, as marks.csv numbers them)");
-  cmd->add_option("--find", o->find, "Replay the first nail of the run of this kind instead: " + find_kind_names());
+  cmd->add_option("--object", o->object, "A field scenario's object (0-based, as j232 hazard numbers them)");
+  cmd->add_option("--find", o->find, "Replay the first nail of the run of this kind instead: " + find_kind_names() +
+                                         " (a field scenario: cut-off, restruck, contained, thrown)");
   cmd->add_option("--seed", o->seed, "Random seed (overrides the scenario's [run] seed)");
   cmd->add_option("--json", o->json, "Also write the trail as JSON to this file");
   return [o] { return run(*o); };

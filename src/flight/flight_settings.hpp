@@ -3,6 +3,7 @@
 // handed down (the flight never reads the whole Scenario): its numerical and physical
 // limits, the board's model, the deck's named openings (to say how a nail left), and the
 // surfaces' materials.
+#include <Eigen/Dense>
 #include <vector>
 
 #include "flight/surface_material.hpp"
@@ -22,6 +23,13 @@ struct FlightSettings {
   };
   std::vector<Opening> openings;
   SurfaceMaterials materials;
+  // The turf's velocity in the mower's frame: zero in the J232 test (the mower stands); in
+  // a field the mower travels, and an object at rest on the turf under the deck is carried
+  // toward its rear, where a blade may strike it again.
+  Eigen::Vector3d ground_velocity = Eigen::Vector3d::Zero();
+  // A field's flat soil under the turf (z = 0) takes a strike that drives an object lying on
+  // it into it (flight::soil_reaction); the J232 test's nails fall onto the blade.
+  bool soil_under_strikes = false;
 
   FlightSettings() = default;
   // `guards`: indexed as the scene numbers them.

@@ -76,6 +76,8 @@ bool in_arc(double a, double from, double to) {
   return units::wrap_angle(a - from) < span;
 }
 
+constexpr int kSustainedContacts = 64;   // contacts in one pass before a field's object counts as pushed along
+constexpr double kSustainedGap = 1e-5;   // s between the last two of them
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
 constexpr double kMaxChord = 0.5;    // m
 constexpr double kLift = 0.002;      // m: a sliding nail's centre above the ground
@@ -126,6 +128,14 @@ struct NailFlight {
   scene::Skip skip{};
   bool last_contact_guard = false;
   bool ended_at_rest = false;
+  // A knife riding over an object pressed into the soil (a field's stone) touches it no
+  // more in that pass: its spindle's contacts before `ridden_until` are passed over.
+  std::size_t ridden_spindle = first.spindle;
+  double ridden_until = first.ridden_until;
+  void ride_over(std::size_t spindle, double time) {
+    ridden_spindle = spindle;
+    ridden_until = time + 0.5 * units::pi / (*ctx.spindles)[spindle].omega();
+  }
   bool at_board = false;
   bool cut_off = false;
   // Cut off by `why` (the first limit reached is the one named).
@@ -164,6 +174,7 @@ struct NailFlight {
     std::optional<PlaneTouch> touch;  // the capsule's first touch of the hit's plane (none: the centre's arrival)
   };
   bool event_check(double t_end, int& steps);
+  bool carried();
   void observe(const Chord& c, const NextEvent& e) const;
   Chord event_advance(double t_end) const;
   NextEvent event_find(const Chord& c);
@@ -296,8 +307,17 @@ std::optional<strike::Contact> NailFlight::blade_contact(const strike::Motion& m
   strike::SearchStats stats;
   for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
     const strike::Spindle& sp = (*ctx.spindles)[k];
-    auto c = strike::first_contact(sp, phases.at_zero[k], nail, m, best ? best->time : until, stats,
-                                   sp.reference_search ? strike::SearchMethod::FixedSteps : strike::SearchMethod::Advancement);
+    const auto method = sp.reference_search ? strike::SearchMethod::FixedSteps : strike::SearchMethod::Advancement;
+    auto c = strike::first_contact(sp, phases.at_zero[k], nail, m, best ? best->time : until, stats, method);
+    // A knife that rode over the object in this pass: its next touch after it has gone by.
+    if (c && k == ridden_spindle && c->time < ridden_until) {
+      c.reset();
+      if (ridden_until < (best ? best->time : until)) {
+        strike::Motion later = m;
+        later.p0 = m.centre(ridden_until), later.v0 = m.velocity(ridden_until), later.axis0 = m.axis(ridden_until), later.t0 = ridden_until;
+        c = strike::first_contact(sp, phases.at_zero[k], nail, later, best ? best->time : until, stats, method);
+      }
+    }
     if (c && (!best || c->time < best->time)) best = c, best->spindle = k;
   }
   r.search_steps += stats.steps;
@@ -327,12 +347,22 @@ void NailFlight::restrike(const strike::Contact& k) {
   }
   r.most_contacts_in_pass = std::max(r.most_contacts_in_pass, pass_contacts);
   if (pass_contacts > FlightResult::kMaxContactsPerPass) cut(CutOff::ContactsInPass);
+  // A field's heavy object pushed along by the blade (sustained contact): the impulses come
+  // ever closer together without end as the turning plate keeps catching it. Past
+  // kSustainedContacts contacts in a pass, the last within kSustainedGap, it moves with the
+  // blade's point there (a sticking contact) and leaves along that point's path.
+  const bool sustained = set.soil_under_strikes && same_pass && pass_contacts > kSustainedContacts && k.time - last_contact < kSustainedGap;
   pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
   b.velocity = out.velocity_after;
+  if (set.soil_under_strikes &&
+      soil_reaction(b.position, nail.half_segment() + nail.radius(), set.materials.of(scene::Surface::Ground, 0).friction, b.velocity) &&
+      (b.velocity + out.spin_after.cross(k.point - b.position) - sp.velocity_at(k.point)).dot(k.normal) <= 0)
+    ride_over(k.spindle, k.time);
   // The spin about the nail's own axis (from friction at its surface) is left out: it
   // holds under 1/200 of the energy of its tumbling, and flight follows the axis only.
   b.spin = out.spin_after - out.spin_after.dot(b.axis) * b.axis;
+  if (sustained) b.velocity = sp.velocity_at(k.point), b.spin = Vec3::Zero();
   if (on_blade) r.launch_velocity = b.velocity;  // its launch: the last contact before it touches anything else
   ++r.strikes;
   touch(Touch::Blade);
@@ -727,6 +757,29 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
   return after_bounce(hit);
 }
 
+// At rest on turf that moves under the mower (a field): carried with it toward the deck's
+// rear, until a blade reaches it (struck again: the flight goes on) or it has crossed the
+// deck (it stays where it lies). Returns true when struck again.
+bool NailFlight::carried() {
+  const Vec3& turf = set.ground_velocity;
+  const double speed = turf.norm();
+  if (!(speed > 0) || !in_deck || !ctx.spindles) return false;
+  strike::Motion m;
+  m.p0 = b.position, m.v0 = turf, m.a = Vec3::Zero(), m.t0 = b.time, m.axis0 = b.axis, m.spin = Vec3::Zero();
+  // Long enough to cross the whole deck (and no longer than the flight may last).
+  const double until = std::min(b.time + 2 * ctx.deck_radius / speed, start.time + set.time_limit);
+  const auto k = blade_contact(m, until);
+  if (!k || cut_off) return false;
+  const Vec3 from = b.position;
+  b.position = k->centre, b.velocity = turf, b.spin = Vec3::Zero(), b.axis = k->axis, b.time = k->time;
+  moved(from, b.position);
+  skip = {};
+  last_plane.reset();
+  ended_at_rest = false;
+  restrike(*k);
+  return !cut_off;
+}
+
 // The free stretch from where the nail is to the event that ends the chord, told to the
 // context's observer.
 void NailFlight::observe(const Chord& c, const NextEvent& e) const {
@@ -765,7 +818,10 @@ FlightResult NailFlight::run() {
     const NextEvent e = event_find(c);
     if (cut_off) break;
     if (ctx.observer) observe(c, e);
-    if (!event_collide(c, e)) break;
+    if (!event_collide(c, e)) {
+      if (ended_at_rest && !cut_off && carried()) continue;  // on moving turf, struck again
+      break;
+    }
   }
   close_pass();
   r.flight_time = b.time - start.time;

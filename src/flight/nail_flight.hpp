@@ -203,6 +203,8 @@ struct FlightContext {
 // The blade contact the flight starts from (the feed's strike): its pass goes on.
 struct FirstContact {
   std::size_t spindle = 0, edge = 0;
+  // Its knife rode over the object (pressed into the soil): no touch of that spindle before this time.
+  double ridden_until = -HUGE_VAL;
 };
 
 // `drag` already scaled to this nail's mass; `phases`: the blades' angles at time 0 of the

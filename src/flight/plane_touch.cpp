@@ -178,4 +178,16 @@ double effective_mass(const projectile::Projectile& nail, const Vec3& axis, cons
   return 1.0 / (1.0 / nail.mass + rn.dot(strike::inverse_inertia(nail, axis) * rn));
 }
 
+bool soil_reaction(const Vec3& centre, double radius, double mu, Vec3& velocity) {
+  if (!(centre.z() - radius <= 1e-3) || !(velocity.z() < 0)) return false;
+  const double into = -velocity.z();
+  velocity.z() = 0;
+  const double along = std::hypot(velocity.x(), velocity.y());
+  if (along > 0) {
+    const double kept = std::max(0.0, along - mu * into) / along;
+    velocity.x() *= kept, velocity.y() *= kept;
+  }
+  return true;
+}
+
 }  // namespace j232::flight

@@ -47,4 +47,13 @@ double effective_mass(const projectile::Projectile& nail, const Vec3& axis, cons
 void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& arm, const Vec3& n, double e, double mu, Vec3& velocity,
              Vec3& spin, double surface_inverse_mass = 0.0);
 
+// A blade's strike on an object lying on the soil (a field's stone, flat turf at z = 0)
+// that drives it into the soil: the soil takes the strike's downward part at once, with no
+// rebound (a stone pressed into the ground does not spring back out of it), and its
+// friction mu takes up to mu times that from the motion along the ground. Only for an
+// object touching the soil (its lowest point within a millimetre of it, or in it) whose
+// velocity points into it; otherwise nothing happens. Without it the rigid blade and rigid
+// ground would trade impulses at one instant without end (a wedge). Returns whether it acted.
+bool soil_reaction(const Vec3& centre, double radius, double mu, Vec3& velocity);
+
 }  // namespace j232::flight

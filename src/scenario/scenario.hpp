@@ -298,6 +298,9 @@ struct FieldPlaneSpec {  // a vertical plane beside the mower's path: a lane, a 
 struct FieldSpec {
   bool present = false;                       // the scenario has a [field] table
   double ground_speed = 8.0 / 3.6;            // m/s, the mower's travel (8 km/h: an estimate)
+  // The air the blades draw up under the deck, at the turf (an estimate; 0: none): an object
+  // whose drag in it, 1/2 rho u^2 C_d A, exceeds its weight is lifted into the blades' plane.
+  double updraft_speed = 0.0;
   std::vector<FieldObjectSpec> objects;
   std::vector<FieldPlaneSpec> planes;
   double range = 100;                         // m: the ground tallied out to this in every direction

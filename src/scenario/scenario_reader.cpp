@@ -497,6 +497,15 @@ void read_field(const TableReader& t, const Scenario& s, FieldSpec& f) {
   // Where a blade can reach an object: its lower face; where the deck stops one: the skirt.
   double lowest_face = HUGE_VAL;
   for (const auto& sp : s.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
+  // The gap objects enter the deck through: the skirt's, or a front opening's (its chains,
+  // if any, drag over the objects). A mesh deck's is not known, and not checked.
+  std::optional<double> front_gap;
+  if (s.meshes.empty()) {
+    front_gap = s.housing.skirt_bottom;
+    for (const auto& op : s.housing.openings)
+      if (units::in_arc(0.0, op.azimuth_from, op.azimuth_to)) front_gap = std::max(*front_gap, op.top);
+  }
+  f.updraft_speed = t.quantity_or("updraft_speed", Kind::Speed, f.updraft_speed, Range::between(0, 100));
   const auto tables = t.array_of_tables("objects", 16);
   if (tables.empty())
     throw t.error("objects", "missing: a field without objects throws nothing; expected [[field.objects]] tables with kind, "
@@ -530,14 +539,17 @@ void read_field(const TableReader& t, const Scenario& s, FieldSpec& f) {
     obj.drag_coefficient = o.quantity_or("drag_coefficient", Kind::Dimensionless, obj.drag_coefficient, Range::between(0, 3));
     o.refuse_unknown_keys();
     const double top = obj.max_size * (1 - obj.embedment);
-    if (top >= s.housing.skirt_bottom)
-      throw o.error("max_size", fmt::format("objects standing {:.3g} m above the turf cannot pass under the deck's skirt ({:.3g} m above "
-                                            "the turf): the skirt pushes them along; expected a smaller max_size or a higher skirt",
-                                            top, s.housing.skirt_bottom));
-    if (top <= lowest_face)
+    if (front_gap && top >= *front_gap)
+      throw o.error("max_size", fmt::format("objects standing {:.3g} m above the turf cannot pass under the deck's front ({:.3g} m above "
+                                            "the turf): the deck pushes them along; expected a smaller max_size or a higher skirt",
+                                            top, *front_gap));
+    // Lifted by the updraft (its drag above its weight), an object meets the blade in the
+    // blade's plane: 3 rho C_d u^2 / (4 rho_s g) is the largest size it lifts.
+    const double lifted_up_to = 3 * s.air.density * obj.drag_coefficient * f.updraft_speed * f.updraft_speed / (4 * obj.density * units::standard_gravity);
+    if (top <= lowest_face && obj.min_size >= lifted_up_to)
       throw o.error("max_size", fmt::format("no object stands up to the blade: the largest stands {:.3g} m above the turf, the blade's "
                                             "lower face {:.3g} m; the mower passes over them all (expected larger objects, less "
-                                            "embedment or a lower cut)",
+                                            "embedment, a lower cut, or field.updraft_speed to lift them)",
                                             top, lowest_face));
     f.objects.push_back(obj);
   }

@@ -1,0 +1,256 @@
+#include "field/field_simulator.hpp"
+
+#include <algorithm>
+#include <boost/math/distributions/normal.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "scenario/input_error.hpp"
+#include "strike/contact_search.hpp"
+#include "flight/plane_touch.hpp"
+#include "strike/impulse.hpp"
+#include "units/quantity.hpp"
+
+namespace j232::field {
+
+const char* object_fate_name(ObjectFate f) {
+  switch (f) {
+    case ObjectFate::NotReached: return "not_reached";
+    case ObjectFate::NotThrown: return "not_thrown";
+    case ObjectFate::Thrown: return "thrown";
+    case ObjectFate::CutOff: return "cut_off";
+  }
+  return "unknown";
+}
+
+namespace {
+
+const scenario::Scenario& with_field(const scenario::Scenario& s) {
+  if (!s.field.present)
+    throw scenario::InputError(s.file, std::nullopt, "field", "",
+                               "missing: j232 hazard needs a [field] table (the objects the mower meets); a scenario without it is "
+                               "the J232 test (j232 run)");
+  return s;
+}
+
+// The size of an object at probability p of its kind's lognormal (geometric spread 1:
+// one size).
+double size_at(const scenario::FieldObjectSpec& o, double p) {
+  if (o.spread <= 1.0) return o.median_size;
+  const boost::math::normal_distribution<double> z;
+  return std::clamp(o.median_size * std::exp(std::log(o.spread) * boost::math::quantile(z, std::clamp(p, 1e-300, 1 - 1e-16))), o.min_size,
+                    o.max_size);
+}
+// The lognormal's probability of sizes below d.
+double probability_below(const scenario::FieldObjectSpec& o, double d) {
+  if (o.spread <= 1.0) return d > o.median_size ? 1.0 : 0.0;
+  return boost::math::cdf(boost::math::normal_distribution<double>(), std::log(d / o.median_size) / std::log(o.spread));
+}
+
+}  // namespace
+
+FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine) : scenario_(with_field(s)) {
+  mower_ = std::make_unique<flight::Mower>(scenario_, engine);
+  mower_->settings().ground_velocity = {-scenario_.field.ground_speed, 0.0, 0.0};  // the turf, seen from the travelling mower
+  mower_->settings().soil_under_strikes = true;
+  cut_from_ = HUGE_VAL, cut_to_ = -HUGE_VAL;
+  for (const auto& sp : scenario_.spindles) {
+    cut_from_ = std::min(cut_from_, sp.y - sp.blade.tip_radius());
+    cut_to_ = std::max(cut_to_, sp.y + sp.blade.tip_radius());
+  }
+  for (std::size_t k = 0; k < scenario_.field.objects.size(); ++k) {
+    const auto& o = scenario_.field.objects[k];
+    total_per_area_ += o.per_area;
+    std::vector<strike::Spindle> spindles;
+    for (std::size_t i = 0; i < scenario_.spindles.size(); ++i) {
+      const auto& spec = scenario_.spindles[i];
+      try {
+        strike::Spindle sp(spec.blade, spec.geometry, o.restitution ? blade::Restitution::constant(*o.restitution) : scenario_.restitution);
+        sp.centre = {spec.x, spec.y};
+        sp.sense = spec.sense;
+        sp.friction = o.friction;
+        sp.reference_search = scenario_.run.reference_contact_search;
+        spindles.push_back(std::move(sp));
+      } catch (const std::invalid_argument& e) {
+        throw scenario::InputError(scenario_.file, std::nullopt, scenario_.spindles.size() == 1 ? "blade" : fmt::format("spindles[{}].blade", i + 1),
+                                   "", e.what());
+      }
+    }
+    spindles_.push_back(std::move(spindles));
+    // A sphere's drag: rho C_d (pi d^2 / 4) / (2 m) with m = rho_s pi d^3 / 6, that is
+    // 3 rho C_d / (4 rho_s d): worked out here for d = 1 m.
+    flight::Drag drag;
+    drag.on = scenario_.air.drag;
+    drag.k_axial = drag.k_normal = 3 * scenario_.air.density * o.drag_coefficient / (4 * o.density);
+    drag.k_spin = 0;  // a sphere's spin does not change its drag (no Magnus lift modelled)
+    drag.air = {-scenario_.field.ground_speed, 0.0, 0.0};  // still air, seen from the moving mower
+    drag.spin_average = scenario_.air.spin_average;
+    drag_per_unit_.push_back(drag);
+    // The sizes that can reach a blade: lifted by the updraft (drag above weight: below
+    // 3 rho C_d u^2 / (4 rho_s g)), or standing above the lowest blade's lower face.
+    const double u = scenario_.field.updraft_speed;
+    const double lifted_below = 3 * scenario_.air.density * o.drag_coefficient * u * u / (4 * o.density * units::standard_gravity);
+    double lowest_face = HUGE_VAL;
+    for (const auto& sp : scenario_.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
+    const double tall_above = lowest_face / (1 - o.embedment);
+    ReachableSizes reach;
+    const double lo = probability_below(o, o.min_size), hi = o.spread <= 1.0 ? 1.0 : probability_below(o, o.max_size);
+    const double whole = o.spread <= 1.0 ? 1.0 : hi - lo;
+    auto add = [&](double from, double to) {  // sizes [from, to) within the cut
+      from = std::max(from, o.min_size), to = std::min(to, o.max_size);
+      if (o.spread <= 1.0) {
+        if (o.median_size >= from && o.median_size <= to) reach.pieces.push_back({0.0, 1.0});
+        return;
+      }
+      if (!(to > from)) return;
+      const double a = probability_below(o, from), b = probability_below(o, to);
+      if (!reach.pieces.empty() && a <= reach.pieces.back()[1])
+        reach.pieces.back()[1] = std::max(reach.pieces.back()[1], b);
+      else if (b > a)
+        reach.pieces.push_back({a, b});
+    };
+    add(0.0, lifted_below);
+    add(tall_above, HUGE_VAL);
+    if (reach.pieces.size() == 2 && reach.pieces[1][0] <= reach.pieces[0][1]) {
+      reach.pieces[0][1] = std::max(reach.pieces[0][1], reach.pieces[1][1]);
+      reach.pieces.pop_back();
+    }
+    for (const auto& piece : reach.pieces) reach.share += (piece[1] - piece[0]) / whole;
+    reach.share = std::min(1.0, reach.share);
+    sizes_.push_back(reach);
+  }
+}
+
+double FieldSimulator::objects_per_metre(std::size_t kind) const {
+  return scenario_.field.objects[kind].per_area * (cut_to_ - cut_from_);
+}
+
+double FieldSimulator::objects_per_metre() const { return total_per_area_ * (cut_to_ - cut_from_); }
+
+Encounter FieldSimulator::sample(std::uint64_t index, random::Stream& rng) const {
+  Encounter e;
+  e.kind = static_cast<std::size_t>(index % kinds());
+  const auto& o = scenario_.field.objects[e.kind];
+  // A size among those that can reach a blade: a uniform draw over their probability.
+  const ReachableSizes& reach = sizes_[e.kind];
+  double total = 0;
+  for (const auto& piece : reach.pieces) total += piece[1] - piece[0];
+  double p = rng.uniform() * total;
+  double at = reach.pieces.empty() ? 0.5 : reach.pieces.back()[1];
+  for (const auto& piece : reach.pieces) {
+    if (p < piece[1] - piece[0]) {
+      at = piece[0] + p;
+      break;
+    }
+    p -= piece[1] - piece[0];
+  }
+  const double size = size_at(o, at);
+  e.body = projectile::Projectile::sphere(size, o.density * units::pi * size * size * size / 6.0);
+  e.lateral = cut_from_ + rng.uniform() * (cut_to_ - cut_from_);
+  e.height = 0.5 * size - o.embedment * size;  // its centre, sunk by its embedment
+  // The updraft's drag against its weight: 1/2 rho u^2 C_d (pi d^2 / 4) > m g.
+  const double u = scenario_.field.updraft_speed;
+  e.lifted = u > 0 && 0.5 * scenario_.air.density * u * u * o.drag_coefficient * 0.25 * units::pi * size * size > e.body.mass * units::standard_gravity;
+  return e;
+}
+
+ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::vector<flight::FlightEvent>* events) const {
+  const scenario::Scenario& s = scenario_;
+  ObjectOutcome out;
+  random::Stream rng(s.run.seed, 0, index, random::Purpose::FieldObject);
+  out.encounter = sample(index, rng);
+  const Encounter& e = out.encounter;
+  const auto& spindles = spindles_[e.kind];
+  const double v = s.field.ground_speed, r = e.body.radius();
+  // The blades' angles at time 0: a timed deck's locked together, the others independent.
+  strike::BladePhases phases;
+  const double deck_phase = units::two_pi * rng.uniform();
+  for (std::size_t k = 0; k < spindles.size(); ++k)
+    phases.at_zero[k] = s.spindles[k].phase ? deck_phase + *s.spindles[k].phase : units::two_pi * rng.uniform();
+
+  // Where it enters each blade's reach (the tip circle widened by its radius), coming at
+  // the mower along -x; time 0 at the first of them.
+  std::array<double, strike::kMaxSpindles> entry{};
+  double first_entry = -HUGE_VAL;
+  for (std::size_t k = 0; k < spindles.size(); ++k) {
+    const double reach = spindles[k].reach + r + 1e-3, dy = e.lateral - spindles[k].centre.y();
+    entry[k] = std::abs(dy) < reach ? spindles[k].centre.x() + std::sqrt(reach * reach - dy * dy) : -HUGE_VAL;
+    first_entry = std::max(first_entry, entry[k]);
+  }
+  if (first_entry == -HUGE_VAL) return out;  // between the blades' circles: not cut
+  // The earliest touch of any blade, each searched over two of its turns from the moment
+  // the object enters its reach (an arm sweeps the whole circle each turn).
+  std::optional<strike::Contact> contact;
+  strike::SearchStats search;
+  for (std::size_t k = 0; k < spindles.size(); ++k) {
+    if (entry[k] == -HUGE_VAL) continue;
+    strike::Motion m;
+    m.t0 = (first_entry - entry[k]) / v;
+    m.p0 = {entry[k], e.lateral, e.lifted ? spindles[k].height : e.height};
+    m.v0 = {-v, 0.0, 0.0};
+    m.a = Vec3::Zero();  // resting on the turf as it comes (or held in the updraft)
+    const double until = m.t0 + 2 * units::two_pi / spindles[k].omega();
+    auto c = strike::first_contact(spindles[k], phases.at_zero[k], e.body, m, contact ? std::min(contact->time, until) : until, search,
+                                   spindles[k].reference_search ? strike::SearchMethod::FixedSteps : strike::SearchMethod::Advancement);
+    if (c && (!contact || c->time < contact->time)) contact = c, contact->spindle = k;
+  }
+  if (search.gave_up) {
+    out.fate = ObjectFate::CutOff;
+    out.flight.fate = flight::Fate::CutOff;
+    out.flight.cut_off = flight::CutOff::SearchSteps;
+    return out;
+  }
+  if (!contact) return out;
+  const strike::Spindle& spindle = spindles[contact->spindle];
+  const Vec3 coming(-v, 0.0, 0.0);
+  const strike::StrikeOutcome hit = strike::strike(spindle, *contact, e.body, coming, Vec3::Zero());
+  out.fate = ObjectFate::NotThrown;
+  out.spindle = contact->spindle;
+  if (!hit.approaching) return out;
+  const double energy_after = 0.5 * e.body.mass * hit.velocity_after.squaredNorm() +
+                              0.5 * hit.spin_after.dot(strike::inverse_inertia(e.body, contact->axis).inverse() * hit.spin_after);
+  if (!(energy_after > 0.5 * e.body.mass * coming.squaredNorm())) return out;
+  if (!hit.velocity_after.allFinite() || !hit.spin_after.allFinite()) {
+    out.fate = ObjectFate::CutOff;
+    out.flight.fate = flight::Fate::CutOff;
+    out.flight.cut_off = flight::CutOff::NonFinite;
+    return out;
+  }
+  out.strike_time = contact->time;
+
+  flight::Body body;
+  body.position = contact->centre;
+  body.velocity = hit.velocity_after;
+  // Struck from above, it is driven into the soil, which takes the downward part; if the
+  // blade is then still in its way, the knife rides over it (swinging back on its pivot),
+  // and it leaves along the ground with what the soil's friction left it.
+  flight::FirstContact first{contact->spindle, contact->edge};
+  if (flight::soil_reaction(body.position, r, s.ground.friction, body.velocity) &&
+      (body.velocity + hit.spin_after.cross(contact->point - body.position) - spindle.velocity_at(contact->point)).dot(contact->normal) <= 0) {
+    out.pressed = true;
+    first.ridden_until = contact->time + 0.5 * units::pi / spindle.omega();
+  }
+  body.axis = contact->axis;
+  body.spin = hit.spin_after - hit.spin_after.dot(body.axis) * body.axis;  // flight follows the axis (a sphere's: any)
+  body.time = contact->time;
+  flight::Drag drag = drag_per_unit_[e.kind];
+  drag.k_axial /= e.body.diameter, drag.k_normal /= e.body.diameter;
+
+  flight::FlightContext context = mower_->context();
+  context.spindles = &spindles;
+  context.events = events;
+  if (watch) {
+    watch->thrown(e.body.mass, contact->time);
+    context.observer = watch->observer();
+  }
+  random::EventDraws draws(s.run.seed, 0, index);  // its flight's random events, each keyed by its number
+  out.flight = flight::fly(body, e.body, drag, context, phases, first, draws);
+  out.fate = out.flight.fate == flight::Fate::CutOff ? ObjectFate::CutOff : ObjectFate::Thrown;
+  const Vec3 launch = out.flight.launch_velocity + Vec3(v, 0, 0);  // in the ground's frame
+  out.exit_speed = launch.norm();
+  out.launch_elevation = std::atan2(launch.z(), std::hypot(launch.x(), launch.y()));
+  return out;
+}
+
+}  // namespace j232::field

@@ -1,0 +1,104 @@
+#pragma once
+// One object of the field from the moment the mower's blades reach it to its end
+// (docs/model.md §9): which object the mower meets (its kind and size from the field's
+// objects, where across the cut it lies), the blade's first touch on it through the same
+// contact search and impulse as the J232 nail's strike, and its flight through the deck,
+// the guards and over the turf, told to an observer that tallies it.
+//
+// Frame: the mower's (x forward, y to the left, z up, origin on the ground at the deck's
+// centre), travelling at the field's ground speed along +x; objects come at it at that
+// speed. Time 0 is when the object enters the first blade's reach.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "flight/mower.hpp"
+#include "flight/nail_flight.hpp"
+#include "projectile/projectile.hpp"
+#include "scenario/scenario.hpp"
+#include "strike/spindle.hpp"
+
+namespace j232::field {
+
+using Vec3 = Eigen::Vector3d;
+
+// One object the blades meet.
+struct Encounter {
+  std::size_t kind = 0;                // field.objects index
+  projectile::Projectile body;        // a sphere
+  double lateral = 0;                  // y of its centre, m
+  double height = 0;                   // z of its centre (sunk by its embedment), m
+  bool lifted = false;                 // drawn up by the updraft: it meets the blades in their plane
+};
+
+enum class ObjectFate : std::uint8_t {
+  NotReached,  // the blades passed over it (its top below their lower faces) or it lay outside their reach
+  NotThrown,   // touched, but given no energy (it was not thrown)
+  Thrown,      // thrown: its flight ended at rest, or it left the tallied square
+  CutOff       // thrown, and cut off still moving by a limit (time, bounces, steps) or a non-finite state
+};
+inline constexpr int kObjectFates = 4;
+const char* object_fate_name(ObjectFate f);
+
+struct ObjectOutcome {
+  Encounter encounter;
+  ObjectFate fate = ObjectFate::NotReached;
+  std::size_t spindle = 0;     // the spindle that threw it
+  double strike_time = 0;      // s: its first strike (the observer's frame is the ground's then)
+  double exit_speed = 0;       // m/s as it leaves the blade (its last contact before anything else), ground frame
+  double launch_elevation = 0; // rad, of that velocity
+  bool pressed = false;         // its first strike drove it into the soil and the knife rode over it
+  flight::FlightResult flight;  // when thrown
+};
+
+class FieldSimulator {
+ public:
+  // Throws scenario::InputError for a scenario without [field] or an unsound blade.
+  FieldSimulator(const scenario::Scenario& s, scene::Engine engine = scene::default_engine());
+
+  // Object `index` of the run (a pure function of the scenario's seed and the index): of
+  // kind index mod kinds() (each kind its own stratum), its size drawn from the sizes that
+  // can reach a blade (standing up to the lowest blade's lower face, or light enough for the
+  // updraft to lift), which are reach_share(kind) of the kind's objects. The
+  // observer (may be null) is told of its flight; `prepare` is called first with the thrown
+  // object's mass and strike time, so that it can judge energies and move to the ground's frame.
+  struct Watch {
+    virtual ~Watch() = default;
+    virtual void thrown(double mass, double strike_time) = 0;
+    virtual flight::FlightObserver* observer() = 0;
+  };
+  // `events`: when set, every event of its flight is appended (j232 hazard --replay).
+  ObjectOutcome simulate(std::uint64_t index, Watch* watch = nullptr, std::vector<flight::FlightEvent>* events = nullptr) const;
+
+  const scenario::Scenario& scenario() const { return scenario_; }
+  const flight::Mower& mower() const { return *mower_; }
+  // The width the blades cut (the union of their tip circles across the travel), m, and
+  // where it lies.
+  double cut_from() const { return cut_from_; }
+  double cut_to() const { return cut_to_; }
+  std::size_t kinds() const { return spindles_.size(); }
+  // Objects of a kind the mower meets per metre travelled, and the share of them whose
+  // size lets them reach a blade (the rest pass under untouched).
+  double objects_per_metre(std::size_t kind) const;
+  double reach_share(std::size_t kind) const { return sizes_[kind].share; }
+  // Objects the mower meets per metre travelled (every kind).
+  double objects_per_metre() const;
+
+ private:
+  Encounter sample(std::uint64_t index, random::Stream& rng) const;
+  scenario::Scenario scenario_;
+  std::unique_ptr<flight::Mower> mower_;
+  std::vector<std::vector<strike::Spindle>> spindles_;  // per kind: its restitution and friction on the blades
+  std::vector<flight::Drag> drag_per_unit_;             // per kind, for a 1 m sphere (scaled by 1 / size)
+  double cut_from_ = 0, cut_to_ = 0;
+  double total_per_area_ = 0;
+  // Per kind, the sizes that can reach a blade: pieces of the lognormal's probability
+  // axis [p_low, p_high) (at most two: the lifted small ones, the tall ones), and their share.
+  struct ReachableSizes {
+    std::vector<std::array<double, 2>> pieces;
+    double share = 0;
+  };
+  std::vector<ReachableSizes> sizes_;
+};
+
+}  // namespace j232::field

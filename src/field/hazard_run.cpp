@@ -1,0 +1,228 @@
+#include "field/hazard_run.hpp"
+
+#include <algorithm>
+#include <boost/math/special_functions/gamma.hpp>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <fmt/format.h>
+#include <memory>
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/enumerable_thread_specific.h>
+#include <oneapi/tbb/global_control.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
+#include <optional>
+
+namespace j232::field {
+
+namespace {
+// A thread's tallies (one per kind) and the watches that fill them.
+struct Worker {
+  std::deque<HazardTally> tallies;
+  std::deque<ObjectWatch> watches;
+  Worker(const HazardLayout& l, std::size_t kinds) {
+    for (std::size_t k = 0; k < kinds; ++k) tallies.emplace_back(l), watches.emplace_back(tallies.back());
+  }
+};
+constexpr std::uint64_t kChunk = 256;  // objects per task
+}  // namespace
+
+std::uint64_t HazardRun::objects() const {
+  std::uint64_t n = 0;
+  for (const auto& t : kinds) n += t.objects;
+  return n;
+}
+
+HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress) {
+  const HazardLayout layout = HazardLayout::of(sim.scenario().field);
+  const auto n = static_cast<std::uint64_t>(sim.scenario().field.objects_simulated);
+  const std::size_t kinds = sim.kinds();
+  const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
+  const int used = threads > 0 ? threads : available;
+  tbb::task_arena arena(used);
+  std::optional<tbb::global_control> oversubscribe;
+  if (used > available) oversubscribe.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(used));
+  if (progress) progress->total = static_cast<long long>(n);
+  const auto start = std::chrono::steady_clock::now();
+  tbb::enumerable_thread_specific<std::unique_ptr<Worker>> workers([&] { return std::make_unique<Worker>(layout, kinds); });
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, (n + kChunk - 1) / kChunk, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
+      Worker& w = *workers.local();
+      for (std::uint64_t chunk = r.begin(); chunk != r.end(); ++chunk) {
+        const std::uint64_t last = std::min(n, (chunk + 1) * kChunk);
+        for (std::uint64_t i = chunk * kChunk; i < last; ++i) {
+          ObjectWatch& watch = w.watches[static_cast<std::size_t>(i % kinds)];
+          watch.finish(sim.simulate(i, &watch));
+        }
+        if (progress) progress->done += static_cast<long long>(last - chunk * kChunk);
+      }
+    });
+  });
+  // Whole counts: merged in any order, the same sums.
+  HazardRun run;
+  for (std::size_t k = 0; k < kinds; ++k) run.kinds.emplace_back(layout);
+  for (const auto& w : workers)
+    for (std::size_t k = 0; k < kinds; ++k) run.kinds[k].merge(w->tallies[k]);
+  run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.threads = used;
+  return run;
+}
+
+Estimate combined(const std::vector<Stratum>& strata) {
+  double mean = 0, variance = 0, largest = 0;
+  for (const auto& s : strata) {
+    mean += s.weight_per_object * static_cast<double>(s.counts.sum);
+    variance += s.weight_per_object * s.weight_per_object * static_cast<double>(s.counts.squares);
+    largest = std::max(largest, s.weight_per_object);
+  }
+  if (mean == 0) return {0.0, 0.0, -std::log(0.025) * largest};  // Garwood's upper end for none seen, in the heaviest stratum
+  const double scale = variance / mean, effective = mean / scale;
+  return {mean, boost::math::gamma_p_inv(effective, 0.025) * scale, boost::math::gamma_p_inv(effective + 1, 0.975) * scale};
+}
+
+std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRun& run) {
+  std::vector<double> w;
+  for (std::size_t k = 0; k < run.kinds.size(); ++k) {
+    const double n = static_cast<double>(run.kinds[k].objects);
+    w.push_back(n > 0 ? sim.objects_per_metre(k) * sim.reach_share(k) / n : 0.0);
+  }
+  return w;
+}
+
+namespace {
+
+Estimate struck(const Estimate& density, double area) {
+  auto p = [&](double q) { return -std::expm1(-q * area); };
+  return {p(density.value), p(density.low), p(density.high)};
+}
+
+// Where a curve (non-increasing far out) falls below `acceptable` for good: the outer
+// edge of the last bin at or above it.
+void hazard_distance(const std::vector<Estimate>& q, double cell, double acceptable, DirectionCurve& c) {
+  auto last_at_or_above = [&](auto value) {
+    int last = -1;
+    for (std::size_t k = 0; k < q.size(); ++k)
+      if (value(q[k]) >= acceptable) last = static_cast<int>(k);
+    return last;
+  };
+  const int est = last_at_or_above([](const Estimate& e) { return e.value; });
+  const int up = last_at_or_above([](const Estimate& e) { return e.high; });
+  c.hazard_distance = (est + 1) * cell;
+  c.hazard_distance_upper = (up + 1) * cell;
+  c.beyond_range = est + 1 == static_cast<int>(q.size());
+  c.upper_beyond_range = up + 1 == static_cast<int>(q.size());
+}
+
+}  // namespace
+
+HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
+  const scenario::FieldSpec& f = sim.scenario().field;
+  const HazardLayout& l = run.kinds.front().layout;
+  const std::vector<double> w = weights_per_object(sim, run);
+  const std::size_t kinds = run.kinds.size();
+  HazardSummary s;
+  s.cut_width = sim.cut_to() - sim.cut_from();
+  s.objects_per_metre = sim.objects_per_metre();
+  s.objects_per_km = 1000 * s.objects_per_metre;
+  for (std::size_t k = 0; k < kinds; ++k) s.reaching_per_km += 1000 * sim.objects_per_metre(k) * sim.reach_share(k);
+  s.acceptable_density = 1.0 / f.acceptable_area;
+  s.objects = run.objects();
+  double thrown = 0, landed = 0;
+  for (std::size_t k = 0; k < kinds; ++k) {
+    const HazardTally& t = run.kinds[k];
+    const std::uint64_t thrown_k = t.fates[static_cast<std::size_t>(ObjectFate::Thrown)] + t.fates[static_cast<std::size_t>(ObjectFate::CutOff)];
+    s.thrown += thrown_k;
+    s.cut_off += t.fates[static_cast<std::size_t>(ObjectFate::CutOff)];
+    s.max_distance = std::max(s.max_distance, t.max_distance);
+    thrown += w[k] * static_cast<double>(thrown_k);
+    std::uint64_t landed_k = t.landed_beyond_square;
+    for (auto c : t.landings) landed_k += c;
+    landed += w[k] * static_cast<double>(landed_k);
+  }
+  s.cut_off_share = s.objects ? static_cast<double>(s.cut_off) / static_cast<double>(s.objects) : 0.0;
+  if (s.objects == 0 || s.thrown == 0) {
+    s.valid = false;
+    s.invalid_reason = "no object was thrown: the blades reached none of the field's objects, so there is no hazard to assess";
+  } else if (s.cut_off_share > 0.01) {
+    s.valid = false;
+    s.invalid_reason = fmt::format("{:.2f} % of the objects were cut off still moving by the run's limits (more than 1 %): raise "
+                                   "run.time_limit or run.max_bounces",
+                                   100 * s.cut_off_share);
+  }
+  s.thrown_per_km = 1000 * thrown;
+  s.landed_outside_deck_share = thrown > 0 ? landed / thrown : 0.0;
+  // Throw statistics over the kinds, each weighted as the field holds it.
+  {
+    double n = 0, sum = 0, elevation = 0;
+    std::vector<double> speed(run.kinds.front().exit_speed.size());
+    for (std::size_t k = 0; k < kinds; ++k)
+      for (std::size_t i = 0; i < speed.size(); ++i) {
+        const double c = w[k] * static_cast<double>(run.kinds[k].exit_speed[i]);
+        speed[i] += c, n += c, sum += c * (static_cast<double>(i) + 0.5) * 0.5;
+      }
+    double en = 0;
+    for (std::size_t k = 0; k < kinds; ++k)
+      for (std::size_t i = 0; i < run.kinds[k].launch_elevation.size(); ++i) {
+        const double c = w[k] * static_cast<double>(run.kinds[k].launch_elevation[i]);
+        en += c, elevation += c * (static_cast<double>(i) + 0.5 - 90.0);
+      }
+    s.exit_speed_mean = n > 0 ? sum / n : 0.0;
+    double seen = 0;
+    for (std::size_t i = 0; i < speed.size(); ++i) {
+      seen += speed[i];
+      if (n > 0 && seen >= 0.95 * n) {
+        s.exit_speed_q95 = (static_cast<double>(i) + 1) * 0.5;
+        break;
+      }
+    }
+    s.launch_elevation_mean = en > 0 ? elevation / en : 0.0;
+  }
+
+  static const char* names[] = {"left", "right", "front", "rear"};
+  static const char* meanings[] = {
+      "a person standing this far to the left of the mower's centre line while it mows past (one pass)",
+      "a person standing this far to the right of the mower's centre line while it mows past (one pass)",
+      "a person on the mower's line ahead of it, whom it approaches to no nearer than this",
+      "a person on the mower's line behind it, from whom it moves away from this distance on"};
+  std::vector<Stratum> strata(kinds);
+  for (std::size_t d = 0; d < 4; ++d) {
+    DirectionCurve c;
+    c.direction = names[d], c.meaning = meanings[d];
+    // Beside the path: impacts in a strip one cell wide along the whole pass; on the line:
+    // in a band one cell wide, summed over the distances the mower passes through.
+    for (int k = 0; k < l.half_cells; ++k) {
+      c.distance.push_back(d < 2 ? (k + 0.5) * l.cell : k * l.cell);
+      for (std::size_t j = 0; j < kinds; ++j) strata[j] = {run.kinds[j].directions[d][static_cast<std::size_t>(k)], w[j]};
+      const Estimate q = combined(strata).scaled(1.0 / l.cell);
+      c.density.push_back(q);
+      c.probability.push_back(struck(q, f.presented_area));
+    }
+    hazard_distance(c.density, l.cell, s.acceptable_density, c);
+    s.directions.push_back(std::move(c));
+  }
+  for (std::size_t p = 0; p < f.planes.size(); ++p) {
+    PlaneResult r;
+    r.plane = f.planes[p];
+    r.per_km_by_height.assign(kHeightBands, 0.0);
+    for (std::size_t j = 0; j < kinds; ++j) {
+      const PlaneTally& pt = run.kinds[j].planes[p];
+      for (int b = 0; b < kHeightBands; ++b) {
+        const double c = 1000 * w[j] * static_cast<double>(pt.by_height[static_cast<std::size_t>(b)]);
+        r.per_km_by_height[static_cast<std::size_t>(b)] += c;
+        r.crossings_per_km += c;
+      }
+      strata[j] = {pt.hazardous, w[j]};
+    }
+    const Estimate rate = combined(strata);  // per metre travelled
+    r.hazardous_per_km = rate.scaled(1000);
+    const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person;
+    const double band = person ? f.person_height : f.windshield_top - f.windshield_bottom;
+    r.hazardous_per_area = rate.scaled(1.0 / band);
+    if (person) r.probability = struck(r.hazardous_per_area, f.presented_area);
+    s.planes.push_back(std::move(r));
+  }
+  return s;
+}
+
+}  // namespace j232::field

@@ -1,0 +1,83 @@
+#pragma once
+// A hazard run (`j232 hazard`, docs/model.md §9): the field's objects simulated in
+// parallel, tallied, and turned into what a safety engineer reads: densities of hazardous
+// impacts against distance in each direction with their intervals, the probability of a
+// person being struck, the hazard distances, and each plane's hazardous flux.
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "assess/runner.hpp"  // assess::Progress
+#include "field/field_simulator.hpp"
+#include "field/hazard_tally.hpp"
+
+namespace j232::field {
+
+struct HazardRun {
+  std::vector<HazardTally> kinds;  // one tally per kind of object (each its own stratum)
+  std::uint64_t objects() const;
+  double wall_seconds = 0;
+  int threads = 1;
+};
+
+// Simulates scenario.field.objects_simulated objects (0..N-1) on `threads` threads (0: all
+// cores). Bit-identical for any thread count.
+HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress = nullptr);
+
+// A rate per metre travelled from the strata's per-object counts: the sum over kinds of
+// w_k S_k / N_k (w_k: the kind's objects met per metre that can reach a blade, N_k its
+// objects simulated), with a 95 % interval. The per-object counts' squares give the
+// variance V = sum (w_k / N_k)^2 Q_k, and the interval is Garwood's exact Poisson one on the
+// effective number of independent events mean^2 / V, scaled back (quasi-Poisson): honest at
+// zero and for objects that strike more than once.
+struct Estimate {
+  double value = 0, low = 0, high = 0;
+  Estimate scaled(double f) const { return {value * f, low * f, high * f}; }
+};
+struct Stratum {
+  CountSum counts;
+  double weight_per_object = 0;  // w_k / N_k
+};
+Estimate combined(const std::vector<Stratum>& strata);
+
+// One direction's curve: at each distance, the density of hazardous impacts a person there
+// meets in one pass of the mower (per m^2), and the probability of being struck.
+struct DirectionCurve {
+  std::string direction;  // "left", "right", "front", "rear"
+  std::string meaning;    // what a point of the curve is, in words
+  std::vector<double> distance;  // m
+  std::vector<Estimate> density;     // hazardous impacts per m^2 per pass
+  std::vector<Estimate> probability;  // of a person there being struck, 1 - exp(-q A)
+  // Where the density falls below the acceptable one for good (estimate; on the interval's
+  // upper end: the conservative one); beyond_range when it never does within the range.
+  double hazard_distance = 0, hazard_distance_upper = 0;
+  bool beyond_range = false, upper_beyond_range = false;
+};
+
+struct PlaneResult {
+  scenario::FieldPlaneSpec plane;
+  double crossings_per_km = 0;
+  Estimate hazardous_per_km;    // within the receptor's band, with at least its energy
+  Estimate hazardous_per_area;  // per m^2 of the band, per pass (a person standing at the plane)
+  Estimate probability;         // person: struck in one pass, 1 - exp(-flux A); vehicle: empty
+  std::vector<double> per_km_by_height;  // every crossing, by 0.25 m band
+};
+
+struct HazardSummary {
+  double objects_per_metre = 0, objects_per_km = 0, cut_width = 0;
+  double reaching_per_km = 0;  // objects met per km whose size lets them reach a blade
+  double acceptable_density = 0;  // per m^2
+  std::uint64_t objects = 0, thrown = 0, cut_off = 0;
+  double cut_off_share = 0;
+  bool valid = true;         // few enough objects cut off by the run's limits (below 1 %)
+  std::string invalid_reason;
+  std::vector<DirectionCurve> directions;
+  std::vector<PlaneResult> planes;
+  double thrown_per_km = 0, landed_outside_deck_share = 0, max_distance = 0;
+  double exit_speed_mean = 0, exit_speed_q95 = 0, launch_elevation_mean = 0;
+};
+HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run);
+// Each kind's weight per simulated object (w_k / N_k, per metre travelled).
+std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRun& run);
+
+}  // namespace j232::field

@@ -1,0 +1,192 @@
+#include "field/hazard_tally.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "units/quantity.hpp"
+
+namespace j232::field {
+
+HazardLayout HazardLayout::of(const scenario::FieldSpec& f) {
+  HazardLayout l;
+  l.cell = f.cell;
+  l.half_cells = std::max(1, static_cast<int>(std::ceil(f.range / f.cell - 1e-9)));
+  l.range = l.half_cells * l.cell;
+  l.ground_speed = f.ground_speed;
+  l.person_energy = f.person_energy, l.person_height = f.person_height;
+  l.vehicle_energy = f.vehicle_energy, l.windshield_bottom = f.windshield_bottom, l.windshield_top = f.windshield_top;
+  l.planes = f.planes;
+  return l;
+}
+
+int HazardLayout::cell_of(double x, double y) const {
+  const double ix = std::floor(x / cell) + half_cells, iy = std::floor(y / cell) + half_cells;
+  if (!(ix >= 0 && ix < cells() && iy >= 0 && iy < cells())) return -1;
+  return static_cast<int>(iy) * cells() + static_cast<int>(ix);
+}
+
+int energy_bin(double joules) {
+  if (!(joules > 1e-3)) return 0;
+  return std::clamp(1 + static_cast<int>(std::floor(10 * std::log10(joules / 1e-3))), 1, kEnergyBins - 1);
+}
+double energy_bin_low(int bin) { return bin <= 0 ? 0.0 : 1e-3 * std::pow(10.0, (bin - 1) / 10.0); }
+
+void PlaneTally::merge(const PlaneTally& o) {
+  for (std::size_t i = 0; i < by_height.size(); ++i) by_height[i] += o.by_height[i];
+  for (std::size_t i = 0; i < by_energy.size(); ++i) by_energy[i] += o.by_energy[i];
+  hazardous.merge(o.hazardous);
+}
+
+HazardTally::HazardTally(const HazardLayout& l)
+    : layout(l),
+      landings(static_cast<std::size_t>(l.cells()) * static_cast<std::size_t>(l.cells())),
+      hazardous(landings.size()),
+      planes(l.planes.size()) {
+  for (auto& d : directions) d.resize(static_cast<std::size_t>(l.half_cells));
+}
+
+void HazardTally::add(const ObjectOutcome& o) {
+  ++objects;
+  ++fates[static_cast<std::size_t>(o.fate)];
+  if (o.fate == ObjectFate::CutOff) ++cut_off_by[static_cast<std::size_t>(o.flight.cut_off)];
+  if (o.fate != ObjectFate::Thrown && o.fate != ObjectFate::CutOff) return;
+  if (o.exit_speed > 0) {
+    ++exit_speed[std::min(exit_speed.size() - 1, static_cast<std::size_t>(o.exit_speed / 0.5))];
+    const double deg = std::clamp(o.launch_elevation / units::degree + 90.0, 0.0, 179.999);
+    ++launch_elevation[static_cast<std::size_t>(deg)];
+  }
+  if (o.flight.fate == flight::Fate::Contained || o.flight.fate == flight::Fate::StoppedByGuard) ++at_rest_under_deck;
+  const Eigen::Vector3d end = o.flight.end_position + Eigen::Vector3d(layout.ground_speed * o.flight.flight_time, 0, 0);
+  if (std::abs(end.x()) > layout.range || std::abs(end.y()) > layout.range) ++left_square;
+}
+
+void HazardTally::merge(const HazardTally& o) {
+  objects += o.objects;
+  for (std::size_t i = 0; i < fates.size(); ++i) fates[i] += o.fates[i];
+  for (std::size_t i = 0; i < cut_off_by.size(); ++i) cut_off_by[i] += o.cut_off_by[i];
+  at_rest_under_deck += o.at_rest_under_deck, left_square += o.left_square;
+  landed_beyond_square += o.landed_beyond_square, hazardous_beyond_square += o.hazardous_beyond_square, overflow += o.overflow;
+  for (std::size_t i = 0; i < landings.size(); ++i) landings[i] += o.landings[i], hazardous[i] += o.hazardous[i];
+  for (std::size_t d = 0; d < directions.size(); ++d)
+    for (std::size_t k = 0; k < directions[d].size(); ++k) directions[d][k].merge(o.directions[d][k]);
+  for (std::size_t p = 0; p < planes.size(); ++p) planes[p].merge(o.planes[p]);
+  for (std::size_t i = 0; i < exit_speed.size(); ++i) exit_speed[i] += o.exit_speed[i];
+  for (std::size_t i = 0; i < launch_elevation.size(); ++i) launch_elevation[i] += o.launch_elevation[i];
+  for (std::size_t i = 0; i < farthest.size(); ++i) farthest[i] += o.farthest[i];
+  max_distance = std::max(max_distance, o.max_distance);
+}
+
+void ObjectWatch::thrown(double mass, double strike_time) {
+  mass_ = mass, strike_time_ = strike_time, ground_speed_ = tally_.layout.ground_speed;
+  landed_ = false, farthest_ = -1, impact_count_ = 0;
+  plane_hazards_.assign(tally_.planes.size(), 0);
+}
+
+namespace {
+// A plane's coordinate across it and where it stands.
+double across(const scenario::FieldPlaneSpec& p, const Vec3& g) {
+  using Side = scenario::FieldPlaneSpec::Side;
+  return p.side == Side::Left || p.side == Side::Right ? g.y() : g.x();
+}
+double at(const scenario::FieldPlaneSpec& p) {
+  using Side = scenario::FieldPlaneSpec::Side;
+  return p.side == Side::Left || p.side == Side::Front ? p.distance : -p.distance;
+}
+}  // namespace
+
+void ObjectWatch::flew(double t0, const Vec3& p0, const Vec3& v0, double t1, const Vec3& p1, const Vec3& v1) {
+  const HazardLayout& l = tally_.layout;
+  const Vec3 g0 = ground(t0, p0), g1 = ground(t1, p1);
+  for (std::size_t i = 0; i < l.planes.size(); ++i) {
+    const auto& plane = l.planes[i];
+    const double c0 = across(plane, g0) - at(plane), c1 = across(plane, g1) - at(plane);
+    if (!((c0 < 0 && c1 >= 0) || (c0 > 0 && c1 <= 0))) continue;
+    const double f = c0 / (c0 - c1);
+    const double z = g0.z() + f * (g1.z() - g0.z());
+    const Vec3 velocity = v0 + f * (v1 - v0) + Vec3(ground_speed_, 0, 0);
+    const double energy = 0.5 * mass_ * velocity.squaredNorm();
+    PlaneTally& t = tally_.planes[i];
+    ++t.by_height[static_cast<std::size_t>(std::clamp(static_cast<int>(std::floor(z / kHeightBand)), 0, kHeightBands - 1))];
+    ++t.by_energy[static_cast<std::size_t>(energy_bin(energy))];
+    const bool person = plane.receptor == scenario::FieldPlaneSpec::Receptor::Person;
+    const bool in_band = person ? z <= l.person_height : z >= l.windshield_bottom && z <= l.windshield_top;
+    if (in_band && energy >= (person ? l.person_energy : l.vehicle_energy)) ++plane_hazards_[i];
+  }
+}
+
+void ObjectWatch::met_ground(double t, const Vec3& point, const Vec3& velocity, bool in_deck) {
+  if (in_deck) return;  // under the mower
+  const HazardLayout& l = tally_.layout;
+  const Vec3 g = ground(t, point);
+  const double energy = 0.5 * mass_ * (velocity + Vec3(ground_speed_, 0, 0)).squaredNorm();
+  const int cell = l.cell_of(g.x(), g.y());
+  if (!landed_) {
+    landed_ = true;
+    if (cell >= 0)
+      ++tally_.landings[static_cast<std::size_t>(cell)];
+    else
+      ++tally_.landed_beyond_square;
+  }
+  const double distance = std::hypot(g.x(), g.y());
+  farthest_ = std::max(farthest_, distance);
+  tally_.max_distance = std::max(tally_.max_distance, distance);
+  if (energy < l.person_energy) return;
+  if (cell < 0) {
+    ++tally_.hazardous_beyond_square;
+    return;
+  }
+  ++tally_.hazardous[static_cast<std::size_t>(cell)];
+  if (impact_count_ < kMaxImpacts) impacts_[static_cast<std::size_t>(impact_count_)] = {g.x(), g.y()};
+  ++impact_count_;
+}
+
+void ObjectWatch::finish(const ObjectOutcome& outcome) {
+  tally_.add(outcome);
+  const bool thrown = outcome.fate == ObjectFate::Thrown || outcome.fate == ObjectFate::CutOff;
+  if (!thrown || outcome.flight.fate == flight::Fate::NotStruck) return;
+  const HazardLayout& l = tally_.layout;
+  if (farthest_ >= 0) ++tally_.farthest[std::min(tally_.farthest.size() - 1, static_cast<std::size_t>(farthest_ / 0.25))];
+  if (impact_count_ > kMaxImpacts) ++tally_.overflow;
+  const int n = std::min(impact_count_, kMaxImpacts);
+  // Beside the path: this object's impacts in each strip (its count and its square).
+  std::array<int, kMaxImpacts> strips{};
+  int strip_count = 0;
+  std::array<int, 2> farthest_on_line{-1, -1};  // front, rear: the farthest bin with an impact on the line
+  std::array<std::array<int, kMaxImpacts>, 2> on_line{};
+  std::array<int, 2> on_line_count{0, 0};
+  for (int i = 0; i < n; ++i) {
+    const double x = impacts_[static_cast<std::size_t>(i)][0], y = impacts_[static_cast<std::size_t>(i)][1];
+    const int side = y >= 0 ? 0 : 1;
+    const int bin = static_cast<int>(std::abs(y) / l.cell);
+    if (bin < l.half_cells) strips[static_cast<std::size_t>(strip_count++)] = side * l.half_cells + bin;
+    if (std::abs(y) < 0.5 * l.cell) {
+      const int way = x >= 0 ? 0 : 1;
+      const int along = static_cast<int>(std::abs(x) / l.cell);
+      if (along < l.half_cells) {
+        on_line[static_cast<std::size_t>(way)][static_cast<std::size_t>(on_line_count[static_cast<std::size_t>(way)]++)] = along;
+        farthest_on_line[static_cast<std::size_t>(way)] = std::max(farthest_on_line[static_cast<std::size_t>(way)], along);
+      }
+    }
+  }
+  std::sort(strips.begin(), strips.begin() + strip_count);
+  for (int i = 0; i < strip_count;) {
+    int j = i;
+    while (j < strip_count && strips[static_cast<std::size_t>(j)] == strips[static_cast<std::size_t>(i)]) ++j;
+    const int key = strips[static_cast<std::size_t>(i)];
+    tally_.directions[static_cast<std::size_t>(key / l.half_cells)][static_cast<std::size_t>(key % l.half_cells)].add(
+        static_cast<std::uint64_t>(j - i));
+    i = j;
+  }
+  // On the line ahead and behind: impacts at that distance or farther (a person the mower
+  // comes no nearer to than that is exposed to all of them).
+  for (std::size_t way = 0; way < 2; ++way) {
+    for (int k = 0; k <= farthest_on_line[way]; ++k) {
+      std::uint64_t beyond = 0;
+      for (int i = 0; i < on_line_count[way]; ++i) beyond += on_line[way][static_cast<std::size_t>(i)] >= k ? 1 : 0;
+      tally_.directions[2 + way][static_cast<std::size_t>(k)].add(beyond);
+    }
+  }
+  for (std::size_t p = 0; p < plane_hazards_.size(); ++p) tally_.planes[p].hazardous.add(plane_hazards_[p]);
+}
+
+}  // namespace j232::field

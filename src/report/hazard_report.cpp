@@ -1,0 +1,446 @@
+#include "report/hazard_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "report/html_page.hpp"
+#include "report/svg_chart.hpp"
+#include "units/quantity.hpp"
+
+namespace j232::report {
+
+using json = nlohmann::ordered_json;
+using field::Estimate;
+
+namespace {
+
+json estimate_json(const Estimate& e) { return {{"value", e.value}, {"low", e.low}, {"high", e.high}}; }
+
+const char* side_name(scenario::FieldPlaneSpec::Side s) {
+  switch (s) {
+    case scenario::FieldPlaneSpec::Side::Left: return "left";
+    case scenario::FieldPlaneSpec::Side::Right: return "right";
+    case scenario::FieldPlaneSpec::Side::Front: return "front";
+    case scenario::FieldPlaneSpec::Side::Rear: return "rear";
+  }
+  return "?";
+}
+const char* receptor_name(scenario::FieldPlaneSpec::Receptor r) {
+  return r == scenario::FieldPlaneSpec::Receptor::Person ? "person" : "vehicle";
+}
+const char* kind_name(scenario::FieldObjectSpec::Kind k) { return k == scenario::FieldObjectSpec::Kind::SteelBall ? "steel_ball" : "stone"; }
+
+std::string distance_words(double d, bool beyond, double range) {
+  return beyond ? fmt::format("beyond {:.0f} m (the range)", range) : d <= 0 ? std::string("none outside the deck") : fmt::format("{:.0f} m", d);
+}
+
+}  // namespace
+
+std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
+  std::vector<Assumption> a;
+  const scenario::FieldSpec& f = s.field;
+  a.push_back({"Impact: the blade's impulse-momentum model (hub and pinned links) striking each object, a rigid sphere, where the "
+               "blade's edge, bevel, faces or sail first touch it (continuous contact search), along the geometric normal, with "
+               "Coulomb friction and a restitution that creates no energy; every contact of a pass is resolved",
+               "report 445-1 Ch. 2, generalised (docs/model.md §5.1)"});
+  for (const auto& o : f.objects)
+    a.push_back({fmt::format("Objects '{}' ({}): sphere-equivalent size lognormal, median {:.1f} mm, geometric spread {:g}, cut to "
+                             "{:.1f}-{:.1f} mm; {:g} kg/m3; {:g} per m2; sunk {:.0f} % of their size into the turf; on the blade "
+                             "restitution {}, friction {:g}; drag coefficient {:g}",
+                             o.name, kind_name(o.kind), o.median_size * 1e3, o.spread, o.min_size * 1e3, o.max_size * 1e3, o.density,
+                             o.per_area, 100 * o.embedment,
+                             o.restitution ? fmt::format("{:g}", *o.restitution) : std::string("as the scenario's [restitution]"),
+                             o.friction, o.drag_coefficient),
+                 o.kind == scenario::FieldObjectSpec::Kind::SteelBall
+                     ? "scenario; steel 7850 kg/m3, smooth sphere Cd 0.47 (handbook values)"
+                     : "scenario, or estimates (docs/model.md §9: stone density 2600-2700 kg/m3 from handbooks; size, number, "
+                       "embedment, restitution and drag estimates)"});
+  a.push_back({fmt::format("Mowing at {:.1f} km/h straight along +x over level turf; each object met as the mower reaches it, lying "
+                           "still; the air still",
+                           f.ground_speed * 3.6),
+               "scenario (ground speed an estimate unless given)"});
+  a.push_back({"No lift of objects into the blades by the air the blades draw up (not modelled: objects are struck where they lie)",
+               "docs/model.md §9 (a stated simplification)"});
+  a.push_back({"Flight in the mower's frame (deck, guards, turf as in the J232 model); positions and energies tallied in the ground's "
+               "frame at each object's strike (the mower's travel added); the turf under a bounce taken as still",
+               "docs/model.md §9"});
+  a.push_back({fmt::format("A person is struck hazardously by an object of at least {:g} J; presented area {:g} m2; probability of "
+                           "being struck 1 - exp(-q A) for q hazardous impacts per m2 of ground; acceptable: one per {:g} m2",
+                           f.person_energy, f.presented_area, f.acceptable_area),
+               "DDESB Technical Paper 12 (hazardous fragment: 79 J / 58 ft-lb; 0.58 m2; one per 600 ft2)"});
+  a.push_back({fmt::format("A vehicle: an object of at least {:g} J through the windshield band {:.2f}-{:.2f} m above the ground",
+                           f.vehicle_energy, f.windshield_bottom, f.windshield_top),
+               "estimates (vary them: no published threshold is used here)"});
+  // The mower's own: the deck, guards, turf and air, as the J232 report names them.
+  for (const auto& item : assumptions(s)) {
+    const std::string& w = item.what;
+    for (const char* keep : {"Blade edge", "Deck", "Guard", "Flap", "Ground", "Air drag"})
+      if (w.rfind(keep, 0) == 0) {
+        a.push_back(item);
+        break;
+      }
+  }
+  return a;
+}
+
+json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum, const HazardProvenance& p) {
+  const scenario::Scenario& s = sim.scenario();
+  const scenario::FieldSpec& f = s.field;
+  const field::HazardLayout& layout = run.kinds.front().layout;
+  const std::vector<double> w = field::weights_per_object(sim, run);
+  json objects = json::array();
+  for (std::size_t k = 0; k < f.objects.size(); ++k) {
+    const auto& o = f.objects[k];
+    const field::HazardTally& t = run.kinds[k];
+    json fates = json::object();
+    for (int i = 0; i < field::kObjectFates; ++i) fates[field::object_fate_name(static_cast<field::ObjectFate>(i))] = t.fates[static_cast<std::size_t>(i)];
+    json cut = json::object();
+    for (int i = 1; i < flight::kCutOffReasons; ++i)
+      if (t.cut_off_by[static_cast<std::size_t>(i)]) cut[flight::cut_off_name(static_cast<flight::CutOff>(i))] = t.cut_off_by[static_cast<std::size_t>(i)];
+    objects.push_back({{"name", o.name},
+                       {"kind", kind_name(o.kind)},
+                       {"median_size_m", o.median_size},
+                       {"spread", o.spread},
+                       {"min_size_m", o.min_size},
+                       {"max_size_m", o.max_size},
+                       {"density_kg_m3", o.density},
+                       {"per_m2", o.per_area},
+                       {"embedment", o.embedment},
+                       {"restitution_on_blade", o.restitution ? json(*o.restitution) : json("scenario [restitution]")},
+                       {"friction_on_blade", o.friction},
+                       {"drag_coefficient", o.drag_coefficient},
+                       {"met_per_km", 1000 * sim.objects_per_metre(k)},
+                       {"share_that_can_reach_a_blade", sim.reach_share(k)},
+                       {"simulated",
+                        {{"objects", t.objects},
+                         {"note", "drawn among the sizes that can reach a blade; each kind its own stratum"},
+                         {"fates", fates},
+                         {"cut_off_by", cut},
+                         {"at_rest_under_deck", t.at_rest_under_deck},
+                         {"left_tallied_square", t.left_square},
+                         {"first_landed_beyond_square", t.landed_beyond_square},
+                         {"hazardous_impacts_beyond_square", t.hazardous_beyond_square},
+                         {"objects_with_impacts_beyond_record", t.overflow}}}});
+  }
+  json distances = json::array(), curves = json::array();
+  for (const auto& d : sum.directions) {
+    distances.push_back({{"direction", d.direction},
+                         {"meaning", d.meaning},
+                         {"estimate_m", d.hazard_distance},
+                         {"conservative_m", d.hazard_distance_upper},
+                         {"beyond_range", d.beyond_range},
+                         {"conservative_beyond_range", d.upper_beyond_range}});
+    json points = json::array();
+    for (std::size_t k = 0; k < d.distance.size(); ++k)
+      points.push_back({{"distance_m", d.distance[k]}, {"density_per_m2", estimate_json(d.density[k])}, {"p_struck", estimate_json(d.probability[k])}});
+    curves.push_back({{"direction", d.direction}, {"meaning", d.meaning}, {"points", points}});
+  }
+  json planes = json::array();
+  for (const auto& r : sum.planes) {
+    json pj = {{"name", r.plane.name},
+               {"side", side_name(r.plane.side)},
+               {"distance_m", r.plane.distance},
+               {"receptor", receptor_name(r.plane.receptor)},
+               {"crossings_per_km", r.crossings_per_km},
+               {"hazardous_per_km", estimate_json(r.hazardous_per_km)},
+               {"hazardous_per_m2_per_pass", estimate_json(r.hazardous_per_area)},
+               {"crossings_per_km_by_height", {{"band_m", field::kHeightBand}, {"per_km", r.per_km_by_height}, {"note", "the last band: 4 m and above"}}}};
+    if (r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person) pj["p_struck_per_pass"] = estimate_json(r.probability);
+    planes.push_back(pj);
+  }
+  json reach = json::array();
+  double thrown = 0;
+  for (std::size_t k = 0; k < run.kinds.size(); ++k)
+    for (auto c : run.kinds[k].farthest) thrown += w[k] * static_cast<double>(c);
+  for (double d : {1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 50.0, 75.0, 100.0, 150.0, 200.0}) {
+    double beyond = 0;
+    for (std::size_t k = 0; k < run.kinds.size(); ++k)
+      for (std::size_t i = static_cast<std::size_t>(d / 0.25); i < run.kinds[k].farthest.size(); ++i)
+        beyond += w[k] * static_cast<double>(run.kinds[k].farthest[i]);
+    reach.push_back({{"distance_m", d}, {"share_beyond", thrown > 0 ? beyond / thrown : 0.0}});
+  }
+  json scenario = scenario_json(s);
+  for (const char* key : {"nail", "feed", "target", "operator_zone", "board", "criteria", "uncertainty"}) scenario.erase(key);
+  json assumed = json::array();
+  for (const auto& a : hazard_assumptions(s)) assumed.push_back({{"what", a.what}, {"source", a.source}});
+  return {
+      {"title", s.title},
+      {"kind", "thrown-object hazard in the field (j232 hazard)"},
+      {"valid", sum.valid},
+      {"invalid_reason", sum.invalid_reason},
+      {"frame", "the ground's at each object's strike: origin at the mower's centre then, x along its travel, y to its left"},
+      {"field",
+       {{"ground_speed_m_s", f.ground_speed},
+        {"cut_width_m", sum.cut_width},
+        {"objects_met_per_km", sum.objects_per_km},
+        {"objects_that_can_reach_a_blade_per_km", sum.reaching_per_km},
+        {"objects", objects},
+        {"range_m", layout.range},
+        {"cell_m", layout.cell},
+        {"person_energy_J", f.person_energy},
+        {"presented_area_m2", f.presented_area},
+        {"acceptable_area_m2", f.acceptable_area},
+        {"acceptable_density_per_m2", sum.acceptable_density},
+        {"person_height_m", f.person_height},
+        {"vehicle_energy_J", f.vehicle_energy},
+        {"windshield_m", {f.windshield_bottom, f.windshield_top}}}},
+      {"objects", {{"simulated", sum.objects}, {"thrown", sum.thrown}, {"cut_off", sum.cut_off}, {"thrown_per_km", sum.thrown_per_km}}},
+      {"throw",
+       {{"exit_speed_m_s", {{"mean", sum.exit_speed_mean}, {"q95", sum.exit_speed_q95}}},
+        {"launch_elevation_deg_mean", sum.launch_elevation_mean},
+        {"first_landing_outside_deck_share", sum.landed_outside_deck_share},
+        {"farthest_ground_contact_m", sum.max_distance},
+        {"reach", reach}}},
+      {"hazard_distance", distances},
+      {"directions", curves},
+      {"planes", planes},
+      {"assumptions", assumed},
+      {"scenario", scenario},
+      {"provenance",
+       {{"version", p.version},
+        {"git_revision", p.git_revision},
+        {"date", p.date},
+        {"seed", p.seed},
+        {"threads", p.threads},
+        {"wall_time_s", p.wall_seconds},
+        {"objects_per_second", p.wall_seconds > 0 ? static_cast<double>(sum.objects) / p.wall_seconds : 0.0}}},
+  };
+}
+
+std::string hazard_csv(const field::HazardSummary& sum) {
+  std::string o = "what,name,distance_m,density_per_m2,density_low,density_high,p_struck,p_struck_low,p_struck_high,per_km,per_km_low,per_km_high\n";
+  for (const auto& d : sum.directions)
+    for (std::size_t k = 0; k < d.distance.size(); ++k) {
+      const auto &q = d.density[k], &p = d.probability[k];
+      o += fmt::format("direction,{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},,,\n", d.direction, d.distance[k], q.value, q.low, q.high,
+                       p.value, p.low, p.high);
+    }
+  for (const auto& r : sum.planes) {
+    const auto& h = r.hazardous_per_km;
+    const auto& a = r.hazardous_per_area;
+    const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person;
+    o += fmt::format("plane,{},{:g},{:.6g},{:.6g},{:.6g},{},{},{},{:.6g},{:.6g},{:.6g}\n", r.plane.name, r.plane.distance, a.value, a.low, a.high,
+                     person ? fmt::format("{:.6g}", r.probability.value) : "", person ? fmt::format("{:.6g}", r.probability.low) : "",
+                     person ? fmt::format("{:.6g}", r.probability.high) : "", h.value, h.low, h.high);
+  }
+  return o;
+}
+
+std::string hazard_text(const field::HazardSummary& sum) {
+  std::string o;
+  if (!sum.valid) o += fmt::format("  NO HAZARD ASSESSMENT: {}\n", sum.invalid_reason);
+  o += fmt::format("  {:.0f} objects met per km mowed ({:.2f} m cut), {:.0f} thrown per km; exit speed {:.0f} m/s mean\n", sum.objects_per_km,
+                   sum.cut_width, sum.thrown_per_km, sum.exit_speed_mean);
+  o += "  Hazard distance (hazardous impacts fall below the acceptable density), estimate / conservative (95 % upper bound):\n";
+  for (const auto& d : sum.directions)
+    o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d.hazard_distance, d.beyond_range, d.distance.empty() ? 0 : d.distance.back()),
+                     distance_words(d.hazard_distance_upper, d.upper_beyond_range, d.distance.empty() ? 0 : d.distance.back()));
+  for (const auto& r : sum.planes)
+    o += fmt::format("  Plane '{}' ({} {:g} m, {}): {:.3g} hazardous per km mowed (95 %: {:.3g}-{:.3g})\n", r.plane.name, side_name(r.plane.side),
+                     r.plane.distance, receptor_name(r.plane.receptor), r.hazardous_per_km.value, r.hazardous_per_km.low, r.hazardous_per_km.high);
+  return o;
+}
+
+namespace {
+
+// A colour for a share t in [0, 1] of a log scale (light yellow to dark red).
+std::string heat(double t) {
+  static const double stops[][3] = {{255, 255, 204}, {254, 217, 118}, {253, 141, 60}, {227, 26, 28}, {128, 0, 38}};
+  t = std::clamp(t, 0.0, 1.0) * 4;
+  const int i = std::min(3, static_cast<int>(t));
+  const double u = t - i;
+  auto c = [&](int k) { return static_cast<int>(std::lround(stops[i][k] + u * (stops[i + 1][k] - stops[i][k]))); };
+  return fmt::format("#{:02x}{:02x}{:02x}", c(0), c(1), c(2));
+}
+
+// A plan view of counts per cell (per object, per m^2), coarsened to at most ~90 cells across
+// the part of the square that holds any, on a log colour scale; the mower, its travel and
+// the planes drawn.
+std::string plan_view(const field::FieldSimulator& sim, const field::HazardLayout& l, const std::vector<double>& cells, const std::string& title,
+                      const std::string& what) {
+  const int n = l.cells();
+  int reach = 1;
+  for (int iy = 0; iy < n; ++iy)
+    for (int ix = 0; ix < n; ++ix)
+      if (cells[static_cast<std::size_t>(iy * n + ix)] > 0)
+        reach = std::max({reach, std::abs(ix - l.half_cells) + 1, std::abs(iy - l.half_cells) + 1});
+  reach = std::min(l.half_cells, reach + 2);
+  const int block = std::max(1, (2 * reach + 89) / 90);
+  reach = std::min(l.half_cells, (reach + block - 1) / block * block);
+  const double area = (block * l.cell) * (block * l.cell);
+  std::vector<double> density;
+  double top = 0, bottom = HUGE_VAL;
+  const int blocks = 2 * reach / block;
+  density.assign(static_cast<std::size_t>(blocks * blocks), 0.0);
+  for (int by = 0; by < blocks; ++by)
+    for (int bx = 0; bx < blocks; ++bx) {
+      double sum = 0;
+      for (int iy = 0; iy < block; ++iy)
+        for (int ix = 0; ix < block; ++ix) {
+          const int cx = l.half_cells - reach + bx * block + ix, cy = l.half_cells - reach + by * block + iy;
+          sum += cells[static_cast<std::size_t>(cy * n + cx)];
+        }
+      const double d = sum / area;
+      density[static_cast<std::size_t>(by * blocks + bx)] = d;
+      if (d > 0) top = std::max(top, d), bottom = std::min(bottom, d);
+    }
+  Chart c(title, "ahead of the mower (m)", "to its left (m)", 640, 640);
+  c.equal_aspect();
+  const double half = reach * l.cell;
+  c.x_range(-half, half), c.y_range(-half, half);
+  const double span = top > bottom ? std::log10(top / bottom) : 1.0;
+  for (int by = 0; by < blocks; ++by)
+    for (int bx = 0; bx < blocks; ++bx) {
+      const double d = density[static_cast<std::size_t>(by * blocks + bx)];
+      if (d <= 0) continue;
+      const double x0 = -half + bx * block * l.cell, y0 = -half + by * block * l.cell;
+      c.rect(x0, y0, x0 + block * l.cell, y0 + block * l.cell, heat(std::log10(d / bottom) / span), 1.0, "");
+    }
+  const auto& outline = sim.mower().footprint().outline;
+  if (!outline.empty()) {
+    std::vector<double> x, y;
+    for (const auto& p : outline) x.push_back(p.x()), y.push_back(p.y());
+    x.push_back(outline.front().x()), y.push_back(outline.front().y());
+    c.line(x, y, "#000000", "the mower's deck", false);
+  }
+  c.segments({0.0}, {0.0}, {std::max(2.0, 0.2 * half)}, {0.0}, "#0072B2", "its travel", 2.5);
+  for (const auto& p : l.planes) {
+    const double at = p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Front ? p.distance : -p.distance;
+    if (std::abs(at) > half) continue;
+    if (p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Right)
+      c.hline(at, "#009E73", "plane '" + p.name + "'");
+    else
+      c.vline(at, "#009E73", "plane '" + p.name + "'");
+  }
+  c.caption(top > 0 ? fmt::format("{} per m2 around the mower, per km mowed, in {:g} m cells: colours on a log scale from {:.2g} (pale) to {:.2g} (dark) per m2.",
+                                  what, block * l.cell, bottom, top)
+                    : what + ": none in the tallied square.");
+  return "<figure>" + c.svg() + "</figure>\n";
+}
+
+// A per-cell count of every kind, weighted as the field holds each kind, per km mowed.
+std::vector<double> per_km(const field::FieldSimulator& sim, const field::HazardRun& run, std::vector<std::uint64_t> field::HazardTally::*cells) {
+  const std::vector<double> w = field::weights_per_object(sim, run);
+  std::vector<double> out((run.kinds.front().*cells).size());
+  for (std::size_t k = 0; k < run.kinds.size(); ++k)
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] += 1000 * w[k] * static_cast<double>((run.kinds[k].*cells)[i]);
+  return out;
+}
+
+}  // namespace
+
+std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum, const json& result) {
+  const scenario::Scenario& s = sim.scenario();
+  const field::HazardLayout& layout = run.kinds.front().layout;
+  std::string o = page_head("Thrown-object hazard: " + s.title);
+  o += fmt::format("<h1>Thrown-object hazard in the field: {}</h1>\n", escape(s.title));
+  if (!sum.valid)
+    o += fmt::format("<p class=\"verdict fail\"><strong>No hazard assessment:</strong> {}</p>\n", escape(sum.invalid_reason));
+  o += fmt::format(
+      "<p>A simulation of this mower at work at {:.1f} km/h over turf strewn with objects ({:.2f} m cut): {:.0f} objects met "
+      "per kilometre mowed, {:.0f} of them of a size that can reach a blade, {:.0f} thrown. {} objects were simulated (a "
+      "Monte Carlo sample, each kind its own stratum, drawn among the sizes that can reach a blade). Every figure is an "
+      "estimate from that sample, with its 95 % interval; the figures are of the simulated model with its stated "
+      "assumptions (below), not a measurement.</p>\n",
+      s.field.ground_speed * 3.6, sum.cut_width, sum.objects_per_km, sum.reaching_per_km, sum.thrown_per_km, sum.objects);
+  o += "<h2>Hazard distances</h2>\n";
+  o += fmt::format(
+      "<p>How far from the mower a person must be for the density of hazardous impacts (objects with at least {:g} J) in one "
+      "pass to fall below one per {:g} m&sup2; for good; the conservative distance uses the 95 % interval's upper end.</p>\n",
+      s.field.person_energy, s.field.acceptable_area);
+  o += "<table><tr><th>direction</th><th>who</th><th>estimate</th><th>conservative</th></tr>\n";
+  const double range = layout.range;
+  for (const auto& d : sum.directions)
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", d.direction, escape(d.meaning),
+                     distance_words(d.hazard_distance, d.beyond_range, range), distance_words(d.hazard_distance_upper, d.upper_beyond_range, range));
+  o += "</table>\n";
+
+  Chart curves("Probability of being struck by a hazardous object in one pass", "distance from the mower (m)", "probability");
+  const double acceptable_p = -std::expm1(-s.field.presented_area / s.field.acceptable_area);
+  double far = 5;
+  for (const auto& d : sum.directions)
+    for (std::size_t k = 0; k < d.distance.size(); ++k)
+      if (d.density[k].high >= 0.1 * sum.acceptable_density) far = std::max(far, d.distance[k] + 2);
+  far = std::min(far, range);
+  for (std::size_t i = 0; i < sum.directions.size(); ++i) {
+    const auto& d = sum.directions[i];
+    std::vector<double> x, p, lo, hi;
+    for (std::size_t k = 0; k < d.distance.size() && d.distance[k] <= far; ++k)
+      x.push_back(d.distance[k]), p.push_back(d.probability[k].value), lo.push_back(d.probability[k].low), hi.push_back(d.probability[k].high);
+    curves.band(x, lo, hi, palette(i), "");
+    curves.line(x, p, palette(i), d.direction, false);
+  }
+  curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {:g} m2)", acceptable_p, s.field.acceptable_area));
+  curves.caption("Beside the path: a person standing at that lateral distance from the mower's centre line while it mows past. Ahead "
+                 "and behind: a person on its line whom it approaches no nearer than that distance, or leaves from it. Bands: 95 % "
+                 "intervals.");
+  o += "<figure>" + curves.svg() + "</figure>\n";
+
+  o += "<h2>Where objects come down</h2>\n";
+  o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::landings), "First landings outside the deck", "Objects first coming down");
+  o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::hazardous),
+                 fmt::format("Hazardous ground impacts (at least {:g} J)", s.field.person_energy), "Hazardous impacts");
+
+  if (!sum.planes.empty()) {
+    o += "<h2>Planes beside the path</h2>\n<table><tr><th>plane</th><th>where</th><th>receptor</th><th>crossings per km mowed</th>"
+         "<th>hazardous per km mowed (95 %)</th><th>person standing there: P(struck) in one pass (95 %)</th></tr>\n";
+    for (const auto& r : sum.planes) {
+      const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person;
+      o += fmt::format("<tr><td>{}</td><td>{} {:g} m</td><td>{}</td><td>{:.3g}</td><td>{:.3g} ({:.3g}-{:.3g})</td><td>{}</td></tr>\n",
+                       escape(r.plane.name), side_name(r.plane.side), r.plane.distance, receptor_name(r.plane.receptor), r.crossings_per_km,
+                       r.hazardous_per_km.value, r.hazardous_per_km.low, r.hazardous_per_km.high,
+                       person ? fmt::format("{:.3g} ({:.3g}-{:.3g})", r.probability.value, r.probability.low, r.probability.high) : "-");
+    }
+    o += "</table>\n";
+    Chart heights("Crossings of each plane by height", "height above the ground (m)", "crossings per km mowed");
+    for (std::size_t i = 0; i < sum.planes.size(); ++i) {
+      std::vector<double> edges, h;
+      for (int b = 0; b <= field::kHeightBands; ++b) edges.push_back(b * field::kHeightBand);
+      heights.bars(edges, sum.planes[i].per_km_by_height, palette(i), sum.planes[i].plane.name);
+    }
+    heights.caption("Every crossing, hazardous or not, in 0.25 m bands (the last: 4 m and above). A vehicle's hazard is the windshield "
+                    "band's; a person's, the band up to their height.");
+    o += "<figure>" + heights.svg() + "</figure>\n";
+  }
+
+  o += "<h2>The throw</h2>\n";
+  o += fmt::format("<p>Speed off the blade {:.0f} m/s on average (95th percentile {:.0f} m/s), launch elevation {:.1f}&deg; on average; "
+                   "{:.0f} % of the thrown objects first came down outside the deck; the farthest ground contact was {:.0f} m from the "
+                   "mower.</p>\n",
+                   sum.exit_speed_mean, sum.exit_speed_q95, sum.launch_elevation_mean, 100 * sum.landed_outside_deck_share, sum.max_distance);
+  {
+    Chart reach("How far thrown objects reach", "distance from the mower (m)", "share of thrown objects beyond it");
+    const auto& r = result["throw"]["reach"];
+    std::vector<double> x, y;
+    for (const auto& point : r) x.push_back(point["distance_m"].get<double>()), y.push_back(point["share_beyond"].get<double>());
+    reach.line(x, y, palette(0), "", true);
+    reach.caption("Each thrown object's farthest ground contact from the mower (its first landing or a later bounce), every kind "
+                  "weighted as the field holds it.");
+    o += "<figure>" + reach.svg() + "</figure>\n";
+  }
+  o += "<h2>Objects simulated</h2>\n<table><tr><th>kind</th><th>met per km</th><th>share that can reach a blade</th><th>simulated</th>";
+  for (int i = 0; i < field::kObjectFates; ++i) o += fmt::format("<th>{}</th>", field::object_fate_name(static_cast<field::ObjectFate>(i)));
+  o += "<th>at rest under the deck</th><th>left the square</th></tr>\n";
+  for (std::size_t k = 0; k < run.kinds.size(); ++k) {
+    const auto& t = run.kinds[k];
+    o += fmt::format("<tr><td>{}</td><td>{:.0f}</td><td>{:.3g}</td><td>{}</td>", escape(s.field.objects[k].name), 1000 * sim.objects_per_metre(k),
+                     sim.reach_share(k), t.objects);
+    for (int i = 0; i < field::kObjectFates; ++i) o += fmt::format("<td>{}</td>", t.fates[static_cast<std::size_t>(i)]);
+    o += fmt::format("<td>{}</td><td>{}</td></tr>\n", t.at_rest_under_deck, t.left_square);
+  }
+  o += fmt::format("</table>\n<p>The tallied square reaches &plusmn;{:g} m from the mower.</p>\n", range);
+
+  o += "<h2>Assumptions</h2>\n<table><tr><th>assumption</th><th>source</th></tr>\n";
+  for (const auto& a : result["assumptions"])
+    o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(a["what"].get<std::string>()), escape(a["source"].get<std::string>()));
+  o += "</table>\n";
+  const auto& p = result["provenance"];
+  o += fmt::format("<p class=\"small\">j232 {} ({}), {}; seed {}; {} thread(s), {:.1f} s ({:.0f} objects/s).</p>\n", escape(p["version"].get<std::string>()),
+                   escape(p["git_revision"].get<std::string>()), escape(p["date"].get<std::string>()), p["seed"].get<std::uint64_t>(),
+                   p["threads"].get<int>(), p["wall_time_s"].get<double>(), p["objects_per_second"].get<double>());
+  o += page_foot();
+  return o;
+}
+
+}  // namespace j232::report

@@ -1,0 +1,34 @@
+#pragma once
+// What `j232 hazard` writes (docs/model.md §9): hazard.json (every figure with its
+// interval, the inputs and the provenance), hazard.csv (the curves, a row a point) and
+// hazard.html (the plan view of where objects land, the curves, the hazard distances, the
+// planes, the assumptions with their sources).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "field/field_simulator.hpp"
+#include "field/hazard_run.hpp"
+#include "report/scenario_json.hpp"
+
+namespace j232::report {
+
+struct HazardProvenance {
+  std::string version, git_revision, date;
+  std::uint64_t seed = 0;
+  int threads = 1;
+  double wall_seconds = 0;
+};
+
+// The assumptions a hazard report names, each with its source.
+std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s);
+
+nlohmann::ordered_json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum,
+                                   const HazardProvenance& p);
+std::string hazard_csv(const field::HazardSummary& sum);
+std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum,
+                        const nlohmann::ordered_json& result);
+// The terminal's summary: the hazard distances and the planes, with their intervals.
+std::string hazard_text(const field::HazardSummary& sum);
+
+}  // namespace j232::report
