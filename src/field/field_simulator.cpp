@@ -83,6 +83,7 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
     flight::Drag drag;
     drag.on = scenario_.air.drag;
     drag.k_axial = drag.k_normal = 3 * scenario_.air.density * o.drag_coefficient / (4 * o.density);
+    drag.sphere = true;
     drag.k_spin = 0;  // a sphere's spin does not change its drag (no Magnus lift modelled)
     drag.air = {-scenario_.field.ground_speed, 0.0, 0.0};  // still air, seen from the moving mower
     drag.spin_average = scenario_.air.spin_average;

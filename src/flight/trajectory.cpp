@@ -45,6 +45,7 @@ Vec3 rotate_axis(const Vec3& axis, const Vec3& spin, double dt) { return strike:
 
 Vec3 drag_acceleration(const Drag& drag, const Vec3& velocity, const Vec3& axis) {
   const Vec3 v = velocity - drag.air;
+  if (drag.sphere) return -(drag.k_normal * v.norm()) * v;
   const double va = v.dot(axis);
   const Vec3 vn = v - va * axis;
   return -(drag.k_axial * std::abs(va) * va) * axis - (drag.k_normal * vn.norm()) * vn;
@@ -78,7 +79,7 @@ Vec3 averaged_drag_acceleration(const Drag& drag, const Vec3& velocity, const Ve
 }
 
 DragOverStep::DragOverStep(const Drag& drag, const Body& start) : drag_(&drag), rate_(start.spin.norm()) {
-  averaged_ = drag.on && spin_averaged(drag, start.velocity, rate_);
+  averaged_ = drag.on && !drag.sphere && spin_averaged(drag, start.velocity, rate_);
   if (averaged_) turn_averaged_ = TurnAveragedDrag(drag, start.velocity, start.spin / rate_);
 }
 

@@ -32,6 +32,8 @@ struct Drag {
   // (strip theory: the torque of rho C_n D (w s)^2 / 2 per length about the centre over
   // the inertia m L^2 / 12 gives k_spin = 3 rho C_n D L^2 / (16 m); docs/model.md §5.3).
   double k_spin = 0;  // 1/rad
+  // A sphere (a field's stone): the same drag whichever way it moves, -k_normal |v| v.
+  bool sphere = false;
 };
 
 inline const Vec3 kGravity(0.0, 0.0, -units::standard_gravity);

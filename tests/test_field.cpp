@@ -1,0 +1,305 @@
+// The mower at work in a field (j232 hazard): the [field] form and its refusals, the
+// strata and their reach shares, the tally's geometry against analytic densities, ballistic
+// flights against the range formula and an accurate drag solution, the intervals' coverage,
+// and thread-count determinism.
+#include <catch2/catch.hpp>
+#include <boost/math/distributions/normal.hpp>
+#include <cmath>
+#include <string>
+#include <toml++/toml.h>
+
+#include "assess/simulator.hpp"
+#include "field/field_simulator.hpp"
+#include "field/hazard_run.hpp"
+#include "field/hazard_tally.hpp"
+#include "flight/nail_flight.hpp"
+#include "random/stream.hpp"
+#include "scenario/input_error.hpp"
+#include "scenario/scenario_reader.hpp"
+#include "units/quantity.hpp"
+
+using namespace j232;
+
+namespace {
+const std::string kMower = R"(
+title = "field test mower"
+[blade]
+speed = "2700 rpm"
+height = "2 in"
+[blade.hub]
+bar_mass = "3.5 lb"
+bar_length = "21 in"
+[housing]
+skirt_bottom = "3 in"
+)";
+const std::string kStones = R"(
+[field]
+objects_simulated = 4000
+[[field.objects]]
+name = "stones"
+median_size = "30 mm"
+spread = 1.6
+min_size = "10 mm"
+max_size = "70 mm"
+per_area = "0.5 m^-2"
+embedment = 0.2
+[[field.planes]]
+name = "lane"
+side = "right"
+distance = "4 m"
+receptor = "vehicle"
+)";
+
+scenario::Scenario read(const std::string& text) {
+  return scenario::read_scenario(toml::parse(text, std::string_view("field.toml")), "field.toml");
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    read(text);
+  } catch (const scenario::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("field: the [field] form, with its defaults", "[field][input]") {
+  const auto s = read(kMower + kStones);
+  REQUIRE(s.field.present);
+  REQUIRE(s.field.objects.size() == 1);
+  const auto& o = s.field.objects[0];
+  CHECK(o.median_size == Approx(0.030));
+  CHECK(o.per_area == Approx(0.5));
+  CHECK(o.density == Approx(2650));
+  CHECK(o.restitution.value() == Approx(0.5));
+  CHECK(s.field.planes.at(0).receptor == scenario::FieldPlaneSpec::Receptor::Vehicle);
+  CHECK(s.field.ground_speed == Approx(8 / 3.6));
+  CHECK(s.run.time_limit == Approx(20.0));  // a field's flights last seconds
+  CHECK(s.field.person_energy == Approx(79));
+  CHECK(s.field.acceptable_area == Approx(55.74));
+}
+
+TEST_CASE("field: bad fields are refused with the key and what was expected", "[field][input]") {
+  CHECK_THAT(error_of(kMower + "[field]\n"), Catch::Contains("field.objects") && Catch::Contains("without objects"));
+  // Too tall to pass under the deck's front.
+  std::string tall = kStones;
+  tall.replace(tall.find("max_size = \"70 mm\""), 18, "max_size = \"150 mm\"");
+  CHECK_THAT(error_of(kMower + tall), Catch::Contains("max_size") && Catch::Contains("cannot pass under"));
+  // Too small to reach the blade, and nothing lifts them.
+  std::string small = kStones;
+  small.replace(small.find("max_size = \"70 mm\""), 18, "max_size = \"30 mm\"");
+  small.replace(small.find("min_size = \"10 mm\""), 18, "min_size = \"5 mm\"");
+  CHECK_THAT(error_of(kMower + small), Catch::Contains("no object stands up to the blade"));
+  // A plane inside the deck, and one beyond the range.
+  std::string inside = kStones;
+  inside.replace(inside.find("distance = \"4 m\""), 16, "distance = \"0.2 m\"");
+  CHECK_THAT(error_of(kMower + inside), Catch::Contains("distance") && Catch::Contains("inside the mower's deck"));
+  std::string beyond = kStones;
+  beyond.replace(beyond.find("distance = \"4 m\""), 16, "distance = \"400 m\"");
+  CHECK_THAT(error_of(kMower + beyond), Catch::Contains("within field.range"));
+  CHECK_THAT(error_of(kMower + kStones + "[[field.objects]]\nmedian_size = \"20 mm\"\n"), Catch::Contains("per_area") && Catch::Contains("missing"));
+  CHECK_THAT(error_of(kMower + kStones + "[[field.objects]]\nmedian_size = \"20 mm\"\nper_area = \"-1 m^-2\"\n"), Catch::Contains("per_area"));
+  CHECK_THAT(error_of(kMower + kStones + "[[field.objects]]\nmedian_size = \"20 mm\"\nper_area = \"1 m^-2\"\ncolour = \"grey\"\n"),
+             Catch::Contains("colour"));
+  // The J232 rig has no meaning in a field, nor the field in a J232 run.
+  CHECK_THAT(error_of(kMower + "[board]\nhit_fraction = 0.3\n" + kStones), Catch::Contains("[board]") && Catch::Contains("no J232 test rig"));
+  CHECK_THAT(error_of(kMower + kStones + "[run]\nreplicates = 100\n"), Catch::Contains("replicates"));
+  CHECK_THROWS_AS(assess::Simulator(read(kMower + kStones)), scenario::InputError);
+  CHECK_THROWS_AS(field::FieldSimulator(read(kMower)), scenario::InputError);
+}
+
+TEST_CASE("field: each kind a stratum, drawn among the sizes that can reach a blade", "[field]") {
+  const auto s = read(kMower + kStones);
+  const field::FieldSimulator sim(s);
+  // Stones stand up to the blade's lower face (2 in - 3 mm) when (1 - 0.2) d exceeds it.
+  const double face = 2 * units::inch - 0.003, tall = face / 0.8;
+  const boost::math::normal_distribution<double> z;
+  auto F = [&](double d) { return boost::math::cdf(z, std::log(d / 0.030) / std::log(1.6)); };
+  const double expected = (F(0.070) - F(tall)) / (F(0.070) - F(0.010));
+  CHECK(sim.reach_share(0) == Approx(expected).epsilon(1e-9));
+  CHECK(sim.objects_per_metre(0) == Approx(0.5 * 2 * s.spindles[0].blade.tip_radius()));
+  // Every object drawn is of a size that can reach.
+  for (std::uint64_t i = 0; i < 300; ++i) {
+    const auto o = sim.simulate(i);
+    CHECK(o.encounter.body.diameter >= tall - 1e-12);
+    CHECK(o.encounter.body.diameter <= 0.070 + 1e-12);
+  }
+}
+
+TEST_CASE("field: the updraft lifts the sizes whose drag exceeds their weight", "[field]") {
+  std::string lifted = kStones;
+  lifted.replace(lifted.find("[field]\n"), 8, "[field]\nupdraft_speed = \"25 m/s\"\n");
+  const auto s = read(kMower + lifted);
+  const field::FieldSimulator sim(s);
+  const double below = 3 * 1.2 * 0.6 * 25 * 25 / (4 * 2650 * units::standard_gravity);
+  bool any_lifted = false;
+  for (std::uint64_t i = 0; i < 400; ++i) {
+    const auto e = sim.simulate(i).encounter;
+    CHECK(e.lifted == (e.body.diameter < below));
+    any_lifted |= e.lifted;
+  }
+  CHECK(any_lifted);
+}
+
+TEST_CASE("field: the combined interval covers a known rate 95 % of the time", "[field][stats]") {
+  // Two strata with known per-object Poisson rates (objects that strike several times too).
+  const double rate_a = 0.004, rate_b = 0.05, w_a = 3.0, w_b = 0.2;
+  const std::uint64_t n_a = 4000, n_b = 2000;
+  const double truth = w_a * rate_a + w_b * rate_b;
+  int covered = 0;
+  const int trials = 1000;
+  for (int t = 0; t < trials; ++t) {
+    random::Stream rng(7, static_cast<std::uint64_t>(t), 0, random::Purpose::Test);
+    auto poisson = [&](double mean) {
+      int k = 0;
+      for (double p = std::exp(-mean), u = rng.uniform(), c = p; u > c; ++k) p *= mean / (k + 1), c += p;
+      return static_cast<std::uint64_t>(k);
+    };
+    field::CountSum a, b;
+    for (std::uint64_t i = 0; i < n_a; ++i) a.add(poisson(rate_a));
+    for (std::uint64_t i = 0; i < n_b; ++i) b.add(poisson(rate_b));
+    const auto e = field::combined({{a, w_a / n_a}, {b, w_b / n_b}});
+    covered += e.low <= truth && truth <= e.high;
+  }
+  const double coverage = static_cast<double>(covered) / trials;
+  CHECK(coverage >= 0.93);
+  CHECK(coverage <= 0.985);
+  // Nothing seen: Garwood's upper end, -ln 0.025 per object of the heaviest stratum.
+  const auto none = field::combined({{field::CountSum{}, 2.0 / 1000}, {field::CountSum{}, 1.0 / 1000}});
+  CHECK(none.value == 0);
+  CHECK(none.high == Approx(-std::log(0.025) * 2.0 / 1000));
+}
+
+TEST_CASE("field: the tally's strips against an analytic density falling as 1/R^2", "[field][stats]") {
+  // Objects come down at a distance R from the mower uniformly in azimuth with density
+  // 1 / (R ln(Rmax/Rmin)) on [Rmin, Rmax]: per m^2, 1 / (2 pi R^2 ln(Rmax/Rmin)). A strip at
+  // lateral distance d >= Rmin then holds atan(sqrt(Rmax^2 - d^2) / d) / (pi d L) per metre
+  // of its width (L = ln(Rmax/Rmin)).
+  const double r_min = 2, r_max = 60, L = std::log(r_max / r_min);
+  field::HazardLayout layout;
+  layout.range = 80, layout.cell = 1, layout.half_cells = 80, layout.person_energy = 1;
+  field::HazardTally tally(layout);
+  field::ObjectWatch watch(tally);
+  field::ObjectOutcome thrown;
+  thrown.fate = field::ObjectFate::Thrown;
+  thrown.flight.fate = flight::Fate::ShortOfBoard;
+  const std::uint64_t n = 400000;
+  random::Stream rng(11, 0, 0, random::Purpose::Test);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    watch.thrown(1.0, 0.0);
+    const double r = r_min * std::exp(rng.uniform() * L), a = units::two_pi * rng.uniform();
+    watch.met_ground(0.0, {r * std::cos(a), r * std::sin(a), 0.0}, {0.0, 0.0, -10.0}, false);  // 50 J: hazardous
+    watch.finish(thrown);
+  }
+  CHECK(tally.objects == n);
+  std::uint64_t landed = 0;
+  for (auto c : tally.landings) landed += c;
+  CHECK(landed == n);
+  for (int d : {4, 8, 16, 32}) {
+    const double mid = d + 0.5;
+    const double expected = std::atan(std::sqrt(r_max * r_max - mid * mid) / mid) / (units::pi * mid * L);  // per object, per metre
+    for (int side : {0, 1}) {
+      const auto e = field::combined({{tally.directions[static_cast<std::size_t>(side)][static_cast<std::size_t>(d)], 1.0 / static_cast<double>(n)}});
+      INFO("d " << d << " side " << side << ": " << e.value << " (" << e.low << "-" << e.high << ") against " << expected);
+      CHECK(e.low <= expected * 1.01);
+      CHECK(e.high >= expected * 0.99);
+    }
+  }
+}
+
+namespace {
+// A sphere flown from `from` at `velocity` over the field mower's turf (no blade in its way),
+// its first ground contact outside the deck.
+struct Landing {
+  Eigen::Vector3d point, velocity;
+  bool seen = false;
+};
+struct FirstGround final : flight::FlightObserver {
+  Landing l;
+  void flew(double, const Eigen::Vector3d&, const Eigen::Vector3d&, double, const Eigen::Vector3d&, const Eigen::Vector3d&) override {}
+  void met_ground(double, const Eigen::Vector3d& point, const Eigen::Vector3d& v, bool in_deck) override {
+    if (!l.seen && !in_deck) l = {point, v, true};
+  }
+};
+Landing fly_sphere(const field::FieldSimulator& sim, const Eigen::Vector3d& from, const Eigen::Vector3d& velocity, double k) {
+  const auto ball = projectile::Projectile::sphere(0.02, 2650 * units::pi * 0.02 * 0.02 * 0.02 / 6);
+  flight::Body body;
+  body.position = from, body.velocity = velocity, body.axis = Eigen::Vector3d::UnitZ(), body.spin = Eigen::Vector3d::Zero(), body.time = 0;
+  flight::Drag drag;
+  drag.on = k > 0, drag.k_axial = drag.k_normal = k, drag.sphere = true;
+  flight::FlightContext context = sim.mower().context();
+  FirstGround watch;
+  context.observer = &watch;
+  strike::BladePhases phases;
+  random::EventDraws draws(1, 0, 0);
+  flight::fly(body, ball, drag, context, phases, {}, draws);
+  return watch.l;
+}
+}  // namespace
+
+TEST_CASE("field: a launched object lands at the range formula without drag, at an accurate drag solution with it", "[field][flight]") {
+  std::string smooth = kMower + "[ground]\nroughness = \"0 deg\"\n" + kStones;
+  const field::FieldSimulator sim(read(smooth));
+  const double g = units::standard_gravity, v = 30, angle = 25 * units::degree, r = 0.01, h0 = 1.0;
+  const Eigen::Vector3d from(3.0, 0.0, h0), velocity(v * std::cos(angle), 0.0, v * std::sin(angle));
+  // Without drag: the sphere touches the ground when its centre is r above it.
+  const auto plain = fly_sphere(sim, from, velocity, 0.0);
+  REQUIRE(plain.seen);
+  const double vz = v * std::sin(angle), drop = h0 - r;
+  const double range = v * std::cos(angle) * (vz + std::sqrt(vz * vz + 2 * g * drop)) / g;
+  CHECK(plain.point.x() - from.x() == Approx(range).margin(0.01));
+  CHECK(plain.point.z() == Approx(0).margin(1e-6));
+  // With drag (k = rho Cd A / 2m): against RK4 at 10 us steps, to the same touch.
+  const double k = 3 * 1.2 * 0.6 / (4 * 2650 * 0.02);
+  const auto dragged = fly_sphere(sim, from, velocity, k);
+  REQUIRE(dragged.seen);
+  Eigen::Vector3d p = from, u = velocity;
+  auto acc = [&](const Eigen::Vector3d& w) { return Eigen::Vector3d(-k * w.norm() * w + Eigen::Vector3d(0, 0, -g)); };
+  const double dt = 1e-5;
+  while (true) {
+    const Eigen::Vector3d k1 = acc(u), k2 = acc(u + 0.5 * dt * k1), k3 = acc(u + 0.5 * dt * k2), k4 = acc(u + dt * k3);
+    const Eigen::Vector3d p_next = p + dt * (u + dt / 6 * (k1 + k2 + k3));
+    const Eigen::Vector3d u_next = u + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    if (p_next.z() <= r) {
+      const double f = (p.z() - r) / (p.z() - p_next.z());
+      p += f * (p_next - p), u += f * (u_next - u);
+      break;
+    }
+    p = p_next, u = u_next;
+  }
+  INFO("drag range " << dragged.point.x() - from.x() << " against " << p.x() - from.x() << " (no drag " << range << ")");
+  CHECK(p.x() - from.x() < 0.9 * range);  // drag matters here
+  CHECK(dragged.point.x() == Approx(p.x()).margin(0.01));
+  // The kinetic energy it arrives with, as the drag solution has it.
+  CHECK(dragged.velocity.squaredNorm() == Approx(u.squaredNorm()).epsilon(0.005));
+}
+
+TEST_CASE("field: a hazard run is the same on 1 and 2 threads, and tallies what it met", "[field][determinism]") {
+  auto s = read(kMower + kStones);
+  s.field.objects_simulated = 1500;
+  const field::FieldSimulator sim(s);
+  const auto one = field::run_hazard(sim, 1), two = field::run_hazard(sim, 2);
+  REQUIRE(one.kinds.size() == 1);
+  const auto &a = one.kinds[0], &b = two.kinds[0];
+  CHECK(a.objects == 1500);
+  CHECK(a.fates == b.fates);
+  CHECK(a.landings == b.landings);
+  CHECK(a.hazardous == b.hazardous);
+  CHECK(a.exit_speed == b.exit_speed);
+  CHECK(a.max_distance == b.max_distance);
+  for (std::size_t d = 0; d < 4; ++d)
+    for (std::size_t k = 0; k < a.directions[d].size(); ++k) CHECK((a.directions[d][k].sum == b.directions[d][k].sum && a.directions[d][k].squares == b.directions[d][k].squares));
+  CHECK(a.planes[0].by_height == b.planes[0].by_height);
+  // Stones are thrown, fast, and few are cut off.
+  const auto thrown = a.fates[static_cast<std::size_t>(field::ObjectFate::Thrown)];
+  CHECK(thrown > 500);
+  CHECK(a.fates[static_cast<std::size_t>(field::ObjectFate::CutOff)] < 15);
+  const auto sum = field::summarise(sim, one);
+  CHECK(sum.valid);
+  // These stones stand only a little into the blade's plane: struck from above, pressed
+  // into the soil, they skid away at a fraction of the tip's speed, never beyond it.
+  CHECK(sum.exit_speed_q95 > 0.15 * s.tip_speed());
+  CHECK(sum.exit_speed_q95 < 1.6 * s.tip_speed());
+  CHECK(sum.max_distance > 10);
+}
