@@ -70,7 +70,7 @@ class DragOverStep {
   DragOverStep(const Drag& drag, const Body& start);
   bool on() const { return drag_->on; }
   // Drag that turns with the axis, of a spinning nail: its steps must follow the turn.
-  bool follows_axis() const { return drag_->on && !averaged_ && rate_ > 0; }
+  bool follows_axis() const { return drag_->on && !drag_->sphere && !averaged_ && rate_ > 0; }
   double spin_rate() const { return rate_; }
   double spin_damping() const { return drag_->k_spin; }
   // Gravity plus drag at this velocity with the axis there.

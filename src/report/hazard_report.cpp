@@ -436,7 +436,7 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(a["what"].get<std::string>()), escape(a["source"].get<std::string>()));
   o += "</table>\n";
   const auto& p = result["provenance"];
-  o += fmt::format("<p class=\"small\">j232 {} ({}), {}; seed {}; {} thread(s), {:.1f} s ({:.0f} objects/s).</p>\n", escape(p["version"].get<std::string>()),
+  o += fmt::format("<section id=\"provenance\"><p class=\"small\">j232 {} ({}), {}; seed {}; {} thread(s), {:.1f} s ({:.0f} objects/s).</p></section>\n", escape(p["version"].get<std::string>()),
                    escape(p["git_revision"].get<std::string>()), escape(p["date"].get<std::string>()), p["seed"].get<std::uint64_t>(),
                    p["threads"].get<int>(), p["wall_time_s"].get<double>(), p["objects_per_second"].get<double>());
   o += page_foot();

@@ -478,7 +478,7 @@ void read_air(const TableReader& a, AirSpec& air) {
 
 
 // The field a hazard scenario mows (FieldSpec). `s` has its blades and deck read.
-void read_field(const TableReader& t, const Scenario& s, FieldSpec& f) {
+void read_field(const TableReader& t, const Scenario& s, bool root_has_restitution, FieldSpec& f) {
   f.present = true;
   f.ground_speed = t.quantity_or("ground_speed", Kind::Speed, f.ground_speed, Range::positive_up_to(15));
   f.range = t.quantity_or("range", Kind::Length, f.range, Range::between(5, 500));
@@ -553,6 +553,11 @@ void read_field(const TableReader& t, const Scenario& s, FieldSpec& f) {
                                             top, lowest_face));
     f.objects.push_back(obj);
   }
+  bool blade_restitution_used = false;
+  for (const auto& o : f.objects) blade_restitution_used |= !o.restitution;
+  if (root_has_restitution && !blade_restitution_used)
+    throw t.error("objects", "every object has its own restitution on the blade, so the scenario's [restitution] (the nail's, or a "
+                             "steel ball's) is unused: remove it, or leave an object's restitution to it");
   const double deck = s.housing.deck_radius;
   for (const auto& p : t.array_of_tables("planes", 16)) {
     FieldPlaneSpec plane;
@@ -655,7 +660,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto r = root.table("run")) read_run(*r, s.run);
   if (auto f = root.table("field")) {
     refuse_test_rig(root, s.meshes);
-    read_field(*f, s, s.field);
+    read_field(*f, s, root.has("restitution"), s.field);
     // An object thrown across a field flies for seconds, not the board's fraction of one.
     if (!(root.table("run") && root.table("run")->has("time_limit"))) s.run.time_limit = 20.0;
   }

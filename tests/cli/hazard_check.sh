@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# hazard_check.sh J232 SCENARIO OUT: `j232 hazard` of a shipped field scenario writes a
+# complete hazard.json / hazard.csv / hazard.html with no nan, the same results on 1 and 2
+# threads (provenance aside), and the report names its hazard distances and planes.
+set -euo pipefail
+j232=$1 scenario=$2 out=$3
+rm -rf "$out"
+"$j232" hazard "$scenario" --objects 3000 --threads 1 --out "$out/one" >/dev/null
+"$j232" hazard "$scenario" --objects 3000 --threads 2 --out "$out/two" >/dev/null
+python3 - "$out" <<'PY'
+import json, math, sys
+out = sys.argv[1]
+a, b = (json.load(open(f"{out}/{d}/hazard.json")) for d in ("one", "two"))
+for j in (a, b):
+    j.pop("provenance")
+assert a == b, "hazard.json differs between 1 and 2 threads"
+for key in ("valid", "field", "objects", "throw", "hazard_distance", "directions", "planes", "assumptions", "scenario"):
+    assert key in a, key
+assert a["objects"]["simulated"] == 3000
+assert [d["direction"] for d in a["hazard_distance"]] == ["left", "right", "front", "rear"]
+def finite(x):
+    if isinstance(x, dict):
+        return all(finite(v) for v in x.values())
+    if isinstance(x, list):
+        return all(finite(v) for v in x)
+    return not isinstance(x, float) or math.isfinite(x)
+assert finite(a), "a non-finite number in hazard.json"
+for point in a["directions"][0]["points"]:
+    d, p = point["density_per_m2"], point["p_struck"]
+    assert 0 <= d["low"] <= d["value"] <= d["high"], point
+    assert 0 <= p["low"] <= p["value"] <= p["high"] <= 1, point
+assert a["planes"], "the scenario's planes"
+html = open(f"{out}/one/hazard.html").read()
+for text in ("Hazard distances", "Probability of being struck", "First landings outside the deck", "Planes beside the path", "Assumptions", "DDESB"):
+    assert text in html, text
+csv = open(f"{out}/one/hazard.csv").read().splitlines()
+assert csv[0].startswith("what,name,distance_m,density_per_m2"), csv[0]
+assert sum(1 for l in csv if l.startswith("plane,")) == len(a["planes"])
+assert "nan" not in open(f"{out}/one/hazard.csv").read().lower()
+print("hazard_check: ok")
+PY
