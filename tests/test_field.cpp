@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "assess/simulator.hpp"
+#include "field/field_compare.hpp"
 #include "field/field_simulator.hpp"
 #include "field/hazard_run.hpp"
 #include "field/hazard_tally.hpp"
@@ -302,4 +303,33 @@ TEST_CASE("field: a hazard run is the same on 1 and 2 threads, and tallies what 
   CHECK(sum.exit_speed_q95 > 0.15 * s.tip_speed());
   CHECK(sum.exit_speed_q95 < 1.6 * s.tip_speed());
   CHECK(sum.max_distance > 10);
+}
+
+TEST_CASE("field: designs compared object by object, with common random numbers", "[field][compare]") {
+  auto read_file = [](const char* name) { return scenario::read_scenario(std::string(J232_SOURCE_DIR) + "/scenarios/field/" + name); };
+  auto without = read_file("batwing-highway-shoulder-no-chains.toml"), with = read_file("batwing-highway-shoulder.toml");
+  without.field.objects_simulated = 3000;
+  const auto c = field::compare_fields({without, with, without}, 2);
+  REQUIRE(c.designs.size() == 3);
+  REQUIRE(c.designs[1].differences.size() == c.designs[0].figures.size());
+  // The chains stop nothing at the strike: the same objects thrown, none differing, and a
+  // bound (not a zero-wide interval) on what the run could have missed.
+  const auto& thrown = c.designs[1].differences[0];
+  CHECK(thrown.objects_differing == 0);
+  CHECK(thrown.per_km.value == 0);
+  CHECK(thrown.per_km.low < 0);
+  CHECK(thrown.per_km.high > 0);
+  // They turn objects back: fewer first come down outside the deck, fewer cross the lane.
+  CHECK(c.designs[1].differences[1].per_km.high < 0);
+  CHECK(c.designs[1].differences[5].per_km.high < 0);  // the path on the left
+  // A design against itself differs nowhere.
+  for (const auto& d : c.designs[2].differences) CHECK(d.objects_differing == 0);
+  // Paired: the difference's interval is narrower than the two designs' own intervals together.
+  const auto& a = c.designs[0].figures[1].per_km;
+  const auto& b = c.designs[1].figures[1].per_km;
+  const auto& x = c.designs[1].differences[1].per_km;
+  CHECK(x.high - x.low < (a.high - a.low) + (b.high - b.low));
+  // The same on one thread.
+  const auto one = field::compare_fields({without, with}, 1);
+  for (std::size_t j = 0; j < one.designs[1].differences.size(); ++j) CHECK(one.designs[1].differences[j].per_km.value == c.designs[1].differences[j].per_km.value);
 }

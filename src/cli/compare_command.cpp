@@ -9,6 +9,8 @@
 #include "report/terminal_progress.hpp"
 #include "report/atomic_file.hpp"
 #include "report/comparison_report.hpp"
+#include "report/hazard_report.hpp"
+#include "scenario/input_error.hpp"
 #include "report/text_safety.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
@@ -25,9 +27,39 @@ struct CompareOptions {
   RunOverrides overrides;
 };
 
+// Field scenarios compared: their hazard figures, paired object by object.
+int compare_fields(const CompareOptions& o, std::vector<scenario::Scenario>& designs) {
+  if (o.overrides.seed) designs.front().run.seed = *o.overrides.seed;
+  if (o.overrides.replicates > 0)
+    throw scenario::InputError("", std::nullopt, "--replicates", std::to_string(o.overrides.replicates),
+                               "field scenarios simulate field.objects_simulated objects, not replicates (set it in the first design)");
+  const int threads = o.overrides.threads >= 0 ? o.overrides.threads : designs.front().run.threads;
+  report::OutputFolder out(o.out, {"compare.csv", "compare.html", "compare.json"});
+  assess::Progress progress;
+  field::FieldComparison c;
+  {
+    report::ProgressBar bar(progress);
+    c = field::compare_fields(designs, threads, &progress);
+  }
+  const auto j = report::hazard_comparison_json(c);
+  report::write_atomically(out.staged("compare.csv"), report::hazard_comparison_csv(c));
+  report::write_atomically(out.staged("compare.html"), report::hazard_comparison_html(c));
+  report::write_atomically(out.staged("compare.json"), j.dump(2) + "\n");
+  out.commit();
+  fmt::print("{}", terminal_safe(report::hazard_comparison_text(c)));
+  fmt::print("Wrote {}/compare.html, compare.json and compare.csv\n", terminal_safe(o.out));
+  return kOk;
+}
+
 int compare(const CompareOptions& o) {
   std::vector<scenario::Scenario> designs;
   for (const auto& file : o.scenarios) designs.push_back(scenario::read_scenario(file));  // every file checked before running
+  std::size_t fields = 0;
+  for (const auto& d : designs) fields += d.field.present ? 1 : 0;
+  if (fields == designs.size()) return compare_fields(o, designs);
+  if (fields > 0)
+    throw scenario::InputError(designs[fields == 1 && designs.front().field.present ? 0 : 0].file, std::nullopt, "field", "",
+                               "compare either J232 test scenarios or field scenarios ([field]), not both");
   if (o.overrides.replicates > 0) designs.front().run.replicates = o.overrides.replicates;
   if (o.overrides.seed) designs.front().run.seed = *o.overrides.seed;
   const int threads = o.overrides.threads >= 0 ? o.overrides.threads : designs.front().run.threads;

@@ -76,7 +76,11 @@ Estimate combined(const std::vector<Stratum>& strata) {
     variance += s.weight_per_object * s.weight_per_object * static_cast<double>(s.counts.squares);
     largest = std::max(largest, s.weight_per_object);
   }
-  if (mean == 0) return {0.0, 0.0, -std::log(0.025) * largest};  // Garwood's upper end for none seen, in the heaviest stratum
+  return quasi_poisson(mean, variance, -std::log(0.025) * largest);  // none seen: Garwood's upper end, in the heaviest stratum
+}
+
+Estimate quasi_poisson(double mean, double variance, double zero_upper) {
+  if (!(mean > 0) || !(variance > 0)) return {0.0, 0.0, zero_upper};
   const double scale = variance / mean, effective = mean / scale;
   return {mean, boost::math::gamma_p_inv(effective, 0.025) * scale, boost::math::gamma_p_inv(effective + 1, 0.975) * scale};
 }

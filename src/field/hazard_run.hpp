@@ -39,6 +39,8 @@ struct Stratum {
   double weight_per_object = 0;  // w_k / N_k
 };
 Estimate combined(const std::vector<Stratum>& strata);
+// The same interval from an estimate's mean and variance (none seen: [0, zero_upper]).
+Estimate quasi_poisson(double mean, double variance, double zero_upper);
 
 // One direction's curve: at each distance, the density of hazardous impacts a person there
 // meets in one pass of the mower (per m^2), and the probability of being struck.

@@ -78,8 +78,9 @@ void HazardTally::merge(const HazardTally& o) {
 
 void ObjectWatch::thrown(double mass, double strike_time) {
   mass_ = mass, strike_time_ = strike_time, ground_speed_ = tally_.layout.ground_speed;
-  landed_ = false, farthest_ = -1, impact_count_ = 0;
+  landed_ = false, farthest_ = -1, impact_count_ = 0, hazardous_total_ = 0;
   plane_hazards_.assign(tally_.planes.size(), 0);
+  plane_crossings_.assign(tally_.planes.size(), 0);
 }
 
 namespace {
@@ -108,6 +109,7 @@ void ObjectWatch::flew(double t0, const Vec3& p0, const Vec3& v0, double t1, con
     PlaneTally& t = tally_.planes[i];
     ++t.by_height[static_cast<std::size_t>(std::clamp(static_cast<int>(std::floor(z / kHeightBand)), 0, kHeightBands - 1))];
     ++t.by_energy[static_cast<std::size_t>(energy_bin(energy))];
+    ++plane_crossings_[i];
     const bool person = plane.receptor == scenario::FieldPlaneSpec::Receptor::Person;
     const bool in_band = person ? z <= l.person_height : z >= l.windshield_bottom && z <= l.windshield_top;
     if (in_band && energy >= (person ? l.person_energy : l.vehicle_energy)) ++plane_hazards_[i];
@@ -131,6 +133,7 @@ void ObjectWatch::met_ground(double t, const Vec3& point, const Vec3& velocity, 
   farthest_ = std::max(farthest_, distance);
   tally_.max_distance = std::max(tally_.max_distance, distance);
   if (energy < l.person_energy) return;
+  ++hazardous_total_;
   if (cell < 0) {
     ++tally_.hazardous_beyond_square;
     return;
@@ -143,7 +146,13 @@ void ObjectWatch::met_ground(double t, const Vec3& point, const Vec3& velocity, 
 void ObjectWatch::finish(const ObjectOutcome& outcome) {
   tally_.add(outcome);
   const bool thrown = outcome.fate == ObjectFate::Thrown || outcome.fate == ObjectFate::CutOff;
-  if (!thrown || outcome.flight.fate == flight::Fate::NotStruck) return;
+  if (!thrown || outcome.flight.fate == flight::Fate::NotStruck) {
+    // Not thrown: none of its own counts (thrown() was not called for it).
+    landed_ = false, hazardous_total_ = 0, impact_count_ = 0;
+    plane_hazards_.assign(tally_.planes.size(), 0);
+    plane_crossings_.assign(tally_.planes.size(), 0);
+    return;
+  }
   const HazardLayout& l = tally_.layout;
   if (farthest_ >= 0) ++tally_.farthest[std::min(tally_.farthest.size() - 1, static_cast<std::size_t>(farthest_ / 0.25))];
   if (impact_count_ > kMaxImpacts) ++tally_.overflow;

@@ -93,6 +93,13 @@ class ObjectWatch final : public FieldSimulator::Watch, public flight::FlightObs
   void met_ground(double t, const Vec3& point, const Vec3& velocity, bool in_deck) override;
   // The object's outcome: adds its per-object counts and its fate to the tally.
   void finish(const ObjectOutcome& outcome);
+  // The last object's own counts (after finish; zero for one not thrown): whether it first
+  // came down outside the deck, its hazardous ground impacts anywhere outside the deck, and
+  // per plane its crossings and hazardous crossings. For paired comparisons (j232 compare).
+  bool landed_outside() const { return landed_; }
+  int hazardous_impacts() const { return hazardous_total_; }
+  const std::vector<std::uint64_t>& plane_crossings() const { return plane_crossings_; }
+  const std::vector<std::uint64_t>& plane_hazards() const { return plane_hazards_; }
 
  private:
   Vec3 ground(double t, const Vec3& p) const { return p + Vec3(ground_speed_ * (t - strike_time_), 0, 0); }
@@ -103,7 +110,8 @@ class ObjectWatch final : public FieldSimulator::Watch, public flight::FlightObs
   static constexpr int kMaxImpacts = 256;
   std::array<std::array<double, 2>, kMaxImpacts> impacts_{};  // hazardous ground impacts, ground frame
   int impact_count_ = 0;
-  std::vector<std::uint64_t> plane_hazards_;  // this object's, per plane
+  std::vector<std::uint64_t> plane_hazards_, plane_crossings_;  // this object's, per plane
+  int hazardous_total_ = 0;
 };
 
 }  // namespace j232::field

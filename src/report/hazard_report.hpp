@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "field/field_compare.hpp"
 #include "field/field_simulator.hpp"
 #include "field/hazard_run.hpp"
 #include "report/scenario_json.hpp"
@@ -30,5 +31,12 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
                         const nlohmann::ordered_json& result);
 // The terminal's summary: the hazard distances and the planes, with their intervals.
 std::string hazard_text(const field::HazardSummary& sum);
+
+// Field designs compared (j232 compare of field scenarios): compare.json, .csv, .html and
+// the terminal's table.
+nlohmann::ordered_json hazard_comparison_json(const field::FieldComparison& c);
+std::string hazard_comparison_csv(const field::FieldComparison& c);
+std::string hazard_comparison_html(const field::FieldComparison& c);
+std::string hazard_comparison_text(const field::FieldComparison& c);
 
 }  // namespace j232::report

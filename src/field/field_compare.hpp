@@ -1,0 +1,44 @@
+#pragma once
+// Field designs compared (`j232 compare` of field scenarios, docs/model.md §9.3): every
+// design meets the same objects in turn (object i of each is drawn from the same seed and
+// index, its flight's random events keyed by their number), so each figure's difference
+// from the first design is judged object by object: paired, far tighter than two separate
+// runs would give. Figures per km mowed: objects thrown, objects first coming down outside
+// the deck, hazardous ground impacts, and each plane's crossings and hazardous crossings.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "assess/runner.hpp"  // assess::Progress
+#include "field/hazard_run.hpp"
+#include "scenario/scenario.hpp"
+
+namespace j232::field {
+
+struct FieldFigure {
+  std::string name;
+  Estimate per_km;
+};
+struct FieldDifference {
+  std::string name;
+  Estimate per_km;                    // this design's figure minus the first's (normal, from the paired differences)
+  std::uint64_t objects_differing = 0;  // objects whose own counts differ between the two
+};
+struct FieldDesign {
+  std::string file, title;
+  std::vector<FieldFigure> figures;
+  std::vector<FieldDifference> differences;  // against the first design (empty for it)
+};
+struct FieldComparison {
+  std::vector<FieldDesign> designs;
+  std::uint64_t objects = 0;
+  unsigned long long seed = 0;
+  double wall_seconds = 0;
+};
+
+// Every design a field scenario; planes matched by name (each design must have the first's).
+// Runs the first design's field.objects_simulated objects in each. Deterministic for any
+// thread count.
+FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, int threads, assess::Progress* progress = nullptr);
+
+}  // namespace j232::field
