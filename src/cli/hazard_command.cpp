@@ -38,29 +38,31 @@ std::string utc_now() {
 }
 
 int hazard(const HazardOptions& o) {
-  // One process does the work (the objects are not yet shared out between MPI ranks).
-  if (!assess::cluster::is_writer()) return kOk;
   scenario::Scenario s = scenario::read_scenario(o.scenario);
   if (o.objects > 0) s.field.objects_simulated = o.objects;
   if (o.seed) s.run.seed = *o.seed;
   if (o.threads >= 0) s.run.threads = o.threads;
   const field::FieldSimulator sim(s);
-  report::OutputFolder folder(o.out, {"hazard.csv", "hazard.html", "hazard.json"});
+  // Every rank of an MPI job simulates its share; rank 0 alone writes.
+  const bool writer = assess::cluster::is_writer();
+  std::optional<report::OutputFolder> folder;
+  if (writer) folder.emplace(o.out, std::vector<std::string>{"hazard.csv", "hazard.html", "hazard.json"});
   assess::Progress progress;
   field::HazardRun run = [&] {
     report::ProgressBar bar(progress);
     return field::run_hazard(sim, s.run.threads, &progress);
   }();
+  if (!writer) return kOk;
   const field::HazardSummary sum = field::summarise(sim, run);
-  const report::HazardProvenance p{j232::version, j232::git_revision, utc_now(), s.run.seed, run.threads, run.wall_seconds};
+  const report::HazardProvenance p{j232::version, j232::git_revision, utc_now(), s.run.seed, run.threads, assess::cluster::size(), run.wall_seconds};
   const auto result = report::hazard_json(sim, run, sum, p);
-  report::write_atomically(folder.staged("hazard.csv"), report::hazard_csv(sum));
-  report::write_atomically(folder.staged("hazard.html"), report::hazard_html(sim, run, sum, result));
-  report::write_atomically(folder.staged("hazard.json"), result.dump(2) + "\n");
-  folder.commit();
+  report::write_atomically(folder->staged("hazard.csv"), report::hazard_csv(sum));
+  report::write_atomically(folder->staged("hazard.html"), report::hazard_html(sim, run, sum, result));
+  report::write_atomically(folder->staged("hazard.json"), result.dump(2) + "\n");
+  folder->commit();
   fmt::print("{}: thrown-object hazard in the field\n{}", terminal_safe(s.title), terminal_safe(report::hazard_text(sum)));
-  fmt::print("  {} objects in {:.2f} s on {} thread(s): {:.0f} objects/s.\n  Wrote {}/hazard.html, {}/hazard.json and {}/hazard.csv\n",
-             run.objects(), run.wall_seconds, run.threads, run.wall_seconds > 0 ? static_cast<double>(run.objects()) / run.wall_seconds : 0.0,
+  fmt::print("  {} objects in {:.2f} s on {} thread(s){}: {:.0f} objects/s.\n  Wrote {}/hazard.html, {}/hazard.json and {}/hazard.csv\n",
+             run.objects(), run.wall_seconds, run.threads, p.ranks > 1 ? fmt::format(" in each of {} MPI ranks", p.ranks) : "", run.wall_seconds > 0 ? static_cast<double>(run.objects()) / run.wall_seconds : 0.0,
              terminal_safe(o.out), terminal_safe(o.out), terminal_safe(o.out));
   return sum.valid ? kOk : kInvalid;
 }

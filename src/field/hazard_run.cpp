@@ -1,5 +1,7 @@
 #include "field/hazard_run.hpp"
 
+#include "assess/cluster.hpp"
+
 #include <algorithm>
 #include <boost/math/special_functions/gamma.hpp>
 #include <chrono>
@@ -43,6 +45,8 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   tbb::task_arena arena(used);
   std::optional<tbb::global_control> oversubscribe;
   if (used > available) oversubscribe.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(used));
+  // Under MPI each rank takes every ranks-th chunk; rank 0 adds the others' tallies.
+  const auto ranks = static_cast<std::uint64_t>(assess::cluster::size()), rank = static_cast<std::uint64_t>(assess::cluster::rank());
   if (progress) progress->total = static_cast<long long>(n);
   const auto start = std::chrono::steady_clock::now();
   tbb::enumerable_thread_specific<std::unique_ptr<Worker>> workers([&] { return std::make_unique<Worker>(layout, kinds); });
@@ -50,6 +54,7 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
     tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, (n + kChunk - 1) / kChunk, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
       Worker& w = *workers.local();
       for (std::uint64_t chunk = r.begin(); chunk != r.end(); ++chunk) {
+        if (chunk % ranks != rank) continue;  // another MPI rank's
         const std::uint64_t last = std::min(n, (chunk + 1) * kChunk);
         for (std::uint64_t i = chunk * kChunk; i < last; ++i) {
           ObjectWatch& watch = w.watches[static_cast<std::size_t>(i % kinds)];
@@ -64,6 +69,18 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   for (std::size_t k = 0; k < kinds; ++k) run.kinds.emplace_back(layout);
   for (const auto& w : workers)
     for (std::size_t k = 0; k < kinds; ++k) run.kinds[k].merge(w->tallies[k]);
+  if (ranks > 1) {
+    if (rank != 0) {
+      for (std::size_t k = 0; k < kinds; ++k) assess::cluster::send(0, run.kinds[k].pack());
+    } else {
+      for (int from = 1; from < static_cast<int>(ranks); ++from)
+        for (std::size_t k = 0; k < kinds; ++k) {
+          HazardTally theirs(layout);
+          theirs.unpack(assess::cluster::receive(from));
+          run.kinds[k].merge(theirs);
+        }
+    }
+  }
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.threads = used;
   return run;

@@ -21,7 +21,8 @@ struct HazardRun {
 };
 
 // Simulates scenario.field.objects_simulated objects (0..N-1) on `threads` threads (0: all
-// cores). Bit-identical for any thread count.
+// cores), shared out among the ranks of an MPI job (rank 0 holds the whole tally; the
+// others, their share). Bit-identical for any thread and rank count.
 HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress = nullptr);
 
 // A rate per metre travelled from the strata's per-object counts: the sum over kinds of

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
 
 #include "units/quantity.hpp"
 
@@ -60,20 +62,61 @@ void HazardTally::add(const ObjectOutcome& o) {
   if (std::abs(end.x()) > layout.range || std::abs(end.y()) > layout.range) ++left_square;
 }
 
-void HazardTally::merge(const HazardTally& o) {
-  objects += o.objects;
-  for (std::size_t i = 0; i < fates.size(); ++i) fates[i] += o.fates[i];
-  for (std::size_t i = 0; i < cut_off_by.size(); ++i) cut_off_by[i] += o.cut_off_by[i];
-  at_rest_under_deck += o.at_rest_under_deck, left_square += o.left_square;
-  landed_beyond_square += o.landed_beyond_square, hazardous_beyond_square += o.hazardous_beyond_square, overflow += o.overflow;
-  for (std::size_t i = 0; i < landings.size(); ++i) landings[i] += o.landings[i], hazardous[i] += o.hazardous[i];
-  for (std::size_t d = 0; d < directions.size(); ++d)
-    for (std::size_t k = 0; k < directions[d].size(); ++k) directions[d][k].merge(o.directions[d][k]);
-  for (std::size_t p = 0; p < planes.size(); ++p) planes[p].merge(o.planes[p]);
-  for (std::size_t i = 0; i < exit_speed.size(); ++i) exit_speed[i] += o.exit_speed[i];
-  for (std::size_t i = 0; i < launch_elevation.size(); ++i) launch_elevation[i] += o.launch_elevation[i];
-  for (std::size_t i = 0; i < farthest.size(); ++i) farthest[i] += o.farthest[i];
-  max_distance = std::max(max_distance, o.max_distance);
+namespace {
+// Adds `b` into `a`, count by count (the farthest distance: the larger).
+struct Adder {
+  void operator()(std::uint64_t& a, const std::uint64_t& b) const { a += b; }
+  void operator()(double& a, const double& b) const { a = std::max(a, b); }
+  void operator()(CountSum& a, const CountSum& b) const { a.merge(b); }
+  template <class T>
+  void operator()(T& a, const T& b) const {
+    for (std::size_t i = 0; i < a.size(); ++i) (*this)(a[i], b[i]);
+  }
+};
+// Appends each count's bytes, or reads them back in the same order.
+struct Writer {
+  std::string& out;
+  template <class T>
+  void raw(const T& v) const { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
+  void operator()(const std::uint64_t& a, const std::uint64_t&) const { raw(a); }
+  void operator()(const double& a, const double&) const { raw(a); }
+  void operator()(const CountSum& a, const CountSum&) const { raw(a.sum), raw(a.squares); }
+  template <class T>
+  void operator()(const T& a, const T&) const {
+    for (const auto& x : a) (*this)(x, x);
+  }
+};
+struct Reader {
+  const std::string& in;
+  std::size_t& at;
+  template <class T>
+  void raw(T& v) const {
+    if (at + sizeof v > in.size()) throw std::runtime_error("hazard tally: truncated bytes from another rank");
+    std::memcpy(&v, in.data() + at, sizeof v);
+    at += sizeof v;
+  }
+  void operator()(std::uint64_t& a, std::uint64_t&) const { raw(a); }
+  void operator()(double& a, double&) const { raw(a); }
+  void operator()(CountSum& a, CountSum&) const { raw(a.sum), raw(a.squares); }
+  template <class T>
+  void operator()(T& a, T&) const {
+    for (auto& x : a) (*this)(x, x);
+  }
+};
+}  // namespace
+
+void HazardTally::merge(const HazardTally& o) { zip(*this, o, Adder{}); }
+
+std::string HazardTally::pack() const {
+  std::string out;
+  zip(*this, *this, Writer{out});
+  return out;
+}
+
+void HazardTally::unpack(const std::string& bytes) {
+  std::size_t at = 0;
+  zip(*this, *this, Reader{bytes, at});
+  if (at != bytes.size()) throw std::runtime_error("hazard tally: bytes of another layout from another rank");
 }
 
 void ObjectWatch::thrown(double mass, double strike_time) {

@@ -11,6 +11,7 @@
 // bit-identical on any number of threads.
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "field/field_simulator.hpp"
@@ -81,6 +82,38 @@ class HazardTally {
 
   void add(const ObjectOutcome& o);
   void merge(const HazardTally& o);
+  // The whole tally as bytes and back (an MPI rank's share, sent to rank 0); `unpack` into
+  // a tally of the same layout.
+  std::string pack() const;
+  void unpack(const std::string& bytes);
+
+  // Every count of two tallies in step, once: merge, pack and unpack go through it, so none
+  // of them can miss a count another has. `f(a, b)` is called with each count of `a` and the
+  // same count of `b` (whole numbers, arrays and vectors of them, CountSums, and the
+  // farthest distance, a double merged by its maximum).
+  template <class A, class B, class F>
+  static void zip(A& a, B& b, F&& f) {
+    f(a.objects, b.objects);
+    f(a.fates, b.fates);
+    f(a.cut_off_by, b.cut_off_by);
+    f(a.at_rest_under_deck, b.at_rest_under_deck);
+    f(a.left_square, b.left_square);
+    f(a.landed_beyond_square, b.landed_beyond_square);
+    f(a.hazardous_beyond_square, b.hazardous_beyond_square);
+    f(a.overflow, b.overflow);
+    f(a.landings, b.landings);
+    f(a.hazardous, b.hazardous);
+    for (std::size_t d = 0; d < a.directions.size(); ++d) f(a.directions[d], b.directions[d]);
+    for (std::size_t p = 0; p < a.planes.size(); ++p) {
+      f(a.planes[p].by_height, b.planes[p].by_height);
+      f(a.planes[p].by_energy, b.planes[p].by_energy);
+      f(a.planes[p].hazardous, b.planes[p].hazardous);
+    }
+    f(a.exit_speed, b.exit_speed);
+    f(a.launch_elevation, b.launch_elevation);
+    f(a.farthest, b.farthest);
+    f(a.max_distance, b.max_distance);
+  }
 };
 
 // Watches one object at a time and adds what it did to a tally when told it ended.

@@ -203,6 +203,7 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
         {"date", p.date},
         {"seed", p.seed},
         {"threads", p.threads},
+        {"ranks", p.ranks},
         {"wall_time_s", p.wall_seconds},
         {"objects_per_second", p.wall_seconds > 0 ? static_cast<double>(sum.objects) / p.wall_seconds : 0.0}}},
   };

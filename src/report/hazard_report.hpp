@@ -18,6 +18,7 @@ struct HazardProvenance {
   std::string version, git_revision, date;
   std::uint64_t seed = 0;
   int threads = 1;
+  int ranks = 1;  // processes of an MPI job, each with `threads` threads
   double wall_seconds = 0;
 };
 

@@ -41,6 +41,16 @@ for n in 2 3; do
 done
 mpi 2 "$exe" uq "$work/uq-small.toml" --out "$work/uq-2" >/dev/null 2>&1 || fail "uq on 2 ranks failed"
 same_json "$work/uq-plain/uq.json" "$work/uq-2/uq.json"
+# The field hazard: every rank its share of the objects, rank 0 the whole tally.
+lawn=$src/scenarios/field/deck-72in-lawn-stones.toml
+"$exe" hazard "$lawn" --objects 6000 --out "$work/hazard-plain" >/dev/null
+for n in 2 3; do
+  mpi "$n" "$exe" hazard "$lawn" --objects 6000 --out "$work/hazard-$n" >/dev/null 2>&1 || fail "hazard on $n ranks failed"
+  same_json "$work/hazard-plain/hazard.json" "$work/hazard-$n/hazard.json"
+  cmp "$work/hazard-plain/hazard.csv" "$work/hazard-$n/hazard.csv" || fail "hazard.csv on $n ranks differs"
+  python3 -c "import json,sys; sys.exit(0 if json.load(open('$work/hazard-$n/hazard.json'))['provenance']['ranks'] == $n else 1)" ||
+    fail "hazard provenance does not say $n ranks"
+done
 # No stray files from the other ranks in the output folders.
 listing="$(ls -A "$work/run-3" | grep -v '^scene.html$' | sort | tr '\n' ' ')"  # scene.html: when built with three.js
 [ "$listing" = ".j232.lock marks.csv report.html result.json " ] || fail "unexpected files in run-3: $(ls -A "$work/run-3")"
