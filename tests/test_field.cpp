@@ -119,7 +119,14 @@ TEST_CASE("field: each kind a stratum, drawn among the sizes that can reach a bl
   auto F = [&](double d) { return boost::math::cdf(z, std::log(d / 0.030) / std::log(1.6)); };
   const double expected = (F(0.070) - F(tall)) / (F(0.070) - F(0.010));
   CHECK(sim.reach_share(0) == Approx(expected).epsilon(1e-9));
-  CHECK(sim.objects_per_metre(0) == Approx(0.5 * 2 * s.spindles[0].blade.tip_radius()));
+  // Met across the cut widened by half the largest size each side.
+  CHECK(sim.objects_per_metre(0) == Approx(0.5 * (2 * s.spindles[0].blade.tip_radius() + 0.070)));
+  bool struck_outside_tip_circle = false;
+  for (std::uint64_t i = 0; i < 2000 && !struck_outside_tip_circle; ++i) {
+    const auto o = sim.simulate(i);
+    struck_outside_tip_circle |= std::abs(o.encounter.lateral) > s.spindles[0].blade.tip_radius() && o.fate != field::ObjectFate::NotReached;
+  }
+  CHECK(struck_outside_tip_circle);  // a blade reaches a stone whose centre lies just outside its tip circle
   // Every object drawn is of a size that can reach.
   for (std::uint64_t i = 0; i < 300; ++i) {
     const auto o = sim.simulate(i);
@@ -166,6 +173,23 @@ TEST_CASE("field: the combined interval covers a known rate 95 % of the time", "
   const double coverage = static_cast<double>(covered) / trials;
   CHECK(coverage >= 0.93);
   CHECK(coverage <= 0.985);
+  // A heavy stratum that expects less than one event beside a light one that sees many: the
+  // upper end still covers it (Fay and Feuer's interval adds one event of the heaviest weight).
+  {
+    int heavy_covered = 0;
+    const double light_rate = 0.2, heavy_rate = 0.0002, w_light = 0.01, w_heavy = 5.0;
+    const std::uint64_t n_light = 3000, n_heavy = 3000;
+    const double heavy_truth = w_light * light_rate + w_heavy * heavy_rate;
+    for (int t = 0; t < trials; ++t) {
+      random::Stream rng(9, static_cast<std::uint64_t>(t), 0, random::Purpose::Test);
+      field::CountSum light, heavy;
+      for (std::uint64_t i = 0; i < n_light; ++i) light.add(rng.uniform() < light_rate ? 1 : 0);
+      for (std::uint64_t i = 0; i < n_heavy; ++i) heavy.add(rng.uniform() < heavy_rate ? 1 : 0);
+      const auto e = field::combined({{light, w_light / n_light}, {heavy, w_heavy / n_heavy}});
+      heavy_covered += e.low <= heavy_truth && heavy_truth <= e.high;
+    }
+    CHECK(static_cast<double>(heavy_covered) / trials >= 0.93);
+  }
   // Nothing seen: Garwood's upper end, -ln 0.025 per object of the heaviest stratum.
   const auto none = field::combined({{field::CountSum{}, 2.0 / 1000}, {field::CountSum{}, 1.0 / 1000}});
   CHECK(none.value == 0);

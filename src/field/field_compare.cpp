@@ -138,7 +138,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     fd.file = designs[d].file, fd.title = designs[d].title;
     const double heaviest = 1000 * *std::max_element(weight[d].begin(), weight[d].end());
     for (std::size_t j = 0; j < figures; ++j)
-      fd.figures.push_back({names[j], quasi_poisson(total.sum[d * figures + j], total.squares[d * figures + j], -std::log(0.025) * heaviest)});
+      fd.figures.push_back({names[j], quasi_poisson(total.sum[d * figures + j], total.squares[d * figures + j], heaviest)});
     if (d > 0)
       for (std::size_t j = 0; j < figures; ++j) {
         const double mean = total.diff[(d - 1) * figures + j];

@@ -51,6 +51,9 @@ double probability_below(const scenario::FieldObjectSpec& o, double d) {
 }  // namespace
 
 FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine) : scenario_(with_field(s)) {
+  if (scenario_.field.objects_simulated < static_cast<long long>(scenario_.field.objects.size()))
+    throw scenario::InputError(scenario_.file, std::nullopt, "field.objects_simulated", std::to_string(scenario_.field.objects_simulated),
+                               fmt::format("at least one object of each of the {} kinds", scenario_.field.objects.size()));
   mower_ = std::make_unique<flight::Mower>(scenario_, engine);
   mower_->settings().ground_velocity = {-scenario_.field.ground_speed, 0.0, 0.0};  // the turf, seen from the travelling mower
   mower_->settings().soil_under_strikes = true;
@@ -119,15 +122,21 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
     }
     for (const auto& piece : reach.pieces) reach.share += (piece[1] - piece[0]) / whole;
     reach.share = std::min(1.0, reach.share);
+    if (!(reach.share > 0))
+      throw scenario::InputError(scenario_.file, std::nullopt, fmt::format("field.objects[{}]", k + 1), "",
+                                 "no size of these objects can reach a blade (none stands up to a blade's lower face, none is light "
+                                 "enough for the updraft): expected larger objects, less embedment, a lower cut or an updraft");
     sizes_.push_back(reach);
   }
 }
 
-double FieldSimulator::objects_per_metre(std::size_t kind) const {
-  return scenario_.field.objects[kind].per_area * (cut_to_ - cut_from_);
-}
+double FieldSimulator::objects_per_metre(std::size_t kind) const { return scenario_.field.objects[kind].per_area * met_width(kind); }
 
-double FieldSimulator::objects_per_metre() const { return total_per_area_ * (cut_to_ - cut_from_); }
+double FieldSimulator::objects_per_metre() const {
+  double sum = 0;
+  for (std::size_t k = 0; k < kinds(); ++k) sum += objects_per_metre(k);
+  return sum;
+}
 
 Encounter FieldSimulator::sample(std::uint64_t index, random::Stream& rng) const {
   Encounter e;
@@ -148,7 +157,7 @@ Encounter FieldSimulator::sample(std::uint64_t index, random::Stream& rng) const
   }
   const double size = size_at(o, at);
   e.body = projectile::Projectile::sphere(size, o.density * units::pi * size * size * size / 6.0);
-  e.lateral = cut_from_ + rng.uniform() * (cut_to_ - cut_from_);
+  e.lateral = cut_from_ - 0.5 * o.max_size + rng.uniform() * met_width(e.kind);
   e.height = 0.5 * size - o.embedment * size;  // its centre, sunk by its embedment
   // The updraft's drag against its weight: 1/2 rho u^2 C_d (pi d^2 / 4) > m g.
   const double u = scenario_.field.updraft_speed;
@@ -227,7 +236,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   // blade is then still in its way, the knife rides over it (swinging back on its pivot),
   // and it leaves along the ground with what the soil's friction left it.
   flight::FirstContact first{contact->spindle, contact->edge};
-  if (flight::soil_reaction(body.position, r, s.ground.friction, body.velocity) &&
+  if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().ground_velocity, body.velocity) &&
       (body.velocity + hit.spin_after.cross(contact->point - body.position) - spindle.velocity_at(contact->point)).dot(contact->normal) <= 0) {
     out.pressed = true;
     first.ridden_until = contact->time + 0.5 * units::pi / spindle.omega();

@@ -73,9 +73,11 @@ class FieldSimulator {
   const scenario::Scenario& scenario() const { return scenario_; }
   const flight::Mower& mower() const { return *mower_; }
   // The width the blades cut (the union of their tip circles across the travel), m, and
-  // where it lies.
+  // where it lies. Objects of a kind are met across it widened by half their largest size
+  // each side (a blade reaches an object whose centre lies that far outside its tip circle).
   double cut_from() const { return cut_from_; }
   double cut_to() const { return cut_to_; }
+  double met_width(std::size_t kind) const { return cut_to_ - cut_from_ + scenario_.field.objects[kind].max_size; }
   std::size_t kinds() const { return spindles_.size(); }
   // Objects of a kind the mower meets per metre travelled, and the share of them whose
   // size lets them reach a blade (the rest pass under untouched).

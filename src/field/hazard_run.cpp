@@ -93,13 +93,20 @@ Estimate combined(const std::vector<Stratum>& strata) {
     variance += s.weight_per_object * s.weight_per_object * static_cast<double>(s.counts.squares);
     largest = std::max(largest, s.weight_per_object);
   }
-  return quasi_poisson(mean, variance, -std::log(0.025) * largest);  // none seen: Garwood's upper end, in the heaviest stratum
+  return quasi_poisson(mean, variance, largest);
 }
 
-Estimate quasi_poisson(double mean, double variance, double zero_upper) {
-  if (!(mean > 0) || !(variance > 0)) return {0.0, 0.0, zero_upper};
+Estimate quasi_poisson(double mean, double variance, double heaviest) {
+  // Fay and Feuer's gamma interval for a weighted sum of Poisson counts (Statistics in
+  // Medicine 16, 1997): the lower end from a gamma of the estimate's mean and variance, the
+  // upper from one that adds an event of the heaviest weight, so that a stratum that saw
+  // nothing still widens it. With equal weights it is Garwood's exact Poisson interval.
+  const double w = heaviest;
+  const double high_shape = (mean + w) * (mean + w) / (variance + w * w), high_scale = (variance + w * w) / (mean + w);
+  const double high = w > 0 || mean > 0 ? boost::math::gamma_p_inv(high_shape, 0.975) * high_scale : 0.0;
+  if (!(mean > 0) || !(variance > 0)) return {0.0, 0.0, high};
   const double scale = variance / mean, effective = mean / scale;
-  return {mean, boost::math::gamma_p_inv(effective, 0.025) * scale, boost::math::gamma_p_inv(effective + 1, 0.975) * scale};
+  return {mean, boost::math::gamma_p_inv(effective, 0.025) * scale, high};
 }
 
 std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRun& run) {
@@ -239,8 +246,14 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
     r.hazardous_per_km = rate.scaled(1000);
     const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person;
     const double band = person ? f.person_height : f.windshield_top - f.windshield_bottom;
-    r.hazardous_per_area = rate.scaled(1.0 / band);
-    if (person) r.probability = struck(r.hazardous_per_area, f.presented_area);
+    // Beside the path, the plane runs along the whole pass: a rate per metre travelled is a
+    // flux per metre of the plane's length. Ahead or behind it stands across the path, d from
+    // the mower at each strike: per km only.
+    r.along_path = r.plane.side == scenario::FieldPlaneSpec::Side::Left || r.plane.side == scenario::FieldPlaneSpec::Side::Right;
+    if (r.along_path) {
+      r.hazardous_per_area = rate.scaled(1.0 / band);
+      if (person) r.probability = struck(r.hazardous_per_area, f.presented_area);
+    }
     s.planes.push_back(std::move(r));
   }
   return s;

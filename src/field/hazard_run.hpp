@@ -28,9 +28,9 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
 // A rate per metre travelled from the strata's per-object counts: the sum over kinds of
 // w_k S_k / N_k (w_k: the kind's objects met per metre that can reach a blade, N_k its
 // objects simulated), with a 95 % interval. The per-object counts' squares give the
-// variance V = sum (w_k / N_k)^2 Q_k, and the interval is Garwood's exact Poisson one on the
-// effective number of independent events mean^2 / V, scaled back (quasi-Poisson): honest at
-// zero and for objects that strike more than once.
+// variance V = sum (w_k / N_k)^2 Q_k; the interval is Fay and Feuer's gamma interval for a
+// weighted sum of counts (quasi_poisson): honest at zero, for objects that strike more than
+// once, and when the stratum of the heaviest weight saw nothing.
 struct Estimate {
   double value = 0, low = 0, high = 0;
   Estimate scaled(double f) const { return {value * f, low * f, high * f}; }
@@ -40,8 +40,9 @@ struct Stratum {
   double weight_per_object = 0;  // w_k / N_k
 };
 Estimate combined(const std::vector<Stratum>& strata);
-// The same interval from an estimate's mean and variance (none seen: [0, zero_upper]).
-Estimate quasi_poisson(double mean, double variance, double zero_upper);
+// The same interval from an estimate's mean and variance and the largest weight one event
+// can carry (Fay and Feuer's gamma interval).
+Estimate quasi_poisson(double mean, double variance, double heaviest);
 
 // One direction's curve: at each distance, the density of hazardous impacts a person there
 // meets in one pass of the mower (per m^2), and the probability of being struck.
@@ -63,6 +64,7 @@ struct PlaneResult {
   Estimate hazardous_per_km;    // within the receptor's band, with at least its energy
   Estimate hazardous_per_area;  // per m^2 of the band, per pass (a person standing at the plane)
   Estimate probability;         // person: struck in one pass, 1 - exp(-flux A); vehicle: empty
+  bool along_path = true;       // left or right: the per-area figures hold; ahead or behind: per km only
   std::vector<double> per_km_by_height;  // every crossing, by 0.25 m band
 };
 

@@ -120,6 +120,7 @@ void HazardTally::unpack(const std::string& bytes) {
 }
 
 void ObjectWatch::thrown(double mass, double strike_time) {
+  watching_ = true;
   mass_ = mass, strike_time_ = strike_time, ground_speed_ = tally_.layout.ground_speed;
   landed_ = false, farthest_ = -1, impact_count_ = 0, hazardous_total_ = 0;
   plane_hazards_.assign(tally_.planes.size(), 0);
@@ -175,7 +176,7 @@ void ObjectWatch::met_ground(double t, const Vec3& point, const Vec3& velocity, 
   const double distance = std::hypot(g.x(), g.y());
   farthest_ = std::max(farthest_, distance);
   tally_.max_distance = std::max(tally_.max_distance, distance);
-  if (energy < l.person_energy) return;
+  if (!(energy >= l.person_energy)) return;
   ++hazardous_total_;
   if (cell < 0) {
     ++tally_.hazardous_beyond_square;
@@ -188,7 +189,10 @@ void ObjectWatch::met_ground(double t, const Vec3& point, const Vec3& velocity, 
 
 void ObjectWatch::finish(const ObjectOutcome& outcome) {
   tally_.add(outcome);
-  const bool thrown = outcome.fate == ObjectFate::Thrown || outcome.fate == ObjectFate::CutOff;
+  // Only an object whose flight was watched has counts of its own (one cut off before its
+  // flight, by the strike's search, has none: the last object's must not be taken for its).
+  const bool thrown = watching_ && (outcome.fate == ObjectFate::Thrown || outcome.fate == ObjectFate::CutOff);
+  watching_ = false;
   if (!thrown || outcome.flight.fate == flight::Fate::NotStruck) {
     // Not thrown: none of its own counts (thrown() was not called for it).
     landed_ = false, hazardous_total_ = 0, impact_count_ = 0;

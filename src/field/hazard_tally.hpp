@@ -138,6 +138,7 @@ class ObjectWatch final : public FieldSimulator::Watch, public flight::FlightObs
   Vec3 ground(double t, const Vec3& p) const { return p + Vec3(ground_speed_ * (t - strike_time_), 0, 0); }
   HazardTally& tally_;
   double mass_ = 0, strike_time_ = 0, ground_speed_ = 0;
+  bool watching_ = false;  // thrown() was called for the object under way
   bool landed_ = false;
   double farthest_ = -1;
   static constexpr int kMaxImpacts = 256;

@@ -356,7 +356,8 @@ void NailFlight::restrike(const strike::Contact& k) {
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
   b.velocity = out.velocity_after;
   if (set.soil_under_strikes &&
-      soil_reaction(b.position, nail.half_segment() + nail.radius(), set.materials.of(scene::Surface::Ground, 0).friction, b.velocity) &&
+      soil_reaction(b.position, nail.half_segment() + nail.radius(), set.materials.of(scene::Surface::Ground, 0).friction, set.ground_velocity,
+                    b.velocity) &&
       (b.velocity + out.spin_after.cross(k.point - b.position) - sp.velocity_at(k.point)).dot(k.normal) <= 0)
     ride_over(k.spindle, k.time);
   // The spin about the nail's own axis (from friction at its surface) is left out: it

@@ -178,14 +178,15 @@ double effective_mass(const projectile::Projectile& nail, const Vec3& axis, cons
   return 1.0 / (1.0 / nail.mass + rn.dot(strike::inverse_inertia(nail, axis) * rn));
 }
 
-bool soil_reaction(const Vec3& centre, double radius, double mu, Vec3& velocity) {
+bool soil_reaction(const Vec3& centre, double radius, double mu, const Vec3& turf, Vec3& velocity) {
   if (!(centre.z() - radius <= 1e-3) || !(velocity.z() < 0)) return false;
   const double into = -velocity.z();
   velocity.z() = 0;
-  const double along = std::hypot(velocity.x(), velocity.y());
+  const double sx = velocity.x() - turf.x(), sy = velocity.y() - turf.y();  // the slip over the turf
+  const double along = std::hypot(sx, sy);
   if (along > 0) {
     const double kept = std::max(0.0, along - mu * into) / along;
-    velocity.x() *= kept, velocity.y() *= kept;
+    velocity.x() = turf.x() + sx * kept, velocity.y() = turf.y() + sy * kept;
   }
   return true;
 }

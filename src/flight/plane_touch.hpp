@@ -54,6 +54,8 @@ void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& a
 // object touching the soil (its lowest point within a millimetre of it, or in it) whose
 // velocity points into it; otherwise nothing happens. Without it the rigid blade and rigid
 // ground would trade impulses at one instant without end (a wedge). Returns whether it acted.
-bool soil_reaction(const Vec3& centre, double radius, double mu, Vec3& velocity);
+// `turf`: the ground's velocity (a field's, moving under the mower); friction acts on the
+// slip against it.
+bool soil_reaction(const Vec3& centre, double radius, double mu, const Vec3& turf, Vec3& velocity);
 
 }  // namespace j232::flight

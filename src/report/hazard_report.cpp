@@ -144,9 +144,11 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
                {"receptor", receptor_name(r.plane.receptor)},
                {"crossings_per_km", r.crossings_per_km},
                {"hazardous_per_km", estimate_json(r.hazardous_per_km)},
-               {"hazardous_per_m2_per_pass", estimate_json(r.hazardous_per_area)},
+               {"hazardous_per_m2_per_pass", r.along_path ? estimate_json(r.hazardous_per_area) : json(nullptr)},
                {"crossings_per_km_by_height", {{"band_m", field::kHeightBand}, {"per_km", r.per_km_by_height}, {"note", "the last band: 4 m and above"}}}};
-    if (r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person) pj["p_struck_per_pass"] = estimate_json(r.probability);
+    if (r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path) pj["p_struck_per_pass"] = estimate_json(r.probability);
+    if (!r.along_path)
+      pj["note"] = "a plane across the path, this far ahead of (behind) the mower at each object's strike: per km only";
     planes.push_back(pj);
   }
   json reach = json::array();
@@ -220,8 +222,9 @@ std::string hazard_csv(const field::HazardSummary& sum) {
   for (const auto& r : sum.planes) {
     const auto& h = r.hazardous_per_km;
     const auto& a = r.hazardous_per_area;
-    const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person;
-    o += fmt::format("plane,{},{:g},{:.6g},{:.6g},{:.6g},{},{},{},{:.6g},{:.6g},{:.6g}\n", r.plane.name, r.plane.distance, a.value, a.low, a.high,
+    const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path;
+    const std::string area = r.along_path ? fmt::format("{:.6g},{:.6g},{:.6g}", a.value, a.low, a.high) : ",,";
+    o += fmt::format("plane,{},{:g},{},{},{},{},{:.6g},{:.6g},{:.6g}\n", r.plane.name, r.plane.distance, area,
                      person ? fmt::format("{:.6g}", r.probability.value) : "", person ? fmt::format("{:.6g}", r.probability.low) : "",
                      person ? fmt::format("{:.6g}", r.probability.high) : "", h.value, h.low, h.high);
   }
@@ -387,7 +390,7 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     o += "<h2>Planes beside the path</h2>\n<table><tr><th>plane</th><th>where</th><th>receptor</th><th>crossings per km mowed</th>"
          "<th>hazardous per km mowed (95 %)</th><th>person standing there: P(struck) in one pass (95 %)</th></tr>\n";
     for (const auto& r : sum.planes) {
-      const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person;
+      const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path;
       o += fmt::format("<tr><td>{}</td><td>{} {:g} m</td><td>{}</td><td>{:.3g}</td><td>{:.3g} ({:.3g}-{:.3g})</td><td>{}</td></tr>\n",
                        escape(r.plane.name), side_name(r.plane.side), r.plane.distance, receptor_name(r.plane.receptor), r.crossings_per_km,
                        r.hazardous_per_km.value, r.hazardous_per_km.low, r.hazardous_per_km.high,

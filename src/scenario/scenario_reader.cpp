@@ -527,6 +527,7 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
                                  Range::between(0.001, 0.3));
     obj.max_size = o.quantity_or("max_size", Kind::Length, one_size ? obj.median_size : std::max(obj.max_size, obj.median_size),
                                  Range::between(0.001, 0.3));
+    if (obj.min_size == obj.max_size) obj.spread = 1.0;  // one size: nothing to spread
     if (!(obj.min_size <= obj.median_size && obj.median_size <= obj.max_size))
       throw o.error("median_size", fmt::format("expected min_size ({:g} m) <= median_size ({:g} m) <= max_size ({:g} m)", obj.min_size,
                                                obj.median_size, obj.max_size));
