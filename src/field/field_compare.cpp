@@ -136,9 +136,22 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   for (std::size_t d = 0; d < nd; ++d) {
     FieldDesign fd;
     fd.file = designs[d].file, fd.title = designs[d].title;
-    const double heaviest = 1000 * *std::max_element(weight[d].begin(), weight[d].end());
-    for (std::size_t j = 0; j < figures; ++j)
-      fd.figures.push_back({names[j], quasi_poisson(total.sum[d * figures + j], total.squares[d * figures + j], heaviest)});
+    // The heaviest weight among the kinds that can make each figure's event (a hazardous one
+    // needs the energy).
+    auto heaviest = [&](double threshold) {
+      double h = 0;
+      for (std::size_t k = 0; k < weight[d].size(); ++k)
+        if (sims[d]->energy_bound(k) >= threshold) h = std::max(h, 1000 * weight[d][k]);
+      return h;
+    };
+    const auto& fs = designs.front().field;
+    for (std::size_t j = 0; j < figures; ++j) {
+      double threshold = 0;
+      if (j == 2) threshold = fs.person_energy;
+      if (j >= 3 && (j - 3) % 2 == 1)
+        threshold = first_planes[(j - 3) / 2].receptor == scenario::FieldPlaneSpec::Receptor::Person ? fs.person_energy : fs.vehicle_energy;
+      fd.figures.push_back({names[j], quasi_poisson(total.sum[d * figures + j], total.squares[d * figures + j], heaviest(threshold))});
+    }
     if (d > 0)
       for (std::size_t j = 0; j < figures; ++j) {
         const double mean = total.diff[(d - 1) * figures + j];

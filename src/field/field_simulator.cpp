@@ -126,6 +126,12 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
       throw scenario::InputError(scenario_.file, std::nullopt, fmt::format("field.objects[{}]", k + 1), "",
                                  "no size of these objects can reach a blade (none stands up to a blade's lower face, none is light "
                                  "enough for the updraft): expected larger objects, less embedment, a lower cut or an updraft");
+    if (!reach.pieces.empty()) {
+      const double largest = size_at(o, reach.pieces.back()[1]);
+      const double mass = o.density * units::pi * largest * largest * largest / 6;
+      const double speed = 2.2 * scenario_.tip_speed() + scenario_.field.ground_speed;
+      reach.energy_bound = 0.5 * mass * speed * speed + mass * units::standard_gravity * 5.0;
+    }
     sizes_.push_back(reach);
   }
 }

@@ -83,6 +83,11 @@ class FieldSimulator {
   // size lets them reach a blade (the rest pass under untouched).
   double objects_per_metre(std::size_t kind) const;
   double reach_share(std::size_t kind) const { return sizes_[kind].share; }
+  // A bound on the kinetic energy any object of a kind can have after the blades threw it:
+  // its largest size that reaches a blade, at (1 + e) <= 2 times the fastest tip speed with a
+  // margin, plus the mower's travel and a fall of 5 m. A kind whose bound is below an energy
+  // threshold can make no event of it (its stratum does not widen that figure's interval).
+  double energy_bound(std::size_t kind) const { return sizes_[kind].energy_bound; }
   // Objects the mower meets per metre travelled (every kind).
   double objects_per_metre() const;
 
@@ -99,6 +104,7 @@ class FieldSimulator {
   struct ReachableSizes {
     std::vector<std::array<double, 2>> pieces;
     double share = 0;
+    double energy_bound = 0;  // J
   };
   std::vector<ReachableSizes> sizes_;
 };

@@ -91,7 +91,7 @@ Estimate combined(const std::vector<Stratum>& strata) {
   for (const auto& s : strata) {
     mean += s.weight_per_object * static_cast<double>(s.counts.sum);
     variance += s.weight_per_object * s.weight_per_object * static_cast<double>(s.counts.squares);
-    largest = std::max(largest, s.weight_per_object);
+    if (s.possible) largest = std::max(largest, s.weight_per_object);
   }
   return quasi_poisson(mean, variance, largest);
 }
@@ -221,7 +221,8 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
     // in a band one cell wide, summed over the distances the mower passes through.
     for (int k = 0; k < l.half_cells; ++k) {
       c.distance.push_back(d < 2 ? (k + 0.5) * l.cell : k * l.cell);
-      for (std::size_t j = 0; j < kinds; ++j) strata[j] = {run.kinds[j].directions[d][static_cast<std::size_t>(k)], w[j]};
+      for (std::size_t j = 0; j < kinds; ++j)
+        strata[j] = {run.kinds[j].directions[d][static_cast<std::size_t>(k)], w[j], sim.energy_bound(j) >= f.person_energy};
       const Estimate q = combined(strata).scaled(1.0 / l.cell);
       c.density.push_back(q);
       c.probability.push_back(struck(q, f.presented_area));
@@ -240,7 +241,8 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
         r.per_km_by_height[static_cast<std::size_t>(b)] += c;
         r.crossings_per_km += c;
       }
-      strata[j] = {pt.hazardous, w[j]};
+      const double threshold = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person ? f.person_energy : f.vehicle_energy;
+      strata[j] = {pt.hazardous, w[j], sim.energy_bound(j) >= threshold};
     }
     const Estimate rate = combined(strata);  // per metre travelled
     r.hazardous_per_km = rate.scaled(1000);

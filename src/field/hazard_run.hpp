@@ -38,6 +38,7 @@ struct Estimate {
 struct Stratum {
   CountSum counts;
   double weight_per_object = 0;  // w_k / N_k
+  bool possible = true;          // its objects can make the event counted (energy_bound above the threshold)
 };
 Estimate combined(const std::vector<Stratum>& strata);
 // The same interval from an estimate's mean and variance and the largest weight one event

@@ -565,10 +565,20 @@ bool NailFlight::slide(const scene::Hit& hit) {
     }
     slide /= speed;
     const double distance = speed * speed / (2 * decel);
-    const Vec3 from = b.position + kLift * up;
+    // Its centre slides just above the ground (a lying nail's), or a sphere's radius above it;
+    // a sphere also looks for walls near its top, which meets a skirt's lower edge its centre
+    // would pass under (a field's stone rolling at a deck).
+    const double lift = std::max(kLift, nail.radius());
+    const Vec3 from = b.position + lift * up;
     ++r.queries;
-    const auto wall = ctx.scene->first_hit(from, slide, distance, skip);
+    auto wall = ctx.scene->first_hit(from, slide, distance, skip);
+    if (nail.radius() > kLift) {
+      ++r.queries;
+      if (auto top = ctx.scene->first_hit(from + 0.9 * nail.radius() * up, slide, wall ? wall->distance : distance, skip)) wall = top;
+    }
+    const double t0 = b.time;
     if (!wall) {
+      if (ctx.observer) ctx.observer->flew(t0, from, speed * slide, t0 + speed / decel, from + distance * slide, Vec3::Zero());
       moved(from, from + distance * slide);
       b.position = from + distance * slide;
       b.time += speed / decel;
@@ -581,8 +591,10 @@ bool NailFlight::slide(const scene::Hit& hit) {
     const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
     b.time += (speed - arrive) / decel;
     last_event = b.time;
-    moved(from, wall->point);
-    b.position = wall->point;
+    const Vec3 at = from + wall->distance * slide;  // its centre where it meets the wall (the wall's point, for a lying nail)
+    if (ctx.observer) ctx.observer->flew(t0, from, speed * slide, b.time, at, arrive * slide);
+    moved(from, nail.radius() > kLift ? at : wall->point);
+    b.position = nail.radius() > kLift ? at : wall->point;
     b.velocity = arrive * slide;
     skip = {};
     skip.add(wall->face);
