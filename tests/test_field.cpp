@@ -357,3 +357,18 @@ TEST_CASE("field: designs compared object by object, with common random numbers"
   const auto one = field::compare_fields({without, with}, 1);
   for (std::size_t j = 0; j < one.designs[1].differences.size(); ++j) CHECK(one.designs[1].differences[j].per_km.value == c.designs[1].differences[j].per_km.value);
 }
+
+TEST_CASE("field: the strips' vertical planes count what an explicit plane at the same distance counts", "[field]") {
+  std::string with_plane = kStones + "[[field.planes]]\nname = \"path\"\nside = \"left\"\ndistance = \"2.5 m\"\n";
+  auto s = read(kMower + with_plane);
+  s.field.objects_simulated = 3000;
+  const field::FieldSimulator sim(s);
+  const auto run = field::run_hazard(sim, 2);
+  const auto& t = run.kinds[0];
+  // The strip plane at (2 + 1/2) cells on the left is the path's plane.
+  CHECK(t.vertical[0][2].sum == t.planes[1].hazardous.sum);
+  CHECK(t.vertical[0][2].squares == t.planes[1].hazardous.squares);
+  CHECK(t.planes[1].hazardous.sum > 0);
+  const auto sum = field::summarise(sim, run);
+  CHECK(sum.directions[0].vertical[2].value == Approx(sum.planes[1].hazardous_per_area.value));
+}

@@ -209,8 +209,10 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
 
   static const char* names[] = {"left", "right", "front", "rear"};
   static const char* meanings[] = {
-      "a person standing this far to the left of the mower's centre line while it mows past (one pass)",
-      "a person standing this far to the right of the mower's centre line while it mows past (one pass)",
+      "a person standing this far to the left of the mower's centre line while it mows past (one pass): the larger of the "
+      "hazardous impacts per m2 of ground there and the hazardous crossings per m2 of the vertical plane there",
+      "a person standing this far to the right of the mower's centre line while it mows past (one pass): the larger of the "
+      "hazardous impacts per m2 of ground there and the hazardous crossings per m2 of the vertical plane there",
       "a person on the mower's line ahead of it, whom it approaches to no nearer than this",
       "a person on the mower's line behind it, from whom it moves away from this distance on"};
   std::vector<Stratum> strata(kinds);
@@ -225,9 +227,19 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
         strata[j] = {run.kinds[j].directions[d][static_cast<std::size_t>(k)], w[j], sim.energy_bound(j) >= f.person_energy};
       const Estimate q = combined(strata).scaled(1.0 / l.cell);
       c.density.push_back(q);
-      c.probability.push_back(struck(q, f.presented_area));
+      Estimate exposure = q;
+      if (d < 2) {
+        // The plane along the path there: crossings per metre travelled over the person's height.
+        for (std::size_t j = 0; j < kinds; ++j)
+          strata[j] = {run.kinds[j].vertical[d][static_cast<std::size_t>(k)], w[j], sim.energy_bound(j) >= f.person_energy};
+        const Estimate v = combined(strata).scaled(1.0 / f.person_height);
+        c.vertical.push_back(v);
+        exposure = {std::max(q.value, v.value), std::max(q.low, v.low), std::max(q.high, v.high)};
+      }
+      c.exposure.push_back(exposure);
+      c.probability.push_back(struck(exposure, f.presented_area));
     }
-    hazard_distance(c.density, l.cell, s.acceptable_density, c);
+    hazard_distance(c.exposure, l.cell, s.acceptable_density, c);
     s.directions.push_back(std::move(c));
   }
   for (std::size_t p = 0; p < f.planes.size(); ++p) {

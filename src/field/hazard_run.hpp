@@ -51,8 +51,10 @@ struct DirectionCurve {
   std::string direction;  // "left", "right", "front", "rear"
   std::string meaning;    // what a point of the curve is, in words
   std::vector<double> distance;  // m
-  std::vector<Estimate> density;     // hazardous impacts per m^2 per pass
-  std::vector<Estimate> probability;  // of a person there being struck, 1 - exp(-q A)
+  std::vector<Estimate> density;     // hazardous ground impacts per m^2 per pass
+  std::vector<Estimate> vertical;    // beside the path: hazardous crossings per m^2 of the vertical plane there, per pass
+  std::vector<Estimate> exposure;    // the larger of the two (ahead, behind: the ground's): what a person there meets
+  std::vector<Estimate> probability;  // of a person there being struck, 1 - exp(-exposure A)
   // Where the density falls below the acceptable one for good (estimate; on the interval's
   // upper end: the conservative one); beyond_range when it never does within the range.
   double hazard_distance = 0, hazard_distance_upper = 0;

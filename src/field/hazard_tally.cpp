@@ -45,6 +45,7 @@ HazardTally::HazardTally(const HazardLayout& l)
       hazardous(landings.size()),
       planes(l.planes.size()) {
   for (auto& d : directions) d.resize(static_cast<std::size_t>(l.half_cells));
+  for (auto& d : vertical) d.resize(static_cast<std::size_t>(l.half_cells));
 }
 
 void HazardTally::add(const ObjectOutcome& o) {
@@ -122,7 +123,7 @@ void HazardTally::unpack(const std::string& bytes) {
 void ObjectWatch::thrown(double mass, double strike_time) {
   watching_ = true;
   mass_ = mass, strike_time_ = strike_time, ground_speed_ = tally_.layout.ground_speed;
-  landed_ = false, farthest_ = -1, impact_count_ = 0, hazardous_total_ = 0;
+  landed_ = false, farthest_ = -1, impact_count_ = 0, hazardous_total_ = 0, side_crossing_count_ = 0;
   plane_hazards_.assign(tally_.planes.size(), 0);
   plane_crossings_.assign(tally_.planes.size(), 0);
 }
@@ -142,6 +143,23 @@ double at(const scenario::FieldPlaneSpec& p) {
 void ObjectWatch::flew(double t0, const Vec3& p0, const Vec3& v0, double t1, const Vec3& p1, const Vec3& v1) {
   const HazardLayout& l = tally_.layout;
   const Vec3 g0 = ground(t0, p0), g1 = ground(t1, p1);
+  // The side planes at (k + 1/2) cells it crosses, each way, below a person's height with a
+  // person's hazardous energy.
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0, u0 = sign * g0.y(), u1 = sign * g1.y();
+    if (u0 == u1) continue;
+    const int first = std::max(0, static_cast<int>(std::ceil(std::min(u0, u1) / l.cell - 0.5)));
+    const int last = std::min(l.half_cells - 1, static_cast<int>(std::floor(std::max(u0, u1) / l.cell - 0.5)));
+    for (int k = first; k <= last; ++k) {
+      const double f = ((k + 0.5) * l.cell - u0) / (u1 - u0);
+      if (!(f > 0 && f <= 1)) continue;
+      const double z = g0.z() + f * (g1.z() - g0.z());
+      const double energy = 0.5 * mass_ * (v0 + f * (v1 - v0) + Vec3(ground_speed_, 0, 0)).squaredNorm();
+      if (!(z <= l.person_height && energy >= l.person_energy)) continue;
+      if (side_crossing_count_ < kMaxImpacts) side_crossings_[static_cast<std::size_t>(side_crossing_count_)] = side * l.half_cells + k;
+      ++side_crossing_count_;
+    }
+  }
   for (std::size_t i = 0; i < l.planes.size(); ++i) {
     const auto& plane = l.planes[i];
     const double c0 = across(plane, g0) - at(plane), c1 = across(plane, g1) - at(plane);
@@ -202,7 +220,18 @@ void ObjectWatch::finish(const ObjectOutcome& outcome) {
   }
   const HazardLayout& l = tally_.layout;
   if (farthest_ >= 0) ++tally_.farthest[std::min(tally_.farthest.size() - 1, static_cast<std::size_t>(farthest_ / 0.25))];
-  if (impact_count_ > kMaxImpacts) ++tally_.overflow;
+  if (impact_count_ > kMaxImpacts || side_crossing_count_ > kMaxImpacts) ++tally_.overflow;
+  {
+    const int m = std::min(side_crossing_count_, kMaxImpacts);
+    std::sort(side_crossings_.begin(), side_crossings_.begin() + m);
+    for (int i = 0; i < m;) {
+      int j = i;
+      while (j < m && side_crossings_[static_cast<std::size_t>(j)] == side_crossings_[static_cast<std::size_t>(i)]) ++j;
+      const int key = side_crossings_[static_cast<std::size_t>(i)];
+      tally_.vertical[static_cast<std::size_t>(key / l.half_cells)][static_cast<std::size_t>(key % l.half_cells)].add(static_cast<std::uint64_t>(j - i));
+      i = j;
+    }
+  }
   const int n = std::min(impact_count_, kMaxImpacts);
   // Beside the path: this object's impacts in each strip (its count and its square).
   std::array<int, kMaxImpacts> strips{};

@@ -74,6 +74,10 @@ class HazardTally {
   // lateral distance (left, right), and on the mower's line (|y| < cell / 2) at that
   // distance or farther ahead (front) or behind (rear).
   std::array<std::vector<CountSum>, 4> directions;  // left, right, front, rear
+  // Per distance bin k, left and right: hazardous crossings, below the person's height, of
+  // the vertical plane along the path at (k + 1/2) cells (a person standing there is struck
+  // by what flies or skids through, not only by what comes down).
+  std::array<std::vector<CountSum>, 2> vertical;
   std::vector<PlaneTally> planes;
   std::array<std::uint64_t, 400> exit_speed{};       // 0.5 m/s bins: speed off the blade, ground frame
   std::array<std::uint64_t, 180> launch_elevation{};  // 1 deg bins from -90 deg
@@ -104,6 +108,7 @@ class HazardTally {
     f(a.landings, b.landings);
     f(a.hazardous, b.hazardous);
     for (std::size_t d = 0; d < a.directions.size(); ++d) f(a.directions[d], b.directions[d]);
+    for (std::size_t d = 0; d < a.vertical.size(); ++d) f(a.vertical[d], b.vertical[d]);
     for (std::size_t p = 0; p < a.planes.size(); ++p) {
       f(a.planes[p].by_height, b.planes[p].by_height);
       f(a.planes[p].by_energy, b.planes[p].by_energy);
@@ -144,6 +149,8 @@ class ObjectWatch final : public FieldSimulator::Watch, public flight::FlightObs
   static constexpr int kMaxImpacts = 256;
   std::array<std::array<double, 2>, kMaxImpacts> impacts_{};  // hazardous ground impacts, ground frame
   int impact_count_ = 0;
+  std::array<int, kMaxImpacts> side_crossings_{};  // hazardous crossings of the side planes: side * half_cells + bin
+  int side_crossing_count_ = 0;
   std::vector<std::uint64_t> plane_hazards_, plane_crossings_;  // this object's, per plane
   int hazardous_total_ = 0;
 };

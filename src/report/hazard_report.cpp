@@ -132,8 +132,13 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
                          {"beyond_range", d.beyond_range},
                          {"conservative_beyond_range", d.upper_beyond_range}});
     json points = json::array();
-    for (std::size_t k = 0; k < d.distance.size(); ++k)
-      points.push_back({{"distance_m", d.distance[k]}, {"density_per_m2", estimate_json(d.density[k])}, {"p_struck", estimate_json(d.probability[k])}});
+    for (std::size_t k = 0; k < d.distance.size(); ++k) {
+      json point = {{"distance_m", d.distance[k]}, {"density_per_m2", estimate_json(d.density[k])}};
+      if (!d.vertical.empty()) point["vertical_flux_per_m2"] = estimate_json(d.vertical[k]);
+      point["exposure_per_m2"] = estimate_json(d.exposure[k]);
+      point["p_struck"] = estimate_json(d.probability[k]);
+      points.push_back(point);
+    }
     curves.push_back({{"direction", d.direction}, {"meaning", d.meaning}, {"points", points}});
   }
   json planes = json::array();
@@ -213,9 +218,11 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
 
 std::string hazard_csv(const field::HazardSummary& sum) {
   std::string o = "what,name,distance_m,density_per_m2,density_low,density_high,p_struck,p_struck_low,p_struck_high,per_km,per_km_low,per_km_high\n";
+  // A direction's density: what a person there meets (beside the path, the larger of the
+  // ground's impacts and the vertical plane's crossings per m2; hazard.json has both).
   for (const auto& d : sum.directions)
     for (std::size_t k = 0; k < d.distance.size(); ++k) {
-      const auto &q = d.density[k], &p = d.probability[k];
+      const auto &q = d.exposure[k], &p = d.probability[k];
       o += fmt::format("direction,{},{:g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},,,\n", d.direction, d.distance[k], q.value, q.low, q.high,
                        p.value, p.low, p.high);
     }
@@ -350,8 +357,10 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
       s.field.ground_speed * 3.6, sum.cut_width, sum.objects_per_km, sum.reaching_per_km, sum.thrown_per_km, sum.objects);
   o += "<h2>Hazard distances</h2>\n";
   o += fmt::format(
-      "<p>How far from the mower a person must be for the density of hazardous impacts (objects with at least {:g} J) in one "
-      "pass to fall below one per {:g} m&sup2; for good; the conservative distance uses the 95 % interval's upper end.</p>\n",
+      "<p>How far from the mower a person must be for the hazardous objects (with at least {:g} J) they meet in one pass to "
+      "fall below one per {:g} m&sup2; for good: beside the path, the larger of those coming down per m&sup2; of ground and "
+      "those flying or skidding through per m&sup2; of the vertical plane there; ahead and behind, those coming down on the "
+      "mower's line. The conservative distance uses the 95 % interval's upper end.</p>\n",
       s.field.person_energy, s.field.acceptable_area);
   o += "<table><tr><th>direction</th><th>who</th><th>estimate</th><th>conservative</th></tr>\n";
   const double range = layout.range;
@@ -365,7 +374,7 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   double far = 5;
   for (const auto& d : sum.directions)
     for (std::size_t k = 0; k < d.distance.size(); ++k)
-      if (d.density[k].high >= 0.1 * sum.acceptable_density) far = std::max(far, d.distance[k] + 2);
+      if (d.exposure[k].value > 0 || d.exposure[k].high >= sum.acceptable_density) far = std::max(far, d.distance[k] + 2);
   far = std::min(far, range);
   for (std::size_t i = 0; i < sum.directions.size(); ++i) {
     const auto& d = sum.directions[i];
