@@ -245,7 +245,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().ground_velocity, body.velocity) &&
       (body.velocity + hit.spin_after.cross(contact->point - body.position) - spindle.velocity_at(contact->point)).dot(contact->normal) <= 0) {
     out.pressed = true;
-    first.ridden_until = contact->time + 0.5 * units::pi / spindle.omega();
+    first.ridden_until = contact->time + flight::kRideOverTurn / spindle.omega();
   }
   body.axis = contact->axis;
   body.spin = hit.spin_after - hit.spin_after.dot(body.axis) * body.axis;  // flight follows the axis (a sphere's: any)

@@ -59,6 +59,8 @@ void HazardTally::add(const ObjectOutcome& o) {
     ++launch_elevation[static_cast<std::size_t>(deg)];
   }
   if (o.flight.fate == flight::Fate::Contained || o.flight.fate == flight::Fate::StoppedByGuard) ++at_rest_under_deck;
+  if (o.pressed || o.flight.ridden_over > 0) ++ridden_over;
+  if (o.flight.pushed_along > 0) ++pushed_along;
   const Eigen::Vector3d end = o.flight.end_position + Eigen::Vector3d(layout.ground_speed * o.flight.flight_time, 0, 0);
   if (std::abs(end.x()) > layout.range || std::abs(end.y()) > layout.range) ++left_square;
 }

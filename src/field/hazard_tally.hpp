@@ -68,6 +68,10 @@ class HazardTally {
   std::uint64_t landed_beyond_square = 0;     // first came down outside the square
   std::uint64_t hazardous_beyond_square = 0;  // hazardous ground impacts outside the square
   std::uint64_t overflow = 0;                 // objects with more hazardous impacts than an object's record holds
+  // Objects a knife rode over (pressed into the soil) at least once, and objects pushed
+  // along by an arm (a pass resolved as a sustained push) at least once: how much rests on
+  // those two rules (docs/model.md §9.1).
+  std::uint64_t ridden_over = 0, pushed_along = 0;
   std::vector<std::uint64_t> landings;   // [cell]: objects first coming down there (outside the deck)
   std::vector<std::uint64_t> hazardous;  // [cell]: ground impacts with at least the person's energy
   // Per distance bin k (k cells out): hazardous impacts in the strip beside the path at that
@@ -105,6 +109,8 @@ class HazardTally {
     f(a.landed_beyond_square, b.landed_beyond_square);
     f(a.hazardous_beyond_square, b.hazardous_beyond_square);
     f(a.overflow, b.overflow);
+    f(a.ridden_over, b.ridden_over);
+    f(a.pushed_along, b.pushed_along);
     f(a.landings, b.landings);
     f(a.hazardous, b.hazardous);
     for (std::size_t d = 0; d < a.directions.size(); ++d) f(a.directions[d], b.directions[d]);

@@ -133,8 +133,9 @@ struct NailFlight {
   std::size_t ridden_spindle = first.spindle;
   double ridden_until = first.ridden_until;
   void ride_over(std::size_t spindle, double time) {
+    ++r.ridden_over;
     ridden_spindle = spindle;
-    ridden_until = time + 0.5 * units::pi / (*ctx.spindles)[spindle].omega();
+    ridden_until = time + kRideOverTurn / (*ctx.spindles)[spindle].omega();
   }
   bool at_board = false;
   bool cut_off = false;
@@ -363,7 +364,7 @@ void NailFlight::restrike(const strike::Contact& k) {
   // The spin about the nail's own axis (from friction at its surface) is left out: it
   // holds under 1/200 of the energy of its tumbling, and flight follows the axis only.
   b.spin = out.spin_after - out.spin_after.dot(b.axis) * b.axis;
-  if (sustained) b.velocity = sp.velocity_at(k.point), b.spin = Vec3::Zero();
+  if (sustained) b.velocity = sp.velocity_at(k.point), b.spin = Vec3::Zero(), ++r.pushed_along;
   if (on_blade) r.launch_velocity = b.velocity;  // its launch: the last contact before it touches anything else
   ++r.strikes;
   touch(Touch::Blade);

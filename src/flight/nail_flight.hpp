@@ -136,6 +136,9 @@ struct FlightResult {
   bool non_finite = false;                // the state stopped being a finite number (a bug or absurd input)
   CutOff cut_off = CutOff::None;          // what cut it off (fate CutOff), the first limit reached
   int queries = 0;                        // scene ray queries (for the benchmark)
+  // A field's objects (flight::FlightSettings::soil_under_strikes): strikes after which a knife
+  // rode over the object pressed into the soil, and passes resolved as a sustained push.
+  int ridden_over = 0, pushed_along = 0;
   double flight_time = 0;
   Vec3 end_position = Vec3::Zero();
   NailTrace trace;
@@ -199,6 +202,10 @@ struct FlightContext {
   std::vector<FlightEvent>* events = nullptr;
   FlightObserver* observer = nullptr;  // when set, told of every free stretch and ground contact
 };
+
+// A knife that rode over a field's object pressed into the soil touches it no more for this
+// much of its turn (docs/model.md §9.1; docs/validation.md §5 shows what halving it does).
+inline constexpr double kRideOverTurn = 0.5 * 3.14159265358979323846;
 
 // The blade contact the flight starts from (the feed's strike): its pass goes on.
 struct FirstContact {

@@ -121,7 +121,9 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
                          {"left_tallied_square", t.left_square},
                          {"first_landed_beyond_square", t.landed_beyond_square},
                          {"hazardous_impacts_beyond_square", t.hazardous_beyond_square},
-                         {"objects_with_impacts_beyond_record", t.overflow}}}});
+                         {"objects_with_impacts_beyond_record", t.overflow},
+                         {"objects_a_knife_rode_over", t.ridden_over},
+                         {"objects_pushed_along_by_an_arm", t.pushed_along}}}});
   }
   json distances = json::array(), curves = json::array();
   for (const auto& d : sum.directions) {
@@ -434,13 +436,13 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   }
   o += "<h2>Objects simulated</h2>\n<table><tr><th>kind</th><th>met per km</th><th>share that can reach a blade</th><th>simulated</th>";
   for (int i = 0; i < field::kObjectFates; ++i) o += fmt::format("<th>{}</th>", field::object_fate_name(static_cast<field::ObjectFate>(i)));
-  o += "<th>at rest under the deck</th><th>left the square</th></tr>\n";
+  o += "<th>at rest under the deck</th><th>left the square</th><th>a knife rode over</th><th>pushed along by an arm</th></tr>\n";
   for (std::size_t k = 0; k < run.kinds.size(); ++k) {
     const auto& t = run.kinds[k];
     o += fmt::format("<tr><td>{}</td><td>{:.0f}</td><td>{:.3g}</td><td>{}</td>", escape(s.field.objects[k].name), 1000 * sim.objects_per_metre(k),
                      sim.reach_share(k), t.objects);
     for (int i = 0; i < field::kObjectFates; ++i) o += fmt::format("<td>{}</td>", t.fates[static_cast<std::size_t>(i)]);
-    o += fmt::format("<td>{}</td><td>{}</td></tr>\n", t.at_rest_under_deck, t.left_square);
+    o += fmt::format("<td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", t.at_rest_under_deck, t.left_square, t.ridden_over, t.pushed_along);
   }
   o += fmt::format("</table>\n<p>The tallied square reaches &plusmn;{:g} m from the mower.</p>\n", range);
 
