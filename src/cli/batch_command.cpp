@@ -13,6 +13,7 @@
 #include "report/output_folder.hpp"
 #include "report/atomic_file.hpp"
 #include "report/batch_summary.hpp"
+#include "report/hazard_folder.hpp"
 #include "report/comparison_report.hpp"
 #include "report/text_safety.hpp"
 #include "scenario/input_error.hpp"
@@ -97,11 +98,23 @@ int batch(const BatchOptions& given) {
   bool internal_error = false;
   for (std::size_t i = 0; i < o.scenarios.size(); ++i) {
     const std::string& file = o.scenarios[i];
-    report::BatchRow row{file, names[i], std::nullopt, {}, false};
+    report::BatchRow row{file, names[i], std::nullopt, std::nullopt, {}, false};
     const fs::path folder = fs::path(o.out) / names[i];
     fmt::print("[{}/{}] {}: ", i + 1, o.scenarios.size(), report::terminal_safe(file));
     std::fflush(stdout);
     try {
+      if (scenario::read_scenario(file).field.present) {
+        // A field scenario: its thrown-object hazard (run again each time: --resume keeps J232 results only).
+        if (o.compare) throw scenario::InputError(file, std::nullopt, "field", "", "batch --compare pairs J232 designs; compare field scenarios with j232 compare");
+        report::HazardOverrides h;
+        h.seed = o.overrides.seed, h.threads = o.overrides.threads;
+        const report::HazardOutcome outcome = report::hazard_to_folder(file, h, folder.string());
+        row.hazard = outcome.result;
+        fmt::print("{} ({:.0f} thrown per km)\n", outcome.valid ? "FIELD HAZARD ASSESSED" : "FIELD HAZARD INVALID (no assessment)",
+                   outcome.result["objects"]["thrown_per_km"].get<double>());
+        rows.push_back(std::move(row));
+        continue;
+      }
       if (o.resume) {
         row.result = current_result(folder, report::inputs_digest(file, o.overrides));
         row.resumed = row.result.has_value();
@@ -149,9 +162,11 @@ int batch(const BatchOptions& given) {
   report::write_atomically(out.staged("summary.html"), report::batch_summary_html(rows, comparison));
   report::write_atomically(out.staged("summary.json"), summary.dump(2) + "\n");
   out.commit();
-  fmt::print("{} of {} scenarios pass, {} fail, {} invalid, {} refused. Wrote {}/summary.html, summary.json and summary.csv{}\n",
+  fmt::print("{} of {} scenarios pass, {} fail, {} invalid, {} refused{}. Wrote {}/summary.html, summary.json and summary.csv{}\n",
              summary["passed"].get<std::size_t>(), rows.size(), summary["failed"].get<std::size_t>(), summary["invalid"].get<std::size_t>(),
-             summary["refused"].get<std::size_t>(), report::terminal_safe(o.out),
+             summary["refused"].get<std::size_t>(),
+             summary["fields"].get<std::size_t>() > 0 ? fmt::format(", {} field scenario(s) assessed for hazard", summary["fields"].get<std::size_t>()) : "",
+             report::terminal_safe(o.out),
              comparison.is_null() ? "" : ", and the comparison of the designs in compare.html, compare.json and compare.csv");
   if (internal_error) return kInternal;
   if (summary["refused"].get<std::size_t>() > 0) return kBadInput;

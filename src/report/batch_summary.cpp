@@ -13,7 +13,17 @@ namespace j232::report {
 namespace {
 using json = nlohmann::ordered_json;
 
-std::string verdict_of(const BatchRow& r) { return r.result ? (*r.result)["verdict"].get<std::string>() : "error"; }
+std::string verdict_of(const BatchRow& r) {
+  if (r.hazard) return (*r.hazard)["valid"].get<bool>() ? "field" : "field-invalid";
+  return r.result ? (*r.result)["verdict"].get<std::string>() : "error";
+}
+
+// A field scenario's hazard distance in a direction, in words.
+std::string distance_text(const json& d, bool conservative) {
+  const bool beyond = d[conservative ? "conservative_beyond_range" : "beyond_range"].get<bool>();
+  const double m = d[conservative ? "conservative_m" : "estimate_m"].get<double>();
+  return beyond ? "beyond the range" : m <= 0 ? "none" : fmt::format("{:g} m", m);
+}
 
 // The P(pass) a result's verdict rests on (the replicates' share for a result written
 // before the verdict had a basis).
@@ -26,10 +36,22 @@ json verdict_pass(const json& x) {
 
 json batch_summary_json(const std::vector<BatchRow>& rows, const json& comparison) {
   json list = json::array();
-  std::size_t passed = 0, failed = 0, invalid = 0, errors = 0;
+  std::size_t passed = 0, failed = 0, invalid = 0, errors = 0, fields = 0;
   for (const auto& r : rows) {
     json row = {{"scenario", r.scenario}, {"verdict", verdict_of(r)}};
-    if (r.result) {
+    if (r.hazard) {
+      const json& h = *r.hazard;
+      ++fields;
+      if (!h["valid"].get<bool>()) ++invalid, row["invalid_because"] = json::array({h["invalid_reason"]});
+      row["title"] = h["title"];
+      row["thrown_per_km"] = h["objects"]["thrown_per_km"];
+      row["hazard_distance"] = h["hazard_distance"];
+      json planes = json::array();
+      for (const auto& p : h["planes"]) planes.push_back({{"name", p["name"]}, {"hazardous_per_km", p["hazardous_per_km"]}});
+      row["planes"] = planes;
+      row["report"] = relative_url(r.folder + "/hazard.html");
+      row["result"] = relative_url(r.folder + "/hazard.json");
+    } else if (r.result) {
       const json& x = *r.result;
       (x["verdict"] == "passes" ? passed : x["verdict"] == "invalid" ? invalid : failed) += 1;
       if (x["verdict"] == "invalid") row["invalid_because"] = x["invalid_because"];
@@ -60,7 +82,8 @@ json batch_summary_json(const std::vector<BatchRow>& rows, const json& compariso
                   {"failed", failed},
                   {"invalid", invalid},
                   {"refused", errors},
-                  {"all_passed", passed == rows.size()},
+                  {"fields", fields},
+                  {"all_passed", passed + fields == rows.size() && invalid == 0},
                   {"rows", list}};
   if (!comparison.is_null()) summary["comparison"] = comparison;
   return summary;
@@ -71,6 +94,12 @@ std::string batch_summary_csv(const std::vector<BatchRow>& rows) {
       "scenario,title,verdict,settled,p_pass,p_pass_low,p_pass_high,p_pass_basis,required,hits_zone,punctures_zone,hits_outside,"
       "punctures_outside,deciding_criterion,replicates,report,error\n";
   for (const auto& r : rows) {
+    if (r.hazard) {  // a field scenario: its title, its report; its figures in its hazard.csv
+      o += fmt::format("{},{},{},,,,,,,,,,,,,{},{}\n", csv_text_cell(r.scenario), csv_text_cell((*r.hazard)["title"].get<std::string>()),
+                       verdict_of(r), csv_text_cell(relative_url(r.folder + "/hazard.html")),
+                       (*r.hazard)["valid"].get<bool>() ? "" : csv_text_cell("invalid: " + (*r.hazard)["invalid_reason"].get<std::string>()));
+      continue;
+    }
     if (!r.result) {
       o += fmt::format("{},,error,,,,,,,,,,,,,,{}\n", csv_text_cell(r.scenario), csv_text_cell(r.error));
       continue;
@@ -105,6 +134,7 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
        "</tr></thead><tbody>\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
+    if (r.hazard) continue;  // in the field table below
     if (!r.result) {
       o += fmt::format("<tr class=\"error\"><td>{}</td><td class=\"verdict-cell\">refused</td><td colspan=\"9\">{}</td></tr>\n",
                        escape(r.scenario), escape(r.error));
@@ -128,6 +158,29 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
   }
   o += "</tbody></table>\n<p>Shares are the mean over replicates of each kind of mark as a share of the denominator the scenario "
        "sets; each report gives their spread and the criterion that decides its verdict.</p>\n";
+  if (summary["fields"].get<std::size_t>() > 0) {
+    o += "<h2>Field scenarios: thrown-object hazard (j232 hazard)</h2>\n<table class=\"numbers\"><thead><tr><th>scenario</th>"
+         "<th>thrown per km</th><th>hazard distance: left, right, front, rear (estimate / conservative)</th><th>planes: hazardous per "
+         "km mowed (95 %)</th><th>report</th></tr></thead><tbody>\n";
+    for (const auto& r : rows) {
+      if (!r.hazard) continue;
+      const json& h = *r.hazard;
+      std::string distances, planes;
+      for (const auto& d : h["hazard_distance"])
+        distances += fmt::format("{}{}: {} / {}", distances.empty() ? "" : "<br>", d["direction"].get<std::string>(), distance_text(d, false),
+                                 distance_text(d, true));
+      for (const auto& p : h["planes"])
+        planes += fmt::format("{}{}: {:.3g} ({:.3g}-{:.3g})", planes.empty() ? "" : "<br>", escape(p["name"].get<std::string>()),
+                              p["hazardous_per_km"]["value"].get<double>(), p["hazardous_per_km"]["low"].get<double>(),
+                              p["hazardous_per_km"]["high"].get<double>());
+      o += fmt::format("<tr class=\"{}\"><td>{}<br><small>{}</small>{}</td><td>{:.0f}</td><td>{}</td><td>{}</td><td><a href=\"{}\">report</a></td></tr>\n",
+                       verdict_of(r), escape(h["title"].get<std::string>()), escape(r.scenario),
+                       h["valid"].get<bool>() ? "" : "<br><strong>invalid:</strong> " + escape(h["invalid_reason"].get<std::string>()),
+                       h["objects"]["thrown_per_km"].get<double>(), distances, planes.empty() ? "-" : planes,
+                       escape(relative_url(r.folder + "/hazard.html")));
+    }
+    o += "</tbody></table>\n";
+  }
   if (!comparison.is_null())
     o += "<section id=\"comparison\">\n<h2>The designs compared (common random numbers; <a href=\"compare.html\">compare.html</a>)</h2>\n" +
          comparison_body_html(comparison, "comparison.") + "</section>\n";
