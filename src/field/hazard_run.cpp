@@ -3,6 +3,7 @@
 #include "assess/cluster.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/math/special_functions/gamma.hpp>
 #include <chrono>
 #include <cmath>
@@ -125,21 +126,23 @@ Estimate struck(const Estimate& density, double area) {
   return {p(density.value), p(density.low), p(density.high)};
 }
 
-// Where a curve (non-increasing far out) falls below `acceptable` for good: the outer
-// edge of the last bin at or above it.
-void hazard_distance(const std::vector<Estimate>& q, double cell, double acceptable, DirectionCurve& c) {
+// Where a curve falls below `acceptable` for good: the outer edge of the last cell at or
+// above it (none beyond the deck: the deck's edge).
+void hazard_distance(double cell, double acceptable, DirectionCurve& c) {
   auto last_at_or_above = [&](auto value) {
     int last = -1;
-    for (std::size_t k = 0; k < q.size(); ++k)
-      if (value(q[k]) >= acceptable) last = static_cast<int>(k);
+    for (std::size_t k = 0; k < c.exposure.size(); ++k)
+      if (value(c.exposure[k]) >= acceptable) last = static_cast<int>(k);
     return last;
   };
+  const bool beside = c.direction == "left" || c.direction == "right";  // a strip's distance is its middle
+  auto outer_edge = [&](int k) { return k < 0 ? c.deck_extent : c.distance[static_cast<std::size_t>(k)] + (beside ? 0.5 : 1.0) * cell; };
   const int est = last_at_or_above([](const Estimate& e) { return e.value; });
   const int up = last_at_or_above([](const Estimate& e) { return e.high; });
-  c.hazard_distance = (est + 1) * cell;
-  c.hazard_distance_upper = (up + 1) * cell;
-  c.beyond_range = est + 1 == static_cast<int>(q.size());
-  c.upper_beyond_range = up + 1 == static_cast<int>(q.size());
+  c.hazard_distance = outer_edge(est);
+  c.hazard_distance_upper = outer_edge(up);
+  c.beyond_range = est >= 0 && est + 1 == static_cast<int>(c.exposure.size());
+  c.upper_beyond_range = up >= 0 && up + 1 == static_cast<int>(c.exposure.size());
 }
 
 }  // namespace
@@ -216,12 +219,19 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
       "a person on the mower's line ahead of it, whom it approaches to no nearer than this",
       "a person on the mower's line behind it, from whom it moves away from this distance on"};
   std::vector<Stratum> strata(kinds);
+  // How far the deck reaches in each direction: nobody stands under it, so each curve starts
+  // at the first cell wholly beyond it.
+  std::array<double, 4> deck_extent{};
+  for (const auto& p : sim.mower().footprint().outline)
+    deck_extent = {std::max(deck_extent[0], p.y()), std::max(deck_extent[1], -p.y()), std::max(deck_extent[2], p.x()),
+                   std::max(deck_extent[3], -p.x())};
   for (std::size_t d = 0; d < 4; ++d) {
     DirectionCurve c;
     c.direction = names[d], c.meaning = meanings[d];
+    c.deck_extent = deck_extent[d];
     // Beside the path: impacts in a strip one cell wide along the whole pass; on the line:
     // in a band one cell wide, summed over the distances the mower passes through.
-    for (int k = 0; k < l.half_cells; ++k) {
+    for (int k = static_cast<int>(std::ceil(deck_extent[d] / l.cell - 1e-9)); k < l.half_cells; ++k) {
       c.distance.push_back(d < 2 ? (k + 0.5) * l.cell : k * l.cell);
       for (std::size_t j = 0; j < kinds; ++j)
         strata[j] = {run.kinds[j].directions[d][static_cast<std::size_t>(k)], w[j], sim.energy_bound(j) >= f.person_energy};
@@ -239,7 +249,7 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
       c.exposure.push_back(exposure);
       c.probability.push_back(struck(exposure, f.presented_area));
     }
-    hazard_distance(c.exposure, l.cell, s.acceptable_density, c);
+    hazard_distance(l.cell, s.acceptable_density, c);
     s.directions.push_back(std::move(c));
   }
   for (std::size_t p = 0; p < f.planes.size(); ++p) {

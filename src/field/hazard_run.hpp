@@ -50,6 +50,7 @@ Estimate quasi_poisson(double mean, double variance, double heaviest);
 struct DirectionCurve {
   std::string direction;  // "left", "right", "front", "rear"
   std::string meaning;    // what a point of the curve is, in words
+  double deck_extent = 0;         // m: the deck reaches this far in this direction; the curve starts beyond it
   std::vector<double> distance;  // m
   std::vector<Estimate> density;     // hazardous ground impacts per m^2 per pass
   std::vector<Estimate> vertical;    // beside the path: hazardous crossings per m^2 of the vertical plane there, per pass

@@ -31,8 +31,12 @@ const char* receptor_name(scenario::FieldPlaneSpec::Receptor r) {
 }
 const char* kind_name(scenario::FieldObjectSpec::Kind k) { return k == scenario::FieldObjectSpec::Kind::SteelBall ? "steel_ball" : "stone"; }
 
-std::string distance_words(double d, bool beyond, double range) {
-  return beyond ? fmt::format("beyond {:.0f} m (the range)", range) : d <= 0 ? std::string("none outside the deck") : fmt::format("{:.0f} m", d);
+std::string distance_words(const field::DirectionCurve& c, bool conservative, double range) {
+  const bool beyond = conservative ? c.upper_beyond_range : c.beyond_range;
+  const double d = conservative ? c.hazard_distance_upper : c.hazard_distance;
+  if (beyond) return fmt::format("beyond {:.0f} m (the range)", range);
+  if (d <= c.deck_extent + 1e-9) return fmt::format("the deck's edge ({:.1f} m)", c.deck_extent);
+  return fmt::format("{:.0f} m", d);
 }
 
 }  // namespace
@@ -129,6 +133,7 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
   for (const auto& d : sum.directions) {
     distances.push_back({{"direction", d.direction},
                          {"meaning", d.meaning},
+                         {"deck_extent_m", d.deck_extent},
                          {"estimate_m", d.hazard_distance},
                          {"conservative_m", d.hazard_distance_upper},
                          {"beyond_range", d.beyond_range},
@@ -247,8 +252,8 @@ std::string hazard_text(const field::HazardSummary& sum) {
                    sum.cut_width, sum.thrown_per_km, sum.exit_speed_mean);
   o += "  Hazard distance (hazardous impacts fall below the acceptable density), estimate / conservative (95 % upper bound):\n";
   for (const auto& d : sum.directions)
-    o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d.hazard_distance, d.beyond_range, d.distance.empty() ? 0 : d.distance.back()),
-                     distance_words(d.hazard_distance_upper, d.upper_beyond_range, d.distance.empty() ? 0 : d.distance.back()));
+    o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d, false, d.distance.empty() ? 0 : d.distance.back()),
+                     distance_words(d, true, d.distance.empty() ? 0 : d.distance.back()));
   for (const auto& r : sum.planes)
     o += fmt::format("  Plane '{}' ({} {:g} m, {}): {:.3g} hazardous per km mowed (95 %: {:.3g}-{:.3g})\n", r.plane.name, side_name(r.plane.side),
                      r.plane.distance, receptor_name(r.plane.receptor), r.hazardous_per_km.value, r.hazardous_per_km.low, r.hazardous_per_km.high);
@@ -368,7 +373,7 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   const double range = layout.range;
   for (const auto& d : sum.directions)
     o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", d.direction, escape(d.meaning),
-                     distance_words(d.hazard_distance, d.beyond_range, range), distance_words(d.hazard_distance_upper, d.upper_beyond_range, range));
+                     distance_words(d, false, range), distance_words(d, true, range));
   o += "</table>\n";
 
   Chart curves("Probability of being struck by a hazardous object in one pass", "distance from the mower (m)", "probability");
