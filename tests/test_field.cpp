@@ -81,6 +81,29 @@ TEST_CASE("field: the [field] form, with its defaults", "[field][input]") {
   CHECK(s.field.acceptable_area == Approx(55.74));
 }
 
+TEST_CASE("field: a steel ball is one size of steel, struck with the scenario's restitution", "[field][input]") {
+  const auto s = read(kMower + "[restitution]\ne = 0.8\n" + R"(
+[field]
+[[field.objects]]
+kind = "steel_ball"
+median_size = "60 mm"
+per_area = "0.1 m^-2"
+)");
+  const auto& o = s.field.objects.at(0);
+  CHECK(o.kind == scenario::FieldObjectSpec::Kind::SteelBall);
+  CHECK(o.density == Approx(7850));
+  CHECK(o.spread == 1.0);
+  CHECK(o.min_size == Approx(0.060));
+  CHECK(o.max_size == Approx(0.060));
+  CHECK_FALSE(o.restitution.has_value());  // the scenario's [restitution]
+  CHECK(o.drag_coefficient == Approx(0.47));
+  const field::FieldSimulator sim(s);
+  CHECK(sim.reach_share(0) == 1.0);  // lying on the turf, 60 mm tall: above the blade's lower face (2 in - 3 mm)
+  // 8 mm: it stands 8 mm tall, and nothing lifts it.
+  CHECK_THROWS_AS(read(kMower + "[field]\n[[field.objects]]\nkind = \"steel_ball\"\nmedian_size = \"8 mm\"\nper_area = \"1 m^-2\"\n"),
+                  scenario::InputError);
+}
+
 TEST_CASE("field: bad fields are refused with the key and what was expected", "[field][input]") {
   CHECK_THAT(error_of(kMower + "[field]\n"), Catch::Contains("field.objects") && Catch::Contains("without objects"));
   // Too tall to pass under the deck's front.

@@ -33,14 +33,8 @@
 #include "j232/version.hpp"
 
 namespace j232::report {
-namespace {
 
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
+namespace {
 
 std::string file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

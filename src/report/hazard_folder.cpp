@@ -1,6 +1,5 @@
 #include "report/hazard_folder.hpp"
 
-#include <ctime>
 #include <fmt/format.h>
 #include <vector>
 
@@ -14,15 +13,6 @@
 #include "scenario/scenario_reader.hpp"
 
 namespace j232::report {
-
-namespace {
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
-}  // namespace
 
 HazardOutcome hazard_to_folder(const std::string& scenario_file, const HazardOverrides& o, const std::string& out) {
   scenario::Scenario s = scenario::read_scenario(scenario_file);

@@ -26,6 +26,9 @@ struct Fnv {
   std::string hex() const;
 };
 
+// Now, in UTC, as results' provenance gives it ("2026-11-24T22:00:14Z").
+std::string utc_now();
+
 class OutputFolder {
  public:
   // `files`: the names the run will write; the last is the one whose presence marks the set complete.
