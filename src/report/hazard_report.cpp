@@ -383,6 +383,7 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     for (std::size_t k = 0; k < d.distance.size(); ++k)
       if (d.exposure[k].value > 0 || d.exposure[k].high >= sum.acceptable_density) far = std::max(far, d.distance[k] + 2);
   far = std::min(far, range);
+  double highest = 0;
   for (std::size_t i = 0; i < sum.directions.size(); ++i) {
     const auto& d = sum.directions[i];
     std::vector<double> x, p, lo, hi;
@@ -390,11 +391,22 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
       x.push_back(d.distance[k]), p.push_back(d.probability[k].value), lo.push_back(d.probability[k].low), hi.push_back(d.probability[k].high);
     curves.band(x, lo, hi, palette(i), "");
     curves.line(x, p, palette(i), d.direction, false);
+    for (double v : hi) highest = std::max(highest, v);
   }
-  curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {:g} m2)", acceptable_p, s.field.acceptable_area));
+  // The acceptable level drawn when it is within reach of the curves; far above them, the
+  // axis fits the curves and the caption says how far above it lies.
+  std::string scale_note;
+  if (acceptable_p <= 5 * highest || highest <= 0) {
+    curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {:g} m2)", acceptable_p, s.field.acceptable_area));
+  } else {
+    curves.y_range(0, 1.1 * highest);
+    scale_note = fmt::format(" The acceptable probability, {:.3g} (one hazardous object per {:g} m2), lies {:.0f} times above the "
+                             "highest upper bound drawn, off this scale.",
+                             acceptable_p, s.field.acceptable_area, acceptable_p / highest);
+  }
   curves.caption("Beside the path: a person standing at that lateral distance from the mower's centre line while it mows past. Ahead "
                  "and behind: a person on its line whom it approaches no nearer than that distance, or leaves from it. Bands: 95 % "
-                 "intervals.");
+                 "intervals." + scale_note);
   o += "<figure>" + curves.svg() + "</figure>\n";
 
   o += "<h2>Where objects come down</h2>\n";
