@@ -401,3 +401,32 @@ TEST_CASE("field: the strips' vertical planes count what an explicit plane at th
   CHECK(left.distance.front() >= left.deck_extent);
   CHECK(left.vertical[at].value == Approx(sum.planes[1].hazardous_per_area.value));
 }
+
+TEST_CASE("field: the hazard distance is the outer edge of the last cell at or above the acceptable density", "[field]") {
+  auto s = read(kMower + kStones);
+  const field::FieldSimulator sim(s);
+  field::HazardRun run;
+  run.kinds.emplace_back(field::HazardLayout::of(s.field));
+  auto& t = run.kinds[0];
+  const std::uint64_t n = 1000;
+  t.objects = n;
+  t.fates[static_cast<std::size_t>(field::ObjectFate::Thrown)] = n;
+  // More than the acceptable density (one per 55.74 m2) on the left out to 10 m: 900 of the
+  // objects strike 4 times each in every strip there; nothing beyond, nothing elsewhere.
+  const double w = sim.objects_per_metre(0) * sim.reach_share(0) / static_cast<double>(n);
+  const std::uint64_t count = 900 * 4;
+  REQUIRE(w * static_cast<double>(count) > 1.5 / 55.74);
+  for (std::size_t k = 0; k < 10; ++k) t.directions[0][k] = {count, 900 * 16};
+  const auto sum = field::summarise(sim, run);
+  const auto& left = sum.directions[0];
+  REQUIRE(!left.distance.empty());
+  CHECK(left.distance.front() > left.deck_extent);  // the curve starts beyond the deck
+  CHECK(left.hazard_distance == Approx(10.0));
+  CHECK(left.hazard_distance_upper >= left.hazard_distance);
+  CHECK_FALSE(left.beyond_range);
+  // The right saw nothing: its hazard distance is the deck's edge.
+  CHECK(sum.directions[1].hazard_distance == Approx(sum.directions[1].deck_extent));
+  // The probability there: 1 - exp(-q A).
+  CHECK(left.probability[3].value == Approx(-std::expm1(-left.exposure[3].value * 0.58)));
+  CHECK(left.exposure[3].value == Approx(w * static_cast<double>(count)).epsilon(1e-12));
+}
