@@ -13,25 +13,6 @@ namespace j232::assess {
 
 using Vec3 = Eigen::Vector3d;
 
-namespace {
-std::vector<strike::Spindle> make_spindles(const scenario::Scenario& s) {
-  std::vector<strike::Spindle> out;
-  for (std::size_t k = 0; k < s.spindles.size(); ++k) {
-    const auto& spec = s.spindles[k];
-    try {
-      strike::Spindle sp(spec.blade, spec.geometry, s.restitution);
-      sp.centre = {spec.x, spec.y};
-      sp.sense = spec.sense;
-      sp.reference_search = s.run.reference_contact_search;
-      out.push_back(std::move(sp));
-    } catch (const std::invalid_argument& e) {
-      throw scenario::InputError(s.file, std::nullopt, s.spindles.size() == 1 ? "blade" : fmt::format("spindles[{}].blade", k + 1), "",
-                                 e.what());
-    }
-  }
-  return out;
-}
-}  // namespace
 
 namespace {
 // A field scenario has no test rig: it is assessed with `j232 hazard`.
@@ -43,7 +24,7 @@ const scenario::Scenario& test_rig(const scenario::Scenario& s) {
 }
 }  // namespace
 
-Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenario_(test_rig(s)), spindles_(make_spindles(s)) {
+Simulator::Simulator(const scenario::Scenario& s, scene::Engine engine) : scenario_(test_rig(s)), spindles_(strike::scenario_spindles(s, s.restitution)) {
   mower_ = std::make_unique<flight::Mower>(scenario_, engine);
   context_ = mower_->context();
   context_.spindles = &spindles_;

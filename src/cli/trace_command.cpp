@@ -93,6 +93,14 @@ nlohmann::json event_json(const flight::FlightEvent& e) {
   return j;
 }
 
+// The trail as a table, an event a line.
+void print_trail(const std::vector<flight::FlightEvent>& events) {
+  fmt::print("{:>10}  {:<10}  {:<26}  {:>9}  {:>9}  {}\n", "t (ms)", "event", "centre after (m)", "v (m/s)", "w (rad/s)", "detail");
+  for (const auto& e : events)
+    fmt::print("{:>10.3f}  {:<10}  {:<26}  {:>9.2f}  {:>9.0f}  {}\n", 1e3 * e.time, flight::event_name(e.kind), vec(e.centre),
+               e.velocity.norm(), e.spin.norm(), detail(e));
+}
+
 // One object of a field scenario (j232 hazard) with its whole trail. --find looks among the
 // scenario's field.objects_simulated objects: cut-off, restruck, contained, thrown.
 int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
@@ -123,10 +131,7 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
              1e3 * e.body.diameter, 1e3 * e.body.mass, e.lateral, 1e3 * e.height, e.lifted ? " (lifted by the updraft)" : "");
   fmt::print("{}: thrown at {:.2f} m/s (ground frame), elevation {:.1f} deg\n", field::object_fate_name(out.fate), out.exit_speed,
              out.launch_elevation / units::degree);
-  fmt::print("{:>10}  {:<10}  {:<26}  {:>9}  {:>9}  {}\n", "t (ms)", "event", "centre after (m)", "v (m/s)", "w (rad/s)", "detail");
-  for (const auto& ev : events)
-    fmt::print("{:>10.3f}  {:<10}  {:<26}  {:>9.2f}  {:>9.0f}  {}\n", 1e3 * ev.time, flight::event_name(ev.kind), vec(ev.centre),
-               ev.velocity.norm(), ev.spin.norm(), detail(ev));
+  print_trail(events);
   const auto& f = out.flight;
   fmt::print("fate: {}{}; {} strike(s), {} bounce(s)\n", flight::fate_name(f.fate),
              f.fate == flight::Fate::CutOff ? fmt::format(" ({})", flight::cut_off_name(f.cut_off)) : "", f.strikes, f.bounces);
@@ -182,10 +187,7 @@ int run(const TraceOptions& o) {
     fmt::print("struck at {:.3f} ms by edge {} at {:.3f} m from the axis: {:.2f} m/s -> {:.2f} m/s, spin {:.0f} rad/s; contact {}, normal {}\n",
                1e3 * r.strike.time, r.strike.edge + 1, r.strike.radius, r.falling.norm(), r.velocity_after.norm(), r.spin_after.norm(),
                vec(r.strike.point), vec(r.strike.normal, 2));
-    fmt::print("{:>10}  {:<10}  {:<26}  {:>9}  {:>9}  {}\n", "t (ms)", "event", "centre after (m)", "v (m/s)", "w (rad/s)", "detail");
-    for (const auto& e : r.events)
-      fmt::print("{:>10.3f}  {:<10}  {:<26}  {:>9.2f}  {:>9.0f}  {}\n", 1e3 * e.time, flight::event_name(e.kind), vec(e.centre),
-                 e.velocity.norm(), e.spin.norm(), detail(e));
+    print_trail(r.events);
   }
   const auto& f = r.outcome.flight;
   fmt::print("fate: {}; {} strike(s), {} bounce(s), {} counted mark(s) (hits {} / punctures {} in the zone, hits {} / punctures {} outside)\n",

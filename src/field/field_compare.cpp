@@ -17,8 +17,6 @@ namespace j232::field {
 
 namespace {
 
-constexpr std::uint64_t kChunk = 256;
-
 // Per chunk of objects, in the chunk's order: each design's figures' sums and squares, and
 // each later design's differences from the first (sums, squares, objects differing).
 struct ChunkSums {
@@ -59,16 +57,10 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     }
   const std::size_t figures = 3 + 2 * first_planes.size(), nd = designs.size();
   const auto n = static_cast<std::uint64_t>(designs.front().field.objects_simulated);
-  const std::uint64_t chunks = (n + kChunk - 1) / kChunk;
+  const std::uint64_t chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
   // Each design's weight per object of each kind (per metre travelled).
-  std::vector<std::vector<double>> weight(nd);
-  for (std::size_t d = 0; d < nd; ++d) {
-    const std::size_t kinds = sims[d]->kinds();
-    for (std::size_t k = 0; k < kinds; ++k) {
-      const double n_k = static_cast<double>(n / kinds + (k < n % kinds ? 1 : 0));
-      weight[d].push_back(n_k > 0 ? sims[d]->objects_per_metre(k) * sims[d]->reach_share(k) / n_k : 0.0);
-    }
-  }
+  std::vector<std::vector<double>> weight;
+  for (const auto& sim : sims) weight.push_back(weights_per_object(*sim, n));
   std::vector<ChunkSums> sums(chunks);
   if (progress) progress->total = static_cast<long long>(n), progress->done = 0;
   tbb::enumerable_thread_specific<std::unique_ptr<Watches>> local([&] {
@@ -87,13 +79,13 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
         ChunkSums& out = sums[c];
         out.sum.assign(nd * figures, 0.0), out.squares.assign(nd * figures, 0.0);
         out.diff.assign((nd - 1) * figures, 0.0), out.diff_squares.assign((nd - 1) * figures, 0.0), out.differing.assign((nd - 1) * figures, 0);
-        const std::uint64_t last = std::min(n, (c + 1) * kChunk);
-        for (std::uint64_t i = c * kChunk; i < last; ++i) {
+        const std::uint64_t last = std::min(n, (c + 1) * kObjectsPerChunk);
+        for (std::uint64_t i = c * kObjectsPerChunk; i < last; ++i) {
           for (std::size_t d = 0; d < nd; ++d) {
             ObjectWatch& watch = w.watches[d];
             const ObjectOutcome o = sims[d]->simulate(i, &watch);
             watch.finish(o);
-            const bool thrown = o.fate == ObjectFate::Thrown || o.fate == ObjectFate::CutOff;
+            const bool thrown = counted_thrown(o.fate);
             const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->kinds())];
             std::uint64_t* f = &raw[d * figures];
             f[0] = thrown ? 1 : 0;
@@ -116,7 +108,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
               out.differing[(d - 1) * figures + j] += raw[d * figures + j] != raw[j] ? 1 : 0;
             }
         }
-        if (progress) progress->done += static_cast<long long>(last - c * kChunk);
+        if (progress) progress->done += static_cast<long long>(last - c * kObjectsPerChunk);
       }
     });
   });

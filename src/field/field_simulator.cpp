@@ -64,22 +64,9 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
   }
   for (std::size_t k = 0; k < scenario_.field.objects.size(); ++k) {
     const auto& o = scenario_.field.objects[k];
-    total_per_area_ += o.per_area;
-    std::vector<strike::Spindle> spindles;
-    for (std::size_t i = 0; i < scenario_.spindles.size(); ++i) {
-      const auto& spec = scenario_.spindles[i];
-      try {
-        strike::Spindle sp(spec.blade, spec.geometry, o.restitution ? blade::Restitution::constant(*o.restitution) : scenario_.restitution);
-        sp.centre = {spec.x, spec.y};
-        sp.sense = spec.sense;
-        sp.friction = o.friction;
-        sp.reference_search = scenario_.run.reference_contact_search;
-        spindles.push_back(std::move(sp));
-      } catch (const std::invalid_argument& e) {
-        throw scenario::InputError(scenario_.file, std::nullopt, scenario_.spindles.size() == 1 ? "blade" : fmt::format("spindles[{}].blade", i + 1),
-                                   "", e.what());
-      }
-    }
+    std::vector<strike::Spindle> spindles =
+        strike::scenario_spindles(scenario_, o.restitution ? blade::Restitution::constant(*o.restitution) : scenario_.restitution);
+    for (auto& sp : spindles) sp.friction = o.friction;
     spindles_.push_back(std::move(spindles));
     // A sphere's drag: rho C_d (pi d^2 / 4) / (2 m) with m = rho_s pi d^3 / 6, that is
     // 3 rho C_d / (4 rho_s d): worked out here for d = 1 m.
@@ -144,9 +131,9 @@ double FieldSimulator::objects_per_metre() const {
   return sum;
 }
 
-Encounter FieldSimulator::sample(std::uint64_t index, random::Stream& rng) const {
+Encounter FieldSimulator::sample(std::size_t kind, random::Stream& rng) const {
   Encounter e;
-  e.kind = static_cast<std::size_t>(index % kinds());
+  e.kind = kind;
   const auto& o = scenario_.field.objects[e.kind];
   // A size among those that can reach a blade: a uniform draw over their probability.
   const ReachableSizes& reach = sizes_[e.kind];
@@ -175,7 +162,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   const scenario::Scenario& s = scenario_;
   ObjectOutcome out;
   random::Stream rng(s.run.seed, 0, index, random::Purpose::FieldObject);
-  out.encounter = sample(index, rng);
+  out.encounter = sample(static_cast<std::size_t>(index % kinds()), rng);
   const Encounter& e = out.encounter;
   const auto& spindles = spindles_[e.kind];
   const double v = s.field.ground_speed, r = e.body.radius();

@@ -38,6 +38,8 @@ enum class ObjectFate : std::uint8_t {
   CutOff       // thrown, and cut off still moving by a limit (time, bounces, steps) or a non-finite state
 };
 inline constexpr int kObjectFates = 4;
+// Counted as thrown: its flight ended, or a limit cut it off (the run's invalidity says how many).
+inline bool counted_thrown(ObjectFate f) { return f == ObjectFate::Thrown || f == ObjectFate::CutOff; }
 const char* object_fate_name(ObjectFate f);
 
 struct ObjectOutcome {
@@ -92,13 +94,12 @@ class FieldSimulator {
   double objects_per_metre() const;
 
  private:
-  Encounter sample(std::uint64_t index, random::Stream& rng) const;
+  Encounter sample(std::size_t kind, random::Stream& rng) const;  // one object of a kind, among its sizes that reach
   scenario::Scenario scenario_;
   std::unique_ptr<flight::Mower> mower_;
   std::vector<std::vector<strike::Spindle>> spindles_;  // per kind: its restitution and friction on the blades
   std::vector<flight::Drag> drag_per_unit_;             // per kind, for a 1 m sphere (scaled by 1 / size)
   double cut_from_ = 0, cut_to_ = 0;
-  double total_per_area_ = 0;
   // Per kind, the sizes that can reach a blade: pieces of the lognormal's probability
   // axis [p_low, p_high) (at most two: the lifted small ones, the tall ones), and their share.
   struct ReachableSizes {

@@ -28,7 +28,6 @@ struct Worker {
     for (std::size_t k = 0; k < kinds; ++k) tallies.emplace_back(l), watches.emplace_back(tallies.back());
   }
 };
-constexpr std::uint64_t kChunk = 256;  // objects per task
 }  // namespace
 
 std::uint64_t HazardRun::objects() const {
@@ -52,16 +51,16 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   const auto start = std::chrono::steady_clock::now();
   tbb::enumerable_thread_specific<std::unique_ptr<Worker>> workers([&] { return std::make_unique<Worker>(layout, kinds); });
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, (n + kChunk - 1) / kChunk, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, (n + kObjectsPerChunk - 1) / kObjectsPerChunk, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
       Worker& w = *workers.local();
       for (std::uint64_t chunk = r.begin(); chunk != r.end(); ++chunk) {
         if (chunk % ranks != rank) continue;  // another MPI rank's
-        const std::uint64_t last = std::min(n, (chunk + 1) * kChunk);
-        for (std::uint64_t i = chunk * kChunk; i < last; ++i) {
+        const std::uint64_t last = std::min(n, (chunk + 1) * kObjectsPerChunk);
+        for (std::uint64_t i = chunk * kObjectsPerChunk; i < last; ++i) {
           ObjectWatch& watch = w.watches[static_cast<std::size_t>(i % kinds)];
           watch.finish(sim.simulate(i, &watch));
         }
-        if (progress) progress->done += static_cast<long long>(last - chunk * kChunk);
+        if (progress) progress->done += static_cast<long long>(last - chunk * kObjectsPerChunk);
       }
     });
   });
@@ -110,10 +109,13 @@ Estimate quasi_poisson(double mean, double variance, double heaviest) {
   return {mean, boost::math::gamma_p_inv(effective, 0.025) * scale, high};
 }
 
-std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRun& run) {
+std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRun& run) { return weights_per_object(sim, run.objects()); }
+
+std::vector<double> weights_per_object(const FieldSimulator& sim, std::uint64_t objects) {
   std::vector<double> w;
-  for (std::size_t k = 0; k < run.kinds.size(); ++k) {
-    const double n = static_cast<double>(run.kinds[k].objects);
+  const std::size_t kinds = sim.kinds();
+  for (std::size_t k = 0; k < kinds; ++k) {
+    const double n = static_cast<double>(objects / kinds + (k < objects % kinds ? 1 : 0));
     w.push_back(n > 0 ? sim.objects_per_metre(k) * sim.reach_share(k) / n : 0.0);
   }
   return w;

@@ -88,5 +88,9 @@ struct HazardSummary {
 HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run);
 // Each kind's weight per simulated object (w_k / N_k, per metre travelled).
 std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRun& run);
+// The same for a run of `objects` objects: object i is of kind i mod kinds, so kind k has
+// objects / kinds of them, one more for the first objects mod kinds kinds.
+std::vector<double> weights_per_object(const FieldSimulator& sim, std::uint64_t objects);
+inline constexpr std::uint64_t kObjectsPerChunk = 256;  // objects per task of a parallel run
 
 }  // namespace j232::field

@@ -52,7 +52,7 @@ void HazardTally::add(const ObjectOutcome& o) {
   ++objects;
   ++fates[static_cast<std::size_t>(o.fate)];
   if (o.fate == ObjectFate::CutOff) ++cut_off_by[static_cast<std::size_t>(o.flight.cut_off)];
-  if (o.fate != ObjectFate::Thrown && o.fate != ObjectFate::CutOff) return;
+  if (!counted_thrown(o.fate)) return;
   if (o.exit_speed > 0) {
     ++exit_speed[std::min(exit_speed.size() - 1, static_cast<std::size_t>(o.exit_speed / 0.5))];
     const double deg = std::clamp(o.launch_elevation / units::degree + 90.0, 0.0, 179.999);
@@ -207,11 +207,25 @@ void ObjectWatch::met_ground(double t, const Vec3& point, const Vec3& velocity, 
   ++impact_count_;
 }
 
+namespace {
+// One object's events by bin (keys side * half_cells + bin, sorted here): each bin's count
+// added to that side's per-object sums (its count and its square).
+void add_per_bin(int* keys, int n, int half_cells, std::vector<CountSum>* sides) {
+  std::sort(keys, keys + n);
+  for (int i = 0; i < n;) {
+    int j = i;
+    while (j < n && keys[j] == keys[i]) ++j;
+    sides[keys[i] / half_cells][static_cast<std::size_t>(keys[i] % half_cells)].add(static_cast<std::uint64_t>(j - i));
+    i = j;
+  }
+}
+}  // namespace
+
 void ObjectWatch::finish(const ObjectOutcome& outcome) {
   tally_.add(outcome);
   // Only an object whose flight was watched has counts of its own (one cut off before its
   // flight, by the strike's search, has none: the last object's must not be taken for its).
-  const bool thrown = watching_ && (outcome.fate == ObjectFate::Thrown || outcome.fate == ObjectFate::CutOff);
+  const bool thrown = watching_ && counted_thrown(outcome.fate);
   watching_ = false;
   if (!thrown || outcome.flight.fate == flight::Fate::NotStruck) {
     // Not thrown: none of its own counts (thrown() was not called for it).
@@ -223,17 +237,7 @@ void ObjectWatch::finish(const ObjectOutcome& outcome) {
   const HazardLayout& l = tally_.layout;
   if (farthest_ >= 0) ++tally_.farthest[std::min(tally_.farthest.size() - 1, static_cast<std::size_t>(farthest_ / 0.25))];
   if (impact_count_ > kMaxImpacts || side_crossing_count_ > kMaxImpacts) ++tally_.overflow;
-  {
-    const int m = std::min(side_crossing_count_, kMaxImpacts);
-    std::sort(side_crossings_.begin(), side_crossings_.begin() + m);
-    for (int i = 0; i < m;) {
-      int j = i;
-      while (j < m && side_crossings_[static_cast<std::size_t>(j)] == side_crossings_[static_cast<std::size_t>(i)]) ++j;
-      const int key = side_crossings_[static_cast<std::size_t>(i)];
-      tally_.vertical[static_cast<std::size_t>(key / l.half_cells)][static_cast<std::size_t>(key % l.half_cells)].add(static_cast<std::uint64_t>(j - i));
-      i = j;
-    }
-  }
+  add_per_bin(side_crossings_.data(), std::min(side_crossing_count_, kMaxImpacts), l.half_cells, tally_.vertical.data());
   const int n = std::min(impact_count_, kMaxImpacts);
   // Beside the path: this object's impacts in each strip (its count and its square).
   std::array<int, kMaxImpacts> strips{};
@@ -255,15 +259,7 @@ void ObjectWatch::finish(const ObjectOutcome& outcome) {
       }
     }
   }
-  std::sort(strips.begin(), strips.begin() + strip_count);
-  for (int i = 0; i < strip_count;) {
-    int j = i;
-    while (j < strip_count && strips[static_cast<std::size_t>(j)] == strips[static_cast<std::size_t>(i)]) ++j;
-    const int key = strips[static_cast<std::size_t>(i)];
-    tally_.directions[static_cast<std::size_t>(key / l.half_cells)][static_cast<std::size_t>(key % l.half_cells)].add(
-        static_cast<std::uint64_t>(j - i));
-    i = j;
-  }
+  add_per_bin(strips.data(), strip_count, l.half_cells, tally_.directions.data());
   // On the line ahead and behind: impacts at that distance or farther (a person the mower
   // comes no nearer to than that is exposed to all of them).
   for (std::size_t way = 0; way < 2; ++way) {

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
 
+#include "scenario/input_error.hpp"
 #include "units/quantity.hpp"
 #include "units/sin_cos.hpp"
 
@@ -51,6 +54,24 @@ void Spindle::frame(std::size_t e, double phase, double t, Vec3& radial, Vec3& f
 Vec3 Spindle::velocity_at(const Vec3& point) const {
   const double w = sense * omega();
   return {-w * (point.y() - centre.y()), w * (point.x() - centre.x()), 0.0};
+}
+
+std::vector<Spindle> scenario_spindles(const scenario::Scenario& s, const blade::Restitution& on_blade) {
+  std::vector<Spindle> out;
+  for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+    const auto& spec = s.spindles[k];
+    try {
+      Spindle sp(spec.blade, spec.geometry, on_blade);
+      sp.centre = {spec.x, spec.y};
+      sp.sense = spec.sense;
+      sp.reference_search = s.run.reference_contact_search;
+      out.push_back(std::move(sp));
+    } catch (const std::invalid_argument& e) {
+      throw scenario::InputError(s.file, std::nullopt, s.spindles.size() == 1 ? "blade" : fmt::format("spindles[{}].blade", k + 1), "",
+                                 e.what());
+    }
+  }
+  return out;
 }
 
 }  // namespace j232::strike

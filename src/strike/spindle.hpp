@@ -61,4 +61,9 @@ struct BladePhases {
   std::array<double, kMaxSpindles> at_zero{};
 };
 
+// The scenario's turning blades, each where its spindle stands, striking with `on_blade`
+// (the nail's restitution, or a field object's). Throws scenario::InputError naming the
+// blade for an unsound one.
+std::vector<Spindle> scenario_spindles(const scenario::Scenario& s, const blade::Restitution& on_blade);
+
 }  // namespace j232::strike
