@@ -63,7 +63,7 @@ basis = "test: drag is off, so this must not matter"
     CHECK(std::abs(out[1] - out[0]) < 4 * std::sqrt(0.25 / 12) + 0.02);
   }
   // The edge's bevel decides how this mower's nails leave: it carries the variance.
-  REQUIRE(std::string(study::kUqOutputNames[5]) == "punctures_outside");
+  REQUIRE(a.output_info[5].name == "punctures_outside");
   const auto& punct = a.indices[5];
   REQUIRE(punct.variance > 0);
   CHECK(punct.total[0].estimate > 0.5);
@@ -212,10 +212,10 @@ basis = "test"
   CHECK(resumed.outputs == whole.outputs);
   CHECK(resumed.warnings == whole.warnings);
   CHECK(resumed.values == whole.values);
-  for (int o = 0; o < study::kUqOutputs; ++o)
+  for (std::size_t o = 0; o < whole.output_info.size(); ++o)
     for (std::size_t i = 0; i < 2; ++i) {
-      CHECK(resumed.indices[static_cast<std::size_t>(o)].total[i].estimate == whole.indices[static_cast<std::size_t>(o)].total[i].estimate);
-      CHECK(resumed.indices[static_cast<std::size_t>(o)].first[i].high == whole.indices[static_cast<std::size_t>(o)].first[i].high);
+      CHECK(resumed.indices[o].total[i].estimate == whole.indices[o].total[i].estimate);
+      CHECK(resumed.indices[o].first[i].high == whole.indices[o].first[i].high);
     }
 }
 
@@ -224,6 +224,7 @@ TEST_CASE("uncertainty: the page never calls an output the same at every draw wh
   // (AB_1) another. The base draws carry no variance, yet the output moves.
   study::UncertaintyResult r;
   r.title = "test", r.scenario_file = "test.toml";
+  r.output_info = study::uq_outputs(scenario::Scenario{});
   scenario::UncertainInput input;
   input.parameter = "bevel_angle", input.low = "20 deg", input.high = "45 deg", input.basis = "test";
   r.plan.inputs.push_back(input);
@@ -234,19 +235,122 @@ TEST_CASE("uncertainty: the page never calls an output the same at every draw wh
   for (std::size_t run = 0; run < runs.size(); ++run) {
     const double v = run == 5 ? 0.9 : 0.5;
     r.values.push_back({runs[run][0]});
-    std::array<double, study::kUqOutputs> out{};
-    out.fill(0.01);
+    std::vector<double> out(r.output_info.size(), 0.01);
     out[0] = v, out[1] = 0.25;
     r.outputs.push_back(out);
   }
-  for (int o = 0; o < study::kUqOutputs; ++o) {
+  for (std::size_t o = 0; o < r.output_info.size(); ++o) {
     std::vector<double> f;
-    for (const auto& out : r.outputs) f.push_back(out[static_cast<std::size_t>(o)]);
-    r.indices[static_cast<std::size_t>(o)] = study::sobol_indices(r.design, f, 20, 1);
+    for (const auto& out : r.outputs) f.push_back(out[o]);
+    r.indices.push_back(study::sobol_indices(r.design, f, 20, 1));
   }
   REQUIRE(r.indices[0].variance == 0.0);
   const std::string html = report::uncertainty_html(report::uncertainty_json(r));
   CHECK_THAT(html, Catch::Contains("P(pass one test): the same at every base draw (A and B)"));
   CHECK_THAT(html, Catch::Contains("from 0.5 to 0.9"));
   CHECK_THAT(html, Catch::Contains("P(pass) from every nail (exact): the same at every draw (no variance"));
+}
+
+namespace {
+// A small field: one kind of stones before a 21-in mower, a lane beside it.
+std::string field_file(const std::string& name, const std::string& uncertainty) {
+  const std::string path = std::string(J232_BINARY_DIR) + "/" + name;
+  std::ofstream(path) << R"(title = "field uq test"
+[blade]
+speed = "2700 rpm"
+height = "2 in"
+[blade.hub]
+bar_mass = "3.5 lb"
+bar_length = "21 in"
+[housing]
+skirt_bottom = "3 in"
+[field]
+objects_simulated = 100000
+[[field.objects]]
+name = "stones"
+median_size = "30 mm"
+spread = 1.6
+min_size = "10 mm"
+max_size = "70 mm"
+per_area = "0.5 m^-2"
+embedment = 0.2
+[[field.planes]]
+name = "path"
+side = "left"
+distance = "4 m"
+receptor = "person"
+)" << uncertainty;
+  return path;
+}
+}  // namespace
+
+TEST_CASE("uncertainty: a field's study draws its inputs over the same objects", "[uncertainty][field]") {
+  const auto file = field_file("uq-field.toml", R"(
+[uncertainty]
+base_draws = 4
+objects = 1200
+[[uncertainty.inputs]]
+parameter = "field.objects[1].per_area"
+low = "0.25 m^-2"
+high = "1 m^-2"
+distribution = "loguniform"
+basis = "test"
+[[uncertainty.inputs]]
+parameter = "field.objects[1].drag_coefficient"
+low = 0.47
+high = 0.8
+basis = "test"
+)");
+  const auto a = study::run_uncertainty(file, 2), b = study::run_uncertainty(file, 1);
+  REQUIRE(a.field);
+  REQUIRE(a.plan.objects == 1200);
+  REQUIRE(a.outputs.size() == 4 * 4);
+  CHECK(a.outputs == b.outputs);  // any thread count
+  std::vector<std::string> names;
+  for (const auto& o : a.output_info) names.push_back(o.name);
+  CHECK(names == std::vector<std::string>{"thrown_per_km", "hazard_distance_left", "hazard_distance_right", "hazard_distance_front",
+                                          "hazard_distance_rear", "plane1_hazardous_per_km", "plane1_p_struck", "acceptable_beyond_deck"});
+  CHECK(a.output_info[a.smooth_output].name == "plane1_hazardous_per_km");
+  // A loguniform draw stays within its range.
+  for (const auto& v : a.values) CHECK((v[0] >= 0.25 && v[0] <= 1.0));
+  // Common random numbers: AB_1 differs from A only in the density of stones, so it meets
+  // the same objects, throws the same ones, and its rate per km scales with the density.
+  const std::size_t n = a.design.base;
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto &base = a.outputs[j], &mixed = a.outputs[2 * n + j];
+    REQUIRE(a.values[2 * n + j][1] == a.values[j][1]);
+    CHECK(mixed[0] / base[0] == Approx(a.values[2 * n + j][0] / a.values[j][0]).epsilon(1e-12));
+  }
+  // The page and the table name the field's outputs.
+  const auto j = report::uncertainty_json(a);
+  CHECK(j["kind"] == "field");
+  CHECK(j["objects_per_assessment"] == 1200);
+  const std::string html = report::uncertainty_html(j);
+  CHECK_THAT(html, Catch::Contains("path: hazardous crossings of a person&#39;s height per km") ||
+                       Catch::Contains("path: hazardous crossings of a person's height per km"));
+  CHECK_THAT(html, Catch::Contains("data-key=\"objects_per_assessment\" data-value=\"1200\""));
+  CHECK_THAT(report::uncertainty_csv(a), Catch::StartsWith("assessment,block,field.objects[1].per_area,field.objects[1].drag_coefficient,thrown_per_km"));
+}
+
+TEST_CASE("uncertainty: a field's study refuses what has no meaning in it", "[uncertainty][field][input]") {
+  using Catch::Contains;
+  auto input = [](const std::string& parameter, const std::string& low, const std::string& high) {
+    return "[[uncertainty.inputs]]\nparameter = \"" + parameter + "\"\nlow = " + low + "\nhigh = " + high + "\nbasis = \"x\"\n";
+  };
+  CHECK_THROWS_WITH(scenario::read_scenario(field_file("uq-field-bad1.toml", "[uncertainty]\nreplicates = 20\n" + input("bevel_angle", "\"20 deg\"", "\"40 deg\""))),
+                    Contains("uncertainty.replicates") && Contains("objects = N"));
+  CHECK_THROWS_WITH(scenario::read_scenario(with_uncertainty("uq-field-bad2.toml", "[uncertainty]\nobjects = 2000\n")),
+                    Contains("uncertainty.objects") && Contains("replicates = N"));
+  // Every object has its own restitution: the scenario's is unused.
+  CHECK_THROWS_WITH(study::run_uncertainty(field_file("uq-field-bad3.toml", "[uncertainty]\n" + input("restitution", "0.4", "0.9")), 1),
+                    Contains("restitution") && Contains("own restitution"));
+  CHECK_THROWS_WITH(study::run_uncertainty(field_file("uq-field-bad4.toml", "[uncertainty]\n" + input("edge_friction", "0.2", "0.5")), 1),
+                    Contains("field.objects[N].friction"));
+  // An element of an array of tables the file does not have.
+  CHECK_THROWS_WITH(study::run_uncertainty(field_file("uq-field-bad5.toml", "[uncertainty]\n" + input("field.objects[2].per_area", "\"1 m^-2\"", "\"2 m^-2\"")), 1),
+                    Contains("field.objects[2].per_area") && Contains("one of the 1 [[field.objects]] tables"));
+  CHECK_THROWS_WITH(study::run_uncertainty(field_file("uq-field-bad6.toml", "[uncertainty]\n" + input("field.objects[1].per_area", "\"0 m^-2\"", "\"2 m^-2\"") +
+                                                                              "distribution = \"loguniform\"\n"),
+                                           1),
+                    Contains("above zero"));
 }

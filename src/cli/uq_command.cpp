@@ -19,6 +19,8 @@
 #include "report/atomic_file.hpp"
 #include "report/text_safety.hpp"
 #include "report/uncertainty_report.hpp"
+#include "scenario/scenario_reader.hpp"
+#include "scenario/toml_reader.hpp"
 #include "study/uncertainty.hpp"
 
 namespace j232::cli {
@@ -39,7 +41,8 @@ struct UqOptions {
 // assessments it holds when the digest matches. Removed when the study completes.
 class Journal {
  public:
-  Journal(std::string path, std::string digest, bool resume) : path_(std::move(path)), digest_(std::move(digest)) {
+  // `outputs`: how many outputs each assessment of this study records.
+  Journal(std::string path, std::string digest, bool resume, std::size_t outputs) : path_(std::move(path)), digest_(std::move(digest)) {
     const std::string header = "# j232 uq journal " + digest_;
     // In an MPI job rank 0 reads the journal and every rank takes the same assessments from it.
     std::string text;
@@ -53,22 +56,21 @@ class Journal {
       std::string line;
       if (std::getline(in, line) && line == header) {
         while (std::getline(in, line)) {
-          std::array<double, study::kUqOutputs + 2> v{};  // the outputs, the cut-off share and its commonest limit
+          std::vector<double> v;  // the outputs, the cut-off share and its commonest limit
           char* end = line.data();
           const auto run = std::strtoull(end, &end, 10);
           bool whole = end != line.data();
-          for (auto& x : v) {
-            whole = whole && *end == ',';
-            if (!whole) break;
+          while (whole && *end == ',') {
             char* start = end + 1;
-            x = std::strtod(start, &end);
+            v.push_back(std::strtod(start, &end));
             whole = end != start;
           }
-          if (whole && *end == '\0') {  // a line cut short by the interruption is not kept
+          // A line cut short by the interruption is not kept (nor one of another number of outputs).
+          if (whole && *end == '\0' && v.size() == outputs + 2) {
             study::UqRun kept;
-            std::copy(v.begin(), v.begin() + study::kUqOutputs, kept.outputs.begin());
-            kept.cut_off_share = v[study::kUqOutputs];
-            kept.cut_off_limit = static_cast<int>(v[study::kUqOutputs + 1]);
+            kept.outputs.assign(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(outputs));
+            kept.cut_off_share = v[outputs];
+            kept.cut_off_limit = static_cast<int>(v[outputs + 1]);
             kept_[run] = kept;
           }
         }
@@ -118,7 +120,8 @@ class Journal {
 
 int uq(const UqOptions& o) {
   report::OutputFolder out(o.out, {"uq.csv", "uq.html", "uq.json"});
-  Journal journal(out.folder() + "/uq-journal.csv", report::inputs_digest(o.scenario, RunOverrides{}), o.resume);
+  const std::size_t outputs = study::uq_outputs(scenario::read_scenario(scenario::parse_toml_file(o.scenario), o.scenario)).size();
+  Journal journal(out.folder() + "/uq-journal.csv", report::inputs_digest(o.scenario, RunOverrides{}), o.resume, outputs);
   if (journal.kept()) fmt::print("Resuming: {} assessments kept from the journal\n", journal.kept());
   const auto hooks = journal.hooks();
   study::UncertaintyResult r;
@@ -132,16 +135,20 @@ int uq(const UqOptions& o) {
   report::write_atomically(out.staged("uq.json"), j.dump(2) + "\n");
   out.commit();
   journal.remove();
-  fmt::print("{}\n{} inputs{}, {} assessments of {} replicates\n", terminal_safe(r.title), r.plan.inputs.size(),
-             r.plan.defaults ? " (default set of estimated inputs)" : "", r.outputs.size(), r.plan.replicates);
-  const auto& p = j["outputs"]["p_pass"];
-  fmt::print("P(pass) over the inputs' uncertainty: median {:.3f}, 5-95 % {:.3f} to {:.3f}\n", p["q50"].get<double>(),
-             p["q05"].get<double>(), p["q95"].get<double>());
-  fmt::print("Robust verdict: {} ({:.1f} % of draws pass)\n", j["robust_verdict"].get<std::string>(),
-             100 * j["share_of_draws_passing"].get<double>());
-  const auto& s = r.indices[1];  // P(pass) from every nail: smooth in the inputs
+  fmt::print("{}\n{} inputs{}, {} assessments of {}\n", terminal_safe(r.title), r.plan.inputs.size(),
+             r.plan.defaults ? " (default set of estimated inputs)" : "", r.outputs.size(),
+             r.field ? fmt::format("{} objects", r.plan.objects) : fmt::format("{} replicates", r.plan.replicates));
+  // The headline: P(pass), or a field's figure the inputs are ranked by.
+  const auto& headline = r.output_info[r.field ? r.smooth_output : 0];
+  const auto& p = j["outputs"][headline.name];
+  fmt::print("{} over the inputs' uncertainty: median {:.4g}, 5-95 % {:.4g} to {:.4g}{}\n", r.field ? terminal_safe(headline.words) : "P(pass)",
+             p["q50"].get<double>(), p["q05"].get<double>(), p["q95"].get<double>(), headline.unit);
+  fmt::print("Robust verdict: {} ({:.1f} % of draws {})\n", j["robust_verdict"].get<std::string>(), 100 * j["share_of_draws_passing"].get<double>(),
+             r.field ? "acceptable beyond the deck" : "pass");
+  const auto& s = r.indices[r.smooth_output];  // smooth in the inputs: P(pass) from every nail, a field's flux
   if (s.variance > 0) {
-    fmt::print("What drives P(pass) from every nail (total Sobol' index, 95 % interval):\n");
+    fmt::print("What drives {} (total Sobol' index, 95 % interval):\n",
+               r.field ? terminal_safe(r.output_info[r.smooth_output].words) : "P(pass) from every nail");
     std::vector<std::size_t> order(r.plan.inputs.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](auto a, auto b) { return s.total[a].estimate > s.total[b].estimate; });
@@ -157,7 +164,7 @@ int uq(const UqOptions& o) {
                  r.plan.base_draws);
     if (r.half_indices) {
       double moved = 0;
-      const auto& half = (*r.half_indices)[1];
+      const auto& half = (*r.half_indices)[r.smooth_output];
       if (half.variance > 0)
         for (std::size_t i = 0; i < order.size(); ++i) moved = std::max(moved, std::abs(half.total[i].estimate - s.total[i].estimate));
       fmt::print("  from {} to {} base draws the total indices moved by at most {:.3f}\n", r.plan.base_draws / 2, r.plan.base_draws, moved);

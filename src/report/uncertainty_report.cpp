@@ -12,13 +12,14 @@ namespace j232::report {
 
 namespace {
 using json = nlohmann::ordered_json;
-const char* kWords[study::kUqOutputs] = {"P(pass one test)",
-                                         "P(pass) from every nail (exact)",
-                                         "hits in the operator zone",
-                                         "punctures in the operator zone",
-                                         "hits outside the zone",
-                                         "punctures outside the zone",
-                                         "passes (P(pass) at least the required)"};
+const char* scale_name(study::UqOutput::Scale s) {
+  switch (s) {
+    case study::UqOutput::Scale::Probability: return "probability";
+    case study::UqOutput::Scale::Percent: return "share";
+    case study::UqOutput::Scale::Number: return "number";
+  }
+  return "number";
+}
 
 json index_json(const study::Index& i) { return {{"estimate", i.estimate}, {"low", i.low}, {"high", i.high}}; }
 }  // namespace
@@ -48,21 +49,23 @@ json uncertainty_json(const study::UncertaintyResult& r) {
                                                           : "uniform"},
          {"basis", in.basis}});
   }
-  json outputs, sensitivity;
-  for (int o = 0; o < study::kUqOutputs; ++o) {
+  json outputs, sensitivity, listed = json::array();
+  for (std::size_t o = 0; o < r.output_info.size(); ++o) {
+    const study::UqOutput& info = r.output_info[o];
+    listed.push_back({{"name", info.name}, {"words", info.words}, {"scale", scale_name(info.scale)}, {"unit", info.unit}});
     std::vector<double> v;
-    for (const auto& out : r.outputs) v.push_back(out[static_cast<std::size_t>(o)]);
+    for (const auto& out : r.outputs) v.push_back(out[o]);
     std::sort(v.begin(), v.end());
     double mean = 0;
     for (double x : v) mean += x;
     mean /= static_cast<double>(v.size());
-    outputs[study::kUqOutputNames[o]] = {{"mean", mean},
+    outputs[info.name] = {{"mean", mean},
                                          {"min", v.front()},
                                          {"q05", assess::quantile_sorted(v, 0.05)},
                                          {"q50", assess::quantile_sorted(v, 0.5)},
                                          {"q95", assess::quantile_sorted(v, 0.95)},
                                          {"max", v.back()}};
-    const auto& idx = r.indices[static_cast<std::size_t>(o)];
+    const auto& idx = r.indices[o];
     json rows = json::array();
     double moved = 0;  // the largest change of an index from N/2 to N base draws
     for (std::size_t i = 0; i < r.plan.inputs.size(); ++i) {
@@ -71,40 +74,54 @@ json uncertainty_json(const study::UncertaintyResult& r) {
                   {"total", index_json(idx.total[i])},
                   {"flagged", study::leaves_unit_interval(idx.first[i]) || study::leaves_unit_interval(idx.total[i])}};
       if (r.half_indices) {
-        const auto& half = (*r.half_indices)[static_cast<std::size_t>(o)];
+        const auto& half = (*r.half_indices)[o];
         row["at_half_the_draws"] = {{"first_order", half.first[i].estimate}, {"total", half.total[i].estimate}};
         if (half.variance > 0)
           moved = std::max({moved, std::abs(half.first[i].estimate - idx.first[i].estimate), std::abs(half.total[i].estimate - idx.total[i].estimate)});
       }
       rows.push_back(row);
     }
-    sensitivity[study::kUqOutputNames[o]] = {{"variance", idx.variance},
+    sensitivity[info.name] = {{"variance", idx.variance},
                                              {"indices", rows},
                                              {"largest_change_from_half_the_draws", r.half_indices ? json(moved) : json(nullptr)}};
   }
-  const double passing = outputs["passes"]["mean"].get<double>();
-  return {{"program", "j232 uq"},
-          {"scenario", r.scenario_file},
-          {"title", r.title},
-          {"method",
-           "Saltelli scheme on a Sobol' sequence (Boost.Random), N (k + 2) assessments with common random numbers; "
-           "first-order indices by Saltelli et al. (2010), total by Jansen (1999); 95 % bootstrap intervals (500 "
-           "resamples of the base draws)"},
-          {"inputs", inputs},
-          {"default_inputs", r.plan.defaults},
-          {"base_draws", r.plan.base_draws},
-          {"base_draws_default", study::UncertaintyPlan{}.base_draws},
-          {"assessments", r.outputs.size()},
-          {"replicates_per_assessment", r.plan.replicates},
-          {"seed", r.seed},
-          {"required_pass_probability", r.required},
-          {"share_of_draws_passing", passing},
-          {"robust_verdict", passing == 1.0   ? "passes at every draw"
-                             : passing == 0.0 ? "fails at every draw"
-                                              : "depends on the inputs"},
-          {"outputs", outputs},
-          {"sensitivity", sensitivity},
-          {"warnings", r.warnings}};
+  // The verdict is the last output: 1 where the draw passes (a field: acceptable beyond the deck).
+  const double passing = outputs[r.output_info.back().name]["mean"].get<double>();
+  json j = {{"program", "j232 uq"},
+            {"scenario", r.scenario_file},
+            {"title", r.title},
+            {"kind", r.field ? "field" : "j232"},
+            {"method",
+             std::string("Saltelli scheme on a Sobol' sequence (Boost.Random), N (k + 2) assessments with common random numbers (") +
+                 (r.field ? "the same objects" : "the same seed and replicates") +
+                 " at every draw); first-order indices by Saltelli et al. (2010), total by Jansen (1999); 95 % bootstrap intervals "
+                 "(500 resamples of the base draws)"},
+            {"inputs", inputs},
+            {"default_inputs", r.plan.defaults},
+            {"base_draws", r.plan.base_draws},
+            {"base_draws_default", study::UncertaintyPlan{}.base_draws},
+            {"assessments", r.outputs.size()}};
+  if (r.field) {
+    j["objects_per_assessment"] = r.plan.objects;
+    j["acceptable_area_m2"] = r.acceptable_area;
+    j["verdict_rule"] = "acceptable: the hazard distance is the deck's edge in every direction (hazardous impacts fewer than one per "
+                        "acceptable area everywhere beyond the deck)";
+  } else {
+    j["replicates_per_assessment"] = r.plan.replicates;
+    j["required_pass_probability"] = r.required;
+    j["verdict_rule"] = "passes: P(pass) from every nail at least the required";
+  }
+  j["seed"] = r.seed;
+  j["share_of_draws_passing"] = passing;
+  j["robust_verdict"] = passing == 1.0   ? (r.field ? "acceptable beyond the deck at every draw" : "passes at every draw")
+                        : passing == 0.0 ? (r.field ? "hazardous beyond the deck at every draw" : "fails at every draw")
+                                         : "depends on the inputs";
+  j["ranked_by"] = r.output_info[r.smooth_output].name;
+  j["output_list"] = listed;
+  j["outputs"] = outputs;
+  j["sensitivity"] = sensitivity;
+  j["warnings"] = r.warnings;
+  return j;
 }
 
 std::string uncertainty_csv(const study::UncertaintyResult& r) {
@@ -113,7 +130,7 @@ std::string uncertainty_csv(const study::UncertaintyResult& r) {
     o += ',';
     o += csv_text_cell(in.parameter);
   }
-  for (const char* name : study::kUqOutputNames) o += std::string(",") + name;
+  for (const auto& out : r.output_info) o += "," + out.name;
   o += "\n";
   const std::size_t n = r.design.base;
   for (std::size_t run = 0; run < r.outputs.size(); ++run) {
@@ -132,25 +149,35 @@ std::string uncertainty_html(const json& j) {
   o += fmt::format("<h1>How much the verdict rests on uncertain inputs</h1>\n<p>{} ({})</p>\n", escape(j["title"].get<std::string>()),
                    escape(j["scenario"].get<std::string>()));
   const double passing = j["share_of_draws_passing"].get<double>();
+  const bool field = j["kind"] == "field";
+  const char* verdict_class = passing == 1.0 ? "pass" : passing == 0.0 ? "fail" : "invalid";
+  if (field)
+    o += fmt::format(
+        "<p class=\"verdict {}\"><strong>Robust verdict: {}</strong> &mdash; hazardous impacts (a person's) stay below one per {} m&sup2; "
+        "everywhere beyond the deck in {} % of {} assessments drawn over the inputs' ranges.</p>\n",
+        verdict_class, escape(j["robust_verdict"].get<std::string>()), number("acceptable_area_m2", j["acceptable_area_m2"], "{:.4g}"),
+        number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
+  else
+    o += fmt::format(
+        "<p class=\"verdict {}\"><strong>Robust verdict: the mower {}</strong> &mdash; it passes (P(pass) at least {}) in "
+        "{} % of {} assessments drawn over the inputs' ranges.</p>\n",
+        verdict_class, escape(j["robust_verdict"].get<std::string>()), number("required_pass_probability", j["required_pass_probability"], "{:g}"),
+        number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
   o += fmt::format(
-      "<p class=\"verdict {}\"><strong>Robust verdict: the mower {}</strong> &mdash; it passes (P(pass) at least {}) in "
-      "{} % of {} assessments drawn over the inputs' ranges.</p>\n",
-      passing == 1.0   ? "pass"
-      : passing == 0.0 ? "fail"
-                       : "invalid",
-      escape(j["robust_verdict"].get<std::string>()), number("required_pass_probability", j["required_pass_probability"], "{:g}"),
-      number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
-  o += fmt::format(
-      "<p>{} assessments of {} replicates each (Saltelli scheme, {} base draws{}; common random numbers, seed {}). "
+      "<p>{} assessments of {} each (Saltelli scheme, {} base draws{}; common random numbers, seed {}). "
       "Inputs{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th><th>distribution</th>"
       "<th>basis of the range</th></tr></thead><tbody>\n",
-      number("assessments", j["assessments"], "{}"), number("replicates_per_assessment", j["replicates_per_assessment"], "{}"),
+      number("assessments", j["assessments"], "{}"),
+      field ? number("objects_per_assessment", j["objects_per_assessment"], "{}") + " objects"
+            : number("replicates_per_assessment", j["replicates_per_assessment"], "{}") + " replicates",
       number("base_draws", j["base_draws"], "{}"),
       j["base_draws"].get<std::size_t>() < j["base_draws_default"].get<std::size_t>()
           ? fmt::format(", fewer than the default {}, as the scenario asks", j["base_draws_default"].get<std::size_t>())
           : "",
       number("seed", j["seed"], "{}"),
-      j["default_inputs"].get<bool>() ? " (j232's default set of estimated inputs: the scenario has no [uncertainty])" : "");
+      j["default_inputs"].get<bool>() ? (field ? " (j232's default set of a field's estimated inputs: the scenario has no [uncertainty])"
+                                                : " (j232's default set of estimated inputs: the scenario has no [uncertainty])")
+                                      : "");
   if (j.contains("warnings") && !j["warnings"].empty()) {
     o += "<p><strong>Before trusting every draw, note:</strong></p>\n<ul class=\"warnings\">\n";
     for (const auto& w : j["warnings"]) o += fmt::format("<li>{}</li>\n", escape(w.get<std::string>()));
@@ -164,37 +191,37 @@ std::string uncertainty_html(const json& j) {
                      escape(inputs[i]["basis"].get<std::string>()));
   o += "</tbody></table>\n<h2>The outputs over the inputs' uncertainty</h2>\n<table class=\"numbers\"><thead><tr><th>output</th>"
        "<th>mean</th><th>5 %</th><th>median</th><th>95 %</th><th>min</th><th>max</th></tr></thead><tbody>\n";
-  for (int k = 0; k < study::kUqOutputs - 1; ++k) {
-    const std::string name = study::kUqOutputNames[k];
+  const auto& listed = j["output_list"];
+  for (std::size_t k = 0; k + 1 < listed.size(); ++k) {  // the verdict's share of draws is above
+    const std::string name = listed[k]["name"], scale_of = listed[k]["scale"];
     const auto& x = j["outputs"][name];
-    const bool probability = k < study::kUqProbabilityOutputs;
-    const double scale = probability ? 1.0 : 100.0;
-    const char* f = probability ? "{:.3f}" : "{:.2f}";
-    const char* unit = probability ? "" : " %";
-    o += fmt::format("<tr><td>{}</td>", kWords[k]);
+    const double scale = scale_of == "share" ? 100.0 : 1.0;
+    const char* f = scale_of == "probability" ? "{:.3f}" : scale_of == "share" ? "{:.2f}" : "{:.4g}";
+    const std::string unit = scale_of == "share" ? " %" : listed[k]["unit"].get<std::string>();
+    o += fmt::format("<tr><td>{}</td>", escape(listed[k]["words"].get<std::string>()));
     for (const char* q : {"mean", "q05", "q50", "q95", "min", "max"})
-      o += fmt::format("<td>{}{}</td>", number(fmt::format("outputs.{}.{}", name, q), x[q], f, scale), unit);
+      o += fmt::format("<td>{}{}</td>", number(fmt::format("outputs.{}.{}", name, q), x[q], f, scale), escape(unit));
     o += "</tr>\n";
   }
   o += "</tbody></table>\n<h2>Which input drives what: Sobol' indices</h2>\n<p>First order: the share of the output's variance "
        "an input causes alone; total: alone and with all its interactions. An input with both near 0 does not matter over its "
        "range. Bars: 95 % bootstrap intervals.</p>\n";
-  for (int k = 0; k < study::kUqOutputs; ++k) {
-    const std::string name = study::kUqOutputNames[k];
+  for (const auto& output : listed) {
+    const std::string name = output["name"], words = escape(output["words"].get<std::string>());
     const auto& s = j["sensitivity"][name];
     if (s["variance"].get<double>() <= 0) {
       // The variance is over the base draws (A and B); the table's range is over every draw.
       const auto& x = j["outputs"][name];
       if (x["min"].get<double>() == x["max"].get<double>())
-        o += fmt::format("<p>{}: the same at every draw (no variance to attribute).</p>\n", kWords[k]);
+        o += fmt::format("<p>{}: the same at every draw (no variance to attribute).</p>\n", words);
       else
         o += fmt::format(
             "<p>{}: the same at every base draw (A and B), so there is no variance to attribute, though it moves at "
             "some of the mixed draws (from {} to {} over all of them): more base draws are needed to apportion it.</p>\n",
-            kWords[k], x["min"].get<double>(), x["max"].get<double>());
+            words, x["min"].get<double>(), x["max"].get<double>());
       continue;
     }
-    Chart chart(fmt::format("Sobol' indices: {}", kWords[k]), "input (numbered as in the table above)", "index", 640, 300);
+    Chart chart(fmt::format("Sobol' indices: {}", output["words"].get<std::string>()), "input (numbered as in the table above)", "index", 640, 300);
     std::vector<double> x1, y1, l1, h1, x2, y2, l2, h2;
     const bool half = !s["largest_change_from_half_the_draws"].is_null();
     bool any_flagged = false;
@@ -202,7 +229,7 @@ std::string uncertainty_html(const json& j) {
     o += fmt::format(
         "<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>{}<th></th>"
         "</tr></thead><tbody>\n",
-        kWords[k], half ? fmt::format("<th>first / total at N = {}</th>", j["base_draws"].get<std::size_t>() / 2) : "");
+        words, half ? fmt::format("<th>first / total at N = {}</th>", j["base_draws"].get<std::size_t>() / 2) : "");
     for (std::size_t i = 0; i < s["indices"].size(); ++i) {
       const auto& row = s["indices"][i];
       const std::string key = fmt::format("sensitivity.{}.indices.{}", name, i);

@@ -256,7 +256,9 @@ struct UncertainInput {
   std::optional<int> line;
   // How the value is spread over [low, high] (docs/model.md §6b): "uniform"; "triangular"
   // with its `mode` (default the midpoint); "normal" about the midpoint with `sd` (default a
-  // quarter of the range), truncated to the range. mode and sd are written like low.
+  // quarter of the range), truncated to the range; "loguniform" (low above zero): uniform in
+  // the logarithm, for a factor known only to within a ratio (a density of stones).
+  // mode and sd are written like low.
   std::string distribution = "uniform";
   std::string mode, sd;
   // A discrete input instead of a range (rotation sense, a choice of guard): the values the
@@ -267,6 +269,9 @@ struct UncertaintySpec {
   std::vector<UncertainInput> inputs;
   long long base_draws = 256;  // N of the Saltelli scheme: N (k + 2) assessments (fewer only on request: indices at N = 32 are noise)
   long long replicates = 50;   // per assessment (its P(pass) from every nail is smooth; see docs/model.md §6b)
+  // A field scenario's assessments: objects simulated in each (none: the smaller of
+  // field.objects_simulated and 20 000).
+  std::optional<long long> objects;
 };
 
 // A mower at work over a field strewn with objects (`j232 hazard`, docs/model.md §9): no

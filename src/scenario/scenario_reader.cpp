@@ -199,6 +199,7 @@ std::string value_text(const TableReader& t, const char* key) {
 void read_uncertainty(const TableReader& t, UncertaintySpec& u) {
   u.base_draws = t.integer_or("base_draws", u.base_draws, 2, 4096);
   u.replicates = t.integer_or("replicates", u.replicates, 10, 1000000);
+  if (t.has("objects")) u.objects = t.integer_or("objects", 0, 100, 1'000'000'000);
   for (const auto& i : t.array_of_tables("inputs", 16)) {
     UncertainInput in;
     in.parameter = i.string_or("parameter", "", {});
@@ -221,7 +222,7 @@ void read_uncertainty(const TableReader& t, UncertaintySpec& u) {
     if (!i.has("high")) throw i.error("high", "missing; expected the range's high end as the key takes it");
     in.low = value_text(i, "low");
     in.high = value_text(i, "high");
-    in.distribution = i.string_or("distribution", "uniform", {"uniform", "triangular", "normal"});
+    in.distribution = i.string_or("distribution", "uniform", {"uniform", "triangular", "normal", "loguniform"});
     if (i.has("mode")) {
       if (in.distribution != "triangular") throw i.error("mode", "only a triangular distribution has a mode");
       in.mode = value_text(i, "mode");
@@ -665,7 +666,15 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     // An object thrown across a field flies for seconds, not the board's fraction of one.
     if (!(root.table("run") && root.table("run")->has("time_limit"))) s.run.time_limit = 20.0;
   }
-  if (auto u = root.table("uncertainty")) read_uncertainty(*u, s.uncertainty);
+  if (auto u = root.table("uncertainty")) {
+    read_uncertainty(*u, s.uncertainty);
+    // A field's assessments simulate objects; a J232 test's, replicates of the test.
+    if (s.field.present && u->has("replicates"))
+      throw u->error("replicates", "a field scenario's uncertainty study simulates objects at each draw, not replicates of the J232 test; "
+                                   "expected objects = N instead");
+    if (!s.field.present && u->has("objects"))
+      throw u->error("objects", "only a field scenario ([field]) simulates objects; a J232 test's study takes replicates = N");
+  }
   for (const auto& key : root.strings("estimates")) {
     const auto value = root.value_at(key);
     if (!value)

@@ -1,5 +1,6 @@
 #include "study/parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -160,20 +161,29 @@ void apply(const Setting& s, scenario::Scenario& sc) {
     case Parameter::BladeMass:
       for (auto& sp : sc.spindles) scale_blade_mass(sp.blade, s.si);
       break;
-    case Parameter::Restitution: sc.restitution = blade::Restitution::constant(s.si); break;
+    case Parameter::Restitution:
+      if (sc.field.present && std::all_of(sc.field.objects.begin(), sc.field.objects.end(), [](const auto& o) { return o.restitution.has_value(); }))
+        throw std::invalid_argument("restitution: every object of this field has its own restitution on the blade (field.objects[N].restitution)");
+      sc.restitution = blade::Restitution::constant(s.si);
+      break;
     case Parameter::ContactRadius:
+      if (sc.field.present) throw std::invalid_argument("contact_radius: a field scenario has no feed; its objects lie across the cut");
       for (auto& f : sc.feed.stations) f.radius = s.si;
       break;
     case Parameter::PivotPosition:
       for (auto& sp : sc.spindles) set_pivot_position(sp.blade, s.si);
       break;
-    case Parameter::ObjectMass: sc.nail.mass = s.si; break;
+    case Parameter::ObjectMass:
+      if (sc.field.present) throw std::invalid_argument("object_mass: a field's objects take their mass from their size and density (field.objects[N].median_size)");
+      sc.nail.mass = s.si;
+      break;
     case Parameter::ObjectSpeed:
       throw std::invalid_argument("object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead");
     case Parameter::BevelAngle:
       for (auto& sp : sc.spindles) sp.geometry.edge.bevel_angle = s.si;
       break;
     case Parameter::EdgeFriction:
+      if (sc.field.present) throw std::invalid_argument("edge_friction: a field's objects have their own friction on the blade (field.objects[N].friction)");
       for (auto& sp : sc.spindles) sp.geometry.edge.friction = s.si;
       break;
     case Parameter::SailHeight:

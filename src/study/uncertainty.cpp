@@ -5,13 +5,17 @@
 #include <algorithm>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
+#include "assess/cluster.hpp"
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
+#include "field/hazard_run.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/toml_reader.hpp"
 #include "study/parameters.hpp"
+#include "units/arc.hpp"
 #include "scenario/scenario_reader.hpp"
 
 namespace j232::study {
@@ -51,7 +55,104 @@ std::string draw_inputs(const UncertaintyPlan& plan, const std::vector<double>& 
   return out;
 }
 
+
+// A J232 test at one draw: common random numbers (the same seed and replicates at every
+// draw). Sets `invalid` to the reason when the simulated test is invalid.
+UqRun assess_test(scenario::Scenario& sc, const UncertaintyPlan& plan, int threads, double required, std::string& invalid) {
+  sc.run.replicates = plan.replicates;
+  sc.run.target_half_width.reset();
+  sc.run.until_settled = false;
+  const assess::Simulator sim(sc);
+  const auto a = assess::run_assessment(sim, threads);
+  const auto sum = assess::summarise(a, sc);
+  if (!sum.validity.valid) invalid = sum.validity.reasons.front();
+  // (From every nail where it can be computed; else, for the `marks` denominator, the
+  // replicates' share, as uq.json says.)
+  const double exact = sum.exact.computed ? sum.exact.value : sum.pass.estimate;
+  UqRun out;
+  out.outputs = {sum.pass.estimate,          exact,
+                 sum.criteria[0].mean_share, sum.criteria[1].mean_share,
+                 sum.criteria[2].mean_share, sum.criteria[3].mean_share,
+                 exact >= required ? 1.0 : 0.0};
+  const auto cut = sum.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
+  out.cut_off_share = sum.struck ? static_cast<double>(cut) / static_cast<double>(sum.struck) : 0.0;
+  for (int why = 1; why < flight::kCutOffReasons; ++why)
+    if (sum.cut_off_by[static_cast<std::size_t>(why)] > sum.cut_off_by[static_cast<std::size_t>(out.cut_off_limit)]) out.cut_off_limit = why;
+  return out;
+}
+
+// A field at one draw: the same objects (seed and count) at every draw. In an MPI job rank
+// 0 holds the whole tally and hands every rank the outputs, so all ranks go on alike.
+UqRun assess_field(scenario::Scenario& sc, const UncertaintyPlan& plan, int threads, std::string& invalid) {
+  sc.field.objects_simulated = plan.objects;
+  const field::FieldSimulator sim(sc);
+  const field::HazardRun run = field::run_hazard(sim, threads);
+  UqRun out;
+  std::string text;
+  if (assess::cluster::is_writer()) {
+    const field::HazardSummary sum = field::summarise(sim, run);
+    out.outputs.push_back(sum.thrown_per_km);
+    bool acceptable = true;
+    for (const auto& d : sum.directions) {
+      out.outputs.push_back(d.hazard_distance);
+      acceptable = acceptable && !d.beyond_range && d.hazard_distance <= d.deck_extent;
+    }
+    for (const auto& p : sum.planes) {
+      out.outputs.push_back(p.hazardous_per_km.value);
+      if (p.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && p.along_path) out.outputs.push_back(p.probability.value);
+    }
+    out.outputs.push_back(acceptable ? 1.0 : 0.0);
+    out.cut_off_share = sum.cut_off_share;
+    std::array<std::uint64_t, flight::kCutOffReasons> by{};
+    for (const auto& t : run.kinds)
+      for (std::size_t why = 0; why < by.size(); ++why) by[why] += t.cut_off_by[why];
+    for (int why = 1; why < flight::kCutOffReasons; ++why)
+      if (by[static_cast<std::size_t>(why)] > by[static_cast<std::size_t>(out.cut_off_limit)]) out.cut_off_limit = why;
+    if (!sum.valid) invalid = sum.invalid_reason;
+    text = invalid + '\n' + fmt::format("{:.17g} {}", out.cut_off_share, out.cut_off_limit);
+    for (double v : out.outputs) text += fmt::format(" {:.17g}", v);
+  }
+  if (assess::cluster::size() > 1) {
+    assess::cluster::broadcast_from_writer(text);
+    const auto line = text.find('\n');
+    invalid = text.substr(0, line);
+    std::istringstream numbers(text.substr(line + 1));
+    numbers >> out.cut_off_share >> out.cut_off_limit;
+    out.outputs.clear();
+    for (double v; numbers >> v;) out.outputs.push_back(v);
+  }
+  return out;
+}
+
 }  // namespace
+
+std::vector<UqOutput> uq_outputs(const scenario::Scenario& s) {
+  using Scale = UqOutput::Scale;
+  if (!s.field.present)
+    return {{"p_pass", "P(pass one test)", Scale::Probability, ""},
+            {"p_pass_exact", "P(pass) from every nail (exact)", Scale::Probability, ""},
+            {"hits_zone", "hits in the operator zone", Scale::Percent, ""},
+            {"punctures_zone", "punctures in the operator zone", Scale::Percent, ""},
+            {"hits_outside", "hits outside the zone", Scale::Percent, ""},
+            {"punctures_outside", "punctures outside the zone", Scale::Percent, ""},
+            {"passes", "passes (P(pass) at least the required)", Scale::Number, ""}};
+  std::vector<UqOutput> out = {{"thrown_per_km", "objects thrown per km mowed", Scale::Number, " per km"}};
+  for (const char* d : {"left", "right", "front", "rear"})
+    out.push_back({fmt::format("hazard_distance_{}", d), fmt::format("hazard distance to the {}", d), Scale::Number, " m"});
+  for (std::size_t i = 0; i < s.field.planes.size(); ++i) {
+    const auto& p = s.field.planes[i];
+    const bool person = p.receptor == scenario::FieldPlaneSpec::Receptor::Person;
+    out.push_back({fmt::format("plane{}_hazardous_per_km", i + 1),
+                   fmt::format("{}: hazardous {} per km", p.name, person ? "crossings of a person's height" : "impacts on the windshield band"),
+                   Scale::Number, " per km"});
+    const bool beside = p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Right;
+    if (person && beside)
+      out.push_back({fmt::format("plane{}_p_struck", i + 1), fmt::format("{}: P(a person there is struck in one pass)", p.name),
+                     Scale::Probability, ""});
+  }
+  out.push_back({"acceptable_beyond_deck", "acceptable beyond the deck (hazard distance at the deck's edge every way)", Scale::Number, ""});
+  return out;
+}
 
 double InputDistribution::quantile(double u) const {
   switch (kind) {
@@ -60,6 +161,7 @@ double InputDistribution::quantile(double u) const {
       const double split = (mode - low) / (high - low);  // F(mode)
       return u < split ? low + std::sqrt(u * (high - low) * (mode - low)) : high - std::sqrt((1 - u) * (high - low) * (high - mode));
     }
+    case Kind::LogUniform: return low * std::pow(high / low, u);
     case Kind::Normal: {
       const boost::math::normal_distribution<double> n(0.5 * (low + high), sd);
       const double a = boost::math::cdf(n, low), b = boost::math::cdf(n, high);
@@ -69,21 +171,80 @@ double InputDistribution::quantile(double u) const {
   return low;
 }
 
+namespace {
+UncertainInput estimated(std::string parameter, std::string low, std::string high, std::string basis, std::string distribution = "uniform") {
+  UncertainInput in;
+  in.parameter = std::move(parameter), in.low = std::move(low), in.high = std::move(high), in.basis = std::move(basis);
+  in.distribution = std::move(distribution);
+  return in;
+}
+
+// A field's estimated inputs (docs/model.md §9): what is known of the field (how many
+// objects, how large, how deep in the turf), of the air under the deck and of the contacts,
+// each over a range about the scenario's own value.
+std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
+  const auto& f = s.field;
+  std::vector<UncertainInput> in;
+  if (f.updraft_speed > 0)
+    in.push_back(estimated("field.updraft_speed", fmt::format("{:.4g} m/s", 0.75 * f.updraft_speed), fmt::format("{:.4g} m/s", 1.25 * f.updraft_speed),
+                           "estimate: no measurement of the air under a deck at the turf; the scenario's value +/- 25 %"));
+  for (std::size_t k = 0; k < f.objects.size(); ++k) {
+    const auto& o = f.objects[k];
+    const std::string at = fmt::format("field.objects[{}].", k + 1);
+    in.push_back(estimated(at + "per_area", fmt::format("{:.4g} m^-2", 0.5 * o.per_area), fmt::format("{:.4g} m^-2", 2 * o.per_area),
+                           fmt::format("estimate: {} per m2 is not surveyed; within a factor of 2, uniform in its logarithm", o.name), "loguniform"));
+    if (o.kind == scenario::FieldObjectSpec::Kind::Stone) {
+      if (o.min_size < o.max_size) {
+        const double lo = std::max(o.min_size, o.median_size / 1.5), hi = std::min(o.max_size, o.median_size * 1.5);
+        if (hi > lo)
+          in.push_back(estimated(at + "median_size", fmt::format("{:.4g} mm", 1000 * lo), fmt::format("{:.4g} mm", 1000 * hi),
+                                 fmt::format("estimate: the median size of the {} within a factor of 1.5 (inside its min and max)", o.name),
+                                 "loguniform"));
+      }
+      // Sunk deeper, the largest must still stand up to the blade's lower face; less deep,
+      // still pass under the deck's front (the reader's checks, kept inside the range).
+      double lowest_face = HUGE_VAL;
+      for (const auto& sp : s.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
+      double front_gap = s.housing.skirt_bottom;
+      for (const auto& op : s.housing.openings)
+        if (units::in_arc(0.0, op.azimuth_from, op.azimuth_to)) front_gap = std::max(front_gap, op.top);
+      const double deepest = std::min({0.9, o.embedment + 0.1, std::max(o.embedment, 1 - lowest_face / o.max_size - 0.01)});
+      const double shallowest = std::max({0.0, o.embedment - 0.1, s.meshes.empty() ? std::min(o.embedment, 1 - front_gap / o.max_size + 0.01) : 0.0});
+      if (deepest > shallowest)
+        in.push_back(estimated(at + "embedment", fmt::format("{:.3g}", shallowest), fmt::format("{:.3g}", deepest),
+                               fmt::format("estimate: how deep the {} sit in the turf, the scenario's share +/- 0.1 (no deeper than leaves the "
+                                           "largest standing up to the blade, no shallower than lets it pass under the deck's front)",
+                                           o.name)));
+      if (o.restitution)
+        in.push_back(estimated(at + "restitution", "0.3", "0.7", "estimate: stone on hardened steel; no measurement at blade speeds"));
+      in.push_back(estimated(at + "drag_coefficient", "0.47", "0.8",
+                             "handbook: a smooth sphere 0.47; angular stones up to about 0.8 (estimate)"));
+    }
+  }
+  in.push_back(estimated("bevel_angle", "20 deg", "45 deg", "estimate: mower blades are ground to about 30 deg; no figure for industrial cutters"));
+  in.push_back(estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"));
+  in.push_back(estimated("ground.max_restitution", "0.5", "0.95", "estimate: the angle law passes 1 at grazing impacts; a bounce off turf loses energy"));
+  if (!s.housing.guards.empty())
+    in.push_back(estimated("housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25"));
+  return in;
+}
+}  // namespace
+
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
   UncertaintyPlan plan;
   plan.base_draws = static_cast<std::size_t>(s.uncertainty.base_draws);
   plan.replicates = s.uncertainty.replicates;
+  if (s.field.present) plan.objects = s.uncertainty.objects.value_or(std::min(s.field.objects_simulated, 20000LL));
   if (!s.uncertainty.inputs.empty()) {
     plan.inputs = s.uncertainty.inputs;
     return plan;
   }
-  // The estimated inputs (docs/model.md §8), each over a range with its basis.
   plan.defaults = true;
-  auto estimated = [](std::string parameter, std::string low, std::string high, std::string basis) {
-    scenario::UncertainInput in;
-    in.parameter = std::move(parameter), in.low = std::move(low), in.high = std::move(high), in.basis = std::move(basis);
-    return in;
-  };
+  if (s.field.present) {
+    plan.inputs = field_defaults(s);
+    return plan;
+  }
+  // The estimated inputs (docs/model.md §8), each over a range with its basis.
   plan.inputs = {
       estimated("board.puncture_energy_per_width", "80 J/m", "140 J/m",
                 "estimate: no published value for 350# double-wall board; 110 J/m +/- ~27 %"),
@@ -114,6 +275,17 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
   r.title = nominal.title;
   r.seed = nominal.run.seed;
   r.required = nominal.criteria.required_pass_probability;
+  r.field = nominal.field.present;
+  r.acceptable_area = nominal.field.acceptable_area;
+  r.output_info = uq_outputs(nominal);
+  // The inputs are ranked by a smooth output: P(pass) from every nail; a field's first
+  // plane's hazardous flux (else the objects thrown).
+  r.smooth_output = 1;
+  if (r.field) {
+    r.smooth_output = 0;
+    for (std::size_t o = 0; o < r.output_info.size(); ++o)
+      if (r.output_info[o].name == "plane1_hazardous_per_km") r.smooth_output = o;
+  }
   const std::size_t k = r.plan.inputs.size();
   // Each input's two ends, checked before anything runs.
   std::vector<ParameterInfo> info;
@@ -151,6 +323,10 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
                         0.25 * (hi.number - lo.number)};
     if (in.distribution == "triangular") d.kind = InputDistribution::Kind::Triangular;
     if (in.distribution == "normal") d.kind = InputDistribution::Kind::Normal;
+    if (in.distribution == "loguniform") {
+      if (!(lo.number > 0)) throw InputError(file, in.line, key + ".low", in.low, "expected a value above zero: a loguniform range spans a ratio");
+      d.kind = InputDistribution::Kind::LogUniform;
+    }
     if (!in.mode.empty()) {
       const Written m = split(in.mode, file, in.line, key + ".mode");
       if (m.unit != lo.unit || !(m.number >= lo.number && m.number <= hi.number))
@@ -199,25 +375,11 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
       }
     scenario::Scenario sc = scenario::read_scenario(doc, file);
     for (const auto& st : settings) apply(st, sc);
-    sc.run.replicates = r.plan.replicates;  // common random numbers: the same seed and replicates at every draw
-    sc.run.target_half_width.reset();
-    sc.run.until_settled = false;
-    const assess::Simulator sim(sc);
-    const auto a = assess::run_assessment(sim, threads);
-    const auto sum = assess::summarise(a, sc);
-    if (!sum.validity.valid)
+    std::string invalid;
+    UqRun out = r.field ? assess_field(sc, r.plan, threads, invalid) : assess_test(sc, r.plan, threads, r.required, invalid);
+    if (!invalid.empty())
       throw InputError(file, std::nullopt, "uncertainty", fmt::format("draw {} ({})", run + 1, draw_inputs(r.plan, values)),
-                       "the simulated test is invalid at this draw: " + sum.validity.reasons.front());
-    // (From every nail where it can be computed; else, for the `marks` denominator, the
-    // replicates' share, as uq.json says.)
-    UqRun out;
-    out.outputs = {sum.pass.estimate, sum.exact.computed ? sum.exact.value : sum.pass.estimate, sum.criteria[0].mean_share,
-                   sum.criteria[1].mean_share, sum.criteria[2].mean_share, sum.criteria[3].mean_share,
-                   (sum.exact.computed ? sum.exact.value : sum.pass.estimate) >= r.required ? 1.0 : 0.0};
-    const auto cut = sum.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
-    out.cut_off_share = sum.struck ? static_cast<double>(cut) / static_cast<double>(sum.struck) : 0.0;
-    for (int why = 1; why < flight::kCutOffReasons; ++why)
-      if (sum.cut_off_by[static_cast<std::size_t>(why)] > sum.cut_off_by[static_cast<std::size_t>(out.cut_off_limit)]) out.cut_off_limit = why;
+                       (r.field ? "the hazard run is invalid at this draw: " : "the simulated test is invalid at this draw: ") + invalid);
     r.runs.push_back(out);
     r.outputs.push_back(out.outputs);
     if (journal && journal->record) journal->record(run, out);
@@ -226,23 +388,22 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     if (r.runs[run].cut_off_share >= assess::kWarnCutOffShare) {
       const std::string inputs = draw_inputs(r.plan, r.values[run]);
       r.warnings.push_back(fmt::format(
-          "draw {} ({}): {:.2f} % of struck nails were cut off still moving, mostly by {}, nearing the {:g} % at which a run is "
+          "draw {} ({}): {:.2f} % of {} were cut off still moving, mostly by {}, nearing the {:g} % at which a run is "
           "invalid",
-          run + 1, inputs, 100 * r.runs[run].cut_off_share, flight::cut_off_name(static_cast<flight::CutOff>(r.runs[run].cut_off_limit)),
+          run + 1, inputs, 100 * r.runs[run].cut_off_share, r.field ? "the objects" : "struck nails",
+          flight::cut_off_name(static_cast<flight::CutOff>(r.runs[run].cut_off_limit)),
           100 * assess::kMaxCutOffShare));
     }
-  for (int o = 0; o < kUqOutputs; ++o) {
+  const std::size_t outputs = r.output_info.size();
+  const auto column = [&](std::size_t o) {
     std::vector<double> f;
-    for (const auto& out : r.outputs) f.push_back(out[static_cast<std::size_t>(o)]);
-    r.indices[static_cast<std::size_t>(o)] = sobol_indices(r.design, f, 500, 1);
-  }
+    for (const auto& out : r.outputs) f.push_back(out[o]);
+    return f;
+  };
+  for (std::size_t o = 0; o < outputs; ++o) r.indices.push_back(sobol_indices(r.design, column(o), 500, 1));
   if (r.design.base >= 4) {
     r.half_indices.emplace();
-    for (int o = 0; o < kUqOutputs; ++o) {
-      std::vector<double> f;
-      for (const auto& out : r.outputs) f.push_back(out[static_cast<std::size_t>(o)]);
-      (*r.half_indices)[static_cast<std::size_t>(o)] = sobol_indices_prefix(r.design, f, r.design.base / 2, 500, 1);
-    }
+    for (std::size_t o = 0; o < outputs; ++o) r.half_indices->push_back(sobol_indices_prefix(r.design, column(o), r.design.base / 2, 500, 1));
   }
   return r;
 }

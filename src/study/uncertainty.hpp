@@ -4,8 +4,9 @@
 // the Saltelli scheme from a Sobol' sequence, a whole assessment at each draw with common
 // random numbers (one seed for all), and what comes of it: the distribution of P(pass) and
 // of each share over the inputs' uncertainty, the share of draws in which the mower
-// passes (a robust verdict), and Sobol' indices ranking the inputs for each.
-#include <array>
+// passes (a robust verdict), and Sobol' indices ranking the inputs for each. A field
+// scenario's study runs a hazard run at each draw, over the same objects, and judges its
+// rates, hazard distances and planes (docs/model.md §9).
 #include <functional>
 #include <optional>
 #include <string>
@@ -18,27 +19,37 @@
 namespace j232::study {
 
 // The inputs studied, with their ranges: the scenario's own, or the defaults (estimated
-// inputs of docs/model.md §8 with ranges and their bases). `defaults` says which.
+// inputs of docs/model.md §8, or for a field those of §9, with ranges and their bases).
+// `defaults` says which. A J232 test's assessments run `replicates` replicates each; a
+// field's simulate `objects` objects each.
 struct UncertaintyPlan {
   std::vector<scenario::UncertainInput> inputs;
   bool defaults = false;
   std::size_t base_draws = 256;
   long long replicates = 50;
+  long long objects = 0;  // a field scenario's objects per assessment (0: not a field)
 };
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s);
 
-// The outputs judged at each draw: P(pass) (the share of passing replicates, and from
-// every nail: smooth, so its Sobol' indices mean something), the four mean shares, and
-// whether it passes ("passes" stays last).
-inline constexpr int kUqOutputs = 7;
-inline constexpr const char* kUqOutputNames[kUqOutputs] = {"p_pass",       "p_pass_exact",      "hits_zone", "punctures_zone",
-                                                           "hits_outside", "punctures_outside", "passes"};
-inline constexpr int kUqProbabilityOutputs = 2;  // the first two are probabilities, the shares follow
+// An output judged at each draw: its uq.json key, its name on the page and how it is shown.
+struct UqOutput {
+  std::string name, words;
+  enum class Scale { Probability, Percent, Number } scale = Scale::Number;  // Percent: a share shown in %
+  std::string unit;  // after a Number: " m", " per km"
+};
 
-// One assessment of the study: its outputs, and the share of its struck nails that the run's
-// limits cut off with the commonest of those limits (flight::CutOff), for its warnings.
+// A J232 test's outputs: P(pass) (the share of passing replicates, and from every nail:
+// smooth, so its Sobol' indices mean something), the four mean shares, and whether it passes.
+// A field's: objects thrown per km, the hazard distance in each direction, each plane's
+// hazardous flux (and a person's probability of being struck there), and whether the ground
+// beyond the deck is acceptable. The verdict, 1 or 0, is always the last output.
+std::vector<UqOutput> uq_outputs(const scenario::Scenario& s);
+
+// One assessment of the study: its outputs, and the share of its struck nails (thrown
+// objects) that the run's limits cut off with the commonest of those limits
+// (flight::CutOff), for its warnings.
 struct UqRun {
-  std::array<double, kUqOutputs> outputs{};
+  std::vector<double> outputs;
   double cut_off_share = 0;
   int cut_off_limit = 0;
 };
@@ -47,13 +58,17 @@ struct UncertaintyResult {
   UncertaintyPlan plan;
   std::string scenario_file, title;
   unsigned long long seed = 0;
-  double required = 0.9;
+  bool field = false;      // a field scenario's study (j232 hazard at each draw)
+  double required = 0.9;   // a J232 test's required P(pass)
+  double acceptable_area = 0;  // a field's: one hazardous impact per this many m^2 is acceptable
+  std::vector<UqOutput> output_info;
+  std::size_t smooth_output = 1;  // the output whose indices rank the inputs (P(pass) from every nail; a field's first flux)
   SaltelliDesign design;
-  std::vector<std::vector<double>> values;              // per run, per input: the value set (SI or the number written)
-  std::vector<std::array<double, kUqOutputs>> outputs;  // per run
-  std::array<SobolIndices, kUqOutputs> indices;
+  std::vector<std::vector<double>> values;   // per run, per input: the value set (SI or the number written)
+  std::vector<std::vector<double>> outputs;  // per run, per output (as output_info)
+  std::vector<SobolIndices> indices;         // per output
   // From the first half of the base draws: the check that N is enough (none below N = 4).
-  std::optional<std::array<SobolIndices, kUqOutputs>> half_indices;
+  std::optional<std::vector<SobolIndices>> half_indices;
   std::vector<UqRun> runs;  // per run: outputs (as `outputs`) and cut-off share
   // A draw whose cut-off share neared the invalidity limit, naming the draw's inputs and
   // the limit that cut its nails off, one sentence each.
@@ -62,7 +77,7 @@ struct UncertaintyResult {
 
 // An input's distribution over [low, high], in the numbers written (their unit aside).
 struct InputDistribution {
-  enum class Kind { Uniform, Triangular, Normal } kind = Kind::Uniform;
+  enum class Kind { Uniform, Triangular, Normal, LogUniform } kind = Kind::Uniform;
   double low = 0, high = 1;
   double mode = 0.5;  // Triangular
   double sd = 0.25;   // Normal (truncated to [low, high], about the midpoint)

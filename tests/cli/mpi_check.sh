@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # mpi_check.sh J232 SOURCE_DIR WORKDIR: j232 under `mpirun -n 1, 2, 3` (oversubscribed on one
 # machine) gives the same results as one plain process, bit for bit: run (result.json less
-# provenance, marks.csv, with trajectories), a sweep's CSV, an uncertainty study's uq.json and
-# a batch comparison; a run that fails on rank 0 (an output folder that cannot be written)
-# fails the whole job at once with its message and leaves no result.
+# provenance, marks.csv, with trajectories), a sweep's CSV, an uncertainty study's uq.json (a
+# J232 test's and a field's), a hazard run and a batch comparison; a run that fails on rank 0
+# (an output folder that cannot be written) fails the whole job at once with its message and
+# leaves no result.
 set -euo pipefail
 exe=$1 src=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
@@ -51,6 +52,11 @@ for n in 2 3; do
   python3 -c "import json,sys; sys.exit(0 if json.load(open('$work/hazard-$n/hazard.json'))['provenance']['ranks'] == $n else 1)" ||
     fail "hazard provenance does not say $n ranks"
 done
+# A field's uncertainty study: rank 0 sums each draw's objects and hands every rank its outputs.
+{ cat "$lawn"; printf '\n[uncertainty]\nbase_draws = 2\nobjects = 1500\n'; } >"$work/uq-lawn.toml"
+"$exe" uq "$work/uq-lawn.toml" --out "$work/uq-lawn-plain" >/dev/null
+mpi 2 "$exe" uq "$work/uq-lawn.toml" --out "$work/uq-lawn-2" >/dev/null 2>&1 || fail "a field's uq on 2 ranks failed"
+same_json "$work/uq-lawn-plain/uq.json" "$work/uq-lawn-2/uq.json"
 # No stray files from the other ranks in the output folders.
 listing="$(ls -A "$work/run-3" | grep -v '^scene.html$' | sort | tr '\n' ' ')"  # scene.html: when built with three.js
 [ "$listing" = ".j232.lock marks.csv report.html result.json " ] || fail "unexpected files in run-3: $(ls -A "$work/run-3")"
