@@ -278,13 +278,18 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
   r.field = nominal.field.present;
   r.acceptable_area = nominal.field.acceptable_area;
   r.output_info = uq_outputs(nominal);
-  // The inputs are ranked by a smooth output: P(pass) from every nail; a field's first
-  // plane's hazardous flux (else the objects thrown).
+  // The inputs are ranked by a smooth output: P(pass) from every nail; in a field, the
+  // hazardous flux at the first plane a person stands at (else the first plane's, else the
+  // objects thrown).
   r.smooth_output = 1;
   if (r.field) {
+    const auto& planes = nominal.field.planes;
+    const auto person = std::find_if(planes.begin(), planes.end(), [](const auto& p) { return p.receptor == scenario::FieldPlaneSpec::Receptor::Person; });
+    const auto plane = person != planes.end() ? person - planes.begin() : planes.empty() ? -1 : 0;
+    const std::string name = fmt::format("plane{}_hazardous_per_km", plane + 1);
     r.smooth_output = 0;
     for (std::size_t o = 0; o < r.output_info.size(); ++o)
-      if (r.output_info[o].name == "plane1_hazardous_per_km") r.smooth_output = o;
+      if (plane >= 0 && r.output_info[o].name == name) r.smooth_output = o;
   }
   const std::size_t k = r.plan.inputs.size();
   // Each input's two ends, checked before anything runs.
