@@ -46,7 +46,8 @@ json uncertainty_json(const study::UncertaintyResult& r) {
          {"distribution", in.distribution == "triangular" ? fmt::format("triangular, mode {}", in.mode.empty() ? "midway" : in.mode)
                           : in.distribution == "normal"   ? fmt::format("normal about the midpoint, sd {}, truncated to the range",
                                                                       in.sd.empty() ? "a quarter of the range" : in.sd)
-                                                          : "uniform"},
+                          : in.distribution == "loguniform" ? "loguniform (uniform in the logarithm)"
+                                                            : "uniform"},
          {"basis", in.basis}});
   }
   json outputs, sensitivity, listed = json::array();
