@@ -18,38 +18,13 @@
 #include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "units/quantity.hpp"
+#include "field_scenario.hpp"
 
 using namespace j232;
 
 namespace {
-const std::string kMower = R"(
-title = "field test mower"
-[blade]
-speed = "2700 rpm"
-height = "2 in"
-[blade.hub]
-bar_mass = "3.5 lb"
-bar_length = "21 in"
-[housing]
-skirt_bottom = "3 in"
-)";
-const std::string kStones = R"(
-[field]
-objects_simulated = 4000
-[[field.objects]]
-name = "stones"
-median_size = "30 mm"
-spread = 1.6
-min_size = "10 mm"
-max_size = "70 mm"
-per_area = "0.5 m^-2"
-embedment = 0.2
-[[field.planes]]
-name = "lane"
-side = "right"
-distance = "4 m"
-receptor = "vehicle"
-)";
+using test::kMower;
+using test::kStones;
 
 scenario::Scenario read(const std::string& text) {
   return scenario::read_scenario(toml::parse(text, std::string_view("field.toml")), "field.toml");

@@ -12,6 +12,7 @@
 #include "report/uncertainty_report.hpp"
 #include "study/sensitivity.hpp"
 #include "study/uncertainty.hpp"
+#include "field_scenario.hpp"
 
 using namespace j232;
 
@@ -252,28 +253,11 @@ TEST_CASE("uncertainty: the page never calls an output the same at every draw wh
 }
 
 namespace {
-// A small field: one kind of stones before a 21-in mower, a lane beside it.
+// A small field: one kind of stones before a 21-in mower, a lane on its right and a path
+// on its left.
 std::string field_file(const std::string& name, const std::string& uncertainty) {
   const std::string path = std::string(J232_BINARY_DIR) + "/" + name;
-  std::ofstream(path) << R"(title = "field uq test"
-[blade]
-speed = "2700 rpm"
-height = "2 in"
-[blade.hub]
-bar_mass = "3.5 lb"
-bar_length = "21 in"
-[housing]
-skirt_bottom = "3 in"
-[field]
-objects_simulated = 100000
-[[field.objects]]
-name = "stones"
-median_size = "30 mm"
-spread = 1.6
-min_size = "10 mm"
-max_size = "70 mm"
-per_area = "0.5 m^-2"
-embedment = 0.2
+  std::ofstream(path) << test::kMower << test::kStones << R"(
 [[field.planes]]
 name = "path"
 side = "left"
@@ -309,8 +293,11 @@ basis = "test"
   std::vector<std::string> names;
   for (const auto& o : a.output_info) names.push_back(o.name);
   CHECK(names == std::vector<std::string>{"thrown_per_km", "hazard_distance_left", "hazard_distance_right", "hazard_distance_front",
-                                          "hazard_distance_rear", "plane1_hazardous_per_km", "plane1_p_struck", "acceptable_beyond_deck"});
-  CHECK(a.output_info[a.smooth_output].name == "plane1_hazardous_per_km");
+                                          "hazard_distance_rear", "plane1_hazardous_per_km", "plane2_hazardous_per_km", "plane2_p_struck",
+                                          "acceptable_beyond_deck"});
+  for (const auto& out : a.outputs) REQUIRE(out.size() == names.size());
+  // The inputs are ranked by the flux at the first plane a person stands at (the lane is a vehicle's).
+  CHECK(a.output_info[a.smooth_output].name == "plane2_hazardous_per_km");
   // A loguniform draw stays within its range.
   for (const auto& v : a.values) CHECK((v[0] >= 0.25 && v[0] <= 1.0));
   // Common random numbers: AB_1 differs from A only in the density of stones, so it meets
