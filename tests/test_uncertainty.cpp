@@ -9,6 +9,8 @@
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
+#include "scenario/toml_override.hpp"
+#include "scenario/toml_reader.hpp"
 #include "report/uncertainty_report.hpp"
 #include "study/sensitivity.hpp"
 #include "study/uncertainty.hpp"
@@ -340,4 +342,59 @@ TEST_CASE("uncertainty: a field's study refuses what has no meaning in it", "[un
                                                                               "distribution = \"loguniform\"\n"),
                                            1),
                     Contains("above zero"));
+}
+
+TEST_CASE("uncertainty: a field's default inputs keep every draw one the reader accepts", "[uncertainty][field][input]") {
+  // The shoulder's gravel reaches a blade only when the updraft lifts it: at the updraft's
+  // low end with the drag's low end it must still lift the smallest, and the cobbles sunk to
+  // the embedment's deep end must still stand up to the blade. Every corner of the inputs
+  // that decide it is read.
+  const std::string file = scenario_path("field/batwing-highway-shoulder.toml");
+  const toml::table base = scenario::parse_toml_file(file);
+  const auto plan = study::uncertainty_plan(scenario::read_scenario(base, file));
+  REQUIRE(plan.defaults);
+  REQUIRE(plan.objects == 20000);
+  std::vector<const scenario::UncertainInput*> coupled;
+  for (const auto& in : plan.inputs)
+    if (in.parameter == "field.updraft_speed" || in.parameter.find("drag_coefficient") != std::string::npos ||
+        in.parameter.find("embedment") != std::string::npos || in.parameter.find("median_size") != std::string::npos)
+      coupled.push_back(&in);
+  REQUIRE(coupled.size() >= 5);
+  for (unsigned corner = 0; corner < (1u << coupled.size()); ++corner) {
+    toml::table doc = base;
+    for (std::size_t i = 0; i < coupled.size(); ++i)
+      scenario::set_key(doc, coupled[i]->parameter, (corner >> i) & 1 ? coupled[i]->high : coupled[i]->low, "test");
+    INFO("corner " << corner);
+    CHECK_NOTHROW(scenario::read_scenario(doc, file));
+  }
+  // A kind's own key, element by element: the second table only.
+  toml::table doc = base;
+  scenario::set_key(doc, "field.objects[2].per_area", "\"1 m^-2\"", "test");
+  const auto s = scenario::read_scenario(doc, file);
+  CHECK(s.field.objects[0].per_area == Approx(20));
+  CHECK(s.field.objects[1].per_area == Approx(1));
+  CHECK_THROWS_WITH(scenario::set_key(doc, "field.objects[3].per_area", "1", "test"), Catch::Contains("one of the 2 [[field.objects]] tables"));
+  CHECK_THROWS_WITH(scenario::set_key(doc, "field.objects[0].per_area", "1", "test"), Catch::Contains("N counted from 1"));
+  // A loguniform range's median is the geometric mean of its ends.
+  study::InputDistribution d{study::InputDistribution::Kind::LogUniform, 0.25, 4.0};
+  CHECK(d.quantile(0.5) == Approx(1.0));
+  CHECK(d.quantile(0.0) == Approx(0.25));
+  CHECK(d.quantile(1.0) == Approx(4.0));
+}
+
+TEST_CASE("uncertainty: keys a study cannot draw are refused with what to do instead", "[uncertainty][input]") {
+  using Catch::Contains;
+  auto input = [](const std::string& parameter, const std::string& low, const std::string& high) {
+    return "[[uncertainty.inputs]]\nparameter = \"" + parameter + "\"\nlow = " + low + "\nhigh = " + high + "\nbasis = \"x\"\n";
+  };
+  CHECK_THROWS_WITH(study::run_uncertainty(with_uncertainty("uq-seed.toml", "[uncertainty]\n" + input("run.seed", "1", "9")), 1),
+                    Contains("uncertainty.inputs[1].parameter") && Contains("common random numbers"));
+  CHECK_THROWS_WITH(study::run_uncertainty(field_file("uq-side.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"field.planes[2].side\"\n"
+                                                                      "values = [\"left\", \"front\"]\nbasis = \"x\"\n"),
+                                           1),
+                    Contains("only its distance"));
+  CHECK_THROWS_WITH(study::run_uncertainty(field_file("uq-cd.toml", "[uncertainty]\n" + input("air.cd_axial", "0.5", "1.0")), 1),
+                    Contains("field.objects[N].drag_coefficient"));
+  CHECK_THROWS_WITH(study::run_uncertainty(field_file("uq-n.toml", "[uncertainty]\n" + input("field.objects_simulated", "1000", "2000")), 1),
+                    Contains("[uncertainty] objects"));
 }

@@ -197,7 +197,8 @@ std::string uncertainty_html(const json& j) {
     const std::string name = listed[k]["name"], scale_of = listed[k]["scale"];
     const auto& x = j["outputs"][name];
     const double scale = scale_of == "share" ? 100.0 : 1.0;
-    const char* f = scale_of == "probability" ? "{:.3f}" : scale_of == "share" ? "{:.2f}" : "{:.4g}";
+    // A field's probabilities of being struck are small: shown to three significant digits.
+    const char* f = scale_of == "probability" ? (field ? "{:.3g}" : "{:.3f}") : scale_of == "share" ? "{:.2f}" : "{:.4g}";
     const std::string unit = scale_of == "share" ? " %" : listed[k]["unit"].get<std::string>();
     o += fmt::format("<tr><td>{}</td>", escape(listed[k]["words"].get<std::string>()));
     for (const char* q : {"mean", "q05", "q50", "q95", "min", "max"})

@@ -178,7 +178,8 @@ void apply(const Setting& s, scenario::Scenario& sc) {
       sc.nail.mass = s.si;
       break;
     case Parameter::ObjectSpeed:
-      throw std::invalid_argument("object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead");
+      throw std::invalid_argument(sc.field.present ? "object_speed: a field's objects lie still until struck; vary field.ground_speed instead"
+                                                   : "object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead");
     case Parameter::BevelAngle:
       for (auto& sp : sc.spindles) sp.geometry.edge.bevel_angle = s.si;
       break;

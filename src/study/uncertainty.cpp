@@ -124,6 +124,20 @@ UqRun assess_field(scenario::Scenario& sc, const UncertaintyPlan& plan, int thre
   return out;
 }
 
+// Why a key cannot be an uncertain input of a study (empty: it can).
+std::string cannot_vary(const std::string& key, bool field) {
+  if (key == "run.seed")
+    return "every draw runs with the scenario's seed (common random numbers, so that draws differ by their inputs, not by noise); "
+           "a seed drawn would undo that";
+  if (key == "run.replicates") return "each assessment runs [uncertainty] replicates; set that instead";
+  if (key == "field.objects_simulated") return "each assessment simulates [uncertainty] objects; set that instead";
+  if (key.rfind("field.planes", 0) == 0 && !(key.size() >= 9 && key.compare(key.size() - 9, 9, ".distance") == 0))
+    return "a plane's side, receptor and name decide which figures the study judges; only its distance can be drawn";
+  if (field && (key == "air.cd_normal" || key == "air.cd_axial"))
+    return "a field's objects are spheres: their drag is field.objects[N].drag_coefficient";
+  return "";
+}
+
 }  // namespace
 
 std::vector<UqOutput> uq_outputs(const scenario::Scenario& s) {
@@ -184,43 +198,72 @@ UncertainInput estimated(std::string parameter, std::string low, std::string hig
 // each over a range about the scenario's own value.
 std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
   const auto& f = s.field;
-  std::vector<UncertainInput> in;
-  if (f.updraft_speed > 0)
-    in.push_back(estimated("field.updraft_speed", fmt::format("{:.4g} m/s", 0.75 * f.updraft_speed), fmt::format("{:.4g} m/s", 1.25 * f.updraft_speed),
-                           "estimate: no measurement of the air under a deck at the turf; the scenario's value +/- 25 %"));
+  // Where a blade can reach an object (its lowest face) and where objects enter the deck
+  // (the front's gap), as the reader checks them: every draw must keep each kind able to
+  // pass under the front and to reach a blade, standing up to it or lifted by the updraft.
+  double lowest_face = HUGE_VAL;
+  for (const auto& sp : s.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
+  double front_gap = s.housing.skirt_bottom;
+  for (const auto& op : s.housing.openings)
+    if (units::in_arc(0.0, op.azimuth_from, op.azimuth_to)) front_gap = std::max(front_gap, op.top);
+  // The updraft u lifts sizes up to 3 rho C_d u^2 / (4 rho_s g): the least u that lifts an
+  // object of `size` (with a 5 % margin) at drag coefficient cd.
+  const auto lifting = [&](const scenario::FieldObjectSpec& o, double cd) {
+    return std::sqrt(1.05 * o.min_size * 4 * o.density * units::standard_gravity / (3 * s.air.density * cd));
+  };
+  double updraft_low = 0.75 * f.updraft_speed;
+  std::vector<UncertainInput> kinds;
   for (std::size_t k = 0; k < f.objects.size(); ++k) {
     const auto& o = f.objects[k];
     const std::string at = fmt::format("field.objects[{}].", k + 1);
-    in.push_back(estimated(at + "per_area", fmt::format("{:.4g} m^-2", 0.5 * o.per_area), fmt::format("{:.4g} m^-2", 2 * o.per_area),
-                           fmt::format("estimate: {} per m2 is not surveyed; within a factor of 2, uniform in its logarithm", o.name), "loguniform"));
-    if (o.kind == scenario::FieldObjectSpec::Kind::Stone) {
-      if (o.min_size < o.max_size) {
-        const double lo = std::max(o.min_size, o.median_size / 1.5), hi = std::min(o.max_size, o.median_size * 1.5);
-        if (hi > lo)
-          in.push_back(estimated(at + "median_size", fmt::format("{:.4g} mm", 1000 * lo), fmt::format("{:.4g} mm", 1000 * hi),
-                                 fmt::format("estimate: the median size of the {} within a factor of 1.5 (inside its min and max)", o.name),
-                                 "loguniform"));
-      }
-      // Sunk deeper, the largest must still stand up to the blade's lower face; less deep,
-      // still pass under the deck's front (the reader's checks, kept inside the range).
-      double lowest_face = HUGE_VAL;
-      for (const auto& sp : s.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
-      double front_gap = s.housing.skirt_bottom;
-      for (const auto& op : s.housing.openings)
-        if (units::in_arc(0.0, op.azimuth_from, op.azimuth_to)) front_gap = std::max(front_gap, op.top);
-      const double deepest = std::min({0.9, o.embedment + 0.1, std::max(o.embedment, 1 - lowest_face / o.max_size - 0.01)});
-      const double shallowest = std::max({0.0, o.embedment - 0.1, s.meshes.empty() ? std::min(o.embedment, 1 - front_gap / o.max_size + 0.01) : 0.0});
-      if (deepest > shallowest)
-        in.push_back(estimated(at + "embedment", fmt::format("{:.3g}", shallowest), fmt::format("{:.3g}", deepest),
-                               fmt::format("estimate: how deep the {} sit in the turf, the scenario's share +/- 0.1 (no deeper than leaves the "
-                                           "largest standing up to the blade, no shallower than lets it pass under the deck's front)",
-                                           o.name)));
-      if (o.restitution)
-        in.push_back(estimated(at + "restitution", "0.3", "0.7", "estimate: stone on hardened steel; no measurement at blade speeds"));
-      in.push_back(estimated(at + "drag_coefficient", "0.47", "0.8",
-                             "handbook: a smooth sphere 0.47; angular stones up to about 0.8 (estimate)"));
+    kinds.push_back(estimated(at + "per_area", fmt::format("{:.4g} m^-2", 0.5 * o.per_area), fmt::format("{:.4g} m^-2", 2 * o.per_area),
+                              fmt::format("estimate: {} per m2 is not surveyed; within a factor of 2, uniform in its logarithm", o.name),
+                              "loguniform"));
+    if (o.kind != scenario::FieldObjectSpec::Kind::Stone) continue;  // a steel ball's size, density and drag are known
+    if (o.min_size < o.max_size) {
+      // Kept a little inside min and max, so that the ends written to four digits stay inside.
+      const double lo = std::max(o.min_size * 1.001, o.median_size / 1.5), hi = std::min(o.max_size * 0.999, o.median_size * 1.5);
+      if (hi > lo)
+        kinds.push_back(estimated(at + "median_size", fmt::format("{:.4g} mm", 1000 * lo), fmt::format("{:.4g} mm", 1000 * hi),
+                                  fmt::format("estimate: the median size of the {} within a factor of 1.5 (inside its min and max)", o.name),
+                                  "loguniform"));
     }
+    // Sunk deeper, the largest must still stand up to the blade's lower face (unless the
+    // updraft lifts them); less deep, still pass under the deck's front.
+    const double stands_until = 1 - lowest_face / o.max_size - 0.01;  // deeper than this, none stands up to the blade
+    const double deepest = std::min({0.9, o.embedment + 0.1, std::max(o.embedment, stands_until)});
+    const double shallowest = std::max({0.0, o.embedment - 0.1, s.meshes.empty() ? std::min(o.embedment, 1 - front_gap / o.max_size + 0.01) : 0.0});
+    // Only where some stand up to the blade at the shallow end does the embedment matter:
+    // objects lifted into the blades' plane meet them there, however deep they lay.
+    if (deepest > shallowest && o.max_size * (1 - shallowest) > lowest_face)
+      kinds.push_back(estimated(at + "embedment", fmt::format("{:.3g}", shallowest), fmt::format("{:.3g}", deepest),
+                                fmt::format("estimate: how deep the {} sit in the turf, the scenario's share +/- 0.1 (no deeper than leaves "
+                                            "the largest standing up to the blade, unless the updraft lifts them; no shallower than lets "
+                                            "it pass under the deck's front)",
+                                            o.name)));
+    if (o.restitution)
+      kinds.push_back(estimated(at + "restitution", fmt::format("{:.3g}", std::min(0.3, *o.restitution)), fmt::format("{:.3g}", std::max(0.7, *o.restitution)),
+                                "estimate: stone on hardened steel, 0.3-0.7 (and the scenario's value); no measurement at blade speeds"));
+    double cd_low = std::min(0.47, o.drag_coefficient);
+    const double cd_high = std::max(0.8, o.drag_coefficient);
+    if (o.max_size * (1 - deepest) <= lowest_face) {
+      // Lifted or not reached at all: the updraft's low end with the drag's must still lift
+      // the smallest. Raised to do so; where even the scenario's drag needs more than the
+      // updraft's low end, the drag's low end is the scenario's.
+      if (lifting(o, cd_low) >= f.updraft_speed) cd_low = o.drag_coefficient;
+      updraft_low = std::max(updraft_low, std::min(lifting(o, cd_low), f.updraft_speed));
+    }
+    kinds.push_back(estimated(at + "drag_coefficient", fmt::format("{:.3g}", cd_low), fmt::format("{:.3g}", cd_high),
+                              "handbook: a smooth sphere 0.47; angular stones up to about 0.8 (estimate; and the scenario's value)"));
   }
+  std::vector<UncertainInput> in;
+  if (f.updraft_speed > 0 && updraft_low < f.updraft_speed)
+    in.push_back(estimated("field.updraft_speed", fmt::format("{:.4g} m/s", updraft_low), fmt::format("{:.4g} m/s", 1.25 * f.updraft_speed),
+                           updraft_low > 0.75 * f.updraft_speed
+                               ? "estimate: no measurement of the air under a deck at the turf; the scenario's value + 25 %, and down to "
+                                 "where it still lifts the smallest objects that reach a blade only when lifted"
+                               : "estimate: no measurement of the air under a deck at the turf; the scenario's value +/- 25 %"));
+  in.insert(in.end(), kinds.begin(), kinds.end());
   in.push_back(estimated("bevel_angle", "20 deg", "45 deg", "estimate: mower blades are ground to about 30 deg; no figure for industrial cutters"));
   in.push_back(estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"));
   in.push_back(estimated("ground.max_restitution", "0.5", "0.95", "estimate: the angle law passes 1 at grazing impacts; a bounce off turf loses energy"));
@@ -300,6 +343,8 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     const UncertainInput& in = r.plan.inputs[i];
     const std::string key = r.plan.defaults ? fmt::format("(default) {}", in.parameter) : fmt::format("uncertainty.inputs[{}]", i + 1);
     info.push_back(parameter_info(in.parameter));
+    if (const std::string why = cannot_vary(in.parameter, r.field); !why.empty())
+      throw InputError(file, in.line, r.plan.defaults ? key : key + ".parameter", in.parameter, why);
     // A value the input may take must make a scenario the reader (and the parameter) accepts.
     const auto check_value = [&](const std::string& text, const std::string& where) {
       const Setting setting = make_setting(info.back(), text, file, in.line, where);
@@ -378,13 +423,28 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
         r.outputs.push_back(kept->outputs);
         continue;
       }
-    scenario::Scenario sc = scenario::read_scenario(doc, file);
-    for (const auto& st : settings) apply(st, sc);
+    // Each input's ends were read alone; together they may still make a scenario the reader
+    // refuses: named with the draw, never run.
+    const std::string draw = fmt::format("draw {} ({})", run + 1, draw_inputs(r.plan, values));
+    std::optional<scenario::Scenario> read;
+    try {
+      read = scenario::read_scenario(doc, file);
+      for (const auto& st : settings) apply(st, *read);
+    } catch (const InputError& e) {
+      throw InputError(file, std::nullopt, "uncertainty", draw, std::string("the inputs drawn together make a scenario that is refused: ") + e.what());
+    } catch (const std::invalid_argument& e) {
+      throw InputError(file, std::nullopt, "uncertainty", draw, e.what());
+    }
+    scenario::Scenario& sc = *read;
     std::string invalid;
     UqRun out = r.field ? assess_field(sc, r.plan, threads, invalid) : assess_test(sc, r.plan, threads, r.required, invalid);
     if (!invalid.empty())
-      throw InputError(file, std::nullopt, "uncertainty", fmt::format("draw {} ({})", run + 1, draw_inputs(r.plan, values)),
+      throw InputError(file, std::nullopt, "uncertainty", draw,
                        (r.field ? "the hazard run is invalid at this draw: " : "the simulated test is invalid at this draw: ") + invalid);
+    if (out.outputs.size() != r.output_info.size())  // (cannot_vary keeps the planes' kinds and sides fixed)
+      throw InputError(file, std::nullopt, "uncertainty", draw,
+                       fmt::format("this draw gives {} outputs, the study {}: an input changed which figures a draw has", out.outputs.size(),
+                                   r.output_info.size()));
     r.runs.push_back(out);
     r.outputs.push_back(out.outputs);
     if (journal && journal->record) journal->record(run, out);
@@ -399,6 +459,15 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
           flight::cut_off_name(static_cast<flight::CutOff>(r.runs[run].cut_off_limit)),
           100 * assess::kMaxCutOffShare));
     }
+  // A hazard distance at the range's edge lies there or beyond: the number understates it.
+  if (r.field)
+    for (std::size_t run = 0; run < r.runs.size(); ++run)
+      for (std::size_t o = 0; o < r.output_info.size(); ++o)
+        if (r.output_info[o].name.rfind("hazard_distance_", 0) == 0 && r.outputs[run][o] >= nominal.field.range * (1 - 1e-9))
+          r.warnings.push_back(fmt::format("draw {} ({}): the {} reaches the edge of the ground tallied (field.range, {:g} m): it lies "
+                                           "there or beyond, and the figure {:g} m understates it",
+                                           run + 1, draw_inputs(r.plan, r.values[run]), r.output_info[o].words, nominal.field.range,
+                                           r.outputs[run][o]));
   const std::size_t outputs = r.output_info.size();
   const auto column = [&](std::size_t o) {
     std::vector<double> f;
