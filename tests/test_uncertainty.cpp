@@ -315,8 +315,8 @@ basis = "test"
   CHECK(j["kind"] == "field");
   CHECK(j["objects_per_assessment"] == 1200);
   const std::string html = report::uncertainty_html(j);
-  CHECK_THAT(html, Catch::Contains("path: hazardous crossings of a person&#39;s height per km") ||
-                       Catch::Contains("path: hazardous crossings of a person's height per km"));
+  CHECK_THAT(html, Catch::Contains("path at 4 m: hazardous crossings of a person&#39;s height per km") ||
+                       Catch::Contains("path at 4 m: hazardous crossings of a person's height per km"));
   CHECK_THAT(html, Catch::Contains("data-key=\"objects_per_assessment\" data-value=\"1200\""));
   CHECK_THAT(report::uncertainty_csv(a), Catch::StartsWith("assessment,block,field.objects[1].per_area,field.objects[1].drag_coefficient,thrown_per_km"));
 }

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
-#include <sstream>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "assess/cluster.hpp"
@@ -116,10 +116,18 @@ UqRun assess_field(scenario::Scenario& sc, const UncertaintyPlan& plan, int thre
     assess::cluster::broadcast_from_writer(text);
     const auto line = text.find('\n');
     invalid = text.substr(0, line);
-    std::istringstream numbers(text.substr(line + 1));
-    numbers >> out.cut_off_share >> out.cut_off_limit;
+    // (strtod reads back whatever {:.17g} wrote, "nan" and "inf" included.)
+    const std::string numbers = text.substr(line + 1);
+    const char* at = numbers.c_str();
+    char* end = nullptr;
+    out.cut_off_share = std::strtod(at, &end);
+    out.cut_off_limit = static_cast<int>(std::strtol(end, &end, 10));
     out.outputs.clear();
-    for (double v; numbers >> v;) out.outputs.push_back(v);
+    for (at = end; *at != '\0'; at = end) {
+      const double v = std::strtod(at, &end);
+      if (end == at) break;
+      out.outputs.push_back(v);
+    }
   }
   return out;
 }
@@ -156,12 +164,14 @@ std::vector<UqOutput> uq_outputs(const scenario::Scenario& s) {
   for (std::size_t i = 0; i < s.field.planes.size(); ++i) {
     const auto& p = s.field.planes[i];
     const bool person = p.receptor == scenario::FieldPlaneSpec::Receptor::Person;
+    // Named with the plane's distance: two planes of one name (the default is the side) stay apart.
+    const std::string plane = fmt::format("{} at {:g} m", p.name, p.distance);
     out.push_back({fmt::format("plane{}_hazardous_per_km", i + 1),
-                   fmt::format("{}: hazardous {} per km", p.name, person ? "crossings of a person's height" : "impacts on the windshield band"),
+                   fmt::format("{}: hazardous {} per km", plane, person ? "crossings of a person's height" : "impacts on the windshield band"),
                    Scale::Number, " per km"});
     const bool beside = p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Right;
     if (person && beside)
-      out.push_back({fmt::format("plane{}_p_struck", i + 1), fmt::format("{}: P(a person there is struck in one pass)", p.name),
+      out.push_back({fmt::format("plane{}_p_struck", i + 1), fmt::format("{}: P(a person there is struck in one pass)", plane),
                      Scale::Probability, ""});
   }
   out.push_back({"acceptable_beyond_deck", "acceptable beyond the deck (hazard distance at the deck's edge every way)", Scale::Number, ""});
