@@ -106,7 +106,7 @@ json uncertainty_json(const study::UncertaintyResult& r) {
     j["objects_per_assessment"] = r.plan.objects;
     j["acceptable_area_m2"] = r.acceptable_area;
     j["verdict_rule"] = "acceptable: the hazard distance is the deck's edge in every direction (hazardous impacts fewer than one per "
-                        "acceptable area everywhere beyond the deck)";
+                        "acceptable area in every cell of the ground tallied beyond the deck)";
   } else {
     j["replicates_per_assessment"] = r.plan.replicates;
     j["required_pass_probability"] = r.required;
@@ -155,7 +155,7 @@ std::string uncertainty_html(const json& j) {
   if (field)
     o += fmt::format(
         "<p class=\"verdict {}\"><strong>Robust verdict: {}</strong> &mdash; hazardous impacts (a person's) stay below one per {} m&sup2; "
-        "everywhere beyond the deck in {} % of {} assessments drawn over the inputs' ranges.</p>\n",
+        "in every cell of the ground tallied beyond the deck in {} % of {} assessments drawn over the inputs' ranges.</p>\n",
         verdict_class, escape(j["robust_verdict"].get<std::string>()), number("acceptable_area_m2", j["acceptable_area_m2"], "{:.4g}"),
         number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
   else
