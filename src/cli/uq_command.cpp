@@ -19,8 +19,6 @@
 #include "report/atomic_file.hpp"
 #include "report/text_safety.hpp"
 #include "report/uncertainty_report.hpp"
-#include "scenario/scenario_reader.hpp"
-#include "scenario/toml_reader.hpp"
 #include "study/uncertainty.hpp"
 
 namespace j232::cli {
@@ -41,8 +39,7 @@ struct UqOptions {
 // assessments it holds when the digest matches. Removed when the study completes.
 class Journal {
  public:
-  // `outputs`: how many outputs each assessment of this study records.
-  Journal(std::string path, std::string digest, bool resume, std::size_t outputs) : path_(std::move(path)), digest_(std::move(digest)) {
+  Journal(std::string path, std::string digest, bool resume) : path_(std::move(path)), digest_(std::move(digest)) {
     const std::string header = "# j232 uq journal " + digest_;
     // In an MPI job rank 0 reads the journal and every rank takes the same assessments from it.
     std::string text;
@@ -65,12 +62,13 @@ class Journal {
             v.push_back(std::strtod(start, &end));
             whole = end != start;
           }
-          // A line cut short by the interruption is not kept (nor one of another number of outputs).
-          if (whole && *end == '\0' && v.size() == outputs + 2) {
+          // A line cut short by the interruption is not kept (the study also refuses one of
+          // another number of outputs than its own).
+          if (whole && *end == '\0' && v.size() > 2) {
             study::UqRun kept;
-            kept.outputs.assign(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(outputs));
-            kept.cut_off_share = v[outputs];
-            kept.cut_off_limit = static_cast<int>(v[outputs + 1]);
+            kept.outputs.assign(v.begin(), v.end() - 2);
+            kept.cut_off_share = v[v.size() - 2];
+            kept.cut_off_limit = static_cast<int>(v.back());
             kept_[run] = kept;
           }
         }
@@ -120,8 +118,7 @@ class Journal {
 
 int uq(const UqOptions& o) {
   report::OutputFolder out(o.out, {"uq.csv", "uq.html", "uq.json"});
-  const std::size_t outputs = study::uq_outputs(scenario::read_scenario(scenario::parse_toml_file(o.scenario), o.scenario)).size();
-  Journal journal(out.folder() + "/uq-journal.csv", report::inputs_digest(o.scenario, RunOverrides{}), o.resume, outputs);
+  Journal journal(out.folder() + "/uq-journal.csv", report::inputs_digest(o.scenario, RunOverrides{}), o.resume);
   if (journal.kept()) fmt::print("Resuming: {} assessments kept from the journal\n", journal.kept());
   const auto hooks = journal.hooks();
   study::UncertaintyResult r;

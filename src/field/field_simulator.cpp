@@ -81,10 +81,8 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
     // The sizes that can reach a blade: lifted by the updraft (drag above weight: below
     // 3 rho C_d u^2 / (4 rho_s g)), or standing above the lowest blade's lower face.
     const double u = scenario_.field.updraft_speed;
-    const double lifted_below = 3 * scenario_.air.density * o.drag_coefficient * u * u / (4 * o.density * units::standard_gravity);
-    double lowest_face = HUGE_VAL;
-    for (const auto& sp : scenario_.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
-    const double tall_above = lowest_face / (1 - o.embedment);
+    const double lifted_below = scenario_.lifted_up_to(o, o.drag_coefficient, u);
+    const double tall_above = scenario_.lowest_blade_face() / (1 - o.embedment);
     ReachableSizes reach;
     const double lo = probability_below(o, o.min_size), hi = o.spread <= 1.0 ? 1.0 : probability_below(o, o.max_size);
     const double whole = o.spread <= 1.0 ? 1.0 : hi - lo;

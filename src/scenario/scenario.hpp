@@ -355,6 +355,14 @@ struct Scenario {
   double reach() const;
   // The fastest blade tip.
   double tip_speed() const;
+  // In a field: the lowest blade's lower face above the turf (an object must stand above it
+  // to be struck unless the updraft lifts it), the gap objects pass under into the deck (the
+  // skirt's, or a front opening's; none for a mesh deck, whose front is not known), and the
+  // largest object of a kind the updraft `u` lifts (its drag, 1/2 rho u^2 C_d A, above its
+  // weight: sizes up to 3 rho C_d u^2 / (4 rho_s g)).
+  double lowest_blade_face() const;
+  std::optional<double> front_gap() const;
+  double lifted_up_to(const FieldObjectSpec& o, double drag_coefficient, double u) const;
   // Where a feed station drops its nails, in the world frame (m).
   double station_x(const FeedStation& f) const { return spindles[f.spindle].x + f.radius * std::cos(f.azimuth); }
   double station_y(const FeedStation& f) const { return spindles[f.spindle].y + f.radius * std::sin(f.azimuth); }

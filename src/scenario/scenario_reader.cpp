@@ -495,17 +495,11 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
   f.windshield_top = t.quantity_or("windshield_top", Kind::Length, f.windshield_top, Range::between(0, 5));
   if (f.windshield_top <= f.windshield_bottom) throw t.error("windshield_top", "expected the windshield's top above its bottom");
 
-  // Where a blade can reach an object: its lower face; where the deck stops one: the skirt.
-  double lowest_face = HUGE_VAL;
-  for (const auto& sp : s.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
-  // The gap objects enter the deck through: the skirt's, or a front opening's (its chains,
-  // if any, drag over the objects). A mesh deck's is not known, and not checked.
-  std::optional<double> front_gap;
-  if (s.meshes.empty()) {
-    front_gap = s.housing.skirt_bottom;
-    for (const auto& op : s.housing.openings)
-      if (units::in_arc(0.0, op.azimuth_from, op.azimuth_to)) front_gap = std::max(*front_gap, op.top);
-  }
+  // Where a blade can reach an object: its lower face; where the deck stops one: the gap
+  // objects enter through (a front opening's chains, if any, drag over them). A mesh deck's
+  // is not known, and not checked.
+  const double lowest_face = s.lowest_blade_face();
+  const std::optional<double> front_gap = s.front_gap();
   f.updraft_speed = t.quantity_or("updraft_speed", Kind::Speed, f.updraft_speed, Range::between(0, 100));
   const auto tables = t.array_of_tables("objects", 16);
   if (tables.empty())
@@ -547,7 +541,7 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
                                             top, *front_gap));
     // Lifted by the updraft (its drag above its weight), an object meets the blade in the
     // blade's plane: 3 rho C_d u^2 / (4 rho_s g) is the largest size it lifts.
-    const double lifted_up_to = 3 * s.air.density * obj.drag_coefficient * f.updraft_speed * f.updraft_speed / (4 * obj.density * units::standard_gravity);
+    const double lifted_up_to = s.lifted_up_to(obj, obj.drag_coefficient, f.updraft_speed);
     if (top <= lowest_face && obj.min_size >= lifted_up_to)
       throw o.error("max_size", fmt::format("no object stands up to the blade: the largest stands {:.3g} m above the turf, the blade's "
                                             "lower face {:.3g} m; the mower passes over them all (expected larger objects, less "
@@ -610,6 +604,22 @@ double Scenario::reach() const {
   for (const auto& sp : spindles) r = std::max(r, sp.reach());
   return r;
 }
+double Scenario::lowest_blade_face() const {
+  double h = HUGE_VAL;
+  for (const auto& sp : spindles) h = std::min(h, sp.geometry.height - 0.5 * sp.geometry.thickness);
+  return h;
+}
+std::optional<double> Scenario::front_gap() const {
+  if (!meshes.empty()) return std::nullopt;
+  double gap = housing.skirt_bottom;
+  for (const auto& op : housing.openings)
+    if (units::in_arc(0.0, op.azimuth_from, op.azimuth_to)) gap = std::max(gap, op.top);
+  return gap;
+}
+double Scenario::lifted_up_to(const FieldObjectSpec& o, double drag_coefficient, double u) const {
+  return 3 * air.density * drag_coefficient * u * u / (4 * o.density * units::standard_gravity);
+}
+
 double Scenario::tip_speed() const {
   double v = 0;
   for (const auto& sp : spindles) v = std::max(v, sp.blade.omega * sp.blade.tip_radius());

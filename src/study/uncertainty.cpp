@@ -15,7 +15,6 @@
 #include "scenario/input_error.hpp"
 #include "scenario/toml_reader.hpp"
 #include "study/parameters.hpp"
-#include "units/arc.hpp"
 #include "scenario/scenario_reader.hpp"
 
 namespace j232::study {
@@ -211,15 +210,12 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
   // Where a blade can reach an object (its lowest face) and where objects enter the deck
   // (the front's gap), as the reader checks them: every draw must keep each kind able to
   // pass under the front and to reach a blade, standing up to it or lifted by the updraft.
-  double lowest_face = HUGE_VAL;
-  for (const auto& sp : s.spindles) lowest_face = std::min(lowest_face, sp.geometry.height - 0.5 * sp.geometry.thickness);
-  double front_gap = s.housing.skirt_bottom;
-  for (const auto& op : s.housing.openings)
-    if (units::in_arc(0.0, op.azimuth_from, op.azimuth_to)) front_gap = std::max(front_gap, op.top);
-  // The updraft u lifts sizes up to 3 rho C_d u^2 / (4 rho_s g): the least u that lifts an
-  // object of `size` (with a 5 % margin) at drag coefficient cd.
+  const double lowest_face = s.lowest_blade_face();
+  const std::optional<double> front_gap = s.front_gap();
+  // The least updraft that lifts the kind's smallest (with a 5 % margin) at drag
+  // coefficient cd: the size lifted grows as u^2.
   const auto lifting = [&](const scenario::FieldObjectSpec& o, double cd) {
-    return std::sqrt(1.05 * o.min_size * 4 * o.density * units::standard_gravity / (3 * s.air.density * cd));
+    return std::sqrt(1.05 * o.min_size / s.lifted_up_to(o, cd, 1.0));
   };
   double updraft_low = 0.75 * f.updraft_speed;
   std::vector<UncertainInput> kinds;
@@ -242,7 +238,7 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
     // updraft lifts them); less deep, still pass under the deck's front.
     const double stands_until = 1 - lowest_face / o.max_size - 0.01;  // deeper than this, none stands up to the blade
     const double deepest = std::min({0.9, o.embedment + 0.1, std::max(o.embedment, stands_until)});
-    const double shallowest = std::max({0.0, o.embedment - 0.1, s.meshes.empty() ? std::min(o.embedment, 1 - front_gap / o.max_size + 0.01) : 0.0});
+    const double shallowest = std::max({0.0, o.embedment - 0.1, front_gap ? std::min(o.embedment, 1 - *front_gap / o.max_size + 0.01) : 0.0});
     // Only where some stand up to the blade at the shallow end does the embedment matter:
     // objects lifted into the blades' plane meet them there, however deep they lay.
     if (deepest > shallowest && o.max_size * (1 - shallowest) > lowest_face)
@@ -428,7 +424,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     }
     r.values.push_back(values);
     if (journal && journal->recall)
-      if (const auto kept = journal->recall(run)) {
+      if (const auto kept = journal->recall(run); kept && kept->outputs.size() == r.output_info.size()) {
         r.runs.push_back(*kept);
         r.outputs.push_back(kept->outputs);
         continue;
