@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -55,6 +56,14 @@ std::string draw_inputs(const UncertaintyPlan& plan, const std::vector<double>& 
 }
 
 
+// The limit that cut off the most (0, none, when none was cut off).
+int commonest_cut_off(const std::array<std::uint64_t, flight::kCutOffReasons>& by) {
+  int most = 0;
+  for (int why = 1; why < flight::kCutOffReasons; ++why)
+    if (by[static_cast<std::size_t>(why)] > by[static_cast<std::size_t>(most)]) most = why;
+  return most;
+}
+
 // A J232 test at one draw: common random numbers (the same seed and replicates at every
 // draw). Sets `invalid` to the reason when the simulated test is invalid.
 UqRun assess_test(scenario::Scenario& sc, const UncertaintyPlan& plan, int threads, double required, std::string& invalid) {
@@ -75,8 +84,7 @@ UqRun assess_test(scenario::Scenario& sc, const UncertaintyPlan& plan, int threa
                  exact >= required ? 1.0 : 0.0};
   const auto cut = sum.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
   out.cut_off_share = sum.struck ? static_cast<double>(cut) / static_cast<double>(sum.struck) : 0.0;
-  for (int why = 1; why < flight::kCutOffReasons; ++why)
-    if (sum.cut_off_by[static_cast<std::size_t>(why)] > sum.cut_off_by[static_cast<std::size_t>(out.cut_off_limit)]) out.cut_off_limit = why;
+  out.cut_off_limit = commonest_cut_off(sum.cut_off_by);
   return out;
 }
 
@@ -105,8 +113,7 @@ UqRun assess_field(scenario::Scenario& sc, const UncertaintyPlan& plan, int thre
     std::array<std::uint64_t, flight::kCutOffReasons> by{};
     for (const auto& t : run.kinds)
       for (std::size_t why = 0; why < by.size(); ++why) by[why] += t.cut_off_by[why];
-    for (int why = 1; why < flight::kCutOffReasons; ++why)
-      if (by[static_cast<std::size_t>(why)] > by[static_cast<std::size_t>(out.cut_off_limit)]) out.cut_off_limit = why;
+    out.cut_off_limit = commonest_cut_off(by);
     if (!sum.valid) invalid = sum.invalid_reason;
     text = invalid + '\n' + fmt::format("{:.17g} {}", out.cut_off_share, out.cut_off_limit);
     for (double v : out.outputs) text += fmt::format(" {:.17g}", v);
