@@ -456,7 +456,9 @@ TEST_CASE("spinning nails: air.spin_average = false is read and follows the axis
     ref_queries += r.flight.queries, avg_queries += a.flight.queries;
   }
   REQUIRE(struck > 10);
-  CHECK(ref_queries > 5 * avg_queries);  // the axis turns tens of radians within an averaged chord
+  // The axis turns tens of radians within an averaged chord. (A query is now one broad-phase
+  // gather per chord or slide, the same for both; 5047 against 1218 when written: 4.1x.)
+  CHECK(ref_queries > 3 * avg_queries);
 }
 
 TEST_CASE("replay: a replayed nail is the nail of the run, and its events add up to its outcome", "[assess][trajectories]") {

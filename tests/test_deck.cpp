@@ -261,13 +261,14 @@ openness = 0
       Contains("housing.deflectors[1].radius") && Contains("not both"));
 }
 
-TEST_CASE("deck: a solid flap hung 6 mm behind an opening lets few more nails by than one flush with the skirt", "[deck][housing]") {
+TEST_CASE("deck: a flap behind an opening lets nails by only through a channel wider than a nail", "[deck][housing]") {
   // The highway mower with its skirt 1/4 in above the turf, a rear opening (160-200 deg) and
-  // a solid flap over it along the deck's circle (155-205 deg), flush with the skirt or 6 mm
-  // outside it: a channel narrower than a tumbling nail. Counted punctures outside the zone,
-  // by the same random numbers. A point nail threads the channel (at d027670 the flush flap
-  // let none by and the 6-mm one 0.31 % of nails); the capsule touching the skirt's and the
-  // flap's planes must not (docs/validation.md §3: 0.155 % and 0.253 % at 1000 replicates).
+  // a solid flap over it along the deck's circle (155-205 deg), flush with the skirt, 2 mm
+  // outside it (a channel narrower than the nail's 2.9 mm diameter) or 6 mm outside it (wider).
+  // Counted punctures outside the zone, by the same random numbers. The capsule meets the
+  // real faces of skirt and flap (flight/face_touch.hpp): it cannot pass the 2-mm channel, so
+  // that flap lets by what the flush one does (nails leaving under the skirt's foot, 6.4 mm
+  // up), give or take the bounces the moved flap changes; the 6-mm channel lets more by.
   std::ifstream in(scenario_path("highway-pivoted.toml"));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const auto replace = [&](std::string& s, const std::string& from, const std::string& to) {
@@ -303,10 +304,13 @@ TEST_CASE("deck: a solid flap hung 6 mm behind an opening lets few more nails by
     });
     return n;
   };
-  const auto flush = punctures_outside(with_flap(0.0)), gap = punctures_outside(with_flap(0.006));
-  INFO("punctures outside the zone: " << flush << " with the flap flush, " << gap << " with it 6 mm out (of 22 500 nails)");
-  CHECK(flush > 15);
-  CHECK(gap < 3 * flush);  // measured 1.63x at 1000 replicates; the issue's bound is 3x
+  const auto flush = punctures_outside(with_flap(0.0)), narrow = punctures_outside(with_flap(0.002)),
+             gap = punctures_outside(with_flap(0.006));
+  INFO("punctures outside the zone: " << flush << " with the flap flush, " << narrow << " with it 2 mm out, " << gap
+                                      << " with it 6 mm out (of 22 500 nails)");
+  const auto noise = [](std::uint64_t n) { return 3 * std::sqrt(static_cast<double>(n)) + 3; };
+  CHECK(std::abs(static_cast<double>(narrow) - static_cast<double>(flush)) <= noise(flush));
+  CHECK(static_cast<double>(gap) > static_cast<double>(flush) + noise(flush));
 }
 
 TEST_CASE("deck: an opening is cut exactly at its azimuths, and its width as cut is its stretch of the outline", "[deck][housing]") {

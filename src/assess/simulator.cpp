@@ -134,7 +134,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   }
   flight::FlightContext context = context_;
   context.path = path;
-  if (replay) replay->struck = true, context.events = &replay->events;
+  if (replay) replay->struck = true, context.events = &replay->events, context.stretches = &replay->stretches;
   out.flight = flight::fly(body, rod, drag, context, phases, {k0, contact->edge}, flight_draws);
   const Vec3& launch = out.flight.launch_velocity;
   out.exit_speed = launch.norm();

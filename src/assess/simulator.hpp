@@ -37,6 +37,7 @@ struct NailReplay {
   strike::Contact strike;     // the feed's strike (when struck)
   flight::Vec3 falling = flight::Vec3::Zero(), velocity_after = flight::Vec3::Zero(), spin_after = flight::Vec3::Zero();
   std::vector<flight::FlightEvent> events;
+  std::vector<flight::FlightStretch> stretches;  // the capsule's motion, stretch by stretch (for an audit)
   std::vector<flight::Vec3> path;
 };
 

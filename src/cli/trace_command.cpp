@@ -10,7 +10,10 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include <tbb/parallel_for.h>
+
 #include "assess/simulator.hpp"
+#include "flight/flight_audit.hpp"
 #include "field/field_simulator.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
@@ -28,7 +31,77 @@ struct TraceOptions {
   int nail = 0;
   std::optional<std::uint64_t> object;  // a field scenario's object
   std::optional<std::uint64_t> seed;
+  bool check = false;
+  int check_count = 0;  // replicates (J232) or objects (field) to audit; 0: the default
 };
+
+// `j232 trace --check`: every nail of the first replicates (or the first objects of a field)
+// replayed and audited (flight/flight_audit.hpp): along every stretch of its motion the
+// capsule against every face of the scene, and every bounce's energy. Exits 1 when a capsule
+// reaches more than 0.1 mm into a face or a bounce creates energy.
+int check(const TraceOptions& o, const scenario::Scenario& s) {
+  struct One {
+    flight::FlightAudit audit;
+    std::uint64_t replicate = 0;
+    int nail = 0;
+    bool cut_by_bounces = false, cut_off = false;
+  };
+  std::vector<One> ones;
+  std::string unit;
+  if (s.field.present) {
+    const field::FieldSimulator sim(s);
+    const int objects = o.check_count > 0 ? o.check_count : 2000;
+    ones.resize(static_cast<std::size_t>(objects));
+    tbb::parallel_for(0, objects, [&](int i) {
+      std::vector<flight::FlightEvent> events;
+      std::vector<flight::FlightStretch> stretches;
+      const field::ObjectOutcome out = sim.simulate(static_cast<std::uint64_t>(i), nullptr, &events, &stretches);
+      One& one = ones[static_cast<std::size_t>(i)];
+      one.audit = flight::audit_flight(sim.mower().scene().soup(), out.encounter.body, stretches, events);
+      one.nail = i;
+      one.cut_off = out.flight.fate == flight::Fate::CutOff;
+      one.cut_by_bounces = out.flight.cut_off == flight::CutOff::MaxBounces;
+    });
+    unit = "objects";
+  } else {
+    const assess::Simulator sim(s);
+    const int replicates = o.check_count > 0 ? o.check_count : 2;
+    const int count = replicates * s.feed.nails;
+    ones.resize(static_cast<std::size_t>(count));
+    tbb::parallel_for(0, count, [&](int i) {
+      One& one = ones[static_cast<std::size_t>(i)];
+      one.replicate = static_cast<std::uint64_t>(i / s.feed.nails), one.nail = i % s.feed.nails;
+      const assess::NailReplay r = sim.replay(one.replicate, one.nail);
+      one.audit = flight::audit_flight(sim.scene().soup(), r.drop.nail, r.stretches, r.events);
+      one.cut_off = r.outcome.flight.fate == flight::Fate::CutOff;
+      one.cut_by_bounces = r.outcome.flight.cut_off == flight::CutOff::MaxBounces;
+    });
+    unit = "nails";
+  }
+  flight::FlightAudit all;
+  const One* worst = nullptr;
+  int failing = 0, cut_off = 0, cut_by_bounces = 0;
+  for (const One& one : ones) {
+    all.merge(one.audit);
+    if (!worst || one.audit.deepest > worst->audit.deepest) worst = &one;
+    failing += one.audit.passed() ? 0 : 1;
+    cut_off += one.cut_off, cut_by_bounces += one.cut_by_bounces;
+  }
+  fmt::print("{}\naudit of {} {} (seed {}): {} poses of the capsule against every face of the scene\n", s.title, ones.size(), unit,
+             s.run.seed, all.poses);
+  if (worst && all.deepest > 0)
+    fmt::print("deepest overlap: {:.4f} mm into {} (face {}), {} {} at {:.3f} ms (limit {:.1f} mm)\n", 1e3 * all.deepest,
+               scene::name(all.deepest_label), all.deepest_face + 1,
+               s.field.present ? "object" : fmt::format("replicate {}, nail", worst->replicate), worst->nail, 1e3 * all.deepest_time,
+               1e3 * flight::kAuditOverlap);
+  else
+    fmt::print("no pose overlaps a face\n");
+  fmt::print("bounces creating energy: {}{}\n", all.energy_gains,
+             all.energy_gains ? fmt::format(" (largest {:.3g} J)", all.largest_gain) : std::string());
+  fmt::print("cut off: {} ({} by the bounce cap)\n", cut_off, cut_by_bounces);
+  fmt::print("{}: {} of {} {} failed the audit\n", failing ? "FAILED" : "passed", failing, ones.size(), unit);
+  return failing ? kFails : kOk;
+}
 
 // What --find looks for: each kind by its name and its test on a nail's outcome.
 struct FindKind {
@@ -146,6 +219,11 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
 }
 
 int run(const TraceOptions& o) {
+  if (o.check) {
+    scenario::Scenario s = scenario::read_scenario(o.scenario);
+    if (o.seed) s.run.seed = *o.seed;
+    return check(o, s);
+  }
   if (const scenario::Scenario s = scenario::read_scenario(o.scenario); s.field.present) {
     scenario::Scenario with_seed = s;
     if (o.seed) with_seed.run.seed = *o.seed;
@@ -227,6 +305,10 @@ Runner add_trace_command(CLI::App& app) {
                                          " (a field scenario: cut-off, restruck, contained, thrown)");
   cmd->add_option("--seed", o->seed, "Random seed (overrides the scenario's [run] seed)");
   cmd->add_option("--json", o->json, "Also write the trail as JSON to this file");
+  cmd->add_flag("--check", o->check,
+                "Audit instead: replay every nail of the first replicates (a field: the first objects) and check the capsule against "
+                "every face of the scene along its whole path (no overlap beyond 0.1 mm) and every bounce's energy; exits 1 if any fails");
+  cmd->add_option("--count", o->check_count, "With --check: how many replicates (default 2) or field objects (default 2000)")->check(CLI::PositiveNumber);
   return [o] { return run(*o); };
 }
 

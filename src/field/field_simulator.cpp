@@ -156,7 +156,8 @@ Encounter FieldSimulator::sample(std::size_t kind, random::Stream& rng) const {
   return e;
 }
 
-ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::vector<flight::FlightEvent>* events) const {
+ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::vector<flight::FlightEvent>* events,
+                                       std::vector<flight::FlightStretch>* stretches) const {
   const scenario::Scenario& s = scenario_;
   ObjectOutcome out;
   random::Stream rng(s.run.seed, 0, index, random::Purpose::FieldObject);
@@ -241,6 +242,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   flight::FlightContext context = mower_->context();
   context.spindles = &spindles;
   context.events = events;
+  context.stretches = stretches;
   if (watch) {
     watch->thrown(e.body.mass, contact->time);
     context.observer = watch->observer();

@@ -70,7 +70,8 @@ class FieldSimulator {
     virtual flight::FlightObserver* observer() = 0;
   };
   // `events`: when set, every event of its flight is appended (j232 hazard --replay).
-  ObjectOutcome simulate(std::uint64_t index, Watch* watch = nullptr, std::vector<flight::FlightEvent>* events = nullptr) const;
+  ObjectOutcome simulate(std::uint64_t index, Watch* watch = nullptr, std::vector<flight::FlightEvent>* events = nullptr,
+                         std::vector<flight::FlightStretch>* stretches = nullptr) const;
 
   const scenario::Scenario& scenario() const { return scenario_; }
   const flight::Mower& mower() const { return *mower_; }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "board/board.hpp"
+#include "flight/face_touch.hpp"
 #include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"
 #include "units/quantity.hpp"
@@ -80,7 +81,11 @@ constexpr int kSustainedContacts = 64;   // contacts in one pass before a field'
 constexpr double kSustainedGap = 1e-5;   // s between the last two of them
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
 constexpr double kMaxChord = 0.5;    // m
-constexpr double kLift = 0.002;      // m: a sliding nail's centre above the ground
+// A lying nail slides with its lowest point this far above the ground (clear of its faces by
+// more than the touch tolerance, so that sliding along them is no touch).
+constexpr double kLyingGap = 5 * kFaceTolerance;
+// The faces a chord's search considers at most: a longer list halves the chord.
+constexpr std::size_t kMaxCandidates = 256;
 
 // Restitution along the normal n (facing the incoming nail), Coulomb friction along the surface.
 Vec3 bounce(const Vec3& v, const Vec3& n, double e, double mu) {
@@ -125,7 +130,16 @@ struct NailFlight {
 
   FlightResult r{};
   Body b = start;
-  scene::Skip skip{};
+  // The faces the chord's search considers (the broad phase's answer for the chord).
+  std::array<std::uint32_t, kMaxCandidates> candidates{};
+  std::size_t candidate_count = 0;
+  // A guard's curtain the nail is passing through: its faces are not met until the capsule
+  // is clear of them.
+  int passing_guard = -1;
+  // A flap just struck at this instant: touched again at once (the object still pushing the
+  // flap it set swinging), it is met as a rigid stop, not as its mass again.
+  int struck_flap = -1;
+  double struck_flap_time = -HUGE_VAL;
   bool last_contact_guard = false;
   bool ended_at_rest = false;
   // A knife riding over an object pressed into the soil (a field's stone) touches it no
@@ -167,17 +181,19 @@ struct NailFlight {
     strike::Motion motion;
   };
   struct NextEvent {
-    enum class Kind { ChordEnd, Blade, PlaneAgain, Surface };
+    enum class Kind { ChordEnd, Blade, Surface };
     Kind kind = Kind::ChordEnd;
     std::optional<strike::Contact> contact;
-    std::optional<PlaneTouch> again;
-    std::optional<scene::Hit> hit;
-    std::optional<PlaneTouch> touch;  // the capsule's first touch of the hit's plane (none: the centre's arrival)
+    std::optional<FaceTouch> touch;  // the capsule's first touch of a face of the scene
   };
   bool event_check(double t_end, int& steps);
   bool carried();
   void observe(const Chord& c, const NextEvent& e) const;
-  Chord event_advance(double t_end) const;
+  Chord event_advance(double t_end);
+  Chord chord_from(const Body& from, double dt, const DragOverStep& drag, const Vec3& accel) const;
+  std::size_t gather(const strike::Motion& m, double from, double until, bool counted = true);
+  FaceFilter filter();
+  scene::Hit face_hit(const FaceTouch& at) const;
   NextEvent event_find(const Chord& c);
   bool event_collide(const Chord& c, const NextEvent& e);
   // An event of the replayed nail (nothing unless the context collects them), the nail's
@@ -190,6 +206,14 @@ struct NailFlight {
     ctx.events->push_back(e);
     return &ctx.events->back();
   }
+  // The capsule's motion over [from, until], for an audit of the replay.
+  void stretch(const strike::Motion& m, double from, double until) {
+    if (ctx.stretches && until >= from) ctx.stretches->push_back({m, from, until});
+  }
+  // Kinetic (translational and rotational) and potential energy now.
+  double energy() const {
+    return 0.5 * mass * b.velocity.squaredNorm() + 0.5 * nail.transverse_inertia() * b.spin.squaredNorm() - mass * kGravity.z() * b.position.z();
+  }
   void touch(Touch t) {
     r.trace.touch(t);
     last_touch = t;
@@ -201,21 +225,20 @@ struct NailFlight {
   std::optional<strike::Contact> blade_contact(const strike::Motion& chord, double until);
   Vec3 meet(const PlaneTouch& at, const Chord& chord);
   void restrike(const strike::Contact& k);
+  void lie_down(const Vec3& up, const Vec3& on);
   void touched_scene() { on_blade = false; }
   void close_pass() {
     ++r.passes_by_contacts[std::min(static_cast<std::size_t>(pass_contacts), r.passes_by_contacts.size()) - 1];
   }
   void record_mark(const Vec3& point, double energy, bool zone, bool puncture);
   void reach_board(const scene::Hit& hit, const PlaneTouch& at, const Vec3& velocity);
-  std::optional<PlaneTouch> surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives, double until) const;
-  std::optional<PlaneTouch> plane_touch(const scene::Hit& hit, const strike::Motion& chord, double from, double until) const;
+  Vec3 meet(const FaceTouch& at, const Chord& chord);
   // `arm`: the touching point from the centre (in flight; null: the nail slides on the
   // ground and bounces as a point).
   bool respond(const scene::Hit& hit, const Vec3* arm = nullptr);
   void bounce_off(const Vec3& n, double e, double mu, const Vec3* arm, double surface_inverse_mass = 0.0);
   bool slide(const scene::Hit& hit);
   bool after_bounce(const scene::Hit& hit);
-  std::optional<scene::Hit> last_plane{};  // the surface last bounced off (not a guard passed through)
   Fate fate() const;
 };
 
@@ -384,26 +407,22 @@ void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool p
     (zone ? (puncture ? r.punctures_zone : r.hits_zone) : (puncture ? r.punctures_outside : r.hits_outside)) += 1;
 }
 
-// Where the tumbling nail first touches the surface it is heading for: the centre's ray met
-// it at `centre_arrives`; the capsule reached its plane earlier, by up to half its
-// length, at the point its spin had turned nearest (docs/model.md §5.5). Searched from
-// the time the centre was that far from the plane, but never before the chord's start:
-// what happened before it is history (its events are told), and a capsule already on the
-// plane there meets it there.
-std::optional<PlaneTouch> NailFlight::surface_touch(const scene::Hit& hit, const strike::Motion& chord, double centre_arrives,
-                                                    double until) const {
-  const double closing = std::max(1e-3, -hit.normal.dot(chord.velocity(centre_arrives)));
-  const double reach = nail.half_segment() + nail.radius() + 1e-3;
-  return plane_touch(hit, chord, std::max(chord.t0, centre_arrives - 2 * reach / closing), std::min(centre_arrives, until));
+// The nail moved along the chord to where it touches a face; returns the touching point
+// from its centre.
+Vec3 NailFlight::meet(const FaceTouch& at, const Chord& chord) {
+  PlaneTouch p;
+  p.time = at.time, p.centre = at.centre, p.axis = at.axis, p.point = at.point;
+  return meet(p, chord);
 }
 
-// The capsule's first touch of the plane of `hit` within [from, until].
-std::optional<PlaneTouch> NailFlight::plane_touch(const scene::Hit& hit, const strike::Motion& chord, double from, double until) const {
-  // The plane it last bounced off (its face or a face beside it in that plane): the touch it
-  // is leaving is no new one.
-  const bool same_plane = last_plane && last_plane->normal.dot(hit.normal) > 1 - 1e-12 &&
-                          std::abs(hit.normal.dot(hit.point - last_plane->point)) < 1e-9;
-  return first_plane_touch(chord, nail, hit.point, hit.normal, from, until, same_plane);
+// The scene's face touched, as a surface met: its label and guard, the contact's point and
+// normal (the face's, or an edge's or corner's, toward the nail).
+scene::Hit NailFlight::face_hit(const FaceTouch& at) const {
+  scene::Hit h;
+  h.point = at.point, h.normal = at.normal, h.face = at.face;
+  h.surface = ctx.scene->soup().labels[at.face];
+  h.guard = ctx.scene->soup().guard_index[at.face];
+  return h;
 }
 
 // The nail moved along the chord to where it touches a surface; returns the touching
@@ -480,6 +499,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const SurfaceMaterial& material = set.materials.of(hit.surface, hit.guard);
   const Vec3 n = hit.normal;
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
+  const double energy_in = ctx.events ? energy() : 0.0;
   // How the surface meets the nail: its touching point's velocity (the centre's when it slides).
   const Vec3 v_in = arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity;
   switch (material.response) {
@@ -493,6 +513,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
         b.velocity *= material.pass_speed_factor;  // slips between the links, losing speed
         touch(Touch::GuardPass);
         last_guard_passed = hit.guard;
+        passing_guard = hit.guard;  // through its curtain: its faces are not met until the nail is clear of them
         if (FlightEvent* e = log(FlightEvent::Kind::GuardPass, hit.point, n, v_in.norm())) e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard;
         return true;
       }
@@ -521,7 +542,12 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   // I / d^2 along its normal (at rest before the impact: it is taken to have swung back
   // between one nail's contacts, a stated simplification).
   const double contact_height = arm ? b.position.z() + arm->z() : hit.point.z();
-  const double give = material.response == SurfaceMaterial::Response::Flap ? 1.0 / material.flap_mass_at(contact_height) : 0.0;
+  // A flap touched again at the instant it was struck (the object still pushing the flap it
+  // set swinging) has given what its mass can: it is met as a rigid stop.
+  const bool flap = material.response == SurfaceMaterial::Response::Flap;
+  const bool pushing = flap && struck_flap == hit.guard && b.time - struck_flap_time <= 1e-9;
+  const double give = flap && !pushing ? 1.0 / material.flap_mass_at(contact_height) : 0.0;
+  if (flap) struck_flap = hit.guard, struck_flap_time = b.time;
   bounce_off(facet, material.restitution(std::max(-v_in.dot(n), 1e-9), angle), material.friction, arm, give);
   // A rough facet cannot send a point-like bounce into the surface. (A tumbling rod's centre
   // may still move into it after a rigid rebound at one end: its next touch is searched.)
@@ -540,17 +566,49 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   if (hit.surface != scene::Surface::Ground) last_contact_guard = hit.surface == scene::Surface::Guard;
   ++r.bounces;
   if (FlightEvent* e = log(FlightEvent::Kind::Bounce, arm ? Vec3(b.position + *arm) : hit.point, n, speed_in))
-    e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard;
+    e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard, e->energy_before = energy_in, e->energy_after = energy();
   return true;
+}
+
+// The nail comes to lie on the ground face through `on` with upward normal `up`: a rod falls
+// flat (its axis turned into the face, about its centre, which comes down: no energy is
+// gained), a sphere sits on it; its lowest point kLyingGap above the face. Pushed sideways
+// out of any wall the flat rod would reach into.
+void NailFlight::lie_down(const Vec3& up, const Vec3& on) {
+  Vec3 flat = b.axis - b.axis.dot(up) * up;
+  if (!(flat.norm() > 1e-9)) flat = up.unitOrthogonal();
+  b.axis = flat.normalized();
+  // Down onto the face, never up: a nail already lying lower (within the touch tolerance, or
+  // a field's stone pressed into the soil) stays as low as it is.
+  b.position += std::min(0.0, nail.radius() + kLyingGap - up.dot(b.position - on)) * up;
+  for (int pass = 0; pass < 4; ++pass) {
+    strike::Motion still;
+    still.p0 = b.position, still.t0 = b.time, still.axis0 = b.axis;
+    gather(still, b.time, b.time, false);
+    double worst = 0;
+    Vec3 away = Vec3::Zero();
+    for (std::size_t i = 0; i < candidate_count; ++i) {
+      const auto st = segment_triangle(b.position - nail.half_segment() * b.axis, b.position + nail.half_segment() * b.axis,
+                                       ctx.scene->face_edges(candidates[i]));
+      const double overlap = nail.radius() + kLyingGap - st.distance;
+      Vec3 out = st.on_segment - st.on_triangle;
+      out -= out.dot(up) * up;  // sideways only
+      if (overlap > worst && out.norm() > 1e-12) worst = overlap, away = out.normalized();
+    }
+    if (worst <= 0) break;
+    b.position += (worst + kLyingGap) * away;
+  }
 }
 
 // On the ground after `hit` with too little rebound to fly: slides to rest, or into a wall
 // and on. Returns false when the flight has ended (at rest, stopped, cut off).
 bool NailFlight::slide(const scene::Hit& hit) {
-  const Vec3 up = hit.normal;
-  const double decel = set.materials.of(hit.surface, hit.guard).friction * -kGravity.z();
-  b.position -= up.dot(b.position - hit.point) * up;  // it lies on the ground (its centre was up to half its length above)
-  log(FlightEvent::Kind::Slide, b.position, up, b.velocity.norm());
+  Vec3 up = ctx.scene->face_normal(hit.face);
+  if (up.dot(hit.normal) < 0) up = -up;
+  const double decel = set.materials.of(hit.surface, hit.guard).friction * -kGravity.z() * std::max(0.0, up.z());
+  const double before = ctx.events ? energy() : 0.0;
+  lie_down(up, hit.point);
+  if (FlightEvent* e = log(FlightEvent::Kind::Slide, b.position, up, b.velocity.norm())) e->energy_before = before, e->energy_after = energy();
   bool stopped = false;
   while (!stopped) {
     Vec3 slide = b.velocity - b.velocity.dot(up) * up;
@@ -560,67 +618,67 @@ bool NailFlight::slide(const scene::Hit& hit) {
       break;
     }
     if (speed < set.rest_speed || decel <= 0) {
-      ended_at_rest = true;
-      log(FlightEvent::Kind::Rest, b.position, up);
-      break;
-    }
-    slide /= speed;
-    const double distance = speed * speed / (2 * decel);
-    // Its centre slides just above the ground (a lying nail's), or a sphere's radius above it;
-    // a sphere also looks for walls near its top, which meets a skirt's lower edge its centre
-    // would pass under (a field's stone rolling at a deck).
-    const double lift = std::max(kLift, nail.radius());
-    const Vec3 from = b.position + lift * up;
-    ++r.queries;
-    auto wall = ctx.scene->first_hit(from, slide, distance, skip);
-    if (nail.radius() > kLift) {
-      ++r.queries;
-      if (auto top = ctx.scene->first_hit(from + 0.9 * nail.radius() * up, slide, wall ? wall->distance : distance, skip)) wall = top;
-    }
-    const double t0 = b.time;
-    if (!wall) {
-      if (ctx.observer) ctx.observer->flew(t0, from, speed * slide, t0 + speed / decel, from + distance * slide, Vec3::Zero());
-      moved(from, from + distance * slide);
-      b.position = from + distance * slide;
-      b.time += speed / decel;
-      last_event = b.time;
       b.velocity = Vec3::Zero();
       ended_at_rest = true;
       log(FlightEvent::Kind::Rest, b.position, up);
       break;
     }
-    const double arrive = std::sqrt(std::max(0.0, speed * speed - 2 * decel * wall->distance));
-    b.time += (speed - arrive) / decel;
+    slide /= speed;
+    // The lying capsule slides straight, slowing at mu g, until it stops or touches a face
+    // (a wall, a skirt's foot, another ground face); the face it lies on stays kLyingGap below.
+    strike::Motion m;
+    m.p0 = b.position, m.v0 = speed * slide, m.a = -decel * slide, m.t0 = b.time, m.axis0 = b.axis;
+    const double until = b.time + speed / decel;
+    gather(m, b.time, until);
+    FaceSearchStats stats;
+    const auto wall = first_face_touch(*ctx.scene, candidates.data(), candidate_count, m, nail, b.time, until, filter(), stats);
+    r.search_steps += stats.steps;
+    if (stats.gave_up) {
+      cut(CutOff::SearchSteps);
+      break;
+    }
+    const double t0 = b.time;
+    const Vec3 from = b.position;
+    stretch(m, t0, wall ? wall->time : until);
+    if (!wall) {
+      const Vec3 to = m.centre(until);
+      if (ctx.observer) ctx.observer->flew(t0, from, speed * slide, until, to, Vec3::Zero());
+      moved(from, to);
+      b.position = to, b.time = until, b.velocity = Vec3::Zero();
+      last_event = b.time;
+      ended_at_rest = true;
+      log(FlightEvent::Kind::Rest, b.position, up);
+      break;
+    }
+    b.time = wall->time, b.position = wall->centre, b.velocity = m.velocity(wall->time);
     last_event = b.time;
-    const Vec3 at = from + wall->distance * slide;  // its centre where it meets the wall (the wall's point, for a lying nail)
-    if (ctx.observer) ctx.observer->flew(t0, from, speed * slide, b.time, at, arrive * slide);
-    moved(from, nail.radius() > kLift ? at : wall->point);
-    b.position = nail.radius() > kLift ? at : wall->point;
-    b.velocity = arrive * slide;
-    skip = {};
-    skip.add(wall->face);
-    stopped = !respond(*wall);
-    if (set.materials.of(wall->surface, wall->guard).holds_up) break;  // slid onto another ground face: fly on from there
+    if (ctx.observer) ctx.observer->flew(t0, from, speed * slide, b.time, b.position, b.velocity);
+    moved(from, b.position);
+    const scene::Hit met = face_hit(*wall);
+    stopped = !respond(met);
+    if (set.materials.of(met.surface, met.guard).holds_up) break;  // slid onto another ground face: fly on from there
   }
   return !(stopped || ended_at_rest || cut_off);
 }
 
-// After a bounce off `hit`: remembered for the tumbling nail's next touch of it; on the
-// ground with too little rebound to fly, it slides to rest or into a wall and on; at rest
-// only on something that holds it up (not under the deck plate, not on a wall). Returns
-// false when the flight has ended.
+// After a bounce off `hit`: on the ground with too little rebound to fly, it slides to rest
+// or into a wall and on; at rest only on something that holds it up (not under the deck
+// plate, not on a wall) and only where friction can hold it (the face no steeper than the
+// friction angle). Returns false when the flight has ended.
 bool NailFlight::after_bounce(const scene::Hit& hit) {
-  if (last_touch != Touch::GuardPass) last_plane = hit;
   // How fast its ends swing about its centre: a nail still tumbling is not lying yet.
   const double swing = b.spin.norm() * nail.half_segment();
-  if (set.materials.of(hit.surface, hit.guard).holds_up && b.velocity.dot(hit.normal) < kSlideBelow && swing < kSlideBelow) {
-    last_plane.reset();
+  const SurfaceMaterial& material = set.materials.of(hit.surface, hit.guard);
+  Vec3 up = ctx.scene->face_normal(hit.face);
+  if (up.dot(hit.normal) < 0) up = -up;
+  if (material.holds_up && up.z() > 0 && b.velocity.dot(up) < kSlideBelow && swing < kSlideBelow) {
     b.spin = Vec3::Zero();  // lying on the ground, it slides without turning
     if (!slide(hit)) return false;
   }
-  if (b.velocity.norm() < set.rest_speed && swing < set.rest_speed && hit.normal.z() > 0.5) {
+  const bool within_friction_cone = up.z() * std::sqrt(1 + material.friction * material.friction) >= 1;
+  if (b.velocity.norm() < set.rest_speed && swing < set.rest_speed && up.z() > 0.5 && within_friction_cone) {
     ended_at_rest = true;
-    log(FlightEvent::Kind::Rest, b.position, hit.normal);
+    log(FlightEvent::Kind::Rest, b.position, up);
     return false;
   }
   return true;
@@ -664,110 +722,105 @@ bool NailFlight::event_check(double t_end, int& steps) {
   return !(horizontal2 > ctx.escape_radius * ctx.escape_radius || b.position.z() < -1.0);
 }
 
-// The next chord of free flight from where the nail is: the drag and acceleration shared by
-// the chord's length, its step and a step to a hit on it; where it would end; and the
-// motion the contact searches follow along it.
-NailFlight::Chord NailFlight::event_advance(double t_end) const {
-  const DragOverStep step_drag(drag, b);
-  const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
-  const double dt = std::min(chord_step(b, accel, set.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
-  const Body next = advance(b, dt, step_drag, accel);
-  return {step_drag, accel, dt, next, next.position - b.position, (next.position - b.position).norm(), chord_motion(b, accel)};
+// The chord of free flight from `from` over dt: where the drag integration ends it, and the
+// motion the contact searches follow along it (its centre's parabola runs through both ends
+// of the chord, so that the end the nail is placed at is the one the search proved clear).
+NailFlight::Chord NailFlight::chord_from(const Body& from, double dt, const DragOverStep& over, const Vec3& accel) const {
+  Body next = advance(from, dt, over, accel);
+  strike::Motion motion = chord_motion(from, accel);
+  if (dt > 0) motion.a = 2.0 * (next.position - from.position - from.velocity * dt) / (dt * dt);
+  next.axis = motion.axis(from.time + dt);
+  return {over, accel, dt, next, next.position - from.position, (next.position - from.position).norm(), motion};
 }
 
-// What ends the chord first: the blades, the surface the nail last bounced off met again
-// by its other end or the same one as it tumbles (its face is skipped by the centre's ray
-// just after the bounce), a surface the centre's ray meets, or nothing. The cheap queries
-// go first, so that the blades are searched only up to the earliest of them: a tumbling
-// nail's chords mostly end at a plane it touches again within a fraction of the chord.
+// The faces the capsule may meet over [from, until] moving as `m` (the broad phase), into
+// `candidates`; returns how many there are (more than kMaxCandidates: too many to keep).
+std::size_t NailFlight::gather(const strike::Motion& m, double from, double until, bool counted) {
+  Vec3 lo, hi;
+  swept_box(m, nail, from, until, lo, hi);
+  r.queries += counted;
+  const std::size_t found = ctx.scene->faces_in_box(lo, hi, candidates.data(), candidates.size());
+  candidate_count = std::min(found, candidates.size());
+  return found;
+}
+
+// What the search passes over: the curtain the nail is going through, until it is clear
+// of every one of its faces.
+FaceFilter NailFlight::filter() {
+  FaceFilter f{ctx.scene, passing_guard};
+  if (passing_guard >= 0) {
+    bool clear = true;
+    for (std::size_t i = 0; i < candidate_count && clear; ++i)
+      if (f.ignores(candidates[i]) && face_clearance(*ctx.scene, candidates[i], nail, b.position, b.axis) <= kFaceTolerance) clear = false;
+    if (clear) passing_guard = -1, f.ignored_guard = -1;
+  }
+  return f;
+}
+
+// The next chord of free flight from where the nail is: the drag and acceleration shared by
+// the chord's length, its step and a step to a touch on it; where it would end; the motion
+// the contact searches follow along it; and the faces it may meet (a chord that sweeps more
+// faces than the search keeps is halved).
+NailFlight::Chord NailFlight::event_advance(double t_end) {
+  const DragOverStep step_drag(drag, b);
+  const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
+  double dt = std::min(chord_step(b, accel, set.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
+  for (;;) {
+    Chord c = chord_from(b, dt, step_drag, accel);
+    if (gather(c.motion, b.time, b.time + dt) <= candidates.size() || dt < 1e-9) return c;
+    dt *= 0.5;
+  }
+}
+
+// What ends the chord first: a face of the scene the capsule touches (any part of it, found
+// conservatively: flight/face_touch.hpp), the blades (searched only up to that touch), or
+// nothing.
 NailFlight::NextEvent NailFlight::event_find(const Chord& c) {
   NextEvent e;
   const double chord_end = b.time + c.dt;
-  ++r.queries;
-  // The centre's ray looks beyond the chord's end by a few of the nail's reaches: a surface
-  // met there is the chord's event when the tumbling capsule reaches its plane within the
-  // chord (its end crosses a wall the centre has yet to reach), so that no part of the nail
-  // is through a wall when its centre's ray finds it.
-  const double look_ahead = 4 * (nail.half_segment() + nail.radius());
-  e.hit = ctx.scene->first_hit(b.position, c.step / c.len, c.len + look_ahead, skip);
-  // The centre meets the surface at the share of the chord's time its ray has travelled.
-  double hit_time = chord_end;
-  if (e.hit) {
-    const double centre_arrives = b.time + c.dt * e.hit->distance / c.len;
-    e.touch = surface_touch(*e.hit, c.motion, centre_arrives, chord_end);
-    if (e.touch)
-      hit_time = e.touch->time;
-    else if (e.hit->distance <= c.len)
-      hit_time = centre_arrives;  // (never expected: the centre reaching the plane means the capsule did)
-    else
-      e.hit.reset();  // beyond the chord, and not reached within it
-  }
-  if (last_plane && last_plane->normal.dot(b.position - last_plane->point) < nail.half_segment() + nail.radius() + c.len)
-    e.again = first_plane_touch(c.motion, nail, last_plane->point, last_plane->normal, b.time, chord_end, true);
-  if (e.again && !(e.again->time < hit_time)) e.again.reset();
-  e.contact = blade_contact(c.motion, e.again ? e.again->time : hit_time);
+  FaceSearchStats stats;
+  e.touch = first_face_touch(*ctx.scene, candidates.data(), candidate_count, c.motion, nail, b.time, chord_end, filter(), stats);
+  r.search_steps += stats.steps;
+  if (stats.gave_up) cut(CutOff::SearchSteps);
+  e.contact = blade_contact(c.motion, e.touch ? e.touch->time : chord_end);
   if (cut_off) return e;
-  e.kind = e.contact ? NextEvent::Kind::Blade : e.again ? NextEvent::Kind::PlaneAgain : e.hit ? NextEvent::Kind::Surface : NextEvent::Kind::ChordEnd;
+  e.kind = e.contact ? NextEvent::Kind::Blade : e.touch ? NextEvent::Kind::Surface : NextEvent::Kind::ChordEnd;
   return e;
 }
 
 // What the event does to the nail. Returns false when the flight has ended.
 bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
+  stretch(c.motion, b.time,
+          e.kind == NextEvent::Kind::ChordEnd ? b.time + c.dt : e.kind == NextEvent::Kind::Blade ? e.contact->time : e.touch->time);
   switch (e.kind) {
     case NextEvent::Kind::ChordEnd:
       moved(b.position, c.next.position);
       b = c.next;
-      skip = {};
       return true;
-    case NextEvent::Kind::PlaneAgain: {
-      const scene::Hit plane = *last_plane;
-      const Vec3 arm = meet(*e.again, c);
-      return respond(plane, &arm) && after_bounce(plane);
-    }
     case NextEvent::Kind::Blade: {
       const Vec3 from = b.position;
       b.position = e.contact->centre;
-      b.velocity += c.accel * (e.contact->time - b.time);
+      b.velocity = c.motion.velocity(e.contact->time);
       b.axis = e.contact->axis;
       b.time = e.contact->time;
       moved(from, b.position);
-      skip = {};
       restrike(*e.contact);
       return !cut_off;
     }
     case NextEvent::Kind::Surface: break;
   }
-  const scene::Hit& hit = *e.hit;
+  const FaceTouch& at = *e.touch;
+  const scene::Hit hit = face_hit(at);
   touched_scene();
-  // The capsule touches the surface's plane before its centre gets there (by up to half
-  // its length), at the point its tumbling has turned nearest (found with the event).
-  const double to_hit = c.dt * hit.distance / c.len;
-  const auto& at = e.touch;
+  const Vec3 velocity = c.motion.velocity(at.time);
+  const Vec3 arm = meet(at, c);
   if (set.materials.of(hit.surface, hit.guard).response == SurfaceMaterial::Response::Board) {
-    if (at) {
-      const Vec3 velocity = c.motion.velocity(at->time);
-      meet(*at, c);
-      reach_board(hit, *at, velocity);
-      return false;
-    }
-    moved(b.position, hit.point);
-    b = advance(b, to_hit, c.drag, c.accel);
-    b.position = hit.point;
-    reach_board(hit, centre_touching(b, hit.point), b.velocity);
+    PlaneTouch p;
+    p.time = at.time, p.centre = at.centre, p.axis = at.axis, p.point = at.point;
+    reach_board(hit, p, velocity);
     return false;
   }
-  skip = {};
-  skip.add(hit.face);
-  if (at) {
-    const Vec3 arm = meet(*at, c);
-    if (!respond(hit, &arm)) return false;
-  } else {  // (never expected: the centre reaching the plane means the capsule did)
-    moved(b.position, hit.point);
-    b = advance(b, to_hit, c.drag, c.accel);
-    b.position = hit.point;
-    last_event = b.time;
-    if (!respond(hit)) return false;
-  }
+  if (!respond(hit, &arm)) return false;
   return after_bounce(hit);
 }
 
@@ -787,8 +840,6 @@ bool NailFlight::carried() {
   const Vec3 from = b.position;
   b.position = k->centre, b.velocity = turf, b.spin = Vec3::Zero(), b.axis = k->axis, b.time = k->time;
   moved(from, b.position);
-  skip = {};
-  last_plane.reset();
   ended_at_rest = false;
   restrike(*k);
   return !cut_off;
@@ -802,15 +853,7 @@ void NailFlight::observe(const Chord& c, const NextEvent& e) const {
   switch (e.kind) {
     case NextEvent::Kind::ChordEnd: break;
     case NextEvent::Kind::Blade: t1 = e.contact->time, p1 = e.contact->centre, v1 = c.motion.velocity(t1); break;
-    case NextEvent::Kind::PlaneAgain: t1 = e.again->time, p1 = e.again->centre, v1 = c.motion.velocity(t1); break;
-    case NextEvent::Kind::Surface:
-      if (e.touch) {
-        t1 = e.touch->time, p1 = e.touch->centre;
-      } else {
-        t1 = b.time + c.dt * e.hit->distance / c.len, p1 = e.hit->point;
-      }
-      v1 = c.motion.velocity(t1);
-      break;
+    case NextEvent::Kind::Surface: t1 = e.touch->time, p1 = e.touch->centre, v1 = c.motion.velocity(t1); break;
   }
   ctx.observer->flew(b.time, b.position, b.velocity, t1, p1, v1);
 }

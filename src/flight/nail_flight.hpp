@@ -159,10 +159,21 @@ struct FlightEvent {
   std::uint16_t guard = 0;
   std::uint16_t spindle = 0, edge = 0;  // Strike
   double energy = 0, width = 0;         // Board: what the board model judged
+  // Bounce, Slide: the nail's mechanical energy (kinetic, translational and rotational, and
+  // potential) just before and just after (a bounce or the fall flat must not create any).
+  double energy_before = 0, energy_after = 0;
   int mark = 0;                         // Board: 0 none, 1 hit, 2 puncture
   Fate fate = Fate::OverBoard;          // End
 };
 const char* event_name(FlightEvent::Kind k);  // "strike", "bounce", "guard-pass", "slide", "rest", "board", "left-deck", "end"
+
+// One stretch of a flight between events: the capsule moved as `motion` over [from, until]
+// (free flight along a chord, or sliding on the ground). Recorded for the audit of a replay
+// (`j232 trace --check`): every stretch, end to end, is the capsule's whole path.
+struct FlightStretch {
+  strike::Motion motion;
+  double from = 0, until = 0;
+};
 
 // Watches a flight as it goes (j232 hazard tallies where thrown objects cross planes and
 // land around the mower); null in a J232 run. Times are on the blades' clock.
@@ -200,6 +211,8 @@ struct FlightContext {
   std::vector<Vec3>* path = nullptr;
   // When set, every event of the flight is appended (replaying one nail; null in a run).
   std::vector<FlightEvent>* events = nullptr;
+  // When set, every stretch of its motion is appended (auditing a replay; null in a run).
+  std::vector<FlightStretch>* stretches = nullptr;
   FlightObserver* observer = nullptr;  // when set, told of every free stretch and ground contact
 };
 

@@ -102,6 +102,25 @@ struct ClosestHit {
   }
 };
 
+// Every face whose box meets a query box, over CGAL's AABB tree without allocating.
+struct BoxQuery {
+  CGAL::Bbox_3 box;
+};
+template <class Collect>
+struct InBox {
+  const std::vector<std::uint32_t>* soup_face;
+  Collect* collect;
+  bool go_further() const { return true; }
+  template <class Node>
+  bool do_intersect(const BoxQuery& q, const Node& node) const {
+    return CGAL::do_overlap(q.box, node.bbox());
+  }
+  template <class P>
+  void intersection(const BoxQuery&, const P& primitive) {
+    (*collect)((*soup_face)[primitive.id().idx()]);
+  }
+};
+
 }  // namespace
 
 bool engine_available(Engine e) {
@@ -122,6 +141,7 @@ struct Scene::Impl {
   Engine engine = Engine::Cgal;
   std::vector<Vec3> normals;             // per soup triangle, unit
   std::vector<TriangleEdges> triangles;  // per soup triangle: corner, two edges
+  std::vector<Scene::Ball> balls;        // per soup triangle: a sphere holding it
   std::unique_ptr<CgalIndex> cgal;
 #ifdef J232_HAVE_EMBREE
   std::unique_ptr<EmbreeIndex> embree;
@@ -145,6 +165,10 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     m.normals.push_back(n.normalized());
     m.triangles.push_back(
         {m.soup.points[tri[0]], m.soup.points[tri[1]] - m.soup.points[tri[0]], m.soup.points[tri[2]] - m.soup.points[tri[0]]});
+    const Vec3 centroid = (m.soup.points[tri[0]] + m.soup.points[tri[1]] + m.soup.points[tri[2]]) / 3.0;
+    double radius = 0;
+    for (int k = 0; k < 3; ++k) radius = std::max(radius, (m.soup.points[tri[static_cast<std::size_t>(k)]] - centroid).norm());
+    m.balls.push_back({centroid, radius * (1 + 1e-12) + 1e-15});
   }
 #ifdef J232_HAVE_EMBREE
   if (engine == Engine::Embree) {
@@ -158,6 +182,53 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
 Scene::~Scene() = default;
 Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
+
+namespace {
+// The exact decision of faces_in_box, shared by both engines: the face's own box (in
+// double precision) meets the query box. Kept in increasing face order.
+struct BoxCollector {
+  const std::vector<TriangleEdges>* triangles;
+  Vec3 lo, hi;
+  std::uint32_t* out;
+  std::size_t capacity, count = 0;
+  void operator()(std::uint32_t f) {
+    const TriangleEdges& t = (*triangles)[f];
+    const Vec3 b = t[0] + t[1], c = t[0] + t[2];
+    const Vec3 tlo = t[0].cwiseMin(b).cwiseMin(c), thi = t[0].cwiseMax(b).cwiseMax(c);
+    if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) return;
+    if (count < capacity) {
+      std::size_t i = count;  // insertion keeps the order (the lists are short)
+      while (i > 0 && out[i - 1] > f) out[i] = out[i - 1], --i;
+      if (i > 0 && out[i - 1] == f) {  // visited twice (never expected): kept once
+        for (std::size_t k = i; k < count; ++k) out[k] = out[k + 1];
+        return;
+      }
+      out[i] = f;
+    }
+    ++count;
+  }
+};
+}  // namespace
+
+std::size_t Scene::faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* out, std::size_t capacity) const {
+  const Impl& m = *impl_;
+  BoxCollector collect{&m.triangles, lo, hi, out, capacity};
+#ifdef J232_HAVE_EMBREE
+  if (m.embree) {
+    m.embree->near_sphere(0.5 * (lo + hi), 0.5 * (hi - lo).norm(), [](void* u, std::uint32_t f) { (*static_cast<BoxCollector*>(u))(f); },
+                          &collect);
+    return collect.count;
+  }
+#endif
+  BoxQuery q{CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z())};
+  InBox<BoxCollector> traits{&m.cgal->soup_face, &collect};
+  m.cgal->tree.traversal(q, traits);
+  return collect.count;
+}
+
+const std::array<Vec3, 3>& Scene::face_edges(std::uint32_t f) const { return impl_->triangles[f]; }
+const Vec3& Scene::face_normal(std::uint32_t f) const { return impl_->normals[f]; }
+const Scene::Ball& Scene::face_ball(std::uint32_t f) const { return impl_->balls[f]; }
 
 const Soup& Scene::soup() const { return impl_->soup; }
 std::size_t Scene::face_count() const { return impl_->soup.triangles.size(); }

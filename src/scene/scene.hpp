@@ -58,6 +58,22 @@ class Scene {
   // faces hit at the same distance, the lowest face number.
   std::optional<Hit> first_hit(const Vec3& from, const Vec3& dir, double max_distance, const Skip& skip = {}) const;
 
+  // The faces whose bounding boxes meet the box [lo, hi] (the broad phase of the capsule's
+  // contact search, flight/face_touch.hpp), in increasing face order, decided exactly in
+  // double precision so that both engines give the same list. Writes at most `capacity`
+  // of them to `out` and returns how many there are (more than `capacity`: the caller asks
+  // again over a smaller box). Allocation-free.
+  std::size_t faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* out, std::size_t capacity) const;
+  // Face f as its first corner and two edges from it, and its unit normal (either side).
+  const std::array<Vec3, 3>& face_edges(std::uint32_t f) const;
+  const Vec3& face_normal(std::uint32_t f) const;
+  // A sphere holding face f (its centroid, and the farthest corner's distance from it).
+  struct Ball {
+    Vec3 centre;
+    double radius;
+  };
+  const Ball& face_ball(std::uint32_t f) const;
+
   const Soup& soup() const;
   std::size_t face_count() const;
   Engine engine() const;

@@ -1,0 +1,418 @@
+#include "flight/face_touch.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace j232::flight {
+
+namespace {
+
+// The point of triangle (a, a + e1, a + e2) nearest p, by its Voronoi regions (corners,
+// edges, interior).
+Vec3 nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& ab, const Vec3& ac) {
+  const Vec3 ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 b = a + ab, bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 c = a + ac, cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// The closest points of segments p1 + s d1 and p2 + t d2 (s, t in [0, 1]).
+void nearest_segments(const Vec3& p1, const Vec3& d1, const Vec3& p2, const Vec3& d2, Vec3& c1, Vec3& c2) {
+  const Vec3 r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  constexpr double eps = 1e-30;
+  double s = 0, t = 0;
+  if (a <= eps && e <= eps) {
+    s = t = 0;
+  } else if (a <= eps) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= eps) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0, s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  c1 = p1 + s * d1, c2 = p2 + t * d2;
+}
+
+}  // namespace
+
+SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::array<Vec3, 3>& tri) {
+  const Vec3 &a = tri[0], &e1 = tri[1], &e2 = tri[2];
+  SegmentTriangle best;
+  const Vec3 n = e1.cross(e2);
+  const double s0 = n.dot(p0 - a), s1 = n.dot(p1 - a);
+  // Both ends on one side: when the nearer end's foot on the plane lies inside the
+  // triangle, that is the closest pair (no point of the segment is nearer the plane).
+  if ((s0 > 0 && s1 > 0) || (s0 < 0 && s1 < 0)) {
+    const bool first = std::abs(s0) <= std::abs(s1);
+    const Vec3& p = first ? p0 : p1;
+    const double sp = first ? s0 : s1, nn = n.squaredNorm();
+    const Vec3 foot = p - (sp / nn) * n;
+    // Barycentric coordinates of the foot.
+    const Vec3 w = foot - a;
+    const double d00 = e1.squaredNorm(), d01 = e1.dot(e2), d11 = e2.squaredNorm(), d20 = w.dot(e1), d21 = w.dot(e2);
+    const double denom = d00 * d11 - d01 * d01;
+    const double v = (d11 * d20 - d01 * d21) / denom, u = (d00 * d21 - d01 * d20) / denom;
+    if (v >= 0 && u >= 0 && u + v <= 1) {
+      best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(nn);
+      return best;
+    }
+  }
+  // Crossing the triangle's interior: distance 0 there.
+  if ((s0 <= 0 && s1 >= 0) || (s0 >= 0 && s1 <= 0)) {
+    if (s0 != s1) {
+      const Vec3 x = p0 + (s0 / (s0 - s1)) * (p1 - p0);
+      const Vec3 on = nearest_on_triangle(x, a, e1, e2);
+      if ((on - x).squaredNorm() <= 1e-30 * (1 + x.squaredNorm())) {
+        best.on_segment = x, best.on_triangle = on, best.distance = 0;
+        return best;
+      }
+    }
+  }
+  double d2 = HUGE_VAL;
+  const auto offer = [&](const Vec3& ps, const Vec3& pt) {
+    const double d = (ps - pt).squaredNorm();
+    if (d < d2) d2 = d, best.on_segment = ps, best.on_triangle = pt;
+  };
+  offer(p0, nearest_on_triangle(p0, a, e1, e2));
+  if (p1 != p0) {
+    offer(p1, nearest_on_triangle(p1, a, e1, e2));
+    const Vec3 d = p1 - p0;
+    Vec3 cs, ct;
+    nearest_segments(p0, d, a, e1, cs, ct), offer(cs, ct);
+    nearest_segments(p0, d, a, e2, cs, ct), offer(cs, ct);
+    nearest_segments(p0, d, a + e1, e2 - e1, cs, ct), offer(cs, ct);
+  }
+  best.distance = std::sqrt(d2);
+  return best;
+}
+
+bool FaceFilter::ignores(std::uint32_t f) const {
+  if (ignored_guard < 0) return false;
+  const auto& soup = scene->soup();
+  return soup.labels[f] == scene::Surface::Guard && soup.guard_index[f] == static_cast<std::uint16_t>(ignored_guard);
+}
+
+double face_clearance(const scene::Scene& scene, std::uint32_t f, const projectile::Projectile& nail, const Vec3& centre, const Vec3& axis) {
+  const double h = nail.half_segment();
+  return segment_triangle(centre - h * axis, centre + h * axis, scene.face_edges(f)).distance - nail.radius();
+}
+
+void swept_box(const strike::Motion& m, const projectile::Projectile& nail, double from, double until, Vec3& lo, Vec3& hi) {
+  const Vec3 a = m.centre(from), b = m.centre(until);
+  lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+  // Each coordinate is a quadratic in time: its turning point, when inside the interval.
+  const Vec3 v = m.velocity(from);
+  for (int k = 0; k < 3; ++k) {
+    if (m.a[k] == 0) continue;
+    const double s = -v[k] / m.a[k];
+    if (s > 0 && from + s < until) {
+      const double x = m.centre(from + s)[k];
+      lo[k] = std::min(lo[k], x), hi[k] = std::max(hi[k], x);
+    }
+  }
+  const double reach = nail.half_segment() + nail.radius() + kFaceTolerance + 1e-9;
+  lo.array() -= reach, hi.array() += reach;
+}
+
+namespace {
+
+// One candidate face as the search sees it.
+// (Left uninitialised in bulk: the search sets what it uses, for the faces it has.)
+struct FaceState {
+  std::uint32_t face;
+  bool leaving;  // touched at a point moving away from it: no touch until that point moves in again
+  double slack;  // a face being left: how far below the clearance it had then it may sink before it is looked at again
+  double safe;   // a time before which the capsule surely does not reach it (a face being left: sink past the slack)
+  SegmentTriangle exact;  // the closest points where it was last checked
+};
+
+// Where the capsule is at one instant.
+struct Pose {
+  Vec3 centre, axis, velocity;
+};
+
+// The first root x >= 0 of c0 + c1 x + c2 x^2 / 2 (c0 > 0), or HUGE_VAL.
+double first_root(double c0, double c1, double c2) {
+  if (c2 == 0) return c1 < 0 ? -c0 / c1 : HUGE_VAL;
+  const double disc = c1 * c1 - 2 * c2 * c0;
+  if (disc < 0) return HUGE_VAL;
+  const double qq = -(c1 + std::copysign(std::sqrt(disc), c1));
+  const double r1 = qq / c2, r2 = qq != 0 ? 2 * c0 / qq : HUGE_VAL;
+  double best = HUGE_VAL;
+  for (const double r : {r1, r2})
+    if (r >= 0 && r < best) best = r;
+  return best;
+}
+
+// The first x >= 0 at which f + df x - M x^2 / 2 reaches zero (f > 0, M > 0): a lower bound on
+// when a clearance f with rate df and |f''| <= M can vanish.
+double taylor_step(double f, double df, double M) {
+  const double root = std::sqrt(df * df + 2 * M * f);
+  const double denom = root - df;
+  return denom > 0 ? 2 * f / denom : HUGE_VAL;
+}
+
+struct Search {
+  const scene::Scene& scene;
+  const strike::Motion& m;
+  const projectile::Projectile& nail;
+  const strike::Turning turning;
+  const double h, r, w, curvature_spin;
+  double bound = 0;  // how fast any point of the capsule can move
+
+  Pose pose(double t) const { return {m.centre(t), turning.at(t - m.t0), m.velocity(t)}; }
+
+  // The exact clearance of face f at pose p, with the closest points.
+  double clearance(std::uint32_t f, const Pose& p, SegmentTriangle* st = nullptr) const {
+    const SegmentTriangle s = segment_triangle(p.centre - h * p.axis, p.centre + h * p.axis, scene.face_edges(f));
+    if (st) *st = s;
+    return s.distance - r;
+  }
+
+  // The contact's normal (from the face toward the core) and whether the capsule's touching
+  // point moves into the face.
+  bool approaching(std::uint32_t f, const Pose& p, const SegmentTriangle& s, Vec3& normal) const {
+    const Vec3 gap = s.on_segment - s.on_triangle;
+    const double len = gap.norm();
+    if (len > 1e-12) {
+      normal = gap / len;
+    } else {  // the core on the face (never expected): the face's normal on the centre's side
+      const Vec3& n = scene.face_normal(f);
+      normal = n.dot(p.centre - s.on_triangle) >= 0 ? n : Vec3(-n);
+    }
+    const Vec3 arm = s.on_segment - r * normal - p.centre;
+    return (p.velocity + m.spin.cross(arm)).dot(normal) < -kApproachSpeed;
+  }
+
+  // A time before which the capsule surely stays on the positive side of the plane through q
+  // with unit normal n, less `slack` (0: it is not clear of it now). The plane separates it
+  // from a face when the face lies on its far side (the face's own plane, or the plane through
+  // the face's closest point across the line of the closest points), so this bounds the time
+  // to reach the face. Each end's clearance f = n.(c - q) -+ h n.a - r + slack has
+  // |f''| <= |n.acc| + h w^2: the first root of its second-order lower bound is safe; far from
+  // the plane, the centre must first come within h + r of it (a quadratic, exact).
+  double support_step(const Vec3& n, const Vec3& q, const Pose& p, double slack) const {
+    const double s = n.dot(p.centre - q), along = n.dot(p.axis);
+    if (!(s - h * std::abs(along) - r + slack > 0)) return 0.0;
+    const double dc = n.dot(p.velocity), da = n.dot(m.spin.cross(p.axis));
+    const double M = std::abs(n.dot(m.a)) + curvature_spin + 1e-12;
+    const double base = s - r + slack, swing = h * along;
+    double step = std::min(taylor_step(base - swing, dc - h * da, M), taylor_step(base + swing, dc + h * da, M));
+    const double above = s - h - r + slack;
+    if (above > 0) step = std::max(step, first_root(above, dc, n.dot(m.a)));
+    return step;
+  }
+
+  // A time the capsule surely cannot touch face f before (slack: how far into it it may go).
+  // `best`: the least such time of the faces before; nothing exact is computed when a cheap
+  // bound already shows this face is farther. `known`: the exact closest points now, when
+  // the caller has them.
+  double safe_time(std::uint32_t f, const Pose& p, double slack, double best, const SegmentTriangle* known = nullptr) const {
+    const Vec3& fn = scene.face_normal(f);
+    const Vec3& q = scene.face_edges(f)[0];
+    const Vec3 n = fn.dot(p.centre - q) >= 0 ? fn : Vec3(-fn);
+    double safe = support_step(n, q, p, slack);
+    if (safe >= best) return safe;
+    if (!known) {
+      // The face's ball: a cheap lower bound on the distance, from the core segment to its centre.
+      const scene::Scene::Ball& ball = scene.face_ball(f);
+      const Vec3 to = ball.centre - p.centre;
+      const double along_axis = std::clamp(to.dot(p.axis), -h, h);
+      const double ball_gap = (to - along_axis * p.axis).norm() - ball.radius - r + slack;
+      if (ball_gap > 0 && std::max(safe, ball_gap / bound) >= best) return std::max(safe, ball_gap / bound);
+    }
+    SegmentTriangle st;
+    if (known) st = *known;
+    else clearance(f, p, &st);
+    const double g = st.distance - r + slack;
+    if (!(g > 0)) return safe;
+    // Across the line of the closest points, through the face's closest point.
+    const Vec3 gap = st.on_segment - st.on_triangle;
+    const double len = gap.norm();
+    if (len > 0) safe = std::max(safe, support_step(gap / len, st.on_triangle, p, slack));
+    return std::max(safe, g / bound);
+  }
+};
+
+}  // namespace
+
+std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::uint32_t* faces, std::size_t count,
+                                          const strike::Motion& m, const projectile::Projectile& nail, double from, double until,
+                                          const FaceFilter& filter, FaceSearchStats& stats) {
+  constexpr std::size_t kCapacity = 256;
+  std::array<FaceState, kCapacity> state;  // NOLINT: filled below for the first n
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < count && n < kCapacity; ++i)
+    if (!filter.ignores(faces[i])) state[n].face = faces[i], state[n].leaving = false, state[n].slack = 0, state[n].safe = 0, ++n;
+  if (n == 0 || !(until >= from)) return std::nullopt;
+  const double w = m.spin.norm();
+  Search s{scene, m, nail, m.turning(), nail.half_segment(), nail.radius(), w, nail.half_segment() * w * w};
+  s.bound = std::max(m.velocity(from).norm(), m.velocity(until).norm()) + s.h * w + 1e-9;
+
+  // What touches at time t among the faces within reach (those whose safe time the last step
+  // did not clear): the lowest approaching face, with the count of distinct touching planes;
+  // the others within tolerance are marked leaving, the rest not.
+  const auto settle = [&](double t, std::optional<FaceTouch>& touch) {
+    const Pose p = s.pose(t);
+    std::array<Vec3, 4> normals;
+    int distinct = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      FaceState& fs = state[i];
+      // Clear of the face's plane (or of its ball), so of the face: nothing to settle.
+      const Vec3& fn = scene.face_normal(fs.face);
+      const double plane = std::abs(fn.dot(p.centre - scene.face_edges(fs.face)[0])) - s.h * std::abs(fn.dot(p.axis)) - s.r;
+      const scene::Scene::Ball& ball = scene.face_ball(fs.face);
+      // (With a margin: the exact test below decides at the tolerance itself, where the
+      // search's roots lie, and the two must not disagree by a rounding.)
+      constexpr double kMargin = 1e-9;
+      if (plane > kFaceTolerance + kMargin || (ball.centre - p.centre).norm() - ball.radius - s.h - s.r > kFaceTolerance + kMargin) {
+        fs.leaving = false;
+        continue;
+      }
+      SegmentTriangle st;
+      const double g = s.clearance(fs.face, p, &st);
+      if (g > kFaceTolerance) {
+        fs.leaving = false;
+        continue;
+      }
+      Vec3 normal;
+      if (!s.approaching(fs.face, p, st, normal)) {
+        // Left from where it is: a capsule already inside a face (a field's stone pressed
+        // into the soil) may sink no deeper than it is by the slack, not out of it.
+        if (!fs.leaving) fs.slack = kLeavingSlack - std::min(0.0, g);
+        fs.leaving = true;
+        continue;
+      }
+      bool seen = false;
+      for (int k = 0; k < distinct; ++k) seen = seen || normals[static_cast<std::size_t>(k)].dot(normal) > 1 - 1e-9;
+      if (!seen && distinct < 4) normals[static_cast<std::size_t>(distinct++)] = normal;
+      if (!touch || fs.face < touch->face) {
+        touch = FaceTouch{};
+        touch->time = t, touch->centre = p.centre, touch->axis = p.axis, touch->point = st.on_triangle, touch->normal = normal;
+        touch->face = fs.face;
+      }
+    }
+    if (touch) touch->touching = std::max(1, distinct);
+  };
+
+  double t = from;
+  std::optional<FaceTouch> touch;
+  settle(t, touch);
+  if (touch) return touch;
+  const double min_step = kMinFaceStep / s.bound;
+  // Each face's safe time is a bound over the whole motion, so it holds until that time: a
+  // face is looked at again only when the search reaches it (most faces of a chord once).
+  const auto bound_from = [&](FaceState& fs, const Pose& p, double at, double best, const SegmentTriangle* known = nullptr) {
+    double safe = s.safe_time(fs.face, p, fs.leaving ? fs.slack : 0.0, best, known);
+    // A face being left that the capsule has entered by the slack without moving into it
+    // (its touching point turning about the contact): a little further, and it is looked at again.
+    if (fs.leaving && !(safe > 0)) safe = kLeavingSlack / s.bound;
+    fs.safe = at + safe;
+  };
+  const auto bound_all = [&](const Pose& p, double at) {
+    double best = HUGE_VAL;
+    for (std::size_t i = 0; i < n; ++i) {
+      bound_from(state[i], p, at, best);
+      if (!state[i].leaving) best = std::min(best, state[i].safe - at);
+    }
+  };
+  bound_all(s.pose(t), t);
+  while (t < until) {
+    if (++stats.steps > kMaxFaceSearchSteps) {
+      stats.gave_up = true;
+      return std::nullopt;
+    }
+    // The step: to the earliest safe time of the faces approached (but at least min_step of
+    // motion), and of the faces being left (which may sink kLeavingSlack into their face first).
+    double reach_new = HUGE_VAL, reach_leaving = HUGE_VAL;
+    for (std::size_t i = 0; i < n; ++i) (state[i].leaving ? reach_leaving : reach_new) = std::min(state[i].leaving ? reach_leaving : reach_new, state[i].safe);
+    const double next = std::min(until, std::max(std::min(std::max(reach_new, t + min_step), reach_leaving), std::nextafter(t, HUGE_VAL)));
+    // The faces the step may have reached, checked at its end: a face approached and now
+    // within tolerance is brought back to its first touch; a face being left that is now
+    // moving into it is touched there.
+    const Pose q = s.pose(next);
+    double first = HUGE_VAL;
+    for (std::size_t i = 0; i < n; ++i) {
+      FaceState& fs = state[i];
+      if (fs.safe > next) continue;  // surely not reached within the step
+      SegmentTriangle& st = fs.exact;
+      const double g_next = s.clearance(fs.face, q, &st);
+      if (g_next > kFaceTolerance) continue;
+      if (fs.leaving) {
+        Vec3 normal;
+        if (s.approaching(fs.face, q, st, normal)) first = std::min(first, next);
+        continue;
+      }
+      // Regula falsi (Illinois) on clearance - tolerance, from t (clear: the face was surely
+      // not reached before its safe time) to next.
+      double lo = t, hi = next, g_lo = s.clearance(fs.face, s.pose(t)) - kFaceTolerance, g_hi = g_next - kFaceTolerance;
+      if (g_lo <= 0) {  // within tolerance at t already (a face the step's start grazed): there
+        first = std::min(first, t);
+        continue;
+      }
+      int side = 0;
+      for (int it = 0; it < 80 && (hi - lo) * s.bound > kFaceTolerance; ++it) {
+        double mid = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+        if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
+        const double g_mid = s.clearance(fs.face, s.pose(mid)) - kFaceTolerance;
+        if (g_mid > 0) {
+          lo = mid, g_lo = g_mid;
+          if (side == -1) g_hi *= 0.5;
+          side = -1;
+        } else {
+          hi = mid, g_hi = g_mid;
+          if (side == 1) g_lo *= 0.5;
+          side = 1;
+        }
+      }
+      first = std::min(first, hi);
+    }
+    if (first == HUGE_VAL) {
+      // Clear: the faces reached are bounded again from here.
+      double best = HUGE_VAL;
+      for (std::size_t i = 0; i < n; ++i)
+        if (state[i].safe <= next) {
+          bound_from(state[i], q, next, best, &state[i].exact);
+          if (!state[i].leaving) best = std::min(best, state[i].safe - next);
+        }
+      t = next;
+      continue;
+    }
+    // Something is within tolerance at `first`: a touch if a point there moves into a face;
+    // else the capsule grazes on (those faces are now being left), every face bounded anew.
+    // (From `first` itself, even when that is where the step began: the faces found there are
+    // now bounded as faces being left, which the next step respects.)
+    settle(first, touch);
+    if (touch) return touch;
+    t = first;
+    bound_all(s.pose(t), t);
+  }
+  return std::nullopt;
+}
+
+}  // namespace j232::flight

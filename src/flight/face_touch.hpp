@@ -1,0 +1,83 @@
+#pragma once
+// Where a tumbling capsule first touches the scene's real faces (docs/model.md §5.5): not a
+// face's unbounded plane, not only what the centre's ray meets, but every triangle within
+// the chord's swept reach, its interior, edges and corners alike.
+//
+// Broad phase: the faces whose boxes meet the box the capsule sweeps over the chord
+// (scene::Scene::faces_in_box). Narrow phase: conservative advancement on the exact
+// distance between the capsule's core segment and each triangle. Each face gives a time
+// the capsule surely cannot reach it before: from its plane (the centre's height above it
+// is a quadratic in time, the core's ends swing by at most h about the centre, so a
+// second-order lower bound on each end's clearance gives a safe step) and from the exact
+// distance over a bound on how fast any point of the capsule moves. The step is the least of
+// these, but never less than kMinFaceStep of motion, so a step may end overlapping a face:
+// it is then brought back by regula falsi to the first instant the capsule is within
+// kFaceTolerance of it. A face the capsule already touches at the search's start and is
+// leaving (its touching point moves away from it: the bounce just resolved) is no touch
+// until that point moves into it again; it is stepped past with a plane bound that lets it
+// sink at most kLeavingSlack into the face first. So the capsule never passes through a
+// face, nor a gap narrower than it is, nor bounces off a face that is not there.
+#include <cstdint>
+#include <optional>
+
+#include "projectile/projectile.hpp"
+#include "scene/scene.hpp"
+#include "strike/contact_search.hpp"
+
+namespace j232::flight {
+
+using Vec3 = Eigen::Vector3d;
+
+inline constexpr double kFaceTolerance = 2e-6;  // m: a capsule this close to a face touches it
+inline constexpr double kMinFaceStep = 2e-4;    // m: the least motion of a step (under a tenth of a nail's diameter)
+inline constexpr double kLeavingSlack = 1e-5;   // m: how far a face being left may be entered before its touch counts
+inline constexpr double kApproachSpeed = 1e-9;  // m/s: a touching point moving into a face faster than this approaches it
+inline constexpr int kMaxFaceSearchSteps = 200000;
+
+// The closest points of the segment p0-p1 and the triangle (corner a, edges e1, e2): on the
+// segment and on the triangle, and their distance (0 where they cross). Exact: the least
+// of the segment's ends against the triangle and the segment against each edge, unless
+// the segment crosses the triangle.
+struct SegmentTriangle {  // (no initialisers: the search keeps hundreds of them uninitialised until used)
+  Vec3 on_segment, on_triangle;
+  double distance;
+};
+SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::array<Vec3, 3>& triangle);
+
+struct FaceTouch {
+  double time = 0;
+  Vec3 centre = Vec3::Zero(), axis = Vec3::UnitZ();  // the capsule then
+  Vec3 point = Vec3::Zero();   // the touch, on the face
+  Vec3 normal = Vec3::UnitZ(); // unit, from the face toward the capsule's core (a face's, an edge's or a corner's)
+  std::uint32_t face = 0;
+  int touching = 1;            // faces the capsule touches then with points moving into them (> 1: a simultaneous contact)
+};
+
+// What a search tells beyond the touch: steps taken, and whether it gave up (the step cap).
+struct FaceSearchStats {
+  int steps = 0;
+  bool gave_up = false;
+};
+
+// Faces the search passes over (a guard's curtain the nail is going through).
+struct FaceFilter {
+  const scene::Scene* scene = nullptr;
+  int ignored_guard = -1;  // faces of this guard (label Guard) are not met
+  bool ignores(std::uint32_t f) const;
+};
+
+// The first approaching touch of the capsule moving as `m` with any of `faces` (sorted)
+// within [from, until]; ties go to the lowest face number.
+std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::uint32_t* faces, std::size_t count,
+                                          const strike::Motion& m, const projectile::Projectile& nail, double from, double until,
+                                          const FaceFilter& filter, FaceSearchStats& stats);
+
+// The box the capsule's core sweeps over [from, until] (the centre's parabola's extent, with
+// the core's reach and radius about it): the broad phase's query.
+void swept_box(const strike::Motion& m, const projectile::Projectile& nail, double from, double until, Vec3& lo, Vec3& hi);
+
+// The capsule's clearance from face f at its state (centre, axis): distance from the core
+// segment less the radius (< 0: overlapping). For tests and the audit's cross-check.
+double face_clearance(const scene::Scene& scene, std::uint32_t f, const projectile::Projectile& nail, const Vec3& centre, const Vec3& axis);
+
+}  // namespace j232::flight
