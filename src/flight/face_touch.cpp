@@ -85,10 +85,16 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
   // Crossing the triangle's interior: distance 0 there.
   if ((s0 <= 0 && s1 >= 0) || (s0 >= 0 && s1 <= 0)) {
     if (s0 != s1) {
+      // Where the segment crosses the plane, in the triangle's barycentric coordinates (with
+      // a rounding's margin: a sliver's nearest-point regions are ill-conditioned there).
       const Vec3 x = p0 + (s0 / (s0 - s1)) * (p1 - p0);
-      const Vec3 on = nearest_on_triangle(x, a, e1, e2);
-      if ((on - x).squaredNorm() <= 1e-30 * (1 + x.squaredNorm())) {
-        best.on_segment = x, best.on_triangle = on, best.distance = 0;
+      const Vec3 w = x - a;
+      const double d00 = e1.squaredNorm(), d01 = e1.dot(e2), d11 = e2.squaredNorm(), d20 = w.dot(e1), d21 = w.dot(e2);
+      const double denom = d00 * d11 - d01 * d01;
+      const double v = (d11 * d20 - d01 * d21) / denom, u = (d00 * d21 - d01 * d20) / denom;
+      constexpr double eps = 1e-12;
+      if (v >= -eps && u >= -eps && u + v <= 1 + eps) {
+        best.on_segment = x, best.on_triangle = x, best.distance = 0;
         return best;
       }
     }
@@ -182,7 +188,9 @@ struct Search {
   const strike::Motion& m;
   const projectile::Projectile& nail;
   const strike::Turning turning;
-  const double h, r, w, curvature_spin;
+  const double h, r, w;
+  Vec3 k = Vec3::Zero();  // the spin's unit axis (zero: no spin)
+  double axis_along_k = 0, axis_across_k = 0;  // the nail's axis along k (fixed as it turns) and across it (its length, fixed)
   double bound = 0;  // how fast any point of the capsule can move
 
   Pose pose(double t) const { return {m.centre(t), turning.at(t - m.t0), m.velocity(t)}; }
@@ -219,11 +227,17 @@ struct Search {
   double support_step(const Vec3& n, const Vec3& q, const Pose& p, double slack) const {
     const double s = n.dot(p.centre - q), along = n.dot(p.axis);
     if (!(s - h * std::abs(along) - r + slack > 0)) return 0.0;
+    // The axis turns about k: n.a(t) = (n.k)(a.k) + n_perp . a_perp(t), with a_perp turning at
+    // w in the plane across k, so |n.a| <= |n.k||a.k| + |n_perp||a_perp| (its reach) and
+    // |(n.a)''| <= w^2 |n_perp||a_perp|. A nail spinning about the normal of a face (thrown
+    // flat over the turf or under the plate) keeps its ends' height: no swing to bound.
+    const double nk = n.dot(k), n_across = std::sqrt(std::max(0.0, 1 - nk * nk));
+    const double reach = w > 0 ? std::min(1.0, std::abs(nk) * axis_along_k + n_across * axis_across_k) : std::abs(along);
     const double dc = n.dot(p.velocity), da = n.dot(m.spin.cross(p.axis));
-    const double M = std::abs(n.dot(m.a)) + curvature_spin + 1e-12;
+    const double M = std::abs(n.dot(m.a)) + h * w * w * n_across * axis_across_k + 1e-12;
     const double base = s - r + slack, swing = h * along;
     double step = std::min(taylor_step(base - swing, dc - h * da, M), taylor_step(base + swing, dc + h * da, M));
-    const double above = s - h - r + slack;
+    const double above = s - h * reach - r + slack;
     if (above > 0) step = std::max(step, first_root(above, dc, n.dot(m.a)));
     return step;
   }
@@ -271,7 +285,12 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
     if (!filter.ignores(faces[i])) state[n].face = faces[i], state[n].leaving = false, state[n].slack = 0, state[n].safe = 0, ++n;
   if (n == 0 || !(until >= from)) return std::nullopt;
   const double w = m.spin.norm();
-  Search s{scene, m, nail, m.turning(), nail.half_segment(), nail.radius(), w, nail.half_segment() * w * w};
+  Search s{scene, m, nail, m.turning(), nail.half_segment(), nail.radius(), w};
+  if (w > 0) {
+    s.k = m.spin / w;
+    s.axis_along_k = std::abs(m.axis0.dot(s.k));
+    s.axis_across_k = std::sqrt(std::max(0.0, 1 - s.axis_along_k * s.axis_along_k));
+  }
   s.bound = std::max(m.velocity(from).norm(), m.velocity(until).norm()) + s.h * w + 1e-9;
 
   // What touches at time t among the faces within reach (those whose safe time the last step
@@ -295,6 +314,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
         continue;
       }
       SegmentTriangle st;
+      
       const double g = s.clearance(fs.face, p, &st);
       if (g > kFaceTolerance) {
         fs.leaving = false;
@@ -302,9 +322,10 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       }
       Vec3 normal;
       if (!s.approaching(fs.face, p, st, normal)) {
-        // Left from where it is: a capsule already inside a face (a field's stone pressed
-        // into the soil) may sink no deeper than it is by the slack, not out of it.
-        if (!fs.leaving) fs.slack = kLeavingSlack - std::min(0.0, g);
+        // Left: it may sink kLeavingSlack into the face before it is looked at again. A
+        // capsule that starts deep inside a face (a field's stone pressed into the soil, far
+        // beyond what a touch of this search leaves) may sink no deeper than it is by the slack.
+        if (!fs.leaving) fs.slack = g < -kEmbedded ? kLeavingSlack - g : kLeavingSlack;
         fs.leaving = true;
         continue;
       }
@@ -343,6 +364,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   };
   bound_all(s.pose(t), t);
   while (t < until) {
+    
     if (++stats.steps > kMaxFaceSearchSteps) {
       stats.gave_up = true;
       return std::nullopt;
@@ -361,6 +383,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       FaceState& fs = state[i];
       if (fs.safe > next) continue;  // surely not reached within the step
       SegmentTriangle& st = fs.exact;
+      
       const double g_next = s.clearance(fs.face, q, &st);
       if (g_next > kFaceTolerance) continue;
       if (fs.leaving) {
@@ -379,6 +402,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       for (int it = 0; it < 80 && (hi - lo) * s.bound > kFaceTolerance; ++it) {
         double mid = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
         if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
+        
         const double g_mid = s.clearance(fs.face, s.pose(mid)) - kFaceTolerance;
         if (g_mid > 0) {
           lo = mid, g_lo = g_mid;

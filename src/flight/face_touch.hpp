@@ -31,6 +31,7 @@ using Vec3 = Eigen::Vector3d;
 inline constexpr double kFaceTolerance = 2e-6;  // m: a capsule this close to a face touches it
 inline constexpr double kMinFaceStep = 2e-4;    // m: the least motion of a step (under a tenth of a nail's diameter)
 inline constexpr double kLeavingSlack = 1e-5;   // m: how far a face being left may be entered before its touch counts
+inline constexpr double kEmbedded = 5e-5;      // m: a capsule deeper in a face at a search's start was put there (a field's embedded stone)
 inline constexpr double kApproachSpeed = 1e-9;  // m/s: a touching point moving into a face faster than this approaches it
 inline constexpr int kMaxFaceSearchSteps = 200000;
 

@@ -7,6 +7,7 @@ FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<sc
       time_limit(s.run.time_limit),
       max_bounces(s.run.max_bounces),
       rest_speed(s.run.rest_speed),
+      law(s.run.restitution_law),
       board(s.board),
       materials(s, guards) {
   for (const auto& o : s.housing.openings) openings.push_back({o.azimuth_from, o.azimuth_to, o.top});

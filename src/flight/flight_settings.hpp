@@ -16,6 +16,7 @@ struct FlightSettings {
   double time_limit = 3.0;         // s of flight per nail
   int max_bounces = 400;
   double rest_speed = 0.3;  // m/s: slower after a bounce (and turning slower at its ends) is at rest
+  scenario::RestitutionLaw law = scenario::RestitutionLaw::Energetic;  // how a bounce's restitution is read
   scenario::BoardSpec board;
   // The generated deck's discharge openings, for naming the way out.
   struct Opening {

@@ -488,9 +488,9 @@ void NailFlight::bounce_off(const Vec3& n, double e, double mu, const Vec3* arm,
   // A touching point that does not move into the surface while the centre does (found on
   // the plane already): the centre's bounce, so that no surface is crossed.
   if (arm && (b.velocity + b.spin.cross(*arm)).dot(n) < 0)
-    rebound(nail, b.axis, *arm, n, e, mu, b.velocity, b.spin, surface_inverse_mass);
+    rebound(nail, b.axis, *arm, n, e, mu, b.velocity, b.spin, surface_inverse_mass, set.law);
   else if (surface_inverse_mass > 0 && b.velocity.dot(n) < 0)
-    rebound(nail, b.axis, Vec3::Zero(), n, e, mu, b.velocity, b.spin, surface_inverse_mass);
+    rebound(nail, b.axis, Vec3::Zero(), n, e, mu, b.velocity, b.spin, surface_inverse_mass, set.law);
   else
     b.velocity = bounce(b.velocity, n, e, mu);
 }

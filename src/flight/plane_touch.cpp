@@ -162,12 +162,12 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
 }
 
 void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& arm, const Vec3& n, double e, double mu, Vec3& velocity,
-             Vec3& spin, double surface_inverse_mass) {
+             Vec3& spin, double surface_inverse_mass, scenario::RestitutionLaw law) {
   const Vec3 v_point = velocity + spin.cross(arm);
   if (!(v_point.dot(n) < 0)) return;
   const Eigen::Matrix3d inv_i = strike::inverse_inertia(nail, axis);
   const Eigen::Matrix3d K = strike::nail_compliance(nail, inv_i, arm) + surface_inverse_mass * n * n.transpose();
-  const Vec3 P = strike::solve_impulse(K, v_point, n, blade::Restitution::constant(std::clamp(e, 0.0, 1.0)), mu).impulse;
+  const Vec3 P = strike::solve_impulse(K, v_point, n, blade::Restitution::constant(std::clamp(e, 0.0, 1.0)), mu, law).impulse;
   velocity += P / nail.mass;
   spin += inv_i * arm.cross(P);
   spin -= spin.dot(axis) * axis;  // the spin about the nail's own axis is left out (as after a blade contact)

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "projectile/projectile.hpp"
+#include "scenario/scenario.hpp"
 #include "strike/contact_search.hpp"
 
 namespace j232::flight {
@@ -45,7 +46,7 @@ double effective_mass(const projectile::Projectile& nail, const Vec3& axis, cons
 // spin about the nail's own axis is left out, as after a blade contact. Nothing happens
 // when that point is not approaching.
 void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& arm, const Vec3& n, double e, double mu, Vec3& velocity,
-             Vec3& spin, double surface_inverse_mass = 0.0);
+             Vec3& spin, double surface_inverse_mass = 0.0, scenario::RestitutionLaw law = scenario::RestitutionLaw::Energetic);
 
 // A blade's strike on an object lying on the soil (a field's stone, flat turf at z = 0)
 // that drives it into the soil: the soil takes the strike's downward part at once, with no

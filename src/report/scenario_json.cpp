@@ -202,7 +202,8 @@ json run_json(const scenario::RunSpec& r) {
           {"time_limit_s", r.time_limit},
           {"max_bounces", r.max_bounces},
           {"rest_speed_m_s", r.rest_speed},
-          {"contact_search", r.reference_contact_search ? "fixed_steps" : "advancement"}};
+          {"contact_search", r.reference_contact_search ? "fixed_steps" : "advancement"},
+          {"restitution_law", r.restitution_law == scenario::RestitutionLaw::Poisson ? "poisson" : "energetic"}};
 }
 
 }  // namespace

@@ -224,6 +224,11 @@ struct AirSpec {
   bool spin_average = true;
 };
 
+// How a contact's restitution coefficient is read: Stronge's energetic coefficient (the
+// restitution phase's normal work e^2 times the compression's, friction integrated along the
+// normal impulse) or Poisson's impulse ratio (the earlier law, slip held in its first direction).
+enum class RestitutionLaw { Energetic, Poisson };
+
 struct RunSpec {
   long long replicates = 1000;
   unsigned long long seed = 1;
@@ -244,6 +249,10 @@ struct RunSpec {
   // How blade contacts are searched: conservative advancement, or the fixed-step reference
   // it is validated against (about 300 times slower; docs/validation.md).
   bool reference_contact_search = false;
+  // How a contact's restitution is read (docs/model.md §5.1c): Stronge's energetic law,
+  // friction integrated along the impulse; or the Poisson law of earlier versions, kept to
+  // compare against.
+  RestitutionLaw restitution_law = RestitutionLaw::Energetic;
 };
 
 // An uncertainty study of the scenario (`j232 uq`, docs/model.md §6b): inputs varied

@@ -296,6 +296,8 @@ void read_run(const TableReader& t, RunSpec& r) {
   r.max_bounces = static_cast<int>(t.integer_or("max_bounces", r.max_bounces, 1, 10000));
   r.rest_speed = t.quantity_or("rest_speed", Kind::Speed, r.rest_speed, Range::between(0.01, 5));
   r.reference_contact_search = t.string_or("contact_search", "advancement", {"advancement", "fixed_steps"}) == "fixed_steps";
+  r.restitution_law = t.string_or("restitution_law", "energetic", {"energetic", "poisson"}) == "poisson" ? RestitutionLaw::Poisson
+                                                                                                        : RestitutionLaw::Energetic;
   t.refuse_unknown_keys();
 }
 

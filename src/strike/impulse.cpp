@@ -49,7 +49,122 @@ ImpulseSolution impulse_for(const Eigen::Matrix3d& K, const Eigen::LDLT<Eigen::M
 }
 }  // namespace
 
-ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu) {
+ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu,
+                              RestitutionLaw form) {
+  return form == RestitutionLaw::Energetic ? solve_impulse_energetic(K, v_rel, n, law.at(-v_rel.dot(n)), mu)
+                                           : solve_impulse_poisson(K, v_rel, n, law, mu);
+}
+
+// Stronge's energetic restitution with Coulomb friction, integrated along the normal impulse
+// p (docs/model.md §5.1c). With P = p n + T f-integrated, the relative velocity moves as
+// dv/dp = K (n + T f), f the tangential impulse per unit normal impulse: -mu u/|u| while the
+// contact slips (u the tangential relative velocity), the sticking value -K_tt^-1 K_tn while
+// friction can hold it (|f| <= mu), else mu along that (the slip starting opposite). Steps
+// end exactly where compression ends (v_n = 0), where the slip halts (u = 0), and where the
+// restitution phase's normal work reaches e^2 times the compression's (Stronge's e*); within a
+// step f is held at its midpoint value, and a step turns the slip's direction by at most
+// kSlipTurn. Frictionless, or sticking throughout, this is Poisson's and Newton's impulse.
+ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, double e, double mu) {
+  ImpulseSolution out;
+  out.e = e;
+  double vn = v_rel.dot(n);
+  if (!(vn < 0)) return out;
+  const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  const Vec3 Kn = K * n, Kt1 = K * t1, Kt2 = K * t2;
+  const double knn = n.dot(Kn);
+  const Eigen::Vector2d kn(t1.dot(Kn), t2.dot(Kn));
+  Eigen::Matrix2d ktt;
+  ktt << t1.dot(Kt1), t1.dot(Kt2), t2.dot(Kt1), t2.dot(Kt2);
+  const double det = ktt(0, 0) * ktt(1, 1) - ktt(0, 1) * ktt(1, 0);
+  Eigen::Matrix2d ktt_inv;
+  ktt_inv << ktt(1, 1), -ktt(0, 1), -ktt(1, 0), ktt(0, 0);
+  ktt_inv /= det;
+  const Eigen::Vector2d stick_rate = -(ktt_inv * kn);  // the tangential impulse rate that keeps u = 0
+  Eigen::Vector2d u(t1.dot(v_rel), t2.dot(v_rel)), pt = Eigen::Vector2d::Zero();
+  const double u_tiny = 1e-12 * (v_rel.norm() + 1e-300);
+  double p = 0, work_compression = 0, work_restitution = 0;
+  bool compressing = true, sticking = false;
+  // The tangential rate at slip u (sticking when u is nil and friction can hold it).
+  const auto rate = [&](const Eigen::Vector2d& slip, bool& holds) {
+    holds = false;
+    if (mu <= 0) return Eigen::Vector2d(Eigen::Vector2d::Zero());
+    const double speed = slip.norm();
+    if (speed > u_tiny) return Eigen::Vector2d(-mu * slip / speed);
+    const double need = stick_rate.norm();
+    if (det > 0 && need <= mu * (1 + 1e-12)) {
+      holds = true;
+      return stick_rate;
+    }
+    return Eigen::Vector2d(need > 0 ? Eigen::Vector2d(mu * stick_rate / need) : Eigen::Vector2d::Zero());
+  };
+  constexpr double kSlipTurn = 0.005;  // rad per step
+  const double p_scale = -vn / knn;   // the frictionless compression
+  for (int it = 0; it < 100000; ++it) {
+    bool holds;
+    Eigen::Vector2d f = rate(u, holds);
+    // Friction that would stop the normal approach from ever ending (a jam): frictionless.
+    if (compressing && !(knn + kn.dot(f) > 0)) f.setZero(), holds = false;
+    double dp = 4 * p_scale * (1 + e);
+    bool halts = false;
+    if (!holds && u.norm() > u_tiny) {
+      // The slip halting within the step: the step ends there, u nil.
+      const auto halting = [&](const Eigen::Vector2d& rate_f) {
+        const Eigen::Vector2d du = kn + ktt * rate_f;
+        const double d2 = du.squaredNorm();
+        if (!(d2 > 0)) return;
+        const double s = -u.dot(du) / d2;
+        if (s > 0 && s <= dp && (u + s * du).norm() <= 1e-3 * u.norm()) dp = s, halts = true;
+      };
+      // A step that turns the slip's direction by at most kSlipTurn, with f at its midpoint.
+      const Eigen::Vector2d du = kn + ktt * f;
+      const double across = std::abs(du.x() * u.y() - du.y() * u.x()) / u.norm();
+      if (across > 0) dp = std::min(dp, kSlipTurn * u.norm() / across);
+      halting(f);
+      bool mid_holds;
+      const Eigen::Vector2d mid = rate(u + 0.5 * dp * du, mid_holds);
+      if (!mid_holds && mid.dot(f) > 0) {
+        f = mid;
+        halts = false;
+        halting(f);
+      }
+    }
+    const double dvn = knn + kn.dot(f);
+    bool last = false;
+    if (compressing) {
+      if (vn + dvn * dp >= 0) dp = -vn / dvn, halts = false;  // the end of compression (before the slip halts)
+    } else {
+      // The restitution phase's work: v_n dp + dvn dp^2 / 2 reaching what is left.
+      const double left = e * e * -work_compression - work_restitution;
+      const double step_work = vn * dp + 0.5 * dvn * dp * dp;
+      if (step_work >= left) {
+        const double disc = vn * vn + 2 * dvn * left;
+        dp = disc > 0 ? 2 * left / (vn + std::sqrt(disc)) : dp;
+        last = true, halts = false;
+      }
+    }
+    const double w = vn * dp + 0.5 * dvn * dp * dp;
+    (compressing ? work_compression : work_restitution) += w;
+    const Eigen::Vector2d du = kn + ktt * f;
+    const double vn_next = vn + dvn * dp;
+    p += dp, pt += f * dp, u += du * dp;
+    sticking = holds;
+    if (holds || halts) u.setZero();
+    if (compressing && vn_next >= -1e-15 * std::abs(v_rel.dot(n))) {
+      vn = 0, compressing = false;
+      if (!(e > 0)) break;
+    } else {
+      vn = vn_next;
+    }
+    if (!compressing && (last || e * e * -work_compression - work_restitution <= 0)) break;
+    if (u.norm() <= u_tiny) u.setZero();
+  }
+  out.impulse = p * n + pt.x() * t1 + pt.y() * t2;
+  out.sticking = sticking;
+  out.energy_change = energy_change(K, v_rel, out.impulse);
+  return out;
+}
+
+ImpulseSolution solve_impulse_poisson(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu) {
   const Eigen::LDLT<Eigen::Matrix3d> Kf(K);
   const double e0 = law.at(-v_rel.dot(n));
   ImpulseSolution s = impulse_for(K, Kf, v_rel, n, e0, mu);
@@ -78,6 +193,8 @@ ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const
   }
   return best;
 }
+
+const char* restitution_law_name(RestitutionLaw l) { return l == RestitutionLaw::Energetic ? "energetic" : "poisson"; }
 
 Eigen::Matrix3d inverse_inertia(const projectile::Projectile& nail, const Vec3& axis) {
   const Eigen::Matrix3d along = axis * axis.transpose();
@@ -113,7 +230,7 @@ StrikeOutcome strike(const Spindle& sp, const Contact& k, const projectile::Proj
   K += B * C * B.transpose();
   out.blade_effective_mass = C(0, 0) > 0 ? 1.0 / C(0, 0) : blade::kInfiniteMass;
 
-  out.solution = solve_impulse(K, v_rel, k.normal, sp.restitution, sp.friction);
+  out.solution = solve_impulse(K, v_rel, k.normal, sp.restitution, sp.friction, sp.law);
   const Vec3& P = out.solution.impulse;
   out.velocity_after = velocity + P / nail.mass;
   out.spin_after = spin + inv_i * r.cross(P);

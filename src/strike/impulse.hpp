@@ -33,9 +33,21 @@ struct ImpulseSolution {
   double energy_change = 0;  // J, <= 0
 };
 
+// How the restitution coefficient is read (docs/model.md §5.1c): Stronge's energetic
+// coefficient, the restitution phase's normal work e^2 times the compression's, with
+// friction integrated along the normal impulse (stick, slip, the slip halting and turning;
+// never creating energy); or Poisson's impulse ratio with the slip held in its first
+// direction (the law of earlier versions, kept for comparison: it can create energy with
+// friction, and e is then lowered until it does not).
+using RestitutionLaw = scenario::RestitutionLaw;
+const char* restitution_law_name(RestitutionLaw l);  // "energetic", "poisson"
+
 // Solves one impulse for the relative velocity v_rel (nail point minus blade point) with
 // compliance K. `v_rel . n` must be negative (approaching).
-ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu);
+ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu,
+                              RestitutionLaw form = RestitutionLaw::Energetic);
+ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, double e, double mu);
+ImpulseSolution solve_impulse_poisson(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu);
 
 // The nail's inverse inertia (world), a rod with transverse inertia I_t and axial I_a.
 Eigen::Matrix3d inverse_inertia(const projectile::Projectile& nail, const Vec3& axis);

@@ -65,6 +65,7 @@ std::vector<Spindle> scenario_spindles(const scenario::Scenario& s, const blade:
       sp.centre = {spec.x, spec.y};
       sp.sense = spec.sense;
       sp.reference_search = s.run.reference_contact_search;
+      sp.law = s.run.restitution_law;
       out.push_back(std::move(sp));
     } catch (const std::invalid_argument& e) {
       throw scenario::InputError(s.file, std::nullopt, s.spindles.size() == 1 ? "blade" : fmt::format("spindles[{}].blade", k + 1), "",

@@ -46,6 +46,7 @@ struct Spindle {
   blade::Restitution restitution = blade::Restitution::constant(0.9);  // nail on blade
   double friction = 0.4;                                               // nail on blade, Coulomb
   bool reference_search = false;  // contacts by the fixed-step reference ([run] contact_search)
+  scenario::RestitutionLaw law = scenario::RestitutionLaw::Energetic;  // [run] restitution_law
 
   Spindle(const blade::Blade& blade, const scenario::BladeGeometry& geometry, const blade::Restitution& restitution);
   double omega() const { return blade.omega; }
