@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "assess/simulator.hpp"
+#include "flight/face_touch.hpp"
 #include "flight/flight_audit.hpp"
 #include "field/field_simulator.hpp"
 #include "cli/commands.hpp"
@@ -45,6 +46,8 @@ int check(const TraceOptions& o, const scenario::Scenario& s) {
     std::uint64_t replicate = 0;
     int nail = 0;
     bool cut_by_bounces = false, cut_off = false;
+    flight::CutOff why = flight::CutOff::None;
+    double in_soil = 0;
   };
   std::vector<One> ones;
   std::string unit;
@@ -57,9 +60,12 @@ int check(const TraceOptions& o, const scenario::Scenario& s) {
       std::vector<flight::FlightStretch> stretches;
       const field::ObjectOutcome out = sim.simulate(static_cast<std::uint64_t>(i), nullptr, &events, &stretches);
       One& one = ones[static_cast<std::size_t>(i)];
-      one.audit = flight::audit_flight(sim.mower().scene().soup(), out.encounter.body, stretches, events);
+      // Placed where it lies: pressed into the soil by its embedment, maybe under a chain curtain.
+      one.audit = flight::audit_flight(sim.mower().scene().soup(), out.encounter.body, stretches, events, 8, true);
+      one.in_soil = one.audit.placed_depth;
       one.nail = i;
       one.cut_off = out.flight.fate == flight::Fate::CutOff;
+      one.why = out.flight.cut_off;
       one.cut_by_bounces = out.flight.cut_off == flight::CutOff::MaxBounces;
     });
     unit = "objects";
@@ -74,6 +80,7 @@ int check(const TraceOptions& o, const scenario::Scenario& s) {
       const assess::NailReplay r = sim.replay(one.replicate, one.nail);
       one.audit = flight::audit_flight(sim.scene().soup(), r.drop.nail, r.stretches, r.events);
       one.cut_off = r.outcome.flight.fate == flight::Fate::CutOff;
+      one.why = r.outcome.flight.cut_off;
       one.cut_by_bounces = r.outcome.flight.cut_off == flight::CutOff::MaxBounces;
     });
     unit = "nails";
@@ -81,7 +88,9 @@ int check(const TraceOptions& o, const scenario::Scenario& s) {
   flight::FlightAudit all;
   const One* worst = nullptr;
   int failing = 0, cut_off = 0, cut_by_bounces = 0;
+  double deepest_soil = 0;
   for (const One& one : ones) {
+    deepest_soil = std::max(deepest_soil, one.in_soil);
     all.merge(one.audit);
     if (!worst || one.audit.deepest > worst->audit.deepest) worst = &one;
     failing += one.audit.passed() ? 0 : 1;
@@ -96,9 +105,21 @@ int check(const TraceOptions& o, const scenario::Scenario& s) {
                1e3 * flight::kAuditOverlap);
   else
     fmt::print("no pose overlaps a face\n");
+  if (deepest_soil > 0)
+    fmt::print("(a field's object starts where it lies, pressed into the soil by its embedment or under a chain curtain draped over it, "
+               "up to {:.1f} mm in here: only what lies deeper in those faces than it started, or in any other face, counts)\n",
+               1e3 * deepest_soil);
   fmt::print("bounces creating energy: {}{}\n", all.energy_gains,
              all.energy_gains ? fmt::format(" (largest {:.3g} J)", all.largest_gain) : std::string());
-  fmt::print("cut off: {} ({} by the bounce cap)\n", cut_off, cut_by_bounces);
+  std::array<int, flight::kCutOffReasons> by_reason{};
+  for (const One& one : ones)
+    if (one.cut_off) ++by_reason[static_cast<std::size_t>(one.why)];
+  std::string reasons;
+  for (int k = 1; k < flight::kCutOffReasons; ++k)
+    if (by_reason[static_cast<std::size_t>(k)])
+      reasons += fmt::format("{}{} {}", reasons.empty() ? ": " : ", ", by_reason[static_cast<std::size_t>(k)],
+                             flight::cut_off_name(static_cast<flight::CutOff>(k)));
+  fmt::print("cut off: {} ({} by the bounce cap){}\n", cut_off, cut_by_bounces, reasons);
   fmt::print("{}: {} of {} {} failed the audit\n", failing ? "FAILED" : "passed", failing, ones.size(), unit);
   return failing ? kFails : kOk;
 }

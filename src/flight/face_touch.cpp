@@ -351,8 +351,14 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   const auto bound_from = [&](FaceState& fs, const Pose& p, double at, double best, const SegmentTriangle* known = nullptr) {
     double safe = s.safe_time(fs.face, p, fs.leaving ? fs.slack : 0.0, best, known);
     // A face being left that the capsule has entered by the slack without moving into it
-    // (its touching point turning about the contact): a little further, and it is looked at again.
-    if (fs.leaving && !(safe > 0)) safe = kLeavingSlack / s.bound;
+    // (its touching point turning about the contact as it slides over the face): the slack
+    // counts again from where it is (a nail or stone is never pushed out of a face by this;
+    // the audit bounds what it adds up to).
+    if (fs.leaving && !(safe > 0)) {
+      fs.slack = kLeavingSlack - std::min(0.0, known ? known->distance - s.r : s.clearance(fs.face, p));
+      safe = s.safe_time(fs.face, p, fs.slack, best, known);
+      if (!(safe > 0)) safe = kLeavingSlack / s.bound;
+    }
     fs.safe = at + safe;
   };
   const auto bound_all = [&](const Pose& p, double at) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "flight/face_touch.hpp"
 #include "scene/capsule_audit.hpp"
 
 namespace j232::flight {
@@ -13,10 +14,11 @@ void FlightAudit::merge(const FlightAudit& o) {
   if (o.deepest > deepest) deepest = o.deepest, deepest_time = o.deepest_time, deepest_face = o.deepest_face, deepest_label = o.deepest_label;
   energy_gains += o.energy_gains;
   largest_gain = std::max(largest_gain, o.largest_gain);
+  placed_depth = std::max(placed_depth, o.placed_depth);
 }
 
 FlightAudit audit_flight(const scene::Soup& soup, const projectile::Projectile& nail, const std::vector<FlightStretch>& stretches,
-                         const std::vector<FlightEvent>& events, int samples) {
+                         const std::vector<FlightEvent>& events, int samples, bool as_placed) {
   FlightAudit a;
   // Curtains the nail went through: it is inside their links from then on, until clear (not
   // an overlap with steel). Every guard passed at or before a pose is left out for it.
@@ -26,6 +28,21 @@ FlightAudit audit_flight(const scene::Soup& soup, const projectile::Projectile& 
       if (e.kind == FlightEvent::Kind::GuardPass && e.time <= t) guard = e.guard;
     return guard;
   };
+  scene::Allowances placed;
+  if (as_placed && !stretches.empty()) {
+    const strike::Motion& m = stretches.front().motion;
+    const double dt = stretches.front().from - m.t0, w = m.spin.norm();
+    const Vec3 centre = m.p0 + m.v0 * dt + 0.5 * dt * dt * m.a;
+    const Vec3 axis = w > 0 ? Vec3(Eigen::AngleAxisd(w * dt, m.spin / w) * m.axis0) : m.axis0;
+    placed = scene::overlaps(soup, centre, axis.normalized(), nail.half_segment(), nail.radius());
+    double soil = 0;
+    for (auto& p : placed) {
+      a.placed_depth = std::max(a.placed_depth, p.second);
+      if (soup.labels[p.first] == scene::Surface::Ground) soil = std::max(soil, p.second), p.second = 0;
+      p.second += kLeavingSlack;
+    }
+    if (soil > 0) placed.emplace_back(scene::kAnyGround, soil + kLeavingSlack);
+  }
   for (const auto& s : stretches) {
     const strike::Motion& m = s.motion;
     const double w = m.spin.norm();
@@ -35,7 +52,8 @@ FlightAudit audit_flight(const scene::Soup& soup, const projectile::Projectile& 
       // The pose by its own formulas: the centre's parabola, the axis turned about the spin.
       const Vec3 centre = m.p0 + m.v0 * dt + 0.5 * dt * dt * m.a;
       const Vec3 axis = w > 0 ? Vec3(Eigen::AngleAxisd(w * dt, m.spin / w) * m.axis0) : m.axis0;
-      const scene::Overlap o = scene::deepest_overlap(soup, centre, axis.normalized(), nail.half_segment(), nail.radius(), passing(t));
+      const scene::Overlap o = scene::deepest_overlap(soup, centre, axis.normalized(), nail.half_segment(), nail.radius(), passing(t),
+                                                      placed.empty() ? nullptr : &placed);
       ++a.poses;
       if (o.depth > a.deepest) a.deepest = o.depth, a.deepest_time = t, a.deepest_face = o.face, a.deepest_label = o.label;
     }

@@ -19,12 +19,16 @@ struct FlightAudit {
   scene::Surface deepest_label = scene::Surface::Ground;
   int energy_gains = 0;           // bounces (or falls flat) that created energy
   double largest_gain = 0;        // J
+  double placed_depth = 0;        // m, the deepest it started in a face it was placed in (as_placed)
   bool passed() const { return deepest <= kAuditOverlap && energy_gains == 0; }
   void merge(const FlightAudit& o);
 };
 
-// `samples`: poses checked inside each stretch besides its two ends.
+// `samples`: poses checked inside each stretch besides its two ends. `as_placed`: the object
+// was placed where it starts, and may stay in the faces it lies in there as deep as it started
+// (a field's stone pressed into the soil by its embedment, a chain curtain draped over it),
+// plus the search's slack; a nail starts at the blade and has no such allowance.
 FlightAudit audit_flight(const scene::Soup& soup, const projectile::Projectile& nail, const std::vector<FlightStretch>& stretches,
-                         const std::vector<FlightEvent>& events, int samples = 8);
+                         const std::vector<FlightEvent>& events, int samples = 8, bool as_placed = false);
 
 }  // namespace j232::flight

@@ -4,6 +4,8 @@
 // distance and intersection tests (docs/validation.md: `j232 trace --check`). Kept apart
 // from the search so that an error in one is not repeated in the other.
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "scene/soup.hpp"
 
@@ -18,6 +20,14 @@ struct Overlap {
 // The deepest overlap of the capsule (core from centre - h axis to centre + h axis, radius r)
 // with any face of the soup; faces of `skip_guard` (a guard's curtain the nail is passing
 // through; -1: none) are left out.
-Overlap deepest_overlap(const Soup& soup, const Vec3& centre, const Vec3& axis, double h, double r, int skip_guard = -1);
+// `allowed`: faces the capsule may lie in by a given depth (a field's object starts pressed
+// into the soil, or under a chain curtain draped over it): only what lies deeper counts.
+// (kAnyGround stands for every ground face: the soil is one medium however it is tiled.)
+using Allowances = std::vector<std::pair<std::uint32_t, double>>;
+inline constexpr std::uint32_t kAnyGround = 0xFFFFFFFFu;
+Overlap deepest_overlap(const Soup& soup, const Vec3& centre, const Vec3& axis, double h, double r, int skip_guard = -1,
+                        const Allowances* allowed = nullptr);
+// Every face the capsule reaches into, with its depth.
+Allowances overlaps(const Soup& soup, const Vec3& centre, const Vec3& axis, double h, double r);
 
 }  // namespace j232::scene

@@ -81,7 +81,7 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
   ktt_inv /= det;
   const Eigen::Vector2d stick_rate = -(ktt_inv * kn);  // the tangential impulse rate that keeps u = 0
   Eigen::Vector2d u(t1.dot(v_rel), t2.dot(v_rel)), pt = Eigen::Vector2d::Zero();
-  const double u_tiny = 1e-12 * (v_rel.norm() + 1e-300);
+  const double u_tiny = 1e-12 * (v_rel.norm() + 1e-300), approach = -vn;
   double p = 0, work_compression = 0, work_restitution = 0;
   bool compressing = true, sticking = false;
   // The tangential rate at slip u (sticking when u is nil and friction can hold it).
@@ -113,7 +113,9 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
         const double d2 = du.squaredNorm();
         if (!(d2 > 0)) return;
         const double s = -u.dot(du) / d2;
-        if (s > 0 && s <= dp && (u + s * du).norm() <= 1e-3 * u.norm()) dp = s, halts = true;
+        // (Passing within 1e-5 of the approach speed of a stop is stopping: the slip's last
+        // turn there moves the impulse by less than that.)
+        if (s > 0 && s <= dp && (u + s * du).norm() <= std::min(1e-3 * u.norm() + 1e-5 * approach, 0.5 * u.norm())) dp = s, halts = true;
       };
       // A step that turns the slip's direction by at most kSlipTurn, with f at its midpoint.
       const Eigen::Vector2d du = kn + ktt * f;
