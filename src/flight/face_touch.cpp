@@ -4,6 +4,9 @@
 #include <array>
 #include <cmath>
 
+#include "flight/first_root.hpp"
+#include "flight/regula_falsi.hpp"
+
 namespace j232::flight {
 
 namespace {
@@ -162,18 +165,6 @@ struct Pose {
   Vec3 centre, axis, velocity;
 };
 
-// The first root x >= 0 of c0 + c1 x + c2 x^2 / 2 (c0 > 0), or HUGE_VAL.
-double first_root(double c0, double c1, double c2) {
-  if (c2 == 0) return c1 < 0 ? -c0 / c1 : HUGE_VAL;
-  const double disc = c1 * c1 - 2 * c2 * c0;
-  if (disc < 0) return HUGE_VAL;
-  const double qq = -(c1 + std::copysign(std::sqrt(disc), c1));
-  const double r1 = qq / c2, r2 = qq != 0 ? 2 * c0 / qq : HUGE_VAL;
-  double best = HUGE_VAL;
-  for (const double r : {r1, r2})
-    if (r >= 0 && r < best) best = r;
-  return best;
-}
 
 // The first x >= 0 at which f + df x - M x^2 / 2 reaches zero (f > 0, M > 0): a lower bound on
 // when a clearance f with rate df and |f''| <= M can vanish.
@@ -404,22 +395,9 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
         first = std::min(first, t);
         continue;
       }
-      int side = 0;
-      for (int it = 0; it < 80 && (hi - lo) * s.bound > kFaceTolerance; ++it) {
-        double mid = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-        if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
-        
-        const double g_mid = s.clearance(fs.face, s.pose(mid)) - kFaceTolerance;
-        if (g_mid > 0) {
-          lo = mid, g_lo = g_mid;
-          if (side == -1) g_hi *= 0.5;
-          side = -1;
-        } else {
-          hi = mid, g_hi = g_mid;
-          if (side == 1) g_lo *= 0.5;
-          side = 1;
-        }
-      }
+      hi = illinois_root(
+          lo, g_lo, hi, g_hi, [&](double t_mid) { return s.clearance(fs.face, s.pose(t_mid)) - kFaceTolerance; }, s.bound, kFaceTolerance, 80,
+          [](double, double) { return false; });
       first = std::min(first, hi);
     }
     if (first == HUGE_VAL) {

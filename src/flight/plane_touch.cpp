@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "flight/first_root.hpp"
+#include "flight/regula_falsi.hpp"
+
 #include "blade/restitution.hpp"
 #include "strike/impulse.hpp"
 
@@ -32,19 +35,6 @@ AxisAlongNormal axis_along(const strike::Motion& m, const Vec3& n) {
   return {std::abs(n.dot(along)) + turning, w * turning};
 }
 
-// The first x >= 0 at which c0 + c1 x + c2 x^2 / 2 (c0 > 0) reaches zero, or HUGE_VAL.
-double first_root(double c0, double c1, double c2) {
-  if (c2 == 0) return c1 < 0 ? -c0 / c1 : HUGE_VAL;
-  const double disc = c1 * c1 - 2 * c2 * c0;
-  if (disc < 0) return HUGE_VAL;
-  // The roots' product is 2 c0 / c2 and sum -2 c1 / c2; stable forms of both.
-  const double qq = -(c1 + std::copysign(std::sqrt(disc), c1));
-  const double r1 = qq / c2, r2 = qq != 0 ? 2 * c0 / qq : HUGE_VAL;
-  double best = HUGE_VAL;
-  for (const double r : {r1, r2})
-    if (r >= 0 && r < best) best = r;
-  return best;
-}
 }  // namespace
 
 std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const projectile::Projectile& nail, const Vec3& q, const Vec3& n,
@@ -112,23 +102,9 @@ std::optional<PlaneTouch> first_plane_touch(const strike::Motion& m, const proje
   // clearance, to within the tolerance.
   const auto refine = [&](double lo, double g_lo, double hi, double g_hi) {
     g_lo -= kTouchTolerance, g_hi -= kTouchTolerance;  // the root sought: clearance = tolerance
-    int side = 0;
-    for (int it = 0; it < 60 && (hi - lo) * bound > kTouchTolerance; ++it) {
-      double mid = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-      if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
-      const double g_mid = state(mid, nullptr) - kTouchTolerance;
-      if (g_mid <= 0 && g_mid >= -kTouchTolerance) return mid;  // within the tolerance of the plane
-      if (g_mid > 0) {
-        lo = mid, g_lo = g_mid;
-        if (side == -1) g_hi *= 0.5;
-        side = -1;
-      } else {
-        hi = mid, g_hi = g_mid;
-        if (side == 1) g_lo *= 0.5;
-        side = 1;
-      }
-    }
-    return hi;
+    return illinois_root(
+        lo, g_lo, hi, g_hi, [&](double t_mid) { return state(t_mid, nullptr) - kTouchTolerance; }, bound, kTouchTolerance, 60,
+        [](double, double g_mid) { return g_mid <= 0 && g_mid >= -kTouchTolerance; });  // within the tolerance of the plane
   };
   int steps = 0;
   for (; g > kTouchTolerance && steps < 100000; ++steps) {
