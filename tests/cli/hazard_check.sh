@@ -5,8 +5,14 @@
 set -euo pipefail
 j232=$1 scenario=$2 out=$3
 rm -rf "$out"
-"$j232" hazard "$scenario" --objects 3000 --threads 1 --out "$out/one" >/dev/null
-"$j232" hazard "$scenario" --objects 3000 --threads 2 --out "$out/two" >/dev/null
+# A run may be judged invalid (exit 4: too many objects cut off; on the chained shoulder about
+# 1 % of cobbles are caught circling inside the deck at this sample, CHANGELOG.md): its files
+# must be complete and the same on 1 and 2 threads all the same.
+for threads in 1 2; do
+  code=0
+  "$j232" hazard "$scenario" --objects 3000 --threads $threads --out "$out/$([ $threads = 1 ] && echo one || echo two)" >/dev/null || code=$?
+  case $code in 0|4) ;; *) echo "hazard_check: exit $code" >&2; exit 1 ;; esac
+done
 python3 - "$out" <<'PY'
 import json, math, sys
 out = sys.argv[1]

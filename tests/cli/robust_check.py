@@ -106,7 +106,7 @@ case("replicates beyond 64 bits", ["run", scenario("b.toml", base_text), "--repl
 
 def peak_rss_mb(replicates):
     """Peak resident memory of a child run, in MB (a fresh process group keeps children's peaks apart)."""
-    path = scenario(f"memory-{replicates}.toml", with_keys("feed", "nails = 15"))
+    path = scenario(f"memory-{replicates}.toml", with_keys("feed", "nails = 5"))
     p = subprocess.Popen([exe, "run", path, "--replicates", str(replicates), "--out", os.path.join(work, f"mem-{replicates}")],
                          cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     _, status, usage = os.wait4(p.pid, 0)
