@@ -6,7 +6,7 @@ set -euo pipefail
 exe=$1 src=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
 scenario=$work/uq-small.toml
-sed 's/^base_draws = 64/base_draws = 8/; s/^replicates = 50 /replicates = 20/' "$src/scenarios/highway-pivoted-raised-skirt.toml" >"$scenario"
+sed 's/^base_draws = 64/base_draws = 8/; s/^replicates = 50 /replicates = 10/' "$src/scenarios/highway-pivoted-raised-skirt.toml" >"$scenario"
 fail() { echo "uq_resume_check: $*" >&2; exit 1; }
 # kill_part_way OUT: starts the study into OUT and kills it (SIGKILL: nothing can tidy up) as
 # soon as its journal holds a few assessments - by progress, not by time, so a faster machine
