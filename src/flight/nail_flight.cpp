@@ -324,6 +324,13 @@ PlaneTouch centre_touching(const Body& b, const Vec3& point) {
   return at;
 }
 
+// A face touch as the board and the nail's move take a touch: when, the capsule then, the point.
+PlaneTouch as_touch(const FaceTouch& at) {
+  PlaneTouch p;
+  p.time = at.time, p.centre = at.centre, p.axis = at.axis, p.point = at.point;
+  return p;
+}
+
 // The earliest blade contact of the nail moving as `chord` until `until`.
 std::optional<strike::Contact> NailFlight::blade_contact(const strike::Motion& m, double until) {
   std::optional<strike::Contact> best;
@@ -410,9 +417,7 @@ void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool p
 // The nail moved along the chord to where it touches a face; returns the touching point
 // from its centre.
 Vec3 NailFlight::meet(const FaceTouch& at, const Chord& chord) {
-  PlaneTouch p;
-  p.time = at.time, p.centre = at.centre, p.axis = at.axis, p.point = at.point;
-  return meet(p, chord);
+  return meet(as_touch(at), chord);
 }
 
 // The scene's face touched, as a surface met: its label and guard, the contact's point and
@@ -815,9 +820,7 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
   const Vec3 velocity = c.motion.velocity(at.time);
   const Vec3 arm = meet(at, c);
   if (set.materials.of(hit.surface, hit.guard).response == SurfaceMaterial::Response::Board) {
-    PlaneTouch p;
-    p.time = at.time, p.centre = at.centre, p.axis = at.axis, p.point = at.point;
-    reach_board(hit, p, velocity);
+    reach_board(hit, as_touch(at), velocity);
     return false;
   }
   if (!respond(hit, &arm)) return false;
