@@ -105,7 +105,7 @@ Collected run_collecting(const assess::Simulator& sim, int threads) {
 }
 }  // namespace
 
-TEST_CASE("determinism: the same result, bit for bit, on 1 and 2 threads and in any grouping", "[assess][determinism]") {
+TEST_CASE("determinism: the same result, bit for bit, on 1 and 2 threads and in any grouping", "[assess][determinism][long]") {
   // Chain guards (random passes) on a deck whose skirt is raised above the blade, so that
   // many nails get out and mark the board: every random draw of the pipeline is exercised.
   auto s = scenario::read_scenario(scenario_path("highway-pivoted-chains.toml"));
@@ -138,7 +138,7 @@ TEST_CASE("determinism: the same result, bit for bit, on 1 and 2 threads and in 
   CHECK(run_collecting(other, 2).marks != one.marks);
 }
 
-TEST_CASE("memory: nothing is kept per replicate; share quantiles are exact from their counts", "[assess][memory]") {
+TEST_CASE("memory: nothing is kept per replicate; share quantiles are exact from their counts", "[assess][memory][long]") {
   // The share distribution gives the same quantiles as sorting every replicate's share.
   std::vector<double> all;
   assess::ShareDistribution d;
@@ -183,7 +183,7 @@ TEST_CASE("performance: simulating a nail allocates nothing", "[assess][allocati
   CHECK(test::allocations::stop() == 1);
 }
 
-TEST_CASE("stop rule: batches run until the verdict's interval is narrow enough", "[assess][stop]") {
+TEST_CASE("stop rule: batches run until the verdict's interval is narrow enough", "[assess][stop][long]") {
   auto s = scenario::read_scenario(scenario_path("highway-pivoted-raised-skirt.toml"));
   s.run.replicates = 16;
   s.run.target_half_width = 0.02;
@@ -209,7 +209,7 @@ TEST_CASE("stop rule: batches run until the verdict's interval is narrow enough"
   CHECK(0.5 * (before.verdict.pass.high - before.verdict.pass.low) > 0.02);
 }
 
-TEST_CASE("stop rule: until settled, the exact estimate settles a verdict with fewer replicates than the replicates' share", "[assess][stop]") {
+TEST_CASE("stop rule: until settled, the exact estimate settles a verdict with fewer replicates than the replicates' share", "[assess][stop][long]") {
   auto s = scenario::read_scenario(scenario_path("highway-pivoted.toml"));
   s.run.replicates = 20;
   s.run.until_settled = true;
@@ -236,7 +236,7 @@ TEST_CASE("stop rule: until settled, the exact estimate settles a verdict with f
   CHECK(a.stopped_by == "max_replicates");
 }
 
-TEST_CASE("re-strikes: in a closed deck some nails come back into the blade's disc and are struck again", "[assess][restrike]") {
+TEST_CASE("re-strikes: in a closed deck some nails come back into the blade's disc and are struck again", "[assess][restrike][long]") {
   auto s = scenario::read_scenario(scenario_path("highway-pivoted.toml"));
   s.run.replicates = 200;
   const assess::Simulator sim(s);
@@ -249,7 +249,7 @@ TEST_CASE("re-strikes: in a closed deck some nails come back into the blade's di
   CHECK(sum.validity.valid);
 }
 
-TEST_CASE("similarity: thrown speed follows blade speed when the feed scales with it", "[assess][similarity]") {
+TEST_CASE("similarity: thrown speed follows blade speed when the feed scales with it", "[assess][similarity][long]") {
   // Every speed of the strike scaled by k (the blade's, the nail's fall and drift) leaves
   // the geometry of each contact the same: the thrown speed must scale by k and the launch
   // elevation stay (gravity and drag barely act within a pass). At a fixed feed instead the
@@ -285,7 +285,7 @@ TEST_CASE("similarity: thrown speed follows blade speed when the feed scales wit
   CHECK(a_same.launch_elevation.mean() > a_slow.launch_elevation.mean() + 10.0);
 }
 
-TEST_CASE("trace: the way out is the last crossing of the deck's outline; the first is kept", "[assess][trace]") {
+TEST_CASE("trace: the way out is the last crossing of the deck's outline; the first is kept", "[assess][trace][long]") {
   // Chains hang across the openings: a nail that slips under the deck's edge and is turned
   // back by the chains or the turf, then leaves elsewhere, is named by where it finally left.
   auto s = scenario::read_scenario(scenario_path("highway-pivoted-chains.toml"));
@@ -307,7 +307,7 @@ TEST_CASE("trace: the way out is the last crossing of the deck's outline; the fi
   CHECK(came_back + differ > 0);  // some nails crossed out and back
 }
 
-TEST_CASE("trace: every mark's trail is consistent and the ways out add up", "[assess][trace]") {
+TEST_CASE("trace: every mark's trail is consistent and the ways out add up", "[assess][trace][long]") {
   // The deck with a side discharge: counted marks leave by the opening.
   auto deck = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
   deck.run.replicates = 40;
@@ -579,7 +579,7 @@ TEST_CASE("exact P(pass): the dynamic programme against enumeration and simulati
   CHECK(std::abs(share - exact) < 4 * std::sqrt(exact * (1 - exact) / tests));
 }
 
-TEST_CASE("exact P(pass): its interval covers the truth about 95 % of the time", "[statistics]") {
+TEST_CASE("exact P(pass): its interval covers the truth about 95 % of the time", "[statistics][long]") {
   // A small test (40 nails, two stations) with known per-nail probabilities: 300 runs of
   // 150 replicates each, the interval from 200 bootstrap draws.
   const ToyFeed feed{{{{{0, 0, 0, 0}, 0.86}, {{0, 0, 1, 0}, 0.09}, {{0, 0, 0, 1}, 0.04}, {{1, 0, 0, 0}, 0.01}},
@@ -617,7 +617,7 @@ TEST_CASE("exact P(pass): its interval covers the truth about 95 % of the time",
   CHECK_THAT(e.not_computed, Catch::Contains("marks"));
 }
 
-TEST_CASE("exact P(pass): agrees with the replicates' estimate on a mower near neither end", "[assess][statistics]") {
+TEST_CASE("exact P(pass): agrees with the replicates' estimate on a mower near neither end", "[assess][statistics][long]") {
   auto s = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
   s.run.replicates = 200;
   s.run.target_half_width.reset();

@@ -70,7 +70,7 @@ TEST_CASE("compare: Newcombe's paired interval is never zero-wide and covers the
   CHECK(coverage < 0.975);
 }
 
-TEST_CASE("compare: common random numbers make a small design change measurable", "[compare][statistics]") {
+TEST_CASE("compare: common random numbers make a small design change measurable", "[compare][statistics][long]") {
   // Two chain curtains that differ a little in how open they are.
   auto a = scenario::read_scenario(scenario_path("highway-pivoted-raised-skirt-chains.toml"));
   a.run.replicates = 200;

@@ -116,7 +116,7 @@ TEST_CASE("deck: a clockwise blade strikes the mirror image of a counter-clockwi
   CHECK(struck > 0);
 }
 
-TEST_CASE("deck: the three-spindle deck runs, its outline encloses every tip circle, nails meet other blades", "[deck][assess]") {
+TEST_CASE("deck: the three-spindle deck runs, its outline encloses every tip circle, nails meet other blades", "[deck][assess][long]") {
   auto s = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
   s.run.replicates = 100;
   // The generated skirt lies outside every tip circle, and the opening cuts it.
@@ -146,7 +146,7 @@ TEST_CASE("deck: the three-spindle deck runs, its outline encloses every tip cir
   CHECK(one.shares[assess::PuncturesOutside].counts == a.shares[assess::PuncturesOutside].counts);
 }
 
-TEST_CASE("deck: a discharge chute roofs its opening, runs outward and keeps nails low", "[deck][housing]") {
+TEST_CASE("deck: a discharge chute roofs its opening, runs outward and keeps nails low", "[deck][housing][long]") {
   auto s = scenario::read_scenario(scenario_path("deck-72in-three-spindle.toml"));
   REQUIRE(s.housing.openings.size() == 1);
   const auto& o = s.housing.openings[0];
@@ -189,7 +189,7 @@ TEST_CASE("deck: a discharge chute roofs its opening, runs outward and keeps nai
   CHECK(5 * by_opening(with) < 3 * by_opening(without));
 }
 
-TEST_CASE("deck: guards and deflectors along polylines hang on a mesh deck too", "[deck][housing][mesh]") {
+TEST_CASE("deck: guards and deflectors along polylines hang on a mesh deck too", "[deck][housing][mesh][long]") {
   using Catch::Contains;
   const std::string path = scenario_path("highway-meshes.toml");
   std::ifstream in(path);
@@ -261,7 +261,7 @@ openness = 0
       Contains("housing.deflectors[1].radius") && Contains("not both"));
 }
 
-TEST_CASE("deck: a flap 2 mm behind an opening (a channel narrower than the nail) lets by what a flush one does", "[deck][housing]") {
+TEST_CASE("deck: a flap 2 mm behind an opening (a channel narrower than the nail) lets by what a flush one does", "[deck][housing][long]") {
   // The highway mower with its skirt 1/4 in above the turf, a rear opening (160-200 deg) and
   // a solid flap over it along the deck's circle (155-205 deg), flush with the skirt, 2 mm
   // outside it (a channel narrower than the nail's 2.9 mm diameter) or 6 mm outside it (wider).

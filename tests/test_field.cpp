@@ -327,7 +327,7 @@ TEST_CASE("field: a hazard run is the same on 1 and 2 threads, and tallies what 
   CHECK(sum.max_distance > 10);
 }
 
-TEST_CASE("field: designs compared object by object, with common random numbers", "[field][compare]") {
+TEST_CASE("field: designs compared object by object, with common random numbers", "[field][compare][long]") {
   auto read_file = [](const char* name) { return scenario::read_scenario(std::string(J232_SOURCE_DIR) + "/scenarios/field/" + name); };
   auto without = read_file("batwing-highway-shoulder-no-chains.toml"), with = read_file("batwing-highway-shoulder.toml");
   without.field.objects_simulated = 3000;

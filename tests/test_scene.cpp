@@ -167,7 +167,7 @@ TEST_CASE("scene: export writes a labelled PLY and a grouped OBJ that read back,
   CHECK_THROWS_AS(scene::export_text(soup, lines, "scene-test-export.xyz"), std::invalid_argument);
 }
 
-TEST_CASE("scene: the operator-zone share converges to the sector's fraction of the ring", "[scene][zone][statistics]") {
+TEST_CASE("scene: the operator-zone share converges to the sector's fraction of the ring", "[scene][zone][statistics][long]") {
   // Nails thrown in the blade plane with uniformly random azimuth at a ring of board
   // whose operator zone spans 80 deg: the zone's share of the marks is 80/360.
   auto s = basic();

@@ -69,7 +69,7 @@ TEST_CASE("scene engines: Embree and CGAL give identical hits on chains of queri
   }
 }
 
-TEST_CASE("scene engines: a whole assessment is the same with either engine", "[scene][engine][assess]") {
+TEST_CASE("scene engines: a whole assessment is the same with either engine", "[scene][engine][assess][long]") {
   if (!scene::engine_available(scene::Engine::Embree)) {
     WARN("Embree is not built in: only the CGAL engine to test");
     return;

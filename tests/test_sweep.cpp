@@ -140,7 +140,7 @@ TEST_CASE("sweep: pivot_position refuses a blade it cannot re-split", "[sweep]")
   CHECK(b.hub.bar_length == Approx(1.5 * tip));
 }
 
-TEST_CASE("sweep: over a J232 scenario, P(pass) with its interval at every point", "[sweep][assess]") {
+TEST_CASE("sweep: over a J232 scenario, P(pass) with its interval at every point", "[sweep][assess][long]") {
   study::SweepSpec spec;
   spec.source = "test";
   spec.base = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted-raised-skirt.toml";

@@ -33,7 +33,7 @@ std::string with_uncertainty(const std::string& name, const std::string& table) 
 }
 }  // namespace
 
-TEST_CASE("uncertainty: the study is deterministic, and an ignored input gets no share", "[uncertainty]") {
+TEST_CASE("uncertainty: the study is deterministic, and an ignored input gets no share", "[uncertainty][long]") {
   // air.cd_axial is a real input, but with drag off it changes nothing.
   const auto file = with_uncertainty("uq-ignored.toml", R"(
 [air]
@@ -87,7 +87,7 @@ TEST_CASE("uncertainty: bad inputs are refused with the key and what was expecte
                   scenario::InputError);  // no basis
 }
 
-TEST_CASE("uncertainty: a discrete input takes each of its values, equally often, and is ranked like any other", "[uncertainty][discrete]") {
+TEST_CASE("uncertainty: a discrete input takes each of its values, equally often, and is ranked like any other", "[uncertainty][discrete][long]") {
   using Catch::Contains;
   const auto file = with_uncertainty("uq-discrete.toml", R"(
 [uncertainty]
@@ -270,7 +270,7 @@ receptor = "person"
 }
 }  // namespace
 
-TEST_CASE("uncertainty: a field's study draws its inputs over the same objects", "[uncertainty][field]") {
+TEST_CASE("uncertainty: a field's study draws its inputs over the same objects", "[uncertainty][field][long]") {
   const auto file = field_file("uq-field.toml", R"(
 [uncertainty]
 base_draws = 4

@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
-# hazard_check.sh J232 SCENARIO OUT: `j232 hazard` of a shipped field scenario writes a
+# hazard_check.sh J232 SCENARIO OUT [OBJECTS]: `j232 hazard` of a shipped field scenario (3000 objects unless told) writes a
 # complete hazard.json / hazard.csv / hazard.html with no nan, the same results on 1 and 2
 # threads (provenance aside), and the report names its hazard distances and planes.
 set -euo pipefail
-j232=$1 scenario=$2 out=$3
+j232=$1 scenario=$2 out=$3 objects=${4:-3000}
 rm -rf "$out"
 # A run may be judged invalid (exit 4: too many objects cut off; on the chained shoulder about
 # 1 % of cobbles are caught circling inside the deck at this sample, CHANGELOG.md): its files
 # must be complete and the same on 1 and 2 threads all the same.
 for threads in 1 2; do
   code=0
-  "$j232" hazard "$scenario" --objects 3000 --threads $threads --out "$out/$([ $threads = 1 ] && echo one || echo two)" >/dev/null || code=$?
+  "$j232" hazard "$scenario" --objects "$objects" --threads $threads --out "$out/$([ $threads = 1 ] && echo one || echo two)" >/dev/null || code=$?
   case $code in 0|4) ;; *) echo "hazard_check: exit $code" >&2; exit 1 ;; esac
 done
-python3 - "$out" <<'PY'
+python3 - "$out" "$objects" <<'PY'
 import json, math, sys
 out = sys.argv[1]
 a, b = (json.load(open(f"{out}/{d}/hazard.json")) for d in ("one", "two"))
@@ -22,7 +22,7 @@ for j in (a, b):
 assert a == b, "hazard.json differs between 1 and 2 threads"
 for key in ("valid", "field", "objects", "throw", "hazard_distance", "directions", "planes", "assumptions", "scenario"):
     assert key in a, key
-assert a["objects"]["simulated"] == 3000
+assert a["objects"]["simulated"] == int(sys.argv[2])
 assert [d["direction"] for d in a["hazard_distance"]] == ["left", "right", "front", "rear"]
 def finite(x):
     if isinstance(x, dict):

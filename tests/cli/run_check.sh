@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# run_check.sh J232 SCENARIO OUTDIR: runs `j232 run` and checks that it ran (exit 0 =
-# passes or 1 = fails), printed a verdict, and wrote complete result.json and marks.csv.
+# run_check.sh J232 SCENARIO OUTDIR [REPLICATES]: runs `j232 run` (60 replicates unless
+# told) and checks that it ran (exit 0 = passes or 1 = fails), printed a verdict, and wrote
+# complete result.json and marks.csv.
 set -u
-exe=$1 scenario=$2 out=$3
+exe=$1 scenario=$2 out=$3 replicates=${4:-60}
 rm -rf "$out"
-"$exe" run "$scenario" --replicates 60 --out "$out"
+"$exe" run "$scenario" --replicates "$replicates" --out "$out"
 code=$?
 case $code in 0|1) ;; *) echo "run_check: exit code $code" >&2; exit 1 ;; esac
 [ -s "$out/result.json" ] || { echo "run_check: no result.json" >&2; exit 1; }
