@@ -335,6 +335,49 @@ TEST_CASE("impulse (Stronge's energetic law) agrees with an independent fine int
   CHECK(poisson_errors[360] > 10 * errors[360]);  // the legacy law is measurably not this one
 }
 
+TEST_CASE("impulse (Stronge's energetic law): a slip passing close by zero creates no energy; a restart keeps its direction", "[strike][physics]") {
+  // The independent review's hand case: isotropic K_tt with a small coupling to the normal,
+  // the slip heading almost straight at zero (off by 1e-3 to 5e-3 rad), so it passes zero
+  // just aside within a step. Friction held along the old slip past its closest approach
+  // would do positive work there.
+  std::mt19937_64 rng(43);
+  int restarts_checked = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double m = 0.002, mu = test::uniform(rng, 0.2, 0.8), e = test::uniform(rng, 0.0, 1.0);
+    const Vec3 n = Vec3::UnitZ(), t1 = Vec3::UnitX(), t2 = Vec3::UnitY();
+    // The slip along t1 changes at k_n - mu u/(m |u|): k_n across it, off in angle.
+    const double off = test::uniform(rng, 1e-3, 5e-3) * (trial % 2 ? 1 : -1);
+    const double coupling = off * mu / m;
+    Eigen::Matrix3d K = Eigen::Matrix3d::Identity() / m;
+    K += coupling * (n * t2.transpose() + t2 * n.transpose());
+    const double vn = -test::uniform(rng, 1, 30);
+    // The slip stops after a fraction of the impulse: mu (1 + e) |vn| times that.
+    const double slip = mu * (1 + e) * -vn * test::uniform(rng, 0.1, 0.9);
+    const Vec3 v_rel = vn * n + slip * t1;
+    const auto sol = strike::solve_impulse_energetic(K, v_rel, n, e, mu);
+    const double incoming = 0.5 * v_rel.dot(K.ldlt().solve(v_rel));
+    CHECK(sol.energy_change <= 1e-9 * incoming);
+    // Coulomb's cone and a pushing impulse.
+    const double pn = sol.impulse.dot(n);
+    CHECK(pn > 0);
+    CHECK((sol.impulse - pn * n).norm() <= mu * pn * (1 + 1e-6));
+  }
+  // A restart: friction that cannot hold a contact at rest lets the slip start along a
+  // direction the flow keeps (k_n - mu K_tt u parallel to +u), checked here on anisotropic K_tt.
+  for (int trial = 0; trial < 2000; ++trial) {
+    Eigen::Matrix2d A = Eigen::Matrix2d::Random();
+    const Eigen::Matrix2d ktt = A * A.transpose() + 0.2 * Eigen::Matrix2d::Identity();
+    const Vec2 kn = Vec2::Random() * 3;
+    const Vec2 stick = -(ktt.inverse() * kn);
+    const double mu = test::uniform(rng, 0.05, 0.95) * stick.norm();  // cannot hold: |stick| > mu
+    const Vec2 u = strike::restart_direction(kn, ktt, mu, stick);
+    const Vec2 g = kn - mu * (ktt * u);
+    REQUIRE(u.norm() == Approx(1).epsilon(1e-12));
+    if (std::abs(u.x() * g.y() - u.y() * g.x()) <= 1e-9 * g.norm() && u.dot(g) > 0) ++restarts_checked;
+  }
+  CHECK(restarts_checked == 2000);
+}
+
 TEST_CASE("impulse: frictionless and central, it is report 445-1's impact", "[strike][physics]") {
   const auto b = pivoted_blade();
   scenario::BladeGeometry g;
@@ -412,7 +455,7 @@ TEST_CASE("impulse: angular momentum about the spindle and each pivot is conserv
   }
 }
 
-TEST_CASE("contact search: agrees with the fixed-step reference, and leaves no overlap after a strike", "[strike][search]") {
+TEST_CASE("contact search: agrees with the fixed-step reference, and leaves no overlap after a strike", "[strike][search][long]") {
   auto s = bar_scenario();
   s.spindles[0].geometry.edge.sail_height = 0.02;  // plate, bevel and sail all in play
   const auto sp = spindle(s);

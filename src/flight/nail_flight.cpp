@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "board/board.hpp"
+#include "check/check.hpp"
 #include "flight/face_touch.hpp"
 #include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"
@@ -633,8 +634,13 @@ bool NailFlight::slide(const scene::Hit& hit) {
     // (a wall, a skirt's foot, another ground face); the face it lies on stays kLyingGap below.
     strike::Motion m;
     m.p0 = b.position, m.v0 = speed * slide, m.a = -decel * slide, m.t0 = b.time, m.axis0 = b.axis;
-    const double until = b.time + speed / decel;
-    gather(m, b.time, until);
+    const double stop = b.time + speed / decel;
+    // A slide whose swept box holds more faces than the search keeps (a long slide past a
+    // chain curtain, a mesh, the plate's fan) is searched a part at a time, as chords are:
+    // the part's end is a point of the same motion, so the slide is unchanged by the split.
+    double until = stop;
+    while (gather(m, b.time, until) > candidates.size() && until - b.time > 1e-9) until = b.time + 0.5 * (until - b.time);
+    J232_CHECK(candidate_count <= candidates.size());
     FaceSearchStats stats;
     const auto wall = first_face_touch(*ctx.scene, candidates.data(), candidate_count, m, nail, b.time, until, filter(), stats);
     r.search_steps += stats.steps;

@@ -49,6 +49,43 @@ ImpulseSolution impulse_for(const Eigen::Matrix3d& K, const Eigen::LDLT<Eigen::M
 }
 }  // namespace
 
+// The direction a slip starting from rest takes when friction cannot hold the contact: u
+// grows along a unit û with friction -mu û against it, so du/dp = k_n - mu K_tt û must point
+// along +û (Stronge's consistent restart; a ray of the slip's flow). Found by scanning the
+// circle for the sign changes of û x (k_n - mu K_tt û) with û . (k_n - mu K_tt û) > 0, each
+// refined by bisection; of several (an anisotropic K_tt can have more than one), the one
+// nearest the sticking rate's opposite, which is the answer when K_tt is isotropic.
+Eigen::Vector2d restart_direction(const Eigen::Vector2d& kn, const Eigen::Matrix2d& ktt, double mu, const Eigen::Vector2d& stick_rate) {
+  const double need = stick_rate.norm();
+  const Eigen::Vector2d guess = need > 0 ? Eigen::Vector2d(-stick_rate / need) : Eigen::Vector2d(1, 0);
+  const auto dir = [](double a) { return Eigen::Vector2d(std::cos(a), std::sin(a)); };
+  const auto turn = [&](double a) {  // û x du/dp: zero on a ray
+    const Eigen::Vector2d u = dir(a), g = kn - mu * (ktt * u);
+    return u.x() * g.y() - u.y() * g.x();
+  };
+  const auto grows = [&](double a) { return dir(a).dot(kn - mu * (ktt * dir(a))) > 0; };
+  constexpr int kScan = 72;
+  const double step = 2 * M_PI / kScan, start = std::atan2(guess.y(), guess.x());
+  Eigen::Vector2d best = guess;
+  double best_fit = -HUGE_VAL;
+  double a0 = start, h0 = turn(a0);
+  for (int i = 1; i <= kScan; ++i) {
+    const double a1 = start + i * step, h1 = turn(a1);
+    if ((h0 <= 0) != (h1 <= 0) || h0 == 0) {
+      double lo = a0, hi = a1, h_lo = h0;
+      for (int k = 0; k < 60 && h_lo != 0; ++k) {
+        const double mid = 0.5 * (lo + hi), h_mid = turn(mid);
+        if ((h_mid <= 0) == (h_lo <= 0)) lo = mid, h_lo = h_mid;
+        else hi = mid;
+      }
+      const double a = h_lo == 0 ? lo : 0.5 * (lo + hi);
+      if (grows(a) && dir(a).dot(guess) > best_fit) best = dir(a), best_fit = dir(a).dot(guess);
+    }
+    a0 = a1, h0 = h1;
+  }
+  return best;
+}
+
 ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu,
                               RestitutionLaw form) {
   return form == RestitutionLaw::Energetic ? solve_impulse_energetic(K, v_rel, n, law.at(-v_rel.dot(n)), mu)
@@ -85,6 +122,10 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
   double p = 0, work_compression = 0, work_restitution = 0;
   bool compressing = true, sticking = false;
   // The tangential rate at slip u (sticking when u is nil and friction can hold it).
+  // A slip that starts from rest (friction cannot hold it) starts along a direction it keeps:
+  // found once, when first needed.
+  bool restart_found = false;
+  Eigen::Vector2d restart = Eigen::Vector2d::Zero();
   const auto rate = [&](const Eigen::Vector2d& slip, bool& holds) {
     holds = false;
     if (mu <= 0) return Eigen::Vector2d(Eigen::Vector2d::Zero());
@@ -95,27 +136,172 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
       holds = true;
       return stick_rate;
     }
-    return Eigen::Vector2d(need > 0 ? Eigen::Vector2d(mu * stick_rate / need) : Eigen::Vector2d::Zero());
+    if (!restart_found) restart = restart_direction(kn, ktt, mu, stick_rate), restart_found = true;
+    return Eigen::Vector2d(-mu * restart);
   };
   constexpr double kSlipTurn = 0.005;  // rad per step
   const double p_scale = -vn / knn;   // the frictionless compression
+  // A slipping stretch far from every event (the slip halting or passing zero, compression's
+  // end, the restitution's work reached): one classical Runge-Kutta step of the whole state
+  // (slip, normal velocity, tangential impulse, work) along p, turning the slip by at most
+  // kFastTurn; a step that would come near an event is left to the careful step below, which
+  // finds events exactly. Returns false when it did not step.
+  constexpr double kFastTurn = 0.05;    // rad per step
+  constexpr double kFastShrink = 0.25;  // of the slip's size per step
+  constexpr double kFastStiff = 0.2;    // the direction's growth or decay exponent per step
+  // A slip within 1e-5 of the approach speed of zero has stopped (as a halt found within
+  // that is): friction then holds the contact or the slip restarts along its own direction.
+  const double u_stopped = 1e-5 * approach;
+  enum class Fast { No, Stepped, Compressed, Done };
+  const auto fast_step = [&]() {
+    const double speed = u.norm();
+    struct Rate {
+      Eigen::Vector2d f, du;
+      double dvn;
+    };
+    const auto at = [&](const Eigen::Vector2d& slip) {
+      Rate r;
+      r.f = -mu * slip / slip.norm();
+      r.du = kn + ktt * r.f;
+      r.dvn = knn + kn.dot(r.f);
+      return r;
+    };
+    // The step: turning the slip's direction by at most kFastTurn, nor changing its size by
+    // more than kFastShrink of itself (its direction turns faster as it shrinks).
+    const auto step_limit = [&](const Rate& k, bool on_ray) {
+      const double across = on_ray ? 0.0 : std::abs(k.du.x() * u.y() - k.du.y() * u.x()) / speed;
+      const double du_size = k.du.norm();
+      return std::min({across > 0 ? kFastTurn * speed / across : HUGE_VAL, du_size > 0 && !on_ray ? kFastShrink * speed / du_size : HUGE_VAL,
+                       4 * p_scale * (1 + e)});
+    };
+    Rate k1 = at(u);
+    double limit = step_limit(k1, false);
+    bool on_ray = false;
+    // Near a ray of the slip's flow (a direction it keeps: du/dp along u) that attracts it, the
+    // direction relaxes onto the ray over a span of p proportional to the slip's size: stiff
+    // when that span is shorter than the step, where explicit steps would swing it from side
+    // to side. There the direction is taken onto the ray (Newton's method on the turn rate),
+    // which it then keeps exactly: the slip's size alone changes, linearly in p.
+    {
+      const auto turn_rate = [&](double a) {  // û x du/dp at direction a
+        const Eigen::Vector2d d(std::cos(a), std::sin(a)), g = kn - mu * (ktt * d);
+        return d.x() * g.y() - d.y() * g.x();
+      };
+      // At the present direction û (g = du/dp there): h = û x g, and its rate with the
+      // direction's angle, dh/da = -û.g + û x (-mu K_tt û_perp), û_perp = û turned a right angle.
+      const Eigen::Vector2d d = u / speed, d_perp(-d.y(), d.x()), g = k1.du, dg = -mu * (ktt * d_perp);
+      const double h = d.x() * g.y() - d.y() * g.x();
+      const double slope = -d.dot(g) + (d.x() * dg.y() - d.y() * dg.x());
+      // (Only where what the transient's friction would have done differently, mu times the
+      // angle times the span, is below 1e-6 of the impulse's scale.)
+      const double angle = slope < 0 ? std::abs(h / slope) : HUGE_VAL, span = slope < 0 ? speed / -slope : HUGE_VAL;
+      if (angle < kFastTurn && span < limit && mu * angle * span < 1e-6 * p_scale) {
+        const double a = std::atan2(u.y(), u.x());
+        double ray = a - h / slope;
+        for (int k = 0; k < 3; ++k) ray -= turn_rate(ray) / slope;
+        // (A ray found near, and truly one: else the direction is left as it is.)
+        if (std::abs(ray - a) < kFastTurn && std::abs(turn_rate(ray)) <= 1e-9 * std::abs(h) + 1e-12 * k1.du.norm()) {
+          u = speed * Eigen::Vector2d(std::cos(ray), std::sin(ray));
+          k1 = at(u);
+          limit = step_limit(k1, true);
+          on_ray = true;
+        }
+      }
+      // Off a ray, a departure from the present direction grows or decays as exp(slope p / |u|):
+      // the step keeps that exponent within kFastStiff (near a repelling ray the turn rate alone
+      // would allow a step over which the direction runs away).
+      if (!on_ray && slope != 0) limit = std::min(limit, kFastStiff * speed / std::abs(slope));
+    }
+    // The slip's closest approach to zero as the first rate foresees it: a halt (as the careful
+    // step judges one) or a pass close by zero is the careful step's; so is one within reach.
+    const double d2 = k1.du.squaredNorm();
+    if (d2 > 0 && -u.dot(k1.du) > 0) {
+      const double close = -u.dot(k1.du) / d2;
+      if ((u + close * k1.du).norm() <= std::min(1e-3 * speed + 1e-5 * approach, 0.5 * speed)) return Fast::No;
+      if (close < 2 * limit) return Fast::No;
+    }
+    // The phase's end (compression's, or the restitution's work reached) as the first rate
+    // foresees it: within reach, the step is aimed at it and brought onto it by Newton's method
+    // on the step's length (the end's residual and its rate are the step's own).
+    double end = HUGE_VAL;
+    const double target = e * e * -work_compression - work_restitution;  // the restitution's work left
+    if (compressing) {
+      if (!(k1.dvn > 0)) return Fast::No;
+      end = -vn / k1.dvn;
+    } else {
+      const double disc = vn * vn + 2 * k1.dvn * target;
+      if (!(target > 0 && disc > 0)) return Fast::No;
+      end = 2 * target / (vn + std::sqrt(disc));
+    }
+    const bool aimed = end <= limit;
+    double dp = aimed ? end : limit;
+    for (int newton = 0; newton < 6; ++newton) {
+      const Rate k2 = at(u + 0.5 * dp * k1.du);
+      const Rate k3 = at(u + 0.5 * dp * k2.du);
+      const Rate k4 = at(u + dp * k3.du);
+      const Eigen::Vector2d u_next = u + (dp / 6) * (k1.du + 2 * k2.du + 2 * k3.du + k4.du);
+      const double vn_next = vn + (dp / 6) * (k1.dvn + 2 * k2.dvn + 2 * k3.dvn + k4.dvn);
+      // The work, v_n integrated along p: Simpson's rule on the stages' normal velocities.
+      const double vn_mid = vn + 0.25 * dp * (k2.dvn + k3.dvn);
+      const double w = (dp / 6) * (vn + 4 * vn_mid + vn_next);
+      // The slip must stay clear of zero, and the normal approach must not jam.
+      if (!(u_next.dot(u) > 0 && u_next.norm() > 0.25 * speed)) return Fast::No;
+      if (compressing && !(k2.dvn > 0 && k3.dvn > 0 && k4.dvn > 0)) return Fast::No;
+      const double residual = compressing ? vn_next : w - target;  // the phase ends at zero
+      const double rate_end = compressing ? k4.dvn : vn_next;
+      const double scale = compressing ? approach : std::max(target, 1e-300);
+      if (!aimed) {
+        if (!(residual < 0)) return Fast::No;  // the end came sooner than foreseen
+      } else if (std::abs(residual) > 1e-12 * scale) {
+        if (!(rate_end > 0)) return Fast::No;
+        const double next = dp - residual / rate_end;
+        if (!(next > 0 && next <= limit)) return Fast::No;
+        dp = next;
+        continue;
+      }
+      (compressing ? work_compression : work_restitution) += w;
+      p += dp, pt += (dp / 6) * (k1.f + 2 * k2.f + 2 * k3.f + k4.f), u = u_next, vn = vn_next;
+      sticking = false;
+      if (!aimed) return Fast::Stepped;
+      if (compressing) {
+        vn = 0, compressing = false;
+        return e > 0 ? Fast::Compressed : Fast::Done;
+      }
+      return Fast::Done;
+    }
+    return Fast::No;
+  };
   for (int it = 0; it < 100000; ++it) {
+    if (mu > 0 && u.norm() <= u_stopped && u.norm() > u_tiny) u.setZero();
+    if (mu > 0 && u.norm() > u_tiny) {
+      const Fast fast = fast_step();
+      if (fast == Fast::Done) break;
+      if (fast != Fast::No) continue;
+    }
     bool holds;
     Eigen::Vector2d f = rate(u, holds);
     // Friction that would stop the normal approach from ever ending (a jam): frictionless.
     if (compressing && !(knn + kn.dot(f) > 0)) f.setZero(), holds = false;
     double dp = 4 * p_scale * (1 + e);
     bool halts = false;
-    if (!holds && u.norm() > u_tiny) {
+    if (mu > 0 && !holds && u.norm() > u_tiny) {
       // The slip halting within the step: the step ends there, u nil.
       const auto halting = [&](const Eigen::Vector2d& rate_f) {
         const Eigen::Vector2d du = kn + ktt * rate_f;
         const double d2 = du.squaredNorm();
         if (!(d2 > 0)) return;
         const double s = -u.dot(du) / d2;
+        if (!(s > 0 && s <= dp)) return;
         // (Passing within 1e-5 of the approach speed of a stop is stopping: the slip's last
         // turn there moves the impulse by less than that.)
-        if (s > 0 && s <= dp && (u + s * du).norm() <= std::min(1e-3 * u.norm() + 1e-5 * approach, 0.5 * u.norm())) dp = s, halts = true;
+        if ((u + s * du).norm() <= std::min(1e-3 * u.norm() + 1e-5 * approach, 0.5 * u.norm())) {
+          dp = s, halts = true;
+        } else if (s > 1e-6 * dp) {
+          // Never past the slip's closest approach to zero: beyond it the slip would grow again
+          // against a friction still held along its old direction, which would do positive work.
+          // (From the closest approach itself the turn limit bounds the step.)
+          dp = s;
+        }
       };
       // A step that turns the slip's direction by at most kSlipTurn, with f at its midpoint.
       const Eigen::Vector2d du = kn + ktt * f;

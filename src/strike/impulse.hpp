@@ -47,6 +47,10 @@ const char* restitution_law_name(RestitutionLaw l);  // "energetic", "poisson"
 ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu,
                               RestitutionLaw form = RestitutionLaw::Energetic);
 ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, double e, double mu);
+// Where a slip starting from rest heads when friction cannot hold the contact (k_n, K_tt: the
+// tangential rows of K in a tangent basis; stick_rate = -K_tt^-1 k_n): the unit û along which
+// k_n - mu K_tt û points (the slip grows along û against friction -mu û).
+Eigen::Vector2d restart_direction(const Eigen::Vector2d& kn, const Eigen::Matrix2d& ktt, double mu, const Eigen::Vector2d& stick_rate);
 ImpulseSolution solve_impulse_poisson(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu);
 
 // The nail's inverse inertia (world), a rod with transverse inertia I_t and axial I_a.
