@@ -20,10 +20,10 @@ std::string cut_off_limits(const Assessment& a, const scenario::Scenario& s) {
       case flight::CutOff::TimeLimit: what = fmt::format("[run] time_limit ({:g} s)", s.run.time_limit); break;
       case flight::CutOff::MaxBounces: what = fmt::format("[run] max_bounces ({})", s.run.max_bounces); break;
       case flight::CutOff::FlightSteps: what = fmt::format("the flight's step cap ({} chords)", flight::kMaxFlightSteps); break;
-      case flight::CutOff::MaxStrikes: what = fmt::format("the strike cap ({} blade strikes)", flight::FlightResult::kMaxStrikes); break;
+      case flight::CutOff::MaxStrikes: what = fmt::format("[run] max_strikes ({} blade strikes)", s.run.max_strikes); break;
       case flight::CutOff::SearchSteps: what = fmt::format("the contact search's step cap ({})", strike::kMaxSearchSteps); break;
       case flight::CutOff::ContactsInPass:
-        what = fmt::format("the cap on contacts in one pass ({})", flight::FlightResult::kMaxContactsPerPass);
+        what = fmt::format("[run] max_contacts_per_pass ({} contacts in one pass)", s.run.max_contacts_per_pass);
         break;
       case flight::CutOff::UnresolvedContact: what = "a blade touch the impulse could not resolve"; break;
       case flight::CutOff::NonFinite: what = "a non-finite state"; break;

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/run_options.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/hazard_folder.hpp"
 #include "report/text_safety.hpp"
@@ -37,8 +38,10 @@ Runner add_hazard_command(CLI::App& app) {
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML) with a [field] table; see scenarios/field/")->required();
   cmd->add_option("--objects", o->overrides.objects, "Objects to simulate (default: the scenario's field.objects_simulated)")
       ->check(CLI::Range(1LL, 1'000'000'000LL));
-  cmd->add_option("--seed", o->overrides.seed, "Random seed (default: the scenario's)");
-  cmd->add_option("--threads", o->overrides.threads, "Threads (0: all cores; default: the scenario's)")->check(CLI::Range(0, 1024));
+  add_unsigned_option(*cmd, "--seed", o->overrides.seed, "Random seed (default: the scenario's)");
+  cmd->add_option("--threads", o->overrides.threads, "Threads (0: all cores; default: the scenario's)")
+      ->check(CLI::Range(0, 1024))
+      ->each([](const std::string& t) { warn_threads_beyond_cores(std::atoll(t.c_str())); });
   cmd->add_option("--out", o->out, "Output folder for hazard.html, hazard.json and hazard.csv")->capture_default_str();
   return [o] { return hazard(*o); };
 }

@@ -33,6 +33,14 @@ int run_command_line(int argc, char** argv) {
   const Runner calibrate = add_calibrate_command(app);
   const Runner trace = add_trace_command(app);
   const Runner hazard = add_hazard_command(app);
+  // An unknown first word is named as such (CLI11 would say only that a subcommand is required).
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* c) { return c->get_name() == argv[1]; }).empty()) {
+    if (reporter)
+      fmt::print(stderr, "j232: error: unknown command \"{}\"; expected one of impact, run, scene, batch, sweep, compare, uq, calibrate, "
+                         "trace, hazard (j232 --help)\n",
+                 terminal_safe(argv[1]));
+    return kBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

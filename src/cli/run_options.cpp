@@ -1,10 +1,35 @@
 #include "cli/run_options.hpp"
 
 #include <fmt/format.h>
+#include <optional>
+#include <thread>
 
 #include "scenario/toml_reader.hpp"
 
 namespace j232::cli {
+
+template <class Target>
+CLI::Option* add_unsigned_option(CLI::App& cmd, const std::string& name, Target& target, const std::string& help) {
+  return cmd
+      .add_option_function<std::string>(
+          name,
+          [&target, name](const std::string& text) {
+            const auto value = scenario::parse_unsigned64(text);
+            if (!value) throw CLI::ValidationError(name, "expected a whole number from 0 to 18446744073709551615, got " + text);
+            target = *value;
+          },
+          help)
+      ->type_name("UINT64");
+}
+template CLI::Option* add_unsigned_option(CLI::App&, const std::string&, std::uint64_t&, const std::string&);
+template CLI::Option* add_unsigned_option(CLI::App&, const std::string&, std::optional<std::uint64_t>&, const std::string&);
+template CLI::Option* add_unsigned_option(CLI::App&, const std::string&, std::optional<unsigned long long>&, const std::string&);
+
+void warn_threads_beyond_cores(long long threads) {
+  const unsigned cores = std::thread::hardware_concurrency();
+  if (cores > 0 && threads > static_cast<long long>(cores))
+    fmt::print(stderr, "j232: warning: --threads {} is more than this machine's {} cores: the run is no faster for it\n", threads, cores);
+}
 
 void add_trajectories_option(CLI::App& cmd, RunOverrides& o) {
   cmd.add_option("--trajectories", o.trajectories,
@@ -22,16 +47,10 @@ void add_uncertainty_option(CLI::App& cmd, RunOverrides& o) {
 void add_run_overrides(CLI::App& cmd, RunOverrides& o, const std::string& whose) {
   cmd.add_option("--replicates", o.replicates, fmt::format("Replicates of the whole test (overrides {} [run] replicates)", whose))
       ->check(CLI::Range(1LL, 100'000'000LL));
-  cmd.add_option_function<std::string>(
-         "--seed",
-         [&o](const std::string& text) {
-           const auto seed = scenario::parse_unsigned64(text);
-           if (!seed) throw CLI::ValidationError("--seed", "expected a whole number from 0 to 18446744073709551615, got " + text);
-           o.seed = *seed;
-         },
-         fmt::format("Random seed, 0 to 2^64-1 (overrides {} [run] seed)", whose))
-      ->type_name("UINT64");
-  cmd.add_option("--threads", o.threads, "Worker threads, 0 = all cores (overrides [run] threads)")->check(CLI::Range(0, 1024));
+  add_unsigned_option(cmd, "--seed", o.seed, fmt::format("Random seed, 0 to 2^64-1 (overrides {} [run] seed)", whose));
+  cmd.add_option("--threads", o.threads, "Worker threads, 0 = all cores (overrides [run] threads)")
+      ->check(CLI::Range(0, 1024))
+      ->each([](const std::string& t) { warn_threads_beyond_cores(std::atoll(t.c_str())); });
 }
 
 void add_stop_rule_options(CLI::App& cmd, RunOverrides& o) {

@@ -8,6 +8,7 @@
 
 #include "assess/cluster.hpp"
 #include "cli/commands.hpp"
+#include "cli/run_options.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
 #include "scenario/input_error.hpp"
@@ -100,7 +101,7 @@ Runner add_sweep_command(CLI::App& app) {
   cmd->add_option("--name", o->name, "Stem of the output files");
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
   cmd->add_option("--replicates", o->replicates, "J232 scenarios: replicates per point")->check(CLI::PositiveNumber);
-  cmd->add_option("--threads", o->threads, "Worker threads, 0 = all cores")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o->threads, "Worker threads, 0 = all cores")->check(CLI::NonNegativeNumber)->each([](const std::string& t) { warn_threads_beyond_cores(std::atoll(t.c_str())); });
   return [o] { return sweep(*o); };
 }
 

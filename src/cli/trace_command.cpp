@@ -17,6 +17,7 @@
 #include "flight/flight_audit.hpp"
 #include "field/field_simulator.hpp"
 #include "cli/commands.hpp"
+#include "cli/run_options.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
 #include "scenario/input_error.hpp"
@@ -319,12 +320,12 @@ Runner add_trace_command(CLI::App& app) {
   auto o = std::make_shared<TraceOptions>();
   CLI::App* cmd = app.add_subcommand("trace", "Replay one nail of an assessment (or one object of a field scenario) with its whole trail: its feed, strike and every contact");
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML)")->required();
-  cmd->add_option("--replicate", o->replicate, "Replicate (0-based, as marks.csv numbers them)");
+  add_unsigned_option(*cmd, "--replicate", o->replicate, "Replicate (0-based, as marks.csv numbers them)");
   cmd->add_option("--nail", o->nail, "Nail within the replicate (0-based, as marks.csv numbers them)");
-  cmd->add_option("--object", o->object, "A field scenario's object (0-based, as j232 hazard numbers them)");
+  add_unsigned_option(*cmd, "--object", o->object, "A field scenario's object (0-based, as j232 hazard numbers them)");
   cmd->add_option("--find", o->find, "Replay the first nail of the run of this kind instead: " + find_kind_names() +
                                          " (a field scenario: cut-off, restruck, contained, thrown)");
-  cmd->add_option("--seed", o->seed, "Random seed (overrides the scenario's [run] seed)");
+  add_unsigned_option(*cmd, "--seed", o->seed, "Random seed (overrides the scenario's [run] seed)");
   cmd->add_option("--json", o->json, "Also write the trail as JSON to this file");
   cmd->add_flag("--check", o->check,
                 "Audit instead: replay every nail of the first replicates (a field: the first objects) and check the capsule against "

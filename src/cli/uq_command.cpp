@@ -180,7 +180,7 @@ Runner add_uq_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("uq", "How much the verdict rests on uncertain inputs: robust verdict and Sobol' sensitivity indices");
   cmd->add_option("scenario", o->scenario, "Scenario file (TOML); its [uncertainty] table, or the default estimated inputs")->required();
   cmd->add_option("--out", o->out, "Output folder for uq.html, uq.json and uq.csv")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Worker threads, 0 = all cores")->check(CLI::Range(0, 1024));
+  cmd->add_option("--threads", o->threads, "Worker threads, 0 = all cores")->check(CLI::Range(0, 1024))->each([](const std::string& t) { warn_threads_beyond_cores(std::atoll(t.c_str())); });
   cmd->add_flag("--resume", o->resume, "Continue an interrupted study in the same folder: keep the assessments it finished");
   return [o] { return uq(*o); };
 }

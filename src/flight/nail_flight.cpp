@@ -34,9 +34,9 @@ const char* cut_off_name(CutOff c) {
     case CutOff::TimeLimit: return "time_limit";
     case CutOff::MaxBounces: return "max_bounces";
     case CutOff::FlightSteps: return "flight_step_cap";
-    case CutOff::MaxStrikes: return "strike_cap";
+    case CutOff::MaxStrikes: return "max_strikes";
     case CutOff::SearchSteps: return "contact_search_step_cap";
-    case CutOff::ContactsInPass: return "contacts_per_pass_cap";
+    case CutOff::ContactsInPass: return "max_contacts_per_pass";
     case CutOff::UnresolvedContact: return "unresolved_blade_contact";
     case CutOff::NonFinite: return "non_finite_state";
   }
@@ -378,7 +378,7 @@ void NailFlight::restrike(const strike::Contact& k) {
     ++r.passes;
   }
   r.most_contacts_in_pass = std::max(r.most_contacts_in_pass, pass_contacts);
-  if (pass_contacts > FlightResult::kMaxContactsPerPass) cut(CutOff::ContactsInPass);
+  if (pass_contacts > set.max_contacts_per_pass) cut(CutOff::ContactsInPass);
   // A field's heavy object pushed along by the blade (sustained contact): the impulses come
   // ever closer together without end as the turning plate keeps catching it. Past
   // kSustainedContacts contacts in a pass, the last within kSustainedGap, it moves with the
@@ -722,7 +722,7 @@ bool NailFlight::event_check(double t_end, int& steps) {
     cut(CutOff::NonFinite);
     return false;
   }
-  if (b.time >= t_end || r.bounces > set.max_bounces || ++steps > kMaxFlightSteps || r.strikes > FlightResult::kMaxStrikes) {
+  if (b.time >= t_end || r.bounces > set.max_bounces || ++steps > kMaxFlightSteps || r.strikes > set.max_strikes) {
     cut(b.time >= t_end              ? CutOff::TimeLimit
         : r.bounces > set.max_bounces ? CutOff::MaxBounces
         : steps > kMaxFlightSteps     ? CutOff::FlightSteps

@@ -56,9 +56,9 @@ enum class CutOff : std::uint8_t {
   TimeLimit,         // [run] time_limit
   MaxBounces,        // [run] max_bounces
   FlightSteps,       // kMaxFlightSteps chords
-  MaxStrikes,        // FlightResult::kMaxStrikes blade strikes
+  MaxStrikes,        // [run] max_strikes blade strikes
   SearchSteps,       // strike::kMaxSearchSteps steps of one contact search
-  ContactsInPass,    // FlightResult::kMaxContactsPerPass contacts in one pass
+  ContactsInPass,    // [run] max_contacts_per_pass contacts in one pass
   UnresolvedContact, // a blade touch the impulse could not resolve
   NonFinite          // a non-finite state
 };
@@ -122,12 +122,8 @@ struct FlightResult {
   double board_energy_per_width = -1;  // J/m
   int bounces = 0;
   int strikes = 1;                        // blade contacts, the first (the feed's) included
-  static constexpr int kMaxStrikes = 500;  // beyond: cut off (a nail caught between blades, or blade and deck)
   // Passes: an edge's contacts with the nail until they part (docs/model.md §5.1b). A pass
-  // with more than kMaxContactsPerPass contacts cuts the nail off (counted, never silent).
-  // A nail rolling or sliding along a face while it passes touches it many times (a few
-  // hundred at most were seen in 15 000 nails of the 72-in deck).
-  static constexpr int kMaxContactsPerPass = 400;
+  // with more than [run] max_contacts_per_pass contacts cuts the nail off (counted, never silent).
   int passes = 1;
   int most_contacts_in_pass = 1;
   std::array<std::uint16_t, 32> passes_by_contacts{};  // [k]: passes of k + 1 contacts (the last: 32 or more)

@@ -85,6 +85,25 @@ void OutputFolder::commit() {
   std::error_code ec;
   if (private_) return;  // removed with the object
   const fs::path complete = fs::path(folder_) / files_.back();
+  // A complete earlier result in the folder is kept, not replaced: its files move together
+  // into the first free previous-N beside the new set (their digests in its result stay true).
+  if (fs::exists(complete, ec)) {
+    fs::path kept;
+    for (int n = 1;; ++n) {
+      kept = fs::path(folder_) / fmt::format("previous-{}", n);
+      if (!fs::exists(kept, ec)) break;
+    }
+    fs::create_directory(kept, ec);
+    if (ec) refuse(kept.string(), "cannot keep the earlier result there: " + ec.message());
+    for (const auto& f : files_) {
+      const fs::path old = fs::path(folder_) / f;
+      if (!fs::exists(fs::symlink_status(old, ec))) continue;
+      fs::rename(old, kept / f, ec);
+      if (ec) refuse(old.string(), "cannot keep the earlier result: " + ec.message());
+    }
+    kept_previous_ = kept.string();
+    std::fprintf(stderr, "j232: %s held an earlier result: kept in %s\n", folder_.c_str(), kept_previous_.c_str());
+  }
   fs::remove(complete, ec);  // the set is incomplete from here until the last rename
   if (ec) refuse(complete.string(), "cannot replace: " + ec.message());
   for (const auto& f : files_) {

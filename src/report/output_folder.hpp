@@ -6,7 +6,8 @@
 // and put back last: a folder whose result.json is present holds one complete set, and
 // result.json's provenance names the size and digest of each of its siblings. A run
 // killed part-way leaves no result.json and a staging folder, which the next run into
-// the folder removes.
+// the folder removes. A complete earlier result is never lost: it is moved, as a set,
+// into previous-N inside the folder.
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -40,10 +41,14 @@ class OutputFolder {
   const std::string& folder() const { return folder_; }
   // Where to write `name` before commit().
   std::string staged(const std::string& name) const;
+  // Moves the new set into place. A complete earlier result there is kept in the folder's
+  // first free previous-N (said on standard error), never replaced.
   void commit();
+  // Where commit() kept an earlier result (empty: there was none).
+  const std::string& kept_previous() const { return kept_previous_; }
 
  private:
-  std::string folder_, staging_;
+  std::string folder_, staging_, kept_previous_;
   std::vector<std::string> files_;
   int lock_fd_ = -1;
   bool private_ = false;  // a rank other than 0 of an MPI job: a private folder, discarded

@@ -201,6 +201,8 @@ json run_json(const scenario::RunSpec& r) {
           {"chord_tolerance_m", r.chord_tolerance},
           {"time_limit_s", r.time_limit},
           {"max_bounces", r.max_bounces},
+          {"max_strikes", r.max_strikes},
+          {"max_contacts_per_pass", r.max_contacts_per_pass},
           {"rest_speed_m_s", r.rest_speed},
           {"contact_search", r.reference_contact_search ? "fixed_steps" : "advancement"},
           {"restitution_law", r.restitution_law == scenario::RestitutionLaw::Poisson ? "poisson" : "energetic"}};

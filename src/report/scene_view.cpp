@@ -1,4 +1,5 @@
 #include "report/scene_view.hpp"
+#include "report/text_safety.hpp"
 
 #include <fmt/format.h>
 
@@ -388,10 +389,9 @@ std::string scene_view_html(const scenario::Scenario& s, const scene::Soup& soup
   const std::string dir = J232_THREE_JS_DIR;
   const std::string three = read_text(dir + "/three.min.js");
   const std::string orbit = read_text(dir + "/examples/js/controls/OrbitControls.js");
-  // The data sits in a JSON script block: "</" is written "<\/" so that no name a user
-  // gave (a guard's, the title) can close the block.
-  std::string data = scene_data(s, soup, guards, lines, paths).dump();
-  for (std::size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
+  // The data sits in a JSON script block, made inert there: no name a user gave (a guard's,
+  // the title) can close the block or open a comment in it.
+  const std::string data = script_safe_json(scene_data(s, soup, guards, lines, paths).dump());
   std::string page;
   page.reserve(three.size() + orbit.size() + data.size() + 8192);
   page += fmt::format(R"(<!DOCTYPE html>

@@ -20,6 +20,11 @@ std::string csv_text_cell(std::string_view text);
 // percent-encoded, so no scheme ("javascript:") or query can be smuggled in.
 std::string relative_url(std::string_view path);
 
+// JSON text to sit inside an HTML <script> block: every '<', '>' and '&' (which can occur only
+// inside JSON strings) written as its \u escape, so no name a user gave ("</script>", "<!--",
+// "]]>") can close the block or change how the page parses it; JSON.parse reads it unchanged.
+std::string script_safe_json(std::string_view json);
+
 // A folder name derived from a file name: letters, digits, '-', '_' and '.' only, no
 // leading dot (so never "." or ".."), at most 100 characters, never empty.
 std::string safe_folder_name(std::string_view stem);

@@ -59,6 +59,17 @@ void read_feed(const TableReader& t, FeedSpec& f, const std::vector<SpindleSpec>
 // Plan coordinates of parts placed by polyline: within the 100 m scene.
 constexpr Range kPlanCoordinate = Range::between(-50, 50);
 
+// An arc of azimuths, counter-clockwise from azimuth_from to azimuth_to. The same azimuth
+// twice would read as the whole turn (units/arc.hpp): that must be written as such (to 360 deg
+// past from), never fall out of a typing slip.
+void read_arc(const TableReader& t, double& from, double& to) {
+  from = t.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
+  to = t.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+  if (to == from)
+    throw t.error("azimuth_to", "equals azimuth_from: an arc from an azimuth to itself spans nothing; expected another azimuth (for "
+                                "the whole turn, azimuth_to 360 deg past azimuth_from)");
+}
+
 // A part is placed one way or the other: keys of the other way are refused.
 void refuse_with(const TableReader& t, std::initializer_list<const char*> keys, const char* chosen) {
   for (const char* key : keys)
@@ -73,8 +84,7 @@ void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry) {
       g.along = t.points("along", Kind::Length, kPlanCoordinate, 2, 64);
       g.top = t.quantity_or("top", Kind::Length, 0.0, Range::positive_up_to(2));  // 0: the deck's top (resolved later)
     } else {
-      g.azimuth_from = t.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
-      g.azimuth_to = t.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+      read_arc(t, g.azimuth_from, g.azimuth_to);
     }
     g.bottom = t.quantity_or("bottom", Kind::Length, g.bottom, Range::between(0, 1));
   }
@@ -142,8 +152,7 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
   for (const auto& o : t.array_of_tables("openings")) {
     OpeningSpec op;
     op.name = o.string_or("name", op.name, {});
-    op.azimuth_from = o.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
-    op.azimuth_to = o.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+    read_arc(o, op.azimuth_from, op.azimuth_to);
     op.top = o.quantity_or("top", Kind::Length, h.skirt_bottom + h.skirt_depth, Range::between(0, 2));
     if (op.top <= h.skirt_bottom) throw o.error("top", "expected the opening's upper edge above the skirt's bottom");
     op.chute_length = o.quantity_or("chute_length", Kind::Length, 0.0, Range::between(0, 3));
@@ -177,8 +186,7 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
       refuse_with(d, {"azimuth_from", "azimuth_to", "radius"}, "along");
       def.along = d.points("along", Kind::Length, kPlanCoordinate, 2, 64);
     } else {
-      def.azimuth_from = d.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
-      def.azimuth_to = d.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+      read_arc(d, def.azimuth_from, def.azimuth_to);
       def.radius = d.quantity("radius", Kind::Length, Range::positive_up_to(10));
     }
     def.bottom = d.quantity("bottom", Kind::Length, Range::between(0, 5));
@@ -244,8 +252,7 @@ void read_zone(const TableReader& t, OperatorZoneSpec& z) {
   const std::string kind = t.string_or("kind", "derived", {"derived", "sector"});
   if (kind == "sector") {
     z.kind = OperatorZoneSpec::Kind::Sector;
-    z.azimuth_from = t.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
-    z.azimuth_to = t.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
+    read_arc(t, z.azimuth_from, z.azimuth_to);
     z.bottom = t.quantity_or("bottom", Kind::Length, 0.0, Range::between(0, 10));
     z.top = t.quantity("top", Kind::Length, Range::positive_up_to(10));
     if (z.top <= z.bottom) throw t.error("top", "expected the top above the bottom");
@@ -294,6 +301,8 @@ void read_run(const TableReader& t, RunSpec& r) {
   // the test off before it happens.
   r.time_limit = t.quantity_or("time_limit", Kind::Time, r.time_limit, Range::between(0.1, 60));
   r.max_bounces = static_cast<int>(t.integer_or("max_bounces", r.max_bounces, 1, 10000));
+  r.max_strikes = static_cast<int>(t.integer_or("max_strikes", r.max_strikes, 1, 100000));
+  r.max_contacts_per_pass = static_cast<int>(t.integer_or("max_contacts_per_pass", r.max_contacts_per_pass, 1, 100000));
   r.rest_speed = t.quantity_or("rest_speed", Kind::Speed, r.rest_speed, Range::between(0.01, 5));
   r.reference_contact_search = t.string_or("contact_search", "advancement", {"advancement", "fixed_steps"}) == "fixed_steps";
   r.restitution_law = t.string_or("restitution_law", "energetic", {"energetic", "poisson"}) == "poisson" ? RestitutionLaw::Poisson
@@ -596,6 +605,80 @@ void refuse_test_rig(const TableReader& root, const std::vector<MeshFile>& meshe
 }
 }  // namespace
 
+namespace {
+// The table that gives spindle k's blade (for an error about its height or sail).
+TableReader blade_table_of(const TableReader& root, std::size_t k) {
+  if (auto b = root.table("blade")) return *b;
+  const auto tables = root.array_of_tables("spindles", 8);
+  const TableReader& t = tables.at(k);
+  if (t.is_string("blade")) return *root.table("blades")->table(t.string_or("blade", "", {}));
+  return *t.table("blade");
+}
+
+// What each value allows alone is checked where it is read; here, what values must be
+// together for a mower that can exist (a blade under its deck plate and above the turf,
+// openings and guards below the plate, a board that can carry a counted mark).
+void check_consistency(const TableReader& root, const Scenario& s) {
+  const bool generated_deck = s.meshes.empty();
+  const double plate = s.housing.skirt_bottom + s.housing.skirt_depth;
+  const auto housing = root.table("housing");
+  for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+    const SpindleSpec& sp = s.spindles[k];
+    const double bottom = sp.geometry.height - 0.5 * sp.geometry.thickness;
+    const double top = sp.geometry.height + 0.5 * sp.geometry.thickness + sp.geometry.edge.sail_height;
+    const TableReader blade = blade_table_of(root, k);
+    const auto spindle_height = [&]() -> std::optional<TableReader> {
+      if (root.table("blade")) return std::nullopt;
+      const auto tables = root.array_of_tables("spindles", 8);
+      return tables.at(k).has("height") ? std::optional<TableReader>(tables.at(k)) : std::nullopt;
+    }();
+    const auto height_error = [&](std::string expected) {
+      if (spindle_height) return spindle_height->error("height", std::move(expected));
+      return blade.error("height", std::move(expected));
+    };
+    if (!(bottom > 0))
+      throw height_error(fmt::format("the blade's lower face at {:.4g} m is at or below the turf; expected the whole blade above the "
+                                     "ground (its mid-plane height less half its thickness above 0)",
+                                     bottom));
+    if (generated_deck && !(top < plate)) {
+      const std::string what = fmt::format(
+          "the blade's top{} at {:.4g} m reaches the deck plate at {:.4g} m (housing.skirt_bottom + skirt_depth); expected the whole "
+          "blade below the plate",
+          sp.geometry.edge.sail_height > 0 ? fmt::format(" (its sail rising {:.4g} m above the blade)", sp.geometry.edge.sail_height) : "",
+          top, plate);
+      const auto edge = blade.table("edge");
+      if (sp.geometry.edge.sail_height > 0 && edge && edge->has("sail_height")) throw edge->error("sail_height", what);
+      throw height_error(what);
+    }
+  }
+  if (generated_deck && housing) {
+    const auto openings = housing->array_of_tables("openings");
+    for (std::size_t i = 0; i < s.housing.openings.size() && i < openings.size(); ++i)
+      if (s.housing.openings[i].top > plate + 1e-12)
+        throw openings[i].error("top", fmt::format("expected the opening's top at or below the deck plate ({:.4g} m): the skirt it "
+                                                   "cuts ends there (an opening to the top of the skirt: leave top out)",
+                                                   plate));
+    std::size_t present = 0;
+    for (const auto& g : housing->array_of_tables("guards")) {
+      if (!g.boolean_or("present", true)) continue;
+      const GuardSpec& guard = s.housing.guards.at(present++);
+      if (!guard.along.empty() && guard.top > plate + 1e-12)
+        throw g.error("top", fmt::format("expected the curtain's top at or below the deck plate ({:.4g} m) it hangs from", plate));
+    }
+  }
+  // A board that cannot carry a counted mark is no test.
+  if (!s.field.present && !(s.target.top > s.counted_height())) {
+    const auto target = root.table("target");
+    const std::string what = fmt::format("the board's top at {:.4g} m is at or below the counted height ({:.4g} m: {}); no mark on it "
+                                         "could count, so the test could not fail; expected a top above it",
+                                         s.target.top, s.counted_height(),
+                                         s.criteria.counted_height ? "criteria.counted_height" : "the blade tip circle's plane");
+    if (target && target->has("top")) throw target->error("top", what);
+    throw root.error("target", what);
+  }
+}
+}  // namespace
+
 double Scenario::blade_plane() const {
   double h = 0;
   for (const auto& sp : spindles) h = std::max(h, sp.geometry.height);
@@ -696,6 +779,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     s.estimates.push_back({key, *value});
   }
   root.refuse_unknown_keys();
+  check_consistency(root, s);
   return s;
 }
 
