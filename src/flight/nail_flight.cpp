@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "board/board.hpp"
-#include "check/check.hpp"
+#include "invariant/check.hpp"
 #include "flight/face_touch.hpp"
 #include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"

@@ -136,12 +136,19 @@ Engine default_engine() { return engine_available(Engine::Embree) ? Engine::Embr
 
 const char* engine_name(Engine e) { return e == Engine::Embree ? "embree" : "cgal"; }
 
+namespace {
+struct FaceBox {
+  Vec3 lo, hi;
+};
+}  // namespace
+
 struct Scene::Impl {
   Soup soup;
   Engine engine = Engine::Cgal;
   std::vector<Vec3> normals;             // per soup triangle, unit
   std::vector<TriangleEdges> triangles;  // per soup triangle: corner, two edges
   std::vector<Scene::Ball> balls;        // per soup triangle: a sphere holding it
+  std::vector<FaceBox> boxes;            // per soup triangle: its box, from the corner and edges as the queries see it
   std::unique_ptr<CgalIndex> cgal;
 #ifdef J232_HAVE_EMBREE
   std::unique_ptr<EmbreeIndex> embree;
@@ -169,6 +176,9 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     double radius = 0;
     for (int k = 0; k < 3; ++k) radius = std::max(radius, (m.soup.points[tri[static_cast<std::size_t>(k)]] - centroid).norm());
     m.balls.push_back({centroid, radius * (1 + 1e-12) + 1e-15});
+    const TriangleEdges& e = m.triangles.back();
+    const Vec3 b = e[0] + e[1], c = e[0] + e[2];
+    m.boxes.push_back({e[0].cwiseMin(b).cwiseMin(c), e[0].cwiseMax(b).cwiseMax(c)});
   }
 #ifdef J232_HAVE_EMBREE
   if (engine == Engine::Embree) {
@@ -187,15 +197,13 @@ namespace {
 // The exact decision of faces_in_box, shared by both engines: the face's own box (in
 // double precision) meets the query box. Kept in increasing face order.
 struct BoxCollector {
-  const std::vector<TriangleEdges>* triangles;
+  const std::vector<FaceBox>* boxes;
   Vec3 lo, hi;
   std::uint32_t* out;
   std::size_t capacity, count = 0;
   void operator()(std::uint32_t f) {
-    const TriangleEdges& t = (*triangles)[f];
-    const Vec3 b = t[0] + t[1], c = t[0] + t[2];
-    const Vec3 tlo = t[0].cwiseMin(b).cwiseMin(c), thi = t[0].cwiseMax(b).cwiseMax(c);
-    if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) return;
+    const FaceBox& box = (*boxes)[f];
+    if ((box.lo.array() > hi.array()).any() || (box.hi.array() < lo.array()).any()) return;
     if (count < capacity) {
       std::size_t i = count;  // insertion keeps the order (the lists are short)
       while (i > 0 && out[i - 1] > f) out[i] = out[i - 1], --i;
@@ -212,7 +220,7 @@ struct BoxCollector {
 
 std::size_t Scene::faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* out, std::size_t capacity) const {
   const Impl& m = *impl_;
-  BoxCollector collect{&m.triangles, lo, hi, out, capacity};
+  BoxCollector collect{&m.boxes, lo, hi, out, capacity};
 #ifdef J232_HAVE_EMBREE
   if (m.embree) {
     m.embree->near_sphere(0.5 * (lo + hi), 0.5 * (hi - lo).norm(), [](void* u, std::uint32_t f) { (*static_cast<BoxCollector*>(u))(f); },
