@@ -1,6 +1,7 @@
 // The uncertainty study of a scenario (study/uncertainty.hpp): deterministic, checked inputs,
 // and an input the simulation ignores gets no share of the variance.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -252,6 +253,45 @@ TEST_CASE("uncertainty: the page never calls an output the same at every draw wh
   CHECK_THAT(html, Catch::Contains("P(pass one test): the same at every base draw (A and B)"));
   CHECK_THAT(html, Catch::Contains("from 0.5 to 0.9"));
   CHECK_THAT(html, Catch::Contains("P(pass) from every nail (exact): the same at every draw (no variance"));
+}
+
+TEST_CASE("uncertainty: warnings come after the verdict, counted, the first few shown and the rest folded; draws named with units", "[uncertainty][report]") {
+  study::UncertaintyResult r;
+  r.title = "test", r.scenario_file = "test.toml";
+  r.output_info = study::uq_outputs(scenario::Scenario{});
+  scenario::UncertainInput input;
+  input.parameter = "blade.thickness", input.low = "5 mm", input.high = "12 mm", input.basis = "test";
+  r.plan.inputs.push_back(input);
+  scenario::UncertainInput kind;
+  kind.parameter = "housing.guards[1].kind", kind.values = {"chains", "flap"}, kind.basis = "test";
+  r.plan.inputs.push_back(kind);
+  CHECK(study::draw_inputs(r.plan, {9.125, 1.0}) == "blade.thickness = 9.125 mm, housing.guards[1].kind = flap");
+  r.plan.base_draws = 2;
+  r.design = study::saltelli_design(2, 2);
+  for (const auto& run : r.design.runs()) {
+    r.values.push_back({run[0], 0.0});
+    std::vector<double> out(r.output_info.size(), 0.5);
+    out[0] = run[0];
+    r.outputs.push_back(out);
+  }
+  for (std::size_t o = 0; o < r.output_info.size(); ++o) {
+    std::vector<double> f;
+    for (const auto& out : r.outputs) f.push_back(out[o]);
+    r.indices.push_back(study::sobol_indices(r.design, f, 20, 1));
+  }
+  for (int k = 1; k <= 28; ++k) r.warnings.push_back(fmt::format("draw {}: warning number {}", k, k));
+  const std::string html = report::uncertainty_html(report::uncertainty_json(r));
+  CHECK_THAT(html, Catch::Contains("note (28 warnings):"));
+  CHECK_THAT(html, Catch::Contains("<summary>the other 25</summary>"));
+  const auto at = [&](const std::string& text) { return html.find(text); };
+  REQUIRE(at("warning number 1<") != std::string::npos);
+  REQUIRE(at("warning number 28<") != std::string::npos);
+  CHECK(at("warning number 3<") < at("<summary>"));
+  CHECK(at("<summary>") < at("warning number 4<"));
+  // After the verdict, before the inputs' table (never inside it).
+  CHECK(at("Robust verdict") < at("note (28 warnings)"));
+  CHECK(at("note (28 warnings)") < at("<th>input</th>"));
+  CHECK(at("</details>") < at("<th>input</th>"));
 }
 
 namespace {

@@ -164,6 +164,21 @@ std::string uncertainty_html(const json& j) {
         "{} % of {} assessments drawn over the inputs' ranges.</p>\n",
         verdict_class, escape(j["robust_verdict"].get<std::string>()), number("required_pass_probability", j["required_pass_probability"], "{:g}"),
         number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
+  // Warnings after the verdict, before the inputs: how many, the first few, the rest folded.
+  if (j.contains("warnings") && !j["warnings"].empty()) {
+    const auto& w = j["warnings"];
+    constexpr std::size_t kShown = 3;
+    o += fmt::format("<section class=\"warnings\"><p><strong>Before trusting every draw, note ({} warning{}):</strong></p>\n<ul class=\"warnings\">\n",
+                     w.size(), w.size() == 1 ? "" : "s");
+    for (std::size_t i = 0; i < w.size() && i < kShown; ++i) o += fmt::format("<li>{}</li>\n", escape(w[i].get<std::string>()));
+    o += "</ul>\n";
+    if (w.size() > kShown) {
+      o += fmt::format("<details><summary>the other {}</summary>\n<ul class=\"warnings\">\n", w.size() - kShown);
+      for (std::size_t i = kShown; i < w.size(); ++i) o += fmt::format("<li>{}</li>\n", escape(w[i].get<std::string>()));
+      o += "</ul></details>\n";
+    }
+    o += "</section>\n";
+  }
   o += fmt::format(
       "<p>{} assessments of {} each (Saltelli scheme, {} base draws{}; common random numbers, seed {}). "
       "Inputs{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th><th>distribution</th>"
@@ -179,11 +194,6 @@ std::string uncertainty_html(const json& j) {
       j["default_inputs"].get<bool>() ? (field ? " (j232's default set of a field's estimated inputs: the scenario has no [uncertainty])"
                                                 : " (j232's default set of estimated inputs: the scenario has no [uncertainty])")
                                       : "");
-  if (j.contains("warnings") && !j["warnings"].empty()) {
-    o += "<p><strong>Before trusting every draw, note:</strong></p>\n<ul class=\"warnings\">\n";
-    for (const auto& w : j["warnings"]) o += fmt::format("<li>{}</li>\n", escape(w.get<std::string>()));
-    o += "</ul>\n";
-  }
   const auto& inputs = j["inputs"];
   for (std::size_t i = 0; i < inputs.size(); ++i)
     o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", i + 1,

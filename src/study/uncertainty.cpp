@@ -41,21 +41,6 @@ Written split(const std::string& text, const std::string& file, std::optional<in
   w.unit.erase(0, w.unit.find_first_not_of(' '));
   return w;
 }
-// "restitution = 0.62, crush_depth = 1.2": a draw's inputs, as numbers written in the
-// inputs' units.
-std::string draw_inputs(const UncertaintyPlan& plan, const std::vector<double>& values) {
-  std::string out;
-  for (std::size_t i = 0; i < plan.inputs.size() && i < values.size(); ++i) {
-    const auto& choices = plan.inputs[i].values;
-    if (!choices.empty())
-      out += fmt::format("{}{} = {}", i ? ", " : "", plan.inputs[i].parameter, choices[std::min(choices.size() - 1, static_cast<std::size_t>(values[i]))]);
-    else
-      out += fmt::format("{}{} = {:.4g}", i ? ", " : "", plan.inputs[i].parameter, values[i]);
-  }
-  return out;
-}
-
-
 // The limit that cut off the most (0, none, when none was cut off).
 int commonest_cut_off(const std::array<std::uint64_t, flight::kCutOffReasons>& by) {
   int most = 0;
@@ -153,6 +138,28 @@ std::string cannot_vary(const std::string& key, bool field) {
 }
 
 }  // namespace
+
+// "restitution = 0.62, crush_depth = 1.2 mm": a draw's inputs, as numbers with the units
+// their ranges were written in.
+std::string draw_inputs(const UncertaintyPlan& plan, const std::vector<double>& values) {
+  std::string out;
+  for (std::size_t i = 0; i < plan.inputs.size() && i < values.size(); ++i) {
+    const auto& choices = plan.inputs[i].values;
+    if (!choices.empty()) {
+      out += fmt::format("{}{} = {}", i ? ", " : "", plan.inputs[i].parameter, choices[std::min(choices.size() - 1, static_cast<std::size_t>(values[i]))]);
+    } else {
+      std::string unit;
+      try {
+        unit = split(plan.inputs[i].low, "", std::nullopt, plan.inputs[i].parameter).unit;
+      } catch (const InputError&) {
+        // (the plan was checked when read: never here)
+      }
+      out += fmt::format("{}{} = {:.4g}{}{}", i ? ", " : "", plan.inputs[i].parameter, values[i], unit.empty() ? "" : " ", unit);
+    }
+  }
+  return out;
+}
+
 
 std::vector<UqOutput> uq_outputs(const scenario::Scenario& s) {
   using Scale = UqOutput::Scale;

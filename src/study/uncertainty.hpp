@@ -30,6 +30,10 @@ struct UncertaintyPlan {
   long long objects = 0;  // a field scenario's objects per assessment (0: not a field)
 };
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s);
+// "restitution = 0.62, crush_depth = 1.2 mm": a draw's inputs (`values`, one per input of the
+// plan; a discrete input's index into its values), each number with the unit its range was
+// written in, as warnings and refusals name a draw.
+std::string draw_inputs(const UncertaintyPlan& plan, const std::vector<double>& values);
 
 // An output judged at each draw: its uq.json key, its name on the page and how it is shown.
 struct UqOutput {
