@@ -65,7 +65,7 @@ Validity check_validity(const Assessment& a, const scenario::Scenario& s) {
 }
 
 std::vector<std::string> warnings(const Assessment& a, const scenario::Scenario& s, const Validity& validity) {
-  std::vector<std::string> w;
+  std::vector<std::string> w = s.notes;  // what the reader noticed in the file
   const std::uint64_t cut = a.fates[static_cast<std::size_t>(flight::Fate::CutOff)];
   const double share = a.struck ? static_cast<double>(cut) / static_cast<double>(a.struck) : 0.0;
   if (validity.valid && share >= kWarnCutOffShare)

@@ -346,6 +346,10 @@ struct Scenario {
     std::string key, value;
   };
   std::vector<MarkedEstimate> estimates;
+  // What the reader noticed in values it accepted but a reader of the file might take
+  // otherwise (a guard named as a flap without `kind`, read as a chain curtain), each with its
+  // file, line and key: shown among a result's warnings.
+  std::vector<std::string> notes;
   std::vector<SpindleSpec> spindles = std::vector<SpindleSpec>(1);     // at least one; [blade]: one at the origin
   blade::Restitution restitution = blade::Restitution::constant(0.9);  // nail on blade
   NailSpec nail;

@@ -1,5 +1,6 @@
 // Reads a J232 assessment scenario (scenario.hpp) from TOML (scenario_reader.hpp). Every key is optional
 // except the blade; each default is the documented one (docs/model.md).
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -76,7 +77,7 @@ void refuse_with(const TableReader& t, std::initializer_list<const char*> keys, 
     if (t.has(key)) throw t.error(key, fmt::format("give either `{}` or the arc keys, not both", chosen));
 }
 
-void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry) {
+void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry, std::vector<std::string>& notes) {
   g.name = t.string_or("name", g.name, {});
   if (with_geometry) {
     if (t.has("along")) {
@@ -87,6 +88,16 @@ void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry) {
       read_arc(t, g.azimuth_from, g.azimuth_to);
     }
     g.bottom = t.quantity_or("bottom", Kind::Length, g.bottom, Range::between(0, 1));
+  }
+  // A guard named as a flap but given no kind is a chain curtain, as every guard without one
+  // is (and was before flaps existed): said, since the file reads otherwise.
+  if (!t.has("kind")) {
+    std::string lower = g.name;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower.find("flap") != std::string::npos)
+      notes.push_back(t.error("name", "named as a flap but given no `kind`: read as a chain curtain (the default); write "
+                                      "kind = \"flap\" for a solid flap, or kind = \"chains\" to say it is a curtain")
+                          .what());
   }
   const std::string kind = t.string_or("kind", "chains", {"chains", "flap"});
   g.kind = kind == "flap" ? GuardSpec::Kind::Flap : GuardSpec::Kind::Chains;
@@ -107,7 +118,7 @@ void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry) {
   g.friction = t.quantity_or("friction", Kind::Dimensionless, g.friction, Range::between(0, 2));
 }
 
-void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
+void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, std::vector<std::string>& notes) {
   // One spindle: a round deck of deck_radius. Several: the deck's outline follows their tip
   // circles at `margin`, and deck_radius has no meaning.
   h.margin = t.quantity_or("margin", Kind::Length, h.margin, Range::between(0.005, 1));
@@ -132,7 +143,7 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles) {
   std::vector<TableReader> guard_tables;  // of the guards present, in order
   for (const auto& g : all_guard_tables) {
     GuardSpec guard;
-    read_guard(g, guard, true);
+    read_guard(g, guard, true, notes);
     // A guard described but not fitted (present = false: a design without it, or an
     // uncertainty study's discrete input): checked as any other, named in the report, not built.
     if (!g.boolean_or("present", true)) {
@@ -456,7 +467,7 @@ void read_target(const TableReader& t, TargetSpec& target, double reach, double 
 }
 
 // A mesh file's path is relative to the scenario's folder (`base`).
-MeshFile read_mesh_file(const TableReader& m, const std::filesystem::path& base) {
+MeshFile read_mesh_file(const TableReader& m, const std::filesystem::path& base, std::vector<std::string>& notes) {
   MeshFile mesh;
   const std::string path = m.string_or("path", "", {});
   if (path.empty()) throw m.error("path", "missing; expected the mesh file's path (OBJ, OFF, PLY or STL)");
@@ -465,7 +476,7 @@ MeshFile read_mesh_file(const TableReader& m, const std::filesystem::path& base)
   if (label.empty()) throw m.error("label", "missing; expected one of ground, housing, deflector, guard, target, operator_zone");
   mesh.label = static_cast<MeshLabel>(std::find(kMeshLabelNames.begin(), kMeshLabelNames.end(), label) - kMeshLabelNames.begin());
   mesh.scale = m.quantity_or("scale", Kind::Dimensionless, 1.0, Range::between(1e-6, 1e3));
-  if (mesh.label == MeshLabel::Guard) read_guard(m, mesh.guard, false);
+  if (mesh.label == MeshLabel::Guard) read_guard(m, mesh.guard, false, notes);
   m.refuse_unknown_keys();
   return mesh;
 }
@@ -735,7 +746,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
     for (std::size_t k = 0; k < s.spindles.size(); ++k)
       s.feed.stations.push_back({k, std::max(0.0, s.spindles[k].blade.tip_radius() - 0.0508), 0.0});
 
-  if (auto h = root.table("housing")) read_housing(*h, s.housing, s.spindles.size() > 1);
+  if (auto h = root.table("housing")) read_housing(*h, s.housing, s.spindles.size() > 1, s.notes);
   if (s.housing.deck_radius == 0.0) s.housing.deck_radius = reach + s.housing.margin;
   if (s.housing.deck_radius <= reach)
     throw root.table("housing")->error("deck_radius", fmt::format("expected a deck wider than the blade's tip circle ({:.4g} m)", reach));
@@ -746,7 +757,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto t = root.table("target")) read_target(*t, s.target, reach, s.housing.deck_radius);
 
   const auto base = std::filesystem::path(file).parent_path();
-  for (const auto& m : root.array_of_tables("meshes", 32)) s.meshes.push_back(read_mesh_file(m, base));
+  for (const auto& m : root.array_of_tables("meshes", 32)) s.meshes.push_back(read_mesh_file(m, base, s.notes));
 
   refuse_what_meshes_replace(root, s.meshes);
 
