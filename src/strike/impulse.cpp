@@ -53,8 +53,11 @@ ImpulseSolution impulse_for(const Eigen::Matrix3d& K, const Eigen::LDLT<Eigen::M
 // grows along a unit û with friction -mu û against it, so du/dp = k_n - mu K_tt û must point
 // along +û (Stronge's consistent restart; a ray of the slip's flow). Found by scanning the
 // circle for the sign changes of û x (k_n - mu K_tt û) with û . (k_n - mu K_tt û) > 0, each
-// refined by bisection; of several (an anisotropic K_tt can have more than one), the one
-// nearest the sticking rate's opposite, which is the answer when K_tt is isotropic.
+// refined by bisection; of the roots found, the one nearest the sticking rate's opposite.
+// (For a positive definite K_tt there is exactly one outward ray, û = (lambda I + mu K_tt)^-1 k_n
+// with |û| = 1; the scan can miss it where two sign changes fall within one 5 degree cell,
+// then returning that opposite: a known flaw, CHANGELOG.md, to be replaced by a bisection on
+// lambda with regenerated reports.)
 Eigen::Vector2d restart_direction(const Eigen::Vector2d& kn, const Eigen::Matrix2d& ktt, double mu, const Eigen::Vector2d& stick_rate) {
   const double need = stick_rate.norm();
   const Eigen::Vector2d guess = need > 0 ? Eigen::Vector2d(-stick_rate / need) : Eigen::Vector2d(1, 0);
