@@ -223,6 +223,17 @@ basis = "test"
     }
 }
 
+namespace {
+// Sobol' indices of every output of a hand-made study (20 bootstrap draws).
+void index_outputs(study::UncertaintyResult& r) {
+  for (std::size_t o = 0; o < r.output_info.size(); ++o) {
+    std::vector<double> f;
+    for (const auto& out : r.outputs) f.push_back(out[o]);
+    r.indices.push_back(study::sobol_indices(r.design, f, 20, 1));
+  }
+}
+}  // namespace
+
 TEST_CASE("uncertainty: the page never calls an output the same at every draw when its table shows a spread", "[uncertainty][report]") {
   // One input, two base draws: A and B give every output the same value, one mixed draw
   // (AB_1) another. The base draws carry no variance, yet the output moves.
@@ -243,11 +254,7 @@ TEST_CASE("uncertainty: the page never calls an output the same at every draw wh
     out[0] = v, out[1] = 0.25;
     r.outputs.push_back(out);
   }
-  for (std::size_t o = 0; o < r.output_info.size(); ++o) {
-    std::vector<double> f;
-    for (const auto& out : r.outputs) f.push_back(out[o]);
-    r.indices.push_back(study::sobol_indices(r.design, f, 20, 1));
-  }
+  index_outputs(r);
   REQUIRE(r.indices[0].variance == 0.0);
   const std::string html = report::uncertainty_html(report::uncertainty_json(r));
   CHECK_THAT(html, Catch::Contains("P(pass one test): the same at every base draw (A and B)"));
@@ -274,11 +281,7 @@ TEST_CASE("uncertainty: warnings come after the verdict, counted, the first few 
     out[0] = run[0];
     r.outputs.push_back(out);
   }
-  for (std::size_t o = 0; o < r.output_info.size(); ++o) {
-    std::vector<double> f;
-    for (const auto& out : r.outputs) f.push_back(out[o]);
-    r.indices.push_back(study::sobol_indices(r.design, f, 20, 1));
-  }
+  index_outputs(r);
   for (int k = 1; k <= 28; ++k) r.warnings.push_back(fmt::format("draw {}: warning number {}", k, k));
   const std::string html = report::uncertainty_html(report::uncertainty_json(r));
   CHECK_THAT(html, Catch::Contains("note (28 warnings):"));
