@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "invariant/check.hpp"
+
 namespace j232::strike {
 
 namespace {
@@ -51,42 +53,26 @@ ImpulseSolution impulse_for(const Eigen::Matrix3d& K, const Eigen::LDLT<Eigen::M
 
 // The direction a slip starting from rest takes when friction cannot hold the contact: u
 // grows along a unit û with friction -mu û against it, so du/dp = k_n - mu K_tt û must point
-// along +û (Stronge's consistent restart; a ray of the slip's flow). Found by scanning the
-// circle for the sign changes of û x (k_n - mu K_tt û) with û . (k_n - mu K_tt û) > 0, each
-// refined by bisection; of the roots found, the one nearest the sticking rate's opposite.
-// (For a positive definite K_tt there is exactly one outward ray, û = (lambda I + mu K_tt)^-1 k_n
-// with |û| = 1; the scan can miss it where two sign changes fall within one 5 degree cell,
-// then returning that opposite: a known flaw, CHANGELOG.md, to be replaced by a bisection on
-// lambda with regenerated reports.)
+// along +û (Stronge's consistent restart; a ray of the slip's flow): k_n - mu K_tt û = lambda û
+// with lambda > 0, that is û = (lambda I + mu K_tt)^-1 k_n with |û| = 1. For K_tt positive
+// definite (a principal block of a compliance) |û(lambda)| falls strictly as lambda grows, from
+// |K_tt^-1 k_n| / mu > 1 at lambda = 0 (friction cannot hold) to below 1 at lambda = |k_n|: one
+// outward ray, found by bisection on lambda.
 Eigen::Vector2d restart_direction(const Eigen::Vector2d& kn, const Eigen::Matrix2d& ktt, double mu, const Eigen::Vector2d& stick_rate) {
-  const double need = stick_rate.norm();
-  const Eigen::Vector2d guess = need > 0 ? Eigen::Vector2d(-stick_rate / need) : Eigen::Vector2d(1, 0);
-  const auto dir = [](double a) { return Eigen::Vector2d(std::cos(a), std::sin(a)); };
-  const auto turn = [&](double a) {  // û x du/dp: zero on a ray
-    const Eigen::Vector2d u = dir(a), g = kn - mu * (ktt * u);
-    return u.x() * g.y() - u.y() * g.x();
+  const auto along = [&](double lambda) -> Eigen::Vector2d {  // (lambda I + mu K_tt)^-1 k_n, explicit 2x2 inverse
+    const double a = lambda + mu * ktt(0, 0), b = mu * ktt(0, 1), c = mu * ktt(1, 0), d = lambda + mu * ktt(1, 1);
+    return Eigen::Vector2d(d * kn.x() - b * kn.y(), a * kn.y() - c * kn.x()) / (a * d - b * c);
   };
-  const auto grows = [&](double a) { return dir(a).dot(kn - mu * (ktt * dir(a))) > 0; };
-  constexpr int kScan = 72;
-  const double step = 2 * M_PI / kScan, start = std::atan2(guess.y(), guess.x());
-  Eigen::Vector2d best = guess;
-  double best_fit = -HUGE_VAL;
-  double a0 = start, h0 = turn(a0);
-  for (int i = 1; i <= kScan; ++i) {
-    const double a1 = start + i * step, h1 = turn(a1);
-    if ((h0 <= 0) != (h1 <= 0) || h0 == 0) {
-      double lo = a0, hi = a1, h_lo = h0;
-      for (int k = 0; k < 60 && h_lo != 0; ++k) {
-        const double mid = 0.5 * (lo + hi), h_mid = turn(mid);
-        if ((h_mid <= 0) == (h_lo <= 0)) lo = mid, h_lo = h_mid;
-        else hi = mid;
-      }
-      const double a = h_lo == 0 ? lo : 0.5 * (lo + hi);
-      if (grows(a) && dir(a).dot(guess) > best_fit) best = dir(a), best_fit = dir(a).dot(guess);
-    }
-    a0 = a1, h0 = h1;
+  double lo = 0, hi = kn.norm();
+  if (!(hi > 0 && mu > 0)) {  // no drive along the tangent: any direction is a ray; opposite the sticking rate's
+    const double need = stick_rate.norm();
+    return need > 0 ? Eigen::Vector2d(-stick_rate / need) : Eigen::Vector2d(1, 0);
   }
-  return best;
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (along(mid).norm() > 1 ? lo : hi) = mid;
+  }
+  return along(0.5 * (lo + hi)).normalized();
 }
 
 ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu,
@@ -141,6 +127,14 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
     }
     if (!restart_found) restart = restart_direction(kn, ktt, mu, stick_rate), restart_found = true;
     return Eigen::Vector2d(-mu * restart);
+  };
+  // A slip taken as stopped (within a stop's tolerance of zero) is brought to zero by the
+  // tangential impulse that does it, K_tt^-1 times it, with the normal velocity that brings,
+  // so the tracked velocities stay those of the impulse so far: a remainder merely dropped
+  // would leave friction acting on a slip that is not there, which can create energy.
+  const auto settle = [&]() {
+    const Eigen::Vector2d stop = -(ktt_inv * u);
+    pt += stop, vn += kn.dot(stop), u.setZero();
   };
   constexpr double kSlipTurn = 0.005;  // rad per step
   const double p_scale = -vn / knn;   // the frictionless compression
@@ -204,7 +198,12 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
         for (int k = 0; k < 3; ++k) ray -= turn_rate(ray) / slope;
         // (A ray found near, and truly one: else the direction is left as it is.)
         if (std::abs(ray - a) < kFastTurn && std::abs(turn_rate(ray)) <= 1e-9 * std::abs(h) + 1e-12 * k1.du.norm()) {
-          u = speed * Eigen::Vector2d(std::cos(ray), std::sin(ray));
+          // The transient's friction, across the ray, is what turned the slip onto it: the
+          // tangential impulse that makes that turn, K_tt^-1 times it, with the normal
+          // velocity it brings (below 1e-6 of the impulse's scale, by the condition above).
+          const Eigen::Vector2d onto = speed * Eigen::Vector2d(std::cos(ray), std::sin(ray));
+          const Eigen::Vector2d turn_impulse = ktt_inv * (onto - u);
+          pt += turn_impulse, vn += kn.dot(turn_impulse), u = onto;
           k1 = at(u);
           limit = step_limit(k1, true);
           on_ray = true;
@@ -244,8 +243,10 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
       const Rate k4 = at(u + dp * k3.du);
       const Eigen::Vector2d u_next = u + (dp / 6) * (k1.du + 2 * k2.du + 2 * k3.du + k4.du);
       const double vn_next = vn + (dp / 6) * (k1.dvn + 2 * k2.dvn + 2 * k3.dvn + k4.dvn);
-      // The work, v_n integrated along p: Simpson's rule on the stages' normal velocities.
-      const double vn_mid = vn + 0.25 * dp * (k2.dvn + k3.dvn);
+      // The work, v_n integrated along p: Simpson's rule on v_n at the step's start, middle and
+      // end, v_n at the middle from the quadratic through the stages' rates (k1 at the start,
+      // k2 and k3 at the middle, k4 at the end) integrated over the first half.
+      const double vn_mid = vn + (dp / 24) * (5 * k1.dvn + 4 * k2.dvn + 4 * k3.dvn - k4.dvn);
       const double w = (dp / 6) * (vn + 4 * vn_mid + vn_next);
       // The slip must stay clear of zero, and the normal approach must not jam.
       if (!(u_next.dot(u) > 0 && u_next.norm() > 0.25 * speed)) return Fast::No;
@@ -267,15 +268,25 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
       sticking = false;
       if (!aimed) return Fast::Stepped;
       if (compressing) {
-        vn = 0, compressing = false;
+        vn = std::max(vn, 0.0), compressing = false;
         return e > 0 ? Fast::Compressed : Fast::Done;
       }
       return Fast::Done;
     }
     return Fast::No;
   };
-  for (int it = 0; it < 100000; ++it) {
-    if (mu > 0 && u.norm() <= u_stopped && u.norm() > u_tiny) u.setZero();
+  // (Each step ends at an event or turns the slip by a set angle: a few tens of steps a
+  // contact, 8 on average over the shipped scenarios; the cap is a guard, checked.)
+  constexpr int kStepCap = 100000;
+  int steps = 0;
+  for (; steps < kStepCap; ++steps) {
+    if (mu > 0 && u.norm() <= u_stopped && u.norm() > u_tiny) {
+      settle();
+      if (compressing && vn >= 0) {  // the stop's normal velocity ended the compression
+        vn = std::max(vn, 0.0), compressing = false;
+        if (!(e > 0)) break;
+      }
+    }
     if (mu > 0 && u.norm() > u_tiny) {
       const Fast fast = fast_step();
       if (fast == Fast::Done) break;
@@ -283,8 +294,11 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
     }
     bool holds;
     Eigen::Vector2d f = rate(u, holds);
-    // Friction that would stop the normal approach from ever ending (a jam): frictionless.
-    if (compressing && !(knn + kn.dot(f) > 0)) f.setZero(), holds = false;
+    // Friction that would keep the normal velocity from ever growing (Painleve's jam, in either
+    // phase: the approach would never end, or the restitution's work never be reached):
+    // frictionless instead.
+    const auto jams = [&](const Eigen::Vector2d& rate_f) { return !(knn + kn.dot(rate_f) > 0); };
+    if (jams(f)) f.setZero(), holds = false;
     double dp = 4 * p_scale * (1 + e);
     bool halts = false;
     if (mu > 0 && !holds && u.norm() > u_tiny) {
@@ -313,7 +327,7 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
       halting(f);
       bool mid_holds;
       const Eigen::Vector2d mid = rate(u + 0.5 * dp * du, mid_holds);
-      if (!mid_holds && mid.dot(f) > 0) {
+      if (!mid_holds && mid.dot(f) > 0 && !jams(mid)) {
         f = mid;
         halts = false;
         halting(f);
@@ -337,18 +351,16 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
     (compressing ? work_compression : work_restitution) += w;
     const Eigen::Vector2d du = kn + ktt * f;
     const double vn_next = vn + dvn * dp;
-    p += dp, pt += f * dp, u += du * dp;
+    p += dp, pt += f * dp, u += du * dp, vn = vn_next;
     sticking = holds;
-    if (holds || halts) u.setZero();
-    if (compressing && vn_next >= -1e-15 * std::abs(v_rel.dot(n))) {
-      vn = 0, compressing = false;
+    if (holds || halts || (u.norm() <= u_tiny && !last)) settle();
+    if (compressing && vn >= -1e-15 * approach) {
+      vn = std::max(vn, 0.0), compressing = false;
       if (!(e > 0)) break;
-    } else {
-      vn = vn_next;
     }
     if (!compressing && (last || e * e * -work_compression - work_restitution <= 0)) break;
-    if (u.norm() <= u_tiny) u.setZero();
   }
+  J232_CHECK(steps < kStepCap);
   out.impulse = p * n + pt.x() * t1 + pt.y() * t2;
   out.sticking = sticking;
   out.energy_change = energy_change(K, v_rel, out.impulse);
