@@ -675,3 +675,18 @@ TEST_CASE("warnings: a blade faster than 100 m/s at the tip is called unusual, n
   REQUIRE(sum.warnings.size() == 1);
   CHECK(sum.warnings[0].find("unusual") != std::string::npos);
 }
+
+TEST_CASE("result files: JSON numbers are written without binary noise, and rewriting changes nothing", "[report]") {
+  nlohmann::ordered_json j;
+  j["thirty"] = 0.1 * 300;              // 30.000000000000004 in binary arithmetic
+  j["sum"] = 0.1 + 0.2;                 // 0.30000000000000004
+  j["tiny"] = 3e-76 * (1 + 1e-15);      // a relative change far below 1e-12 goes, the scale stays
+  j["list"] = {1.0 / 3.0, 29.999999999999996, -2.5e-300};
+  j["count"] = 1234567890123456789ULL;  // integers are not rounded
+  j["text"] = "0.30000000000000004";    // nor strings
+  const std::string text = report::json_text(j, -1);
+  CHECK(text ==
+        R"({"thirty":30.0,"sum":0.3,"tiny":3e-76,"list":[0.333333333333,30.0,-2.5e-300],"count":1234567890123456789,"text":"0.30000000000000004"})");
+  // Read back and written again: the same text.
+  CHECK(report::json_text(nlohmann::ordered_json::parse(text), -1) == text);
+}

@@ -86,6 +86,19 @@ TEST_CASE("uncertainty: bad inputs are refused with the key and what was expecte
   CHECK_THROWS_AS(scenario::read_scenario(
                       with_uncertainty("uq-bad4.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"x\"\nlow = 1\nhigh = 2\n")),
                   scenario::InputError);  // no basis
+  // A drawn value the scenario's reader refuses is blamed on the input that draws it (file,
+  // line and input), not on the command line.
+  const std::string drawn = with_uncertainty(
+      "uq-bad5.toml", "[uncertainty]\n[[uncertainty.inputs]]\nparameter = \"restitution.e\"\nlow = 0.5\nhigh = 1.5\nbasis = \"x\"\n");
+  try {
+    study::run_uncertainty(drawn, 1);
+    FAIL("a drawn restitution of 1.5 was accepted");
+  } catch (const scenario::InputError& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK_THAT(what, Contains("uq-bad5.toml:") && Contains("(uncertainty.inputs[1])") && Contains("restitution.e = 1.5") &&
+                         !Contains("command line"));
+  }
 }
 
 TEST_CASE("uncertainty: a discrete input takes each of its values, equally often, and is ranked like any other", "[uncertainty][discrete][long]") {

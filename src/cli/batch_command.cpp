@@ -18,6 +18,7 @@
 #include "report/text_safety.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::cli {
 namespace {
@@ -154,13 +155,13 @@ int batch(const BatchOptions& given) {
       comparison = report::comparison_json(c);
       report::write_atomically(out.staged("compare.csv"), report::comparison_csv(c));
       report::write_atomically(out.staged("compare.html"), report::comparison_html(comparison));
-      report::write_atomically(out.staged("compare.json"), comparison.dump(2) + "\n");
+      report::write_atomically(out.staged("compare.json"), report::json_text(comparison) + "\n");
     }
   }
   const json summary = report::batch_summary_json(rows, comparison);
   report::write_atomically(out.staged("summary.csv"), report::batch_summary_csv(rows));
   report::write_atomically(out.staged("summary.html"), report::batch_summary_html(rows, comparison));
-  report::write_atomically(out.staged("summary.json"), summary.dump(2) + "\n");
+  report::write_atomically(out.staged("summary.json"), report::json_text(summary) + "\n");
   out.commit();
   fmt::print("{} of {} scenarios pass, {} fail, {} invalid, {} refused{}. Wrote {}/summary.html, summary.json and summary.csv{}\n",
              summary["passed"].get<std::size_t>(), rows.size(), summary["failed"].get<std::size_t>(), summary["invalid"].get<std::size_t>(),

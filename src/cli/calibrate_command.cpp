@@ -11,6 +11,7 @@
 #include "report/calibration_files.hpp"
 #include "scenario/input_error.hpp"
 #include "study/calibration.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::cli {
 namespace {
@@ -29,7 +30,7 @@ int calibrate(const CalibrateOptions& o) {
     fmt::print("{}", report::drop_test_table(drops, r));
     if (!o.out.empty()) {
       report::OutputFolder out(o.out, {"drop-test.json"});
-      report::write_atomically(out.staged("drop-test.json"), report::drop_test_json(drops, r).dump(2) + "\n");
+      report::write_atomically(out.staged("drop-test.json"), report::json_text(report::drop_test_json(drops, r)) + "\n");
       out.commit();
       fmt::print("Wrote {}/drop-test.json\n", o.out);
     }
@@ -43,7 +44,7 @@ int calibrate(const CalibrateOptions& o) {
     report::OutputFolder out(o.out, {"calibrate.csv", "restitution.toml", "calibrate.json"});
     report::write_atomically(out.staged("calibrate.csv"), report::calibration_csv(r));
     report::write_atomically(out.staged("restitution.toml"), report::calibration_toml(r));
-    report::write_atomically(out.staged("calibrate.json"), report::calibration_json(r).dump(2) + "\n");
+    report::write_atomically(out.staged("calibrate.json"), report::json_text(report::calibration_json(r)) + "\n");
     out.commit();
     fmt::print("Wrote {0}/calibrate.json, {0}/calibrate.csv and {0}/restitution.toml (the law for a scenario and for `j232 uq`)\n", o.out);
   }

@@ -15,6 +15,7 @@
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "study/compare.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::cli {
 namespace {
@@ -44,7 +45,7 @@ int compare_fields(const CompareOptions& o, std::vector<scenario::Scenario>& des
   const auto j = report::hazard_comparison_json(c);
   report::write_atomically(out.staged("compare.csv"), report::hazard_comparison_csv(c));
   report::write_atomically(out.staged("compare.html"), report::hazard_comparison_html(c));
-  report::write_atomically(out.staged("compare.json"), j.dump(2) + "\n");
+  report::write_atomically(out.staged("compare.json"), report::json_text(j) + "\n");
   out.commit();
   fmt::print("{}", terminal_safe(report::hazard_comparison_text(c)));
   fmt::print("Wrote {}/compare.html, compare.json and compare.csv\n", terminal_safe(o.out));
@@ -77,7 +78,7 @@ int compare(const CompareOptions& o) {
   const auto j = report::comparison_json(c);
   report::write_atomically(out.staged("compare.csv"), report::comparison_csv(c));
   report::write_atomically(out.staged("compare.html"), report::comparison_html(j));
-  report::write_atomically(out.staged("compare.json"), j.dump(2) + "\n");
+  report::write_atomically(out.staged("compare.json"), report::json_text(j) + "\n");
   out.commit();
   fmt::print("{}", report::comparison_text(c));
   fmt::print("Wrote {}/compare.html, compare.json and compare.csv\n", terminal_safe(o.out));

@@ -13,6 +13,7 @@
 #include "scenario/impact_input.hpp"
 #include "scenario/toml_override.hpp"
 #include "scenario/toml_reader.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::cli {
 namespace {
@@ -64,7 +65,7 @@ int run_impact(const ImpactOptions& o) {
     throw scenario::InputError(source, std::nullopt, "object", "", e.what());
   }
   if (o.json)
-    fmt::print("{}\n", report::impact_json(input, solution).dump(2));
+    fmt::print("{}\n", report::json_text(report::impact_json(input, solution)));
   else
     fmt::print("{}", report::impact_table(input, solution));
   return kOk;

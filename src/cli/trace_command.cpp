@@ -23,6 +23,7 @@
 #include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "units/quantity.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::cli {
 namespace {
@@ -234,7 +235,7 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
     nlohmann::json j{{"program", "j232 trace"}, {"scenario", s.title}, {"seed", s.run.seed}, {"object", index},
                      {"fate", field::object_fate_name(out.fate)}, {"events", nlohmann::json::array()}};
     for (const auto& ev : events) j["events"].push_back(event_json(ev));
-    report::write_atomically(o.json, j.dump(1) + "\n");
+    report::write_atomically(o.json, report::json_text(j, 1) + "\n");
     fmt::print("wrote {}\n", o.json);
   }
   return kOk;
@@ -309,7 +310,7 @@ int run(const TraceOptions& o) {
                      {"fate", flight::fate_name(f.fate)},
                      {"events", nlohmann::json::array()}};
     for (const auto& e : r.events) j["events"].push_back(event_json(e));
-    report::write_atomically(o.json, j.dump(1) + "\n");
+    report::write_atomically(o.json, report::json_text(j, 1) + "\n");
     fmt::print("wrote {}\n", o.json);
   }
   return kOk;

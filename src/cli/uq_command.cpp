@@ -20,6 +20,7 @@
 #include "report/text_safety.hpp"
 #include "report/uncertainty_report.hpp"
 #include "study/uncertainty.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::cli {
 namespace {
@@ -129,7 +130,7 @@ int uq(const UqOptions& o) {
   const auto j = report::uncertainty_json(r);
   report::write_atomically(out.staged("uq.csv"), report::uncertainty_csv(r));
   report::write_atomically(out.staged("uq.html"), report::uncertainty_html(j));
-  report::write_atomically(out.staged("uq.json"), j.dump(2) + "\n");
+  report::write_atomically(out.staged("uq.json"), report::json_text(j) + "\n");
   out.commit();
   journal.remove();
   fmt::print("{}\n{} inputs{}, {} assessments of {}\n", terminal_safe(r.title), r.plan.inputs.size(),

@@ -160,7 +160,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
     const auto uq = uncertainty_json(study);
     write_atomically(folder.staged("uq.csv"), uncertainty_csv(study));
     write_atomically(folder.staged("uq.html"), uncertainty_html(uq));
-    write_atomically(folder.staged("uq.json"), uq.dump(2) + "\n");
+    write_atomically(folder.staged("uq.json"), json_text(uq) + "\n");
     outcome.result["uncertainty"] = uncertainty_summary_json(uq);
     outcome.summary_text += uncertainty_summary_text(outcome.result["uncertainty"]);
   }
@@ -178,7 +178,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
     outcome.result["provenance"]["files"].push_back({{"name", "scene.html"}, {"bytes", page.size()}, {"fnv1a64", page_digest.hex()}});
     write_atomically(folder.staged("scene.html"), page);
   }
-  write_atomically(folder.staged("result.json"), outcome.result.dump(2) + "\n");
+  write_atomically(folder.staged("result.json"), json_text(outcome.result) + "\n");
   folder.commit();
   if (recorder) outcome.design = std::move(*recorder).finish(s, a, &sum);
   return outcome;

@@ -11,6 +11,7 @@
 #include "report/output_folder.hpp"
 #include "report/terminal_progress.hpp"
 #include "scenario/scenario_reader.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::report {
 
@@ -36,7 +37,7 @@ HazardOutcome hazard_to_folder(const std::string& scenario_file, const HazardOve
   outcome.result = hazard_json(sim, run, sum, p);
   write_atomically(folder->staged("hazard.csv"), hazard_csv(sum));
   write_atomically(folder->staged("hazard.html"), hazard_html(sim, run, sum, outcome.result));
-  write_atomically(folder->staged("hazard.json"), outcome.result.dump(2) + "\n");
+  write_atomically(folder->staged("hazard.json"), json_text(outcome.result) + "\n");
   folder->commit();
   outcome.valid = sum.valid;
   outcome.summary_text = fmt::format("{}: thrown-object hazard in the field\n{}", s.title, hazard_text(sum));

@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "report/svg_chart.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::report {
 
@@ -59,7 +60,7 @@ std::string number(const std::string& key, const nlohmann::ordered_json& value, 
     shown = fmt::format(fmt::runtime(format), value.get<double>() * scale);
   else
     shown = value.is_string() ? value.get<std::string>() : value.dump();
-  return fmt::format("<span data-key=\"{}\" data-value=\"{}\" data-scale=\"{:g}\">{}</span>", escape(key), escape(value.dump()), scale,
+  return fmt::format("<span data-key=\"{}\" data-value=\"{}\" data-scale=\"{:g}\">{}</span>", escape(key), escape(json_text(value, -1)), scale,
                      escape(shown));
 }
 

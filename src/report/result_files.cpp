@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fmt/format.h>
 #include <stdexcept>
 
@@ -323,6 +325,30 @@ const char* verdict_word(const assess::Summary& sum) {
   if (!sum.validity.valid) return "invalid";
   return sum.passes ? "passes" : "fails";
 }
+
+namespace {
+template <class Json>
+void round_numbers(Json& j) {
+  if (j.is_number_float()) {
+    const double x = j.template get<double>();
+    if (std::isfinite(x) && x != 0) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.12g", x);
+      j = std::strtod(text, nullptr);
+    }
+  } else if (j.is_structured()) {
+    for (auto& v : j) round_numbers(v);
+  }
+}
+template <class Json>
+std::string rounded_text(Json j, int indent) {
+  round_numbers(j);
+  return j.dump(indent);
+}
+}  // namespace
+
+std::string json_text(const nlohmann::json& j, int indent) { return rounded_text(j, indent); }
+std::string json_text(const nlohmann::ordered_json& j, int indent) { return rounded_text(j, indent); }
 
 void require_finite(const json& j, const std::string& where) {
   if (j.is_number_float() && !std::isfinite(j.get<double>()))

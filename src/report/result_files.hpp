@@ -34,6 +34,14 @@ std::vector<std::string> departures_from_j232(const scenario::Scenario& s);
 // The verdict word of a run: "passes", "fails", or "invalid" (the test did not happen).
 const char* verdict_word(const assess::Summary& sum);
 
+// The text of a JSON file j232 writes (or a page embeds): every real number rounded to 12
+// significant digits, then written in its shortest round-trip form, so a length of 30 reads
+// 30 and not 29.999999999999996 (binary noise of the arithmetic that made it); indented by
+// `indent` (-1: on one line). Rounding twice changes nothing, so a result read back and
+// written again is the same text.
+std::string json_text(const nlohmann::json& j, int indent = 2);
+std::string json_text(const nlohmann::ordered_json& j, int indent = 2);
+
 // Throws std::logic_error naming the first non-finite number in `j` (a bug: every
 // number a result holds must be finite).
 void require_finite(const nlohmann::ordered_json& j, const std::string& where = "");

@@ -13,6 +13,7 @@
 
 #include "report/svg_chart.hpp"
 #include "scene/scene.hpp"
+#include "report/result_files.hpp"
 
 namespace j232::report {
 
@@ -391,7 +392,7 @@ std::string scene_view_html(const scenario::Scenario& s, const scene::Soup& soup
   const std::string orbit = read_text(dir + "/examples/js/controls/OrbitControls.js");
   // The data sits in a JSON script block, made inert there: no name a user gave (a guard's,
   // the title) can close the block or open a comment in it.
-  const std::string data = script_safe_json(scene_data(s, soup, guards, lines, paths).dump());
+  const std::string data = script_safe_json(json_text(scene_data(s, soup, guards, lines, paths), -1));
   std::string page;
   page.reserve(three.size() + orbit.size() + data.size() + 8192);
   page += fmt::format(R"(<!DOCTYPE html>

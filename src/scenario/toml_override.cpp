@@ -1,6 +1,7 @@
 #include "scenario/toml_override.hpp"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <optional>
 
@@ -10,12 +11,16 @@ namespace j232::scenario {
 
 namespace {
 
-void put(toml::table& table, const std::string& leaf, const std::string& value) {
+// The value parsed with `origin` as its source path, so an error about it names where it
+// came from (the readers tell it from the file's own values by that path).
+void put(toml::table& table, const std::string& leaf, const std::string& value, const std::string& origin) {
   try {
-    toml::table parsed = toml::parse("v = " + value);
+    toml::table parsed = toml::parse("v = " + value, origin);
     table.insert_or_assign(leaf, std::move(*parsed.get("v")));
   } catch (const toml::parse_error&) {
-    table.insert_or_assign(leaf, value);
+    // Not a TOML value: the text as a string (a TOML basic string, escaped as JSON escapes it).
+    toml::table parsed = toml::parse("v = " + nlohmann::json(value).dump(-1, ' ', true), origin);
+    table.insert_or_assign(leaf, std::move(*parsed.get("v")));
   }
 }
 
@@ -39,7 +44,7 @@ void set_in(toml::table& table, std::size_t start, const std::string& full, cons
   }
   if (part.empty()) throw InputError("", std::nullopt, origin, full, "expected a dotted key such as blade.speed");
   if (dot == std::string::npos) {
-    put(table, part, value);
+    put(table, part, value, origin);
     return;
   }
   if (element) {

@@ -32,19 +32,39 @@ std::vector<std::string> TableReader::keys() const {
   return out;
 }
 
+namespace {
+// Where a value came from when not from the file being read: set_key stores the value's
+// origin as its source path ("--set" for a command-line option, the study input that drew
+// it for a sweep or uq draw); a node with no source at all came from an option too.
+struct Origin {
+  bool from_file = true, command_line = false;
+  std::string name;  // the origin's name, when neither the file nor the command line
+};
+Origin origin_of(const toml::node& n, const std::string& file) {
+  const auto& path = n.source().path;
+  if (!path || *path == "--set") return {false, true, {}};
+  if (*path == file) return {};
+  return {false, false, *path};
+}
+}  // namespace
+
 std::optional<int> TableReader::line_of(std::string_view key) const {
-  if (const toml::node* n = table_->get(key)) return static_cast<int>(n->source().begin.line);
+  if (const toml::node* n = table_->get(key)) {
+    if (!origin_of(*n, file_).from_file) return std::nullopt;
+    return static_cast<int>(n->source().begin.line);
+  }
   if (table_->source().begin.line > 0) return static_cast<int>(table_->source().begin.line);
   return std::nullopt;
 }
 
 InputError TableReader::error(std::string_view key, std::string expected) const {
   const toml::node* n = table_->get(key);
-  // Values set from command-line options carry no source position: blame the command line.
-  const bool from_command_line = n && !n->source().path;
-  return InputError(from_command_line ? std::string() : file_, from_command_line ? std::nullopt : line_of(key),
-                    from_command_line ? fmt::format("option for {}", full(key)) : full(key), n ? shown(*n) : std::string(),
-                    std::move(expected));
+  // A value set by a command-line option blames the command line; one a study set (a sweep's
+  // point, a uq draw), the study input that set it; else the file and line.
+  const Origin origin = n ? origin_of(*n, file_) : Origin{};
+  if (origin.command_line) return InputError("", std::nullopt, fmt::format("option for {}", full(key)), shown(*n), std::move(expected));
+  if (!origin.from_file) return InputError(origin.name, std::nullopt, full(key), shown(*n), std::move(expected));
+  return InputError(file_, line_of(key), full(key), n ? shown(*n) : std::string(), std::move(expected));
 }
 
 // The value as the user wrote it: strings in double quotes, numbers in shortest form.
@@ -277,13 +297,15 @@ void TableReader::refuse_unknown_keys() const {
     if (used_->count(k.str())) continue;
     std::string known;
     for (const auto& u : *used_) known += (known.empty() ? "" : ", ") + u;
-    // A key set from the command line (--set) has no place in the file: blame the option.
-    const bool from_command_line = !v.source().path;
-    throw InputError(
-        from_command_line ? std::string() : file_,
-        from_command_line ? std::nullopt : std::optional<int>(static_cast<int>(v.source().begin.line)),
-        from_command_line ? fmt::format("option for {}", full(k.str())) : full(k.str()), "",
-        known.empty() ? std::string("unknown key (this table takes no keys)") : fmt::format("unknown key; this table takes: {}", known));
+    // A key set from the command line (--set) or by a study has no place in the file: blame
+    // the option or the study.
+    const Origin origin = origin_of(v, file_);
+    std::string expected =
+        known.empty() ? std::string("unknown key (this table takes no keys)") : fmt::format("unknown key; this table takes: {}", known);
+    if (origin.command_line) throw InputError("", std::nullopt, fmt::format("option for {}", full(k.str())), "", std::move(expected));
+    throw InputError(origin.from_file ? file_ : origin.name,
+                     origin.from_file ? std::optional<int>(static_cast<int>(v.source().begin.line)) : std::nullopt, full(k.str()), "",
+                     std::move(expected));
   }
 }
 

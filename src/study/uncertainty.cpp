@@ -21,6 +21,12 @@
 namespace j232::study {
 
 namespace {
+// The origin a drawn value carries into the scenario's reader, so an error about it names
+// the study input that drew it ("file:line (uncertainty.inputs[2])"), not the scenario's key.
+std::string drawn_by(const std::string& file, const scenario::UncertainInput& in, const std::string& input) {
+  return in.line ? fmt::format("{}:{} ({})", file, *in.line, input) : fmt::format("{} ({})", file, input);
+}
+
 using scenario::InputError;
 using scenario::UncertainInput;
 
@@ -369,7 +375,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     const auto check_value = [&](const std::string& text, const std::string& where) {
       const Setting setting = make_setting(info.back(), text, file, in.line, where);
       toml::table doc = base;
-      apply_to_document(setting, doc, file);
+      apply_to_document(setting, doc, drawn_by(file, in, where));
       auto sc = scenario::read_scenario(doc, file);
       try {
         apply(setting, sc);
@@ -434,7 +440,9 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
                                                             : fmt::format("{:.17g} {}", v, ends[i].first.unit);
       settings.push_back(make_setting(info[i], text, file, r.plan.inputs[i].line, r.plan.inputs[i].parameter));
       values.push_back(v);
-      apply_to_document(settings.back(), doc, file);
+      apply_to_document(settings.back(), doc,
+                        drawn_by(file, r.plan.inputs[i], r.plan.defaults ? fmt::format("(default) {}", r.plan.inputs[i].parameter)
+                                                                          : fmt::format("uncertainty.inputs[{}]", i + 1)));
     }
     r.values.push_back(values);
     if (journal && journal->recall)

@@ -2,7 +2,8 @@
 # outputs_check.sh J232 SOURCE_DIR WORKDIR: nothing the user made is lost or turned against
 # them. A second run into a folder that holds a result keeps the earlier one (in previous-1,
 # said so); a name written to break out of the pages' embedded data (a guard named
-# "<!--<script>]]></script>") stays inert text in scene.html and report.html.
+# "<!--<script>]]></script>") stays inert text in scene.html and report.html; numbers in the
+# JSON files carry no binary noise (no 29.999999999999996 for 30: at most 12 significant digits).
 set -euo pipefail
 exe=$1 src=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
@@ -27,4 +28,10 @@ for page in "$work/scene.html" "$work/hostile/report.html"; do
   if grep -q ']]></script>' "$page"; then fail "$page carries the name's script end unescaped"; fi
 done
 grep -q '\\u003c!--\\u003cscript' "$work/scene.html" || fail "scene.html lost the name (expected it \\u-escaped in its data)"
+# Binary noise: a real number with 13 or more significant digits (leading zeros aside).
+noisy() { grep -Eo '(^|[ :,[])-?[0-9]+\.[0-9]+([eE][-+]?[0-9]+)?' "$1" | sed -E 's/^[ :,[]//; s/[eE].*//; s/^-//; s/\.//; s/^0+//' | awk 'length($0) > 12' | head -3; }
+for f in "$out/result.json" "$work/hostile/result.json"; do
+  n=$(noisy "$f")
+  [ -z "$n" ] || fail "$f has numbers with binary noise (digits: $n)"
+done
 echo "outputs_check: ok"
