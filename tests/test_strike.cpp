@@ -239,6 +239,7 @@ RandomContact random_contact(std::mt19937_64& rng, bool blade) {
 // An independent integration of Stronge's law, written apart from the code under test: fixed
 // small steps of the normal impulse, forward Euler on v(p), friction -mu u/|u| while slipping,
 // the sticking rate (by a 3x3 solve restricted to the tangent plane) while friction can hold,
+// a restart along the flow's outward ray (by a scan of directions) when it cannot,
 // stopped when the restitution work reaches e^2 times the compression's.
 Vec3 reference_stronge(const RandomContact& c, int steps) {
   const Vec3& n = c.n;
@@ -254,13 +255,32 @@ Vec3 reference_stronge(const RandomContact& c, int steps) {
   const Eigen::Vector2d b(t1.dot(c.K * n), t2.dot(c.K * n));
   const Eigen::Vector2d st = -A.colPivHouseholderQr().solve(b);
   const Vec3 stick = st.x() * t1 + st.y() * t2;
+  // A slip restarting from rest (friction cannot hold it) starts along the direction d its
+  // own flow keeps, K (n - mu d) along +d in the tangent plane: found by scanning 20 000
+  // directions for sign changes of d x (K (n - mu d)), each refined by bisection.
+  Vec3 restart = stick.norm() > 0 ? Vec3(-stick.normalized()) : t1;
+  if (stick.norm() > c.mu) {
+    const auto dir = [&](double a) { return Vec3(std::cos(a) * t1 + std::sin(a) * t2); };
+    const auto cross = [&](double a) { return n.dot(dir(a).cross(c.K * (n - c.mu * dir(a)))); };
+    constexpr int kCells = 20000;
+    for (int i = 0; i < kCells; ++i) {
+      double lo = 2 * M_PI * i / kCells, hi = 2 * M_PI * (i + 1) / kCells;
+      if ((cross(lo) <= 0) == (cross(hi) <= 0)) continue;
+      for (int k = 0; k < 60; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        ((cross(mid) <= 0) == (cross(lo) <= 0) ? lo : hi) = mid;
+      }
+      const Vec3 d = dir(0.5 * (lo + hi));
+      if (d.dot(c.K * (n - c.mu * d)) > 0) restart = d;
+    }
+  }
   for (int i = 0; i < 40 * steps; ++i) {
     const Vec3 slip = v - v.dot(n) * n;
     Vec3 f;
     const double tiny = 1e-9 * c.v_rel.norm();
     if (slip.norm() > tiny) f = -c.mu * slip.normalized();
     else if (stick.norm() <= c.mu) f = stick;
-    else f = c.mu * stick.normalized();
+    else f = -c.mu * restart;
     const Vec3 dP = (n + f) * dp;
     const double vn0 = v.dot(n);
     Vec3 v_next = v + c.K * dP;
@@ -385,6 +405,55 @@ TEST_CASE("impulse (Stronge's energetic law): a slip passing close by zero creat
     if (std::abs(u.x() * g.y() - u.y() * g.x()) <= 1e-9 * g.norm() && u.dot(g) > 0) ++restarts_checked;
   }
   CHECK(restarts_checked == 2000);
+}
+
+TEST_CASE("impulse (Stronge's energetic law): across the sticking limit the impulse is continuous, and found in few steps", "[strike][physics]") {
+  // Friction just unable to hold the contact restarts the slip along the flow's outward ray,
+  // which tends to the sticking rate's opposite as the margin goes to zero: the impulse just
+  // below the limit and just above it (sticking) differ by about the margin. The slip, once
+  // small, swings its direction faster than explicit steps can follow: a contact of the 15 ft
+  // batwing's chains took 100 000 steps (the step cap is a checked invariant: reaching it
+  // aborts). A fixed-step reference is no judge here (it chatters about zero slip: 2.7 %
+  // apart between 2e5 and 2e6 steps on that contact), so the check is continuity.
+  Eigen::Matrix3d K;
+  K << 2825.1666241418015, 4.7429931846377658, -36.990181507018136, 4.7429931846377453, 1851.0415815000424, -51.4762550092927,
+      -36.990181507018136, -51.476255009292686, 496.63917948266749;
+  const RandomContact seen{K, Vec3(-0.0037492100457783991, 0.99277660559231551, 0.11991895101539427),
+                           Vec3(0.26576734451831879, -70.37422584519588, -2.4844435110243324), 0.4, 0.9};
+  std::mt19937_64 rng(59);
+  double worst_ratio = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    RandomContact c = trial == 0 ? seen : random_contact(rng, trial % 2 == 0);
+    const Vec3 t1 = c.n.unitOrthogonal(), t2 = c.n.cross(t1);
+    Eigen::Matrix2d A;
+    A << t1.dot(c.K * t1), t1.dot(c.K * t2), t2.dot(c.K * t1), t2.dot(c.K * t2);
+    const double need = (A.inverse() * Vec2(t1.dot(c.K * c.n), t2.dot(c.K * c.n))).norm();
+    if (!(need > 1e-3)) continue;
+    const double margin = trial == 0 ? 1 - c.mu / need : std::pow(10.0, test::uniform(rng, -5, -1));
+    // Slips of every size, the small ones stopping early.
+    if (trial > 0) {
+      const double vn = c.v_rel.dot(c.n);
+      const Vec3 slip0 = c.v_rel - vn * c.n;
+      if (slip0.norm() > 0) c.v_rel = vn * c.n + std::pow(10.0, test::uniform(rng, -4, 1)) * need * -vn * slip0.normalized();
+    }
+    const auto below = strike::solve_impulse_energetic(c.K, c.v_rel, c.n, c.e, need * (1 - margin));
+    const auto above = strike::solve_impulse_energetic(c.K, c.v_rel, c.n, c.e, need * (1 + margin));
+    // Apart, as a share of the normal velocity's change; expected: the two frictions differ by
+    // 2 margin need, acting over at most the whole normal impulse, through a compliance up to
+    // |K| / k_nn times the normal one; plus the stop tolerance (a slip within 1e-4 of the
+    // impulse's scale of stopping is taken as stopped).
+    const double apart = (c.K * (below.impulse - above.impulse)).norm() / (-c.v_rel.dot(c.n) * (1 + c.e));
+    const double expected = 2 * margin * need * c.K.norm() / c.n.dot(c.K * c.n) + 1e-4;
+    worst_ratio = std::max(worst_ratio, apart / expected);
+    INFO("trial " << trial << " margin " << margin << " apart " << apart << " e " << c.e << " need " << need << " below sticking " << below.sticking
+                  << " above sticking " << above.sticking << " slip0/(need vn) " << (c.v_rel - c.v_rel.dot(c.n) * c.n).norm() / (need * -c.v_rel.dot(c.n))
+                  << " cond " << A.norm() * A.inverse().norm());
+    CHECK(apart <= 2 * expected);
+    const double incoming = 0.5 * c.v_rel.dot(c.K.ldlt().solve(c.v_rel));
+    CHECK(below.energy_change <= 1e-9 * incoming);
+  }
+  INFO("the impulses either side of the limit differ by at most " << worst_ratio << " of the expected bound");
+  CHECK(worst_ratio <= 2);  // (1.24 measured; 600 before on-ray steps were taken exactly)
 }
 
 TEST_CASE("impulse (Stronge's energetic law): at e = 1 and within 1e-7 of it, friction's slips stopping and restarting create no energy", "[strike][physics]") {
