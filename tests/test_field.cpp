@@ -325,6 +325,32 @@ TEST_CASE("field: a hazard run is the same on 1 and 2 threads, and tallies what 
   CHECK(sum.exit_speed_q95 > 0.15 * s.tip_speed());
   CHECK(sum.exit_speed_q95 < 1.6 * s.tip_speed());
   CHECK(sum.max_distance > 10);
+  CHECK(a.last_strike_speed == b.last_strike_speed);
+}
+
+TEST_CASE("field: the speed an object leaves with is its last blade strike's, in the ground's frame", "[field]") {
+  const auto s = read(kMower + kStones);
+  const field::FieldSimulator sim(s);
+  const double v = s.field.ground_speed;
+  int once = 0, again = 0, faster_again = 0;
+  for (std::uint64_t i = 0; i < 600; ++i) {
+    const auto o = sim.simulate(i);
+    if (!field::counted_thrown(o.fate)) continue;
+    // The last strike's velocity (the flight's frame) with the mower's travel added.
+    const Eigen::Vector3d last = o.flight.trace.last_strike_velocity + Eigen::Vector3d(v, 0, 0);
+    CHECK(o.last_strike_speed == Approx(last.norm()).margin(1e-12));
+    CHECK(o.flight.trace.last_strike_speed == Approx(o.flight.trace.last_strike_velocity.norm()).margin(1e-12));
+    if (o.flight.strikes == 1) {
+      ++once;
+      CHECK(o.last_strike_speed == Approx(o.exit_speed).margin(1e-9));  // struck once: the first strike is the last
+    } else {
+      ++again;
+      faster_again += o.last_strike_speed > o.exit_speed;
+    }
+  }
+  INFO(once << " struck once, " << again << " struck again (" << faster_again << " leaving faster than the first strike sent them)");
+  CHECK(once > 0);
+  CHECK(again > 0);
 }
 
 TEST_CASE("field: designs compared object by object, with common random numbers", "[field][compare][long]") {

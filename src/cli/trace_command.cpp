@@ -225,8 +225,8 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
   fmt::print("{} '{}': {:.1f} mm, {:.1f} g, {:.3f} m across the cut, centre {:.1f} mm above the turf{}\n",
              s.field.objects[e.kind].kind == scenario::FieldObjectSpec::Kind::SteelBall ? "steel ball" : "stone", s.field.objects[e.kind].name,
              1e3 * e.body.diameter, 1e3 * e.body.mass, e.lateral, 1e3 * e.height, e.lifted ? " (lifted by the updraft)" : "");
-  fmt::print("{}: thrown at {:.2f} m/s (ground frame), elevation {:.1f} deg\n", field::object_fate_name(out.fate), out.exit_speed,
-             out.launch_elevation / units::degree);
+  fmt::print("{}: thrown at {:.2f} m/s (ground frame), elevation {:.1f} deg; {:.2f} m/s off its last blade strike\n",
+             field::object_fate_name(out.fate), out.exit_speed, out.launch_elevation / units::degree, out.last_strike_speed);
   print_trail(events);
   const auto& f = out.flight;
   fmt::print("fate: {}{}; {} strike(s), {} bounce(s)\n", flight::fate_name(f.fate),

@@ -253,6 +253,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   const Vec3 launch = out.flight.launch_velocity + Vec3(v, 0, 0);  // in the ground's frame
   out.exit_speed = launch.norm();
   out.launch_elevation = std::atan2(launch.z(), std::hypot(launch.x(), launch.y()));
+  out.last_strike_speed = (out.flight.trace.last_strike_velocity + Vec3(v, 0, 0)).norm();
   return out;
 }
 

@@ -49,6 +49,9 @@ struct ObjectOutcome {
   double strike_time = 0;      // s: its first strike (the observer's frame is the ground's then)
   double exit_speed = 0;       // m/s as it leaves the blade (its last contact before anything else), ground frame
   double launch_elevation = 0; // rad, of that velocity
+  // m/s off its last blade strike, ground frame: a thrown object is often struck again, and
+  // faster, inside the deck (the speed it leaves with is that, not the first strike's)
+  double last_strike_speed = 0;
   bool pressed = false;         // its first strike drove it into the soil and the knife rode over it
   flight::FlightResult flight;  // when thrown
 };

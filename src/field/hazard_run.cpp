@@ -187,28 +187,33 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
   s.landed_outside_deck_share = thrown > 0 ? landed / thrown : 0.0;
   // Throw statistics over the kinds, each weighted as the field holds it.
   {
-    double n = 0, sum = 0, elevation = 0;
-    std::vector<double> speed(run.kinds.front().exit_speed.size());
-    for (std::size_t k = 0; k < kinds; ++k)
+    // A speed histogram's (0.5 m/s bins) mean and 95th percentile over the kinds.
+    const auto mean_and_q95 = [&](std::array<std::uint64_t, 400> HazardTally::*histogram, double& mean, double& q95) {
+      double n = 0, sum = 0;
+      std::vector<double> speed((run.kinds.front().*histogram).size());
+      for (std::size_t k = 0; k < kinds; ++k)
+        for (std::size_t i = 0; i < speed.size(); ++i) {
+          const double c = w[k] * static_cast<double>((run.kinds[k].*histogram)[i]);
+          speed[i] += c, n += c, sum += c * (static_cast<double>(i) + 0.5) * 0.5;
+        }
+      mean = n > 0 ? sum / n : 0.0;
+      double seen = 0;
       for (std::size_t i = 0; i < speed.size(); ++i) {
-        const double c = w[k] * static_cast<double>(run.kinds[k].exit_speed[i]);
-        speed[i] += c, n += c, sum += c * (static_cast<double>(i) + 0.5) * 0.5;
+        seen += speed[i];
+        if (n > 0 && seen >= 0.95 * n) {
+          q95 = (static_cast<double>(i) + 1) * 0.5;
+          break;
+        }
       }
-    double en = 0;
+    };
+    mean_and_q95(&HazardTally::exit_speed, s.exit_speed_mean, s.exit_speed_q95);
+    mean_and_q95(&HazardTally::last_strike_speed, s.last_strike_speed_mean, s.last_strike_speed_q95);
+    double elevation = 0, en = 0;
     for (std::size_t k = 0; k < kinds; ++k)
       for (std::size_t i = 0; i < run.kinds[k].launch_elevation.size(); ++i) {
         const double c = w[k] * static_cast<double>(run.kinds[k].launch_elevation[i]);
         en += c, elevation += c * (static_cast<double>(i) + 0.5 - 90.0);
       }
-    s.exit_speed_mean = n > 0 ? sum / n : 0.0;
-    double seen = 0;
-    for (std::size_t i = 0; i < speed.size(); ++i) {
-      seen += speed[i];
-      if (n > 0 && seen >= 0.95 * n) {
-        s.exit_speed_q95 = (static_cast<double>(i) + 1) * 0.5;
-        break;
-      }
-    }
     s.launch_elevation_mean = en > 0 ? elevation / en : 0.0;
   }
 

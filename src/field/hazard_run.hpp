@@ -84,6 +84,7 @@ struct HazardSummary {
   std::vector<PlaneResult> planes;
   double thrown_per_km = 0, landed_outside_deck_share = 0, max_distance = 0;
   double exit_speed_mean = 0, exit_speed_q95 = 0, launch_elevation_mean = 0;
+  double last_strike_speed_mean = 0, last_strike_speed_q95 = 0;  // off the last blade strike (the speed objects leave with)
 };
 HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run);
 // Each kind's weight per simulated object (w_k / N_k, per metre travelled).

@@ -57,6 +57,7 @@ void HazardTally::add(const ObjectOutcome& o) {
     ++exit_speed[std::min(exit_speed.size() - 1, static_cast<std::size_t>(o.exit_speed / 0.5))];
     const double deg = std::clamp(o.launch_elevation / units::degree + 90.0, 0.0, 179.999);
     ++launch_elevation[static_cast<std::size_t>(deg)];
+    ++last_strike_speed[std::min(last_strike_speed.size() - 1, static_cast<std::size_t>(o.last_strike_speed / 0.5))];
   }
   if (o.flight.fate == flight::Fate::Contained || o.flight.fate == flight::Fate::StoppedByGuard) ++at_rest_under_deck;
   if (o.pressed || o.flight.ridden_over > 0) ++ridden_over;

@@ -85,6 +85,7 @@ class HazardTally {
   std::vector<PlaneTally> planes;
   std::array<std::uint64_t, 400> exit_speed{};       // 0.5 m/s bins: speed off the blade, ground frame
   std::array<std::uint64_t, 180> launch_elevation{};  // 1 deg bins from -90 deg
+  std::array<std::uint64_t, 400> last_strike_speed{};  // 0.5 m/s bins: speed off the last blade strike, ground frame
   std::array<std::uint64_t, 2000> farthest{};          // 0.25 m bins: each thrown object's farthest ground contact from the origin
   double max_distance = 0;                             // m, of any ground contact
 
@@ -122,6 +123,7 @@ class HazardTally {
     }
     f(a.exit_speed, b.exit_speed);
     f(a.launch_elevation, b.launch_elevation);
+    f(a.last_strike_speed, b.last_strike_speed);
     f(a.farthest, b.farthest);
     f(a.max_distance, b.max_distance);
   }

@@ -400,6 +400,7 @@ void NailFlight::restrike(const strike::Contact& k) {
   ++r.strikes;
   touch(Touch::Blade);
   trace.last_strike_speed = b.velocity.norm();
+  trace.last_strike_velocity = b.velocity;
   last_contact_guard = false;
   if (FlightEvent* e = log(FlightEvent::Kind::Strike, k.point, k.normal, speed_in))
     e->spindle = static_cast<std::uint16_t>(k.spindle), e->edge = static_cast<std::uint16_t>(k.edge);
@@ -871,6 +872,7 @@ void NailFlight::observe(const Chord& c, const NextEvent& e) const {
 // that it goes on, plan the next chord, find what ends it, and let that act on the nail.
 FlightResult NailFlight::run() {
   r.trace.last_strike_speed = start.velocity.norm();
+  r.trace.last_strike_velocity = start.velocity;
   r.launch_velocity = start.velocity;
   const double t_end = start.time + set.time_limit;
   int steps = 0;

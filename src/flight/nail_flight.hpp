@@ -101,6 +101,7 @@ struct NailTrace {
   Exit first_exit = Exit::Inside;  // the first crossing going out, whether or not it stayed out
   std::uint16_t first_exit_index = 0;
   double last_strike_speed = 0;  // m/s off the last blade strike
+  Vec3 last_strike_velocity = Vec3::Zero();  // its velocity then (the flight's frame)
 
   void touch(Touch t) {
     if (touch_count < kMaxTouches) touches[static_cast<std::size_t>(touch_count)] = t;

@@ -64,8 +64,15 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
                            "still; the air still",
                            f.ground_speed * 3.6),
                "scenario (ground speed an estimate unless given)"});
-  a.push_back({"No lift of objects into the blades by the air the blades draw up (not modelled: objects are struck where they lie)",
-               "docs/model.md §9 (a stated simplification)"});
+  if (f.updraft_speed > 0)
+    a.push_back({fmt::format("The air the blades draw up, {:g} m/s at the turf, lifts an object into the blades' plane when its drag "
+                             "exceeds its weight; the others are struck where they lie",
+                             f.updraft_speed),
+                 "scenario (field.updraft_speed: an estimate; docs/model.md §9)"});
+  else
+    a.push_back({"No lift of objects into the blades by the air the blades draw up (field.updraft_speed 0: objects are struck where "
+                 "they lie)",
+                 "docs/model.md §9 (a stated simplification)"});
   a.push_back({"Flight in the mower's frame (deck, guards, turf as in the J232 model); positions and energies tallied in the ground's "
                "frame at each object's strike (the mower's travel added); the turf under a bounce taken as still",
                "docs/model.md §9"});
@@ -202,6 +209,7 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
       {"objects", {{"simulated", sum.objects}, {"thrown", sum.thrown}, {"cut_off", sum.cut_off}, {"thrown_per_km", sum.thrown_per_km}}},
       {"throw",
        {{"exit_speed_m_s", {{"mean", sum.exit_speed_mean}, {"q95", sum.exit_speed_q95}}},
+        {"last_strike_speed_m_s", {{"mean", sum.last_strike_speed_mean}, {"q95", sum.last_strike_speed_q95}}},
         {"launch_elevation_deg_mean", sum.launch_elevation_mean},
         {"first_landing_outside_deck_share", sum.landed_outside_deck_share},
         {"farthest_ground_contact_m", sum.max_distance},
@@ -248,8 +256,10 @@ std::string hazard_csv(const field::HazardSummary& sum) {
 std::string hazard_text(const field::HazardSummary& sum) {
   std::string o;
   if (!sum.valid) o += fmt::format("  NO HAZARD ASSESSMENT: {}\n", sum.invalid_reason);
-  o += fmt::format("  {:.0f} objects met per km mowed ({:.2f} m cut), {:.0f} thrown per km; exit speed {:.0f} m/s mean\n", sum.objects_per_km,
-                   sum.cut_width, sum.thrown_per_km, sum.exit_speed_mean);
+  o += fmt::format("  {:.0f} objects met per km mowed ({:.2f} m cut), {:.0f} thrown per km; speed off the last blade strike {:.0f} m/s "
+                   "mean (95th percentile {:.0f}), off the first {:.0f} m/s mean\n",
+                   sum.objects_per_km, sum.cut_width, sum.thrown_per_km, sum.last_strike_speed_mean, sum.last_strike_speed_q95,
+                   sum.exit_speed_mean);
   o += "  Hazard distance (hazardous impacts fall below the acceptable density), estimate / conservative (95 % upper bound):\n";
   for (const auto& d : sum.directions)
     o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d, false, d.distance.empty() ? 0 : d.distance.back()),
@@ -437,10 +447,12 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   }
 
   o += "<h2>The throw</h2>\n";
-  o += fmt::format("<p>Speed off the blade {:.0f} m/s on average (95th percentile {:.0f} m/s), launch elevation {:.1f}&deg; on average; "
-                   "{:.0f} % of the thrown objects first came down outside the deck; the farthest ground contact was {:.0f} m from the "
-                   "mower.</p>\n",
-                   sum.exit_speed_mean, sum.exit_speed_q95, sum.launch_elevation_mean, 100 * sum.landed_outside_deck_share, sum.max_distance);
+  o += fmt::format("<p>Speed off the last blade strike (the speed objects leave with: many are struck again inside the deck, "
+                   "faster) {:.0f} m/s on average (95th percentile {:.0f} m/s); off the first strike {:.0f} m/s on average (95th "
+                   "percentile {:.0f} m/s), launch elevation {:.1f}&deg; on average; {:.0f} % of the thrown objects first came down outside "
+                   "the deck; the farthest ground contact was {:.0f} m from the mower.</p>\n",
+                   sum.last_strike_speed_mean, sum.last_strike_speed_q95, sum.exit_speed_mean, sum.exit_speed_q95, sum.launch_elevation_mean,
+                   100 * sum.landed_outside_deck_share, sum.max_distance);
   {
     Chart reach("How far thrown objects reach", "distance from the mower (m)", "share of thrown objects beyond it");
     const auto& r = result["throw"]["reach"];

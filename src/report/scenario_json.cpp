@@ -270,12 +270,14 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     }
     if (same_as_earlier) continue;
     const std::string which = s.spindles.size() == 1 ? "Blade edge" : fmt::format("Blade edge (spindle {})", k + 1);
-    a.push_back({fmt::format("{}: {:.1f} mm plate, {:g} deg bevel on the {} face, {:.0f} mm wide, {}; nail-on-blade friction {:g}", which,
+    // (In a field each object kind has its own friction on the blade, stated with the kind.)
+    a.push_back({fmt::format("{}: {:.1f} mm plate, {:g} deg bevel on the {} face, {:.0f} mm wide, {}; {}", which,
                              sp.geometry.thickness * 1e3, e.bevel_angle / units::degree,
                              e.bevel_side == scenario::EdgeSpec::Side::Top ? "top" : "bottom", e.width * 1e3,
                              e.sail_height > 0 ? fmt::format("a {:.0f} mm sail at {:g} deg", e.sail_height * 1e3, e.sail_angle / units::degree)
                                                : std::string("no sail"),
-                             e.friction),
+                             s.field.present ? std::string("each object kind's own friction on it")
+                                             : fmt::format("nail-on-blade friction {:g}", e.friction)),
                  fmt::format("{} (estimates: mower blades are ground to about 30 deg; friction steel on steel, handbook 0.42-0.57 "
                              "kinetic; no figure for industrial cutters)",
                              params)});
@@ -325,19 +327,21 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
       const double width = f.swinging;
       a.push_back({fmt::format("Flap '{}': a plate hinged {:.0f} mm above ground, down to {:.0f} mm, {:.0f} mm wide swinging as one; "
                                "{:.1f} mm thick at {:g} kg/m3 ({:.3f} kg); restitution {:g}, friction {:g}; taken at rest at each "
-                               "impact (swung back between contacts); nails do not pass it",
+                               "impact (swung back between contacts); {} do not pass it",
                                g.name, f.hinge * 1e3, f.bottom * 1e3, width * 1e3, g.thickness * 1e3, g.density,
-                               g.density * g.thickness * width * (f.hinge - f.bottom), g.restitution, g.friction),
+                               g.density * g.thickness * width * (f.hinge - f.bottom), g.restitution, g.friction,
+                               s.field.present ? "objects" : "nails"),
                    "scenario, or estimates where not given (belting 6 mm, 1200 kg/m3)"});
       continue;
     }
-    a.push_back({fmt::format("Guard '{}' ({}): {:.0f} to {:.0f} mm above ground; nails pass between its links with probability "
+    a.push_back({fmt::format("Guard '{}' ({}): {:.0f} to {:.0f} mm above ground; {} pass between its links with probability "
                              "{:g}, keeping {:g} of their speed; restitution {:g}, friction {:g}",
                              g.name,
                              g.along.empty() ? fmt::format("below the skirt from {:g} to {:g} deg", g.azimuth_from / units::degree,
                                                            g.azimuth_to / units::degree)
                                              : fmt::format("along a {}-point polyline", g.along.size()),
-                             g.bottom * 1e3, (g.along.empty() ? s.housing.skirt_bottom : g.top) * 1e3, g.openness, g.pass_speed_factor,
+                             g.bottom * 1e3, (g.along.empty() ? s.housing.skirt_bottom : g.top) * 1e3, s.field.present ? "objects" : "nails",
+                             g.openness, g.pass_speed_factor,
                              g.restitution, g.friction),
                  "scenario, or estimates where not given (openness, speed kept: no published chain-curtain figures)"});
   }
@@ -355,11 +359,15 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                                  s.ground.restitution, s.ground.angle_exponent, s.ground.max_restitution, s.ground.friction,
                                  s.ground.roughness / units::degree),
                fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)});
-  a.push_back({s.air.drag ? fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3; {}", s.air.cd_normal, s.air.cd_axial, s.air.density,
-                                        s.air.spin_average ? "averaged over the axis's turn for a fast-spinning nail"
-                                                           : "as the axis stands, in steps of at most 0.3 rad of its turn (reference)") +
-                                "; the tumbling slowed by the cross-flow drag on the turning shank (strip theory, estimate)"
-                          : std::string("Air drag off (conservative: faster nails)"),
+  a.push_back({!s.air.drag      ? std::string(s.field.present ? "Air drag off (conservative: faster objects)" : "Air drag off (conservative: faster nails)")
+               : s.field.present ? fmt::format("Air drag on: rho {:g} kg/m3; each object a sphere with its kind's drag coefficient on its "
+                                               "cross-section",
+                                               s.air.density)
+                                 : fmt::format("Air drag on: Cd {:g} cross-flow, {:g} end-on, rho {:g} kg/m3; {}", s.air.cd_normal, s.air.cd_axial,
+                                               s.air.density,
+                                               s.air.spin_average ? "averaged over the axis's turn for a fast-spinning nail"
+                                                                  : "as the axis stands, in steps of at most 0.3 rad of its turn (reference)") +
+                                       "; the tumbling slowed by the cross-flow drag on the turning shank (strip theory, estimate)",
                fmt::format("{} (handbook)", params)});
   a.push_back({s.criteria.denominator == scenario::CriteriaSpec::Denominator::NailsFed
                    ? std::string("Shares are of the nails fed")

@@ -537,7 +537,9 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
       obj.density = 7850, obj.spread = 1.0, obj.drag_coefficient = 0.47, obj.embedment = 0.0;
       obj.restitution.reset();
     }
-    obj.median_size = o.quantity_or("median_size", Kind::Length, obj.median_size, Range::between(0.001, 0.3));
+    // No default size: how far objects fly and how many the blade reaches follow from it.
+    if (!o.has("median_size")) throw o.error("median_size", "missing: the objects' median size, such as \"15 mm\"");
+    obj.median_size = o.quantity("median_size", Kind::Length, Range::between(0.001, 0.3));
     obj.spread = o.quantity_or("spread", Kind::Dimensionless, obj.spread, Range::between(1, 5));
     const bool one_size = obj.spread == 1.0;
     obj.min_size = o.quantity_or("min_size", Kind::Length, one_size ? obj.median_size : std::min(obj.min_size, obj.median_size),
@@ -545,9 +547,13 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
     obj.max_size = o.quantity_or("max_size", Kind::Length, one_size ? obj.median_size : std::max(obj.max_size, obj.median_size),
                                  Range::between(0.001, 0.3));
     if (obj.min_size == obj.max_size) obj.spread = 1.0;  // one size: nothing to spread
-    if (!(obj.min_size <= obj.median_size && obj.median_size <= obj.max_size))
-      throw o.error("median_size", fmt::format("expected min_size ({:g} m) <= median_size ({:g} m) <= max_size ({:g} m)", obj.min_size,
-                                               obj.median_size, obj.max_size));
+    if (!(obj.min_size <= obj.median_size && obj.median_size <= obj.max_size)) {
+      // Blamed on the bound the file gave out of order (the median when the file gave neither).
+      const char* key = obj.min_size > obj.median_size ? (o.has("min_size") ? "min_size" : "median_size")
+                                                       : (o.has("max_size") ? "max_size" : "median_size");
+      throw o.error(key, fmt::format("expected min_size ({:g} m) <= median_size ({:g} m) <= max_size ({:g} m)", obj.min_size,
+                                     obj.median_size, obj.max_size));
+    }
     obj.density = o.quantity_or("density", Kind::Density, obj.density, Range::between(500, 20000));
     if (!o.has("per_area")) throw o.error("per_area", "missing: how many of these objects lie on a square metre, such as \"0.5 m^-2\"");
     obj.per_area = o.quantity("per_area", Kind::PerArea, Range::positive_up_to(10000));
@@ -629,7 +635,7 @@ TableReader blade_table_of(const TableReader& root, std::size_t k) {
 // What each value allows alone is checked where it is read; here, what values must be
 // together for a mower that can exist (a blade under its deck plate and above the turf,
 // openings and guards below the plate, a board that can carry a counted mark).
-void check_consistency(const TableReader& root, const Scenario& s) {
+void check_consistency(const TableReader& root, Scenario& s) {
   const bool generated_deck = s.meshes.empty();
   const double plate = s.housing.skirt_bottom + s.housing.skirt_depth;
   const auto housing = root.table("housing");
@@ -661,6 +667,15 @@ void check_consistency(const TableReader& root, const Scenario& s) {
       if (sp.geometry.edge.sail_height > 0 && edge && edge->has("sail_height")) throw edge->error("sail_height", what);
       throw height_error(what);
     }
+    // A blade whose lower face hangs below the skirt's foot: a nail its bevel sends down can
+    // leave under the skirt without touching it. A design can mean it (a raised skirt), so it
+    // is said, not refused.
+    if (generated_deck && bottom < s.housing.skirt_bottom - 1e-12)
+      s.notes.push_back(height_error(fmt::format("the blade's lower face at {:.4g} m hangs below the skirt's foot at {:.4g} m "
+                                                 "(housing.skirt_bottom): nails it sends down can leave under the skirt without "
+                                                 "touching it; a raised skirt may mean this",
+                                                 bottom, s.housing.skirt_bottom))
+                            .what());
   }
   if (generated_deck && housing) {
     const auto openings = housing->array_of_tables("openings");
