@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "assess/model_version.hpp"
 #include "report/html_page.hpp"
 #include "report/svg_chart.hpp"
 #include "units/quantity.hpp"
@@ -188,6 +189,8 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
   return {
       {"title", s.title},
       {"kind", "thrown-object hazard in the field (j232 hazard)"},
+      {"model_version", assess::kModelVersion},
+      {"physics_model", assess::kModelPhysics},
       {"valid", sum.valid},
       {"invalid_reason", sum.invalid_reason},
       {"frame", "the ground's at each object's strike: origin at the mower's centre then, x along its travel, y to its left"},

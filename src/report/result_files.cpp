@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "assess/model_version.hpp"
 #include "report/board_views.hpp"
 #include "report/scenario_json.hpp"
 #include "report/text_safety.hpp"
@@ -199,6 +200,8 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
   const double tip_speed = s.tip_speed();
   json result = {
       {"program", "j232 run"},
+      {"model_version", assess::kModelVersion},
+      {"physics_model", assess::kModelPhysics},
       {"verdict", verdict_word(sum)},
       {"verdict_settled", sum.validity.valid && sum.settled},
       // The P(pass) the verdict rests on: which estimate, why, and its value and interval.

@@ -23,6 +23,10 @@ assert a == b, "hazard.json differs between 1 and 2 threads"
 for key in ("valid", "field", "objects", "throw", "hazard_distance", "directions", "planes", "assumptions", "scenario"):
     assert key in a, key
 assert a["objects"]["simulated"] == int(sys.argv[2])
+assert isinstance(a["model_version"], int) and a["physics_model"], "hazard.json names the physics that made it"
+t = a["throw"]
+assert 0 <= t["last_strike_speed_m_s"]["mean"] <= t["last_strike_speed_m_s"]["q95"] + 0.5, t
+assert "off the last blade strike" in open(f"{out}/one/hazard.html").read(), "hazard.html gives the speed off the last strike"
 assert [d["direction"] for d in a["hazard_distance"]] == ["left", "right", "front", "rear"]
 def finite(x):
     if isinstance(x, dict):

@@ -34,4 +34,7 @@ for f in "$out/result.json" "$work/hostile/result.json"; do
   n=$(noisy "$f")
   [ -z "$n" ] || fail "$f has numbers with binary noise (digits: $n)"
 done
+# Which physics made the result, named in it.
+grep -q '"model_version": [0-9]' "$out/result.json" || fail "result.json does not name its model_version"
+grep -q '"physics_model": "' "$out/result.json" || fail "result.json does not describe its physics_model"
 echo "outputs_check: ok"
