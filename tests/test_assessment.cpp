@@ -12,6 +12,7 @@
 #include "board/board.hpp"
 #include "report/compliance_report.hpp"
 #include "report/result_files.hpp"
+#include "report/svg_chart.hpp"
 #include "scene/j232_setup.hpp"
 #include "random/stream.hpp"
 #include "scenario/scenario.hpp"
@@ -689,4 +690,13 @@ TEST_CASE("result files: JSON numbers are written without binary noise, and rewr
         R"({"thirty":30.0,"sum":0.3,"tiny":3e-76,"list":[0.333333333333,30.0,-2.5e-300],"count":1234567890123456789,"text":"0.30000000000000004"})");
   // Read back and written again: the same text.
   CHECK(report::json_text(nlohmann::ordered_json::parse(text), -1) == text);
+}
+
+TEST_CASE("report pages: a name's control characters (NUL, ESC) never reach a page raw", "[report]") {
+  const std::string hostile = std::string("lane\x1b[31m<b>red") + '\0' + "\x7f" + "end\ttab";
+  const std::string shown = report::escape(hostile);
+  CHECK(shown.find('\x1b') == std::string::npos);
+  CHECK(shown.find('\0') == std::string::npos);
+  CHECK(shown.find('\x7f') == std::string::npos);
+  CHECK(shown == "lane\xEF\xBF\xBD[31m&lt;b&gt;red\xEF\xBF\xBD\xEF\xBF\xBD" "end\ttab");
 }

@@ -16,6 +16,7 @@
 #include "flight/face_touch.hpp"
 #include "flight/flight_audit.hpp"
 #include "field/field_simulator.hpp"
+#include "field/hazard_tally.hpp"
 #include "cli/commands.hpp"
 #include "cli/run_options.hpp"
 #include "cli/exit_codes.hpp"
@@ -198,21 +199,50 @@ void print_trail(const std::vector<flight::FlightEvent>& events) {
 }
 
 // One object of a field scenario (j232 hazard) with its whole trail. --find looks among the
-// scenario's field.objects_simulated objects: cut-off, restruck, contained, thrown.
+// scenario's field.objects_simulated objects: cut-off, restruck, contained, thrown; hazardous
+// (a hazardous ground impact beyond the deck, or a hazardous crossing of a plane, as the
+// hazard run counts them); plane:NAME (one that crossed the plane NAME).
 int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
   const field::FieldSimulator sim(s);
   std::uint64_t index = o.object.value_or(0);
   if (!o.find.empty()) {
+    // The hazard run's own watch says what an object did beyond the deck.
+    field::HazardTally tally(field::HazardLayout::of(s.field));
+    field::ObjectWatch watch(tally);
+    std::optional<std::size_t> plane;
+    if (o.find.rfind("plane:", 0) == 0) {
+      std::string names;
+      for (std::size_t p = 0; p < s.field.planes.size(); ++p) {
+        if (s.field.planes[p].name == o.find.substr(6)) plane = p;
+        names += (names.empty() ? "" : ", ") + s.field.planes[p].name;
+      }
+      if (!plane)
+        throw scenario::InputError("", std::nullopt, "--find", o.find,
+                                   names.empty() ? std::string("expected a plane of the scenario's [[field.planes]]; it has none")
+                                                 : "expected plane:NAME with NAME one of the scenario's planes: " + names);
+    }
+    const bool hazardous = o.find == "hazardous";
     auto matches = [&](const field::ObjectOutcome& out) {
       if (o.find == "cut-off") return out.fate == field::ObjectFate::CutOff;
       if (o.find == "restruck") return out.fate == field::ObjectFate::Thrown && out.flight.strikes > 1;
       if (o.find == "contained") return out.flight.fate == flight::Fate::Contained;
       if (o.find == "thrown") return out.fate == field::ObjectFate::Thrown;
-      throw scenario::InputError("", std::nullopt, "--find", o.find, "expected, for a field scenario, one of cut-off, restruck, contained, thrown");
+      if (plane) return watch.plane_crossings().at(*plane) > 0;
+      if (hazardous) {
+        bool any = watch.hazardous_impacts() > 0;
+        for (const auto h : watch.plane_hazards()) any |= h > 0;
+        return any;
+      }
+      throw scenario::InputError("", std::nullopt, "--find", o.find,
+                                 "expected, for a field scenario, one of cut-off, restruck, contained, thrown, hazardous, plane:NAME");
     };
     bool found = false;
-    for (std::uint64_t i = 0; i < static_cast<std::uint64_t>(s.field.objects_simulated) && !found; ++i)
-      if (matches(sim.simulate(i))) index = i, found = true;
+    for (std::uint64_t i = 0; i < static_cast<std::uint64_t>(s.field.objects_simulated) && !found; ++i) {
+      const field::ObjectOutcome out = sim.simulate(i, &watch);
+      watch.finish(out);
+      if (matches(out)) index = i, found = true;
+    }
+    if (found) fmt::print("the first object of the kind {}: object {}\n", o.find, index);
     if (!found) {
       fmt::print("no object of the {} of \"{}\" (seed {}) is of the kind {}\n", s.field.objects_simulated, s.title, s.run.seed, o.find);
       return kOk;
@@ -325,7 +355,7 @@ Runner add_trace_command(CLI::App& app) {
   cmd->add_option("--nail", o->nail, "Nail within the replicate (0-based, as marks.csv numbers them)");
   add_unsigned_option(*cmd, "--object", o->object, "A field scenario's object (0-based, as j232 hazard numbers them)");
   cmd->add_option("--find", o->find, "Replay the first nail of the run of this kind instead: " + find_kind_names() +
-                                         " (a field scenario: cut-off, restruck, contained, thrown)");
+                                         " (a field scenario: cut-off, restruck, contained, thrown, hazardous, plane:NAME)");
   add_unsigned_option(*cmd, "--seed", o->seed, "Random seed (overrides the scenario's [run] seed)");
   cmd->add_option("--json", o->json, "Also write the trail as JSON to this file");
   cmd->add_flag("--check", o->check,

@@ -38,7 +38,13 @@ std::string escape(const std::string& text) {
       case '<': out += "&lt;"; break;
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
-      default: out += c;
+      default:
+        // Control characters (NUL, ESC ...) are not text: HTML forbids them and a page would
+        // carry them raw. Shown as U+FFFD; tab and line ends kept.
+        if ((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f)
+          out += "\xEF\xBF\xBD";
+        else
+          out += c;
     }
   return out;
 }

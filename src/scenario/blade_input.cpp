@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace j232::scenario {
 
 using units::Kind;
@@ -24,6 +26,12 @@ blade::Link read_link(const TableReader& t) {
   if (link.centre_of_mass && *link.centre_of_mass > link.length)
     throw t.error("centre_of_mass", fmt::format("expected a distance from the inner pin within the link's length ({} m)", link.length));
   link.inertia_about_centre = t.optional_quantity("inertia", Kind::Inertia, Range::between(0, kMaxInertia));
+  // A link's mass lies within about its length of its centre (a knife is longer than it is
+  // wide), so its inertia about its centre is below m L^2; and above zero (it has extent).
+  if (link.inertia_about_centre && !(*link.inertia_about_centre > 0 && *link.inertia_about_centre <= link.mass * link.length * link.length))
+    throw t.error("inertia", fmt::format("expected an inertia about the link's centre above 0 and at most its mass times its length "
+                                         "squared ({:.4g} kg m^2): no part of a {:.4g} m link lies farther than that from its centre",
+                                         link.mass * link.length * link.length, link.length));
   link.seized = t.boolean_or("seized", false);
   t.refuse_unknown_keys();
   return link;
@@ -53,6 +61,14 @@ blade::Blade read_blade(const TableReader& t) {
     arm.pivot_radius = a.quantity_or("pivot_radius", Kind::Length, b.hub.reach(), Range::between(0, kMaxLength));
     for (const TableReader& l : a.array_of_tables("links", 16)) arm.links.push_back(read_link(l));
     if (arm.links.empty()) throw a.error("links", "an arm needs at least one [[blade.arms.links]] table");
+    // Two arms pinned at one point would be two knives in one place.
+    for (const auto& other : b.arms) {
+      const double apart = std::abs(std::remainder(arm.azimuth - other.azimuth, 2 * units::pi));
+      if (apart < 1e-9 && std::abs(arm.pivot_radius - other.pivot_radius) < 1e-9)
+        throw a.error("azimuth", fmt::format("puts this arm's pivot where an earlier arm's is ({:g} deg, {:g} m from the spindle): two "
+                                             "knives cannot hang from one pin; expected another azimuth",
+                                             arm.azimuth / units::degree, arm.pivot_radius));
+    }
     a.refuse_unknown_keys();
     b.arms.push_back(std::move(arm));
   }

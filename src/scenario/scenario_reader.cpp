@@ -69,6 +69,12 @@ void read_arc(const TableReader& t, double& from, double& to) {
   if (to == from)
     throw t.error("azimuth_to", "equals azimuth_from: an arc from an azimuth to itself spans nothing; expected another azimuth (for "
                                 "the whole turn, azimuth_to 360 deg past azimuth_from)");
+  // Counter-clockwise from `from`, an arc spans at most a whole turn: a `to` further round
+  // would be read modulo the turn (700 deg past 0 as 340 deg), not as written.
+  if (std::abs(to - from) > 2 * units::pi * (1 + 1e-12))
+    throw t.error("azimuth_to", fmt::format("is {:g} deg from azimuth_from: an arc spans at most a whole turn (360 deg); expected "
+                                            "azimuth_to within 360 deg of azimuth_from",
+                                            std::abs(to - from) / units::degree));
 }
 
 // A part is placed one way or the other: keys of the other way are refused.
@@ -289,8 +295,9 @@ void read_criteria(const TableReader& t, CriteriaSpec& c) {
   c.counted_height = t.optional_quantity("counted_height", Kind::Length, Range::between(0, 5));
   c.denominator = t.string_or("denominator", "nails_fed", {"nails_fed", "marks"}) == "marks" ? CriteriaSpec::Denominator::Marks
                                                                                              : CriteriaSpec::Denominator::NailsFed;
+  // 0 would let any mower pass: a verdict that says nothing.
   c.required_pass_probability =
-      t.quantity_or("required_pass_probability", Kind::Dimensionless, c.required_pass_probability, Range::UnitInterval);
+      t.quantity_or("required_pass_probability", Kind::Dimensionless, c.required_pass_probability, Range{0.0, 1.0, true});
   t.refuse_unknown_keys();
 }
 
@@ -692,8 +699,49 @@ void check_consistency(const TableReader& root, Scenario& s) {
         throw g.error("top", fmt::format("expected the curtain's top at or below the deck plate ({:.4g} m) it hangs from", plate));
     }
   }
-  // A board that cannot carry a counted mark is no test.
-  if (!s.field.present && !(s.target.top > s.counted_height())) {
+  // The J232 test's board and operator zone (not a field's).
+  if (!s.field.present && generated_deck) {
+    const auto target = root.table("target");
+    // A board whose bottom is above the counted height: nails passing under it there would be
+    // counted by SAE J232 but meet no board.
+    if (s.target.bottom > s.counted_height() + 1e-6) {
+      const std::string what = fmt::format("the board's bottom at {:.4g} m is above the counted height ({:.4g} m): nails passing under "
+                                           "it would be counted by SAE J232 but meet no board; expected a bottom at or below it",
+                                           s.target.bottom, s.counted_height());
+      if (target && target->has("bottom")) throw target->error("bottom", what);
+      throw root.error("target", what);
+    }
+    const auto zone = root.table("operator_zone");
+    if (zone && s.zone.kind == OperatorZoneSpec::Kind::Sector) {
+      // A zone wholly off the board, or wholly below the counted height, could never be hit:
+      // its criteria could not fail.
+      const double low = std::max(s.target.bottom, s.counted_height());
+      if (!(s.zone.bottom < s.target.top - 1e-6 && s.zone.top > low + 1e-6))
+        throw zone->error(s.zone.bottom >= s.target.top - 1e-6 ? "bottom" : "top",
+                          fmt::format("the operator zone ({:.4g} to {:.4g} m) lies wholly {} (the board: {:.4g} to {:.4g} m; counted "
+                                      "from {:.4g} m): no counted mark could fall in it; expected a zone on the board's counted part",
+                                      s.zone.bottom, s.zone.top, s.zone.bottom >= s.target.top - 1e-6 ? "above the board" : "below the counted part of the board",
+                                      s.target.bottom, s.target.top, s.counted_height()));
+    } else if (s.zone.kind == OperatorZoneSpec::Kind::Derived) {
+      // A seat over a blade's disc is a seat inside the deck.
+      for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+        const SpindleSpec& sp = s.spindles[k];
+        const double off = std::hypot(s.zone.seat_x - sp.x, s.zone.seat_y - sp.y), tip = sp.blade.tip_radius();
+        if (off < tip) {
+          const std::string what = fmt::format("puts the operator's seat ({:.3g}, {:.3g}) m over {} blade, {:.3g} m from its axis "
+                                               "within its {:.3g} m tip circle: inside the deck; expected a seat outside it",
+                                               s.zone.seat_x, s.zone.seat_y, s.spindles.size() > 1 ? fmt::format("spindle {}'s", k + 1) : "the",
+                                               off, tip);
+          if (zone && zone->has("seat_x")) throw zone->error("seat_x", what);
+          if (zone && zone->has("seat_y")) throw zone->error("seat_y", what);
+          throw root.error("operator_zone", what);
+        }
+      }
+    }
+  }
+  // A board that cannot carry a counted mark is no test (its top within a micrometre of the
+  // counted height, as the same height written in two units gives, included).
+  if (!s.field.present && !(s.target.top > s.counted_height() + 1e-6)) {
     const auto target = root.table("target");
     const std::string what = fmt::format("the board's top at {:.4g} m is at or below the counted height ({:.4g} m: {}); no mark on it "
                                          "could count, so the test could not fail; expected a top above it",
