@@ -640,7 +640,14 @@ bool NailFlight::slide(const scene::Hit& hit) {
     // chain curtain, a mesh, the plate's fan) is searched a part at a time, as chords are:
     // the part's end is a point of the same motion, so the slide is unchanged by the split.
     double until = stop;
-    while (gather(m, b.time, until) > candidates.size() && until - b.time > 1e-9) until = b.time + 0.5 * (until - b.time);
+    while (gather(m, b.time, until) > candidates.size()) {
+      if (until - b.time <= 1e-9) {  // (as a chord's: too many faces even for a nanosecond's slide)
+          cut(CutOff::SearchSteps);
+        break;
+      }
+      until = b.time + 0.5 * (until - b.time);
+    }
+    if (cut_off) break;
     J232_CHECK(candidate_count <= candidates.size());
     FaceSearchStats stats;
     const auto wall = first_face_touch(*ctx.scene, candidates.data(), candidate_count, m, nail, b.time, until, filter(), stats);
@@ -779,7 +786,14 @@ NailFlight::Chord NailFlight::event_advance(double t_end) {
   double dt = std::min(chord_step(b, accel, set.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
   for (;;) {
     Chord c = chord_from(b, dt, step_drag, accel);
-    if (gather(c.motion, b.time, b.time + dt) <= candidates.size() || dt < 1e-9) return c;
+    if (gather(c.motion, b.time, b.time + dt) <= candidates.size()) return c;
+    // Even a nanosecond's chord sweeps more faces than the search keeps: a body as large as
+    // the scene's detail (a 300 mm rod among chain links). Searching only some of them would
+    // not be conservative, and halving on would take millions of chords: cut off, counted.
+    if (dt < 1e-9) {
+      cut(CutOff::SearchSteps);
+      return c;
+    }
     dt *= 0.5;
   }
 }
@@ -879,6 +893,7 @@ FlightResult NailFlight::run() {
   if (ctx.path) ctx.path->push_back(b.position);
   while (event_check(t_end, steps)) {
     const Chord c = event_advance(t_end);
+    if (cut_off) break;
     if (!(c.len > 1e-12)) {
       b = c.next;
       continue;
