@@ -1,5 +1,6 @@
 // Reads a J232 assessment scenario (scenario.hpp) from TOML (scenario_reader.hpp). Every key is optional
 // except the blade; each default is the documented one (docs/model.md).
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -642,6 +643,27 @@ TableReader blade_table_of(const TableReader& root, std::size_t k) {
 // What each value allows alone is checked where it is read; here, what values must be
 // together for a mower that can exist (a blade under its deck plate and above the turf,
 // openings and guards below the plate, a board that can carry a counted mark).
+// Plan distance from (x, y) to an arc of radius r about the origin, counter-clockwise from
+// `from` to `to`: to the circle where the point's azimuth lies in the arc, else to its ends.
+double distance_to_arc(double x, double y, double r, double from, double to) {
+  const double d = std::hypot(x, y);
+  if (d > 0 && units::in_arc(std::atan2(y, x), from, to)) return std::abs(d - r);
+  const auto end = [&](double a) { return std::hypot(x - r * std::cos(a), y - r * std::sin(a)); };
+  return std::min(end(from), end(to));
+}
+
+// Plan distance from (x, y) to a polyline.
+double distance_to_path(double x, double y, const PlanPath& path) {
+  double best = HUGE_VAL;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const double ax = path[i][0], ay = path[i][1], dx = path[i + 1][0] - ax, dy = path[i + 1][1] - ay;
+    const double len2 = dx * dx + dy * dy;
+    const double t = len2 > 0 ? std::clamp(((x - ax) * dx + (y - ay) * dy) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, std::hypot(x - (ax + t * dx), y - (ay + t * dy)));
+  }
+  return best;
+}
+
 void check_consistency(const TableReader& root, Scenario& s) {
   const bool generated_deck = s.meshes.empty();
   const double plate = s.housing.skirt_bottom + s.housing.skirt_depth;
@@ -684,6 +706,67 @@ void check_consistency(const TableReader& root, Scenario& s) {
                                                  bottom, s.housing.skirt_bottom))
                             .what());
   }
+  // Nothing fixed may stand in a blade's swept disc (its tip circle, over the height from its
+  // lower face to its top or sail): a panel, a curtain hung along a polyline, another
+  // spindle's shaft (from its blade up to the deck plate).
+  const auto band_of = [&](const SpindleSpec& sp) {
+    return std::array<double, 2>{sp.geometry.height - 0.5 * sp.geometry.thickness,
+                                 sp.geometry.height + 0.5 * sp.geometry.thickness + sp.geometry.edge.sail_height};
+  };
+  const auto crosses_band = [&](const SpindleSpec& sp, double bottom, double top) {
+    const auto band = band_of(sp);
+    return bottom < band[1] && top > band[0];
+  };
+  const auto spindle_name = [&](std::size_t k) {
+    return s.spindles.size() > 1 ? fmt::format("spindle {}'s blade", k + 1) : std::string("the blade");
+  };
+  if (housing) {
+    const auto deflectors = housing->array_of_tables("deflectors");
+    for (std::size_t i = 0; i < s.housing.deflectors.size() && i < deflectors.size(); ++i) {
+      const DeflectorSpec& d = s.housing.deflectors[i];
+      for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+        const SpindleSpec& sp = s.spindles[k];
+        const double off = d.along.empty() ? distance_to_arc(sp.x, sp.y, d.radius, d.azimuth_from, d.azimuth_to) : distance_to_path(sp.x, sp.y, d.along);
+        if (off < sp.blade.tip_radius() && crosses_band(sp, d.bottom, d.top))
+          throw deflectors[i].error(d.along.empty() ? "radius" : "along",
+                                    fmt::format("puts the panel through {}'s swept disc ({:.3g} m from its axis, within its {:.3g} m tip "
+                                                "circle, at the blade's height): expected a panel clear of every blade",
+                                                spindle_name(k), off, sp.blade.tip_radius()));
+      }
+    }
+    std::size_t present = 0;
+    for (const auto& g : housing->array_of_tables("guards")) {
+      if (!g.boolean_or("present", true)) continue;
+      const GuardSpec& guard = s.housing.guards.at(present++);
+      if (guard.along.empty()) continue;
+      const double top = guard.top > 0 ? guard.top : plate;
+      for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+        const SpindleSpec& sp = s.spindles[k];
+        const double off = distance_to_path(sp.x, sp.y, guard.along);
+        if (off < sp.blade.tip_radius() && crosses_band(sp, guard.bottom, top))
+          throw g.error("along", fmt::format("hangs the curtain through {}'s swept disc ({:.3g} m from its axis, within its {:.3g} m tip "
+                                             "circle, at the blade's height): expected a curtain clear of every blade",
+                                             spindle_name(k), off, sp.blade.tip_radius()));
+      }
+    }
+  }
+  for (std::size_t i = 0; i < s.spindles.size(); ++i)
+    for (std::size_t j = 0; j < s.spindles.size(); ++j) {
+      if (i == j) continue;
+      const SpindleSpec &a = s.spindles[i], &b = s.spindles[j];
+      const double apart = std::hypot(a.x - b.x, a.y - b.y);
+      // Spindle i's shaft rises from its blade's top to the plate; blade j sweeps it when it
+      // reaches over it at a height on the shaft.
+      if (apart < b.blade.tip_radius() && crosses_band(b, band_of(a)[1], plate)) {
+        const auto tables = root.array_of_tables("spindles", 8);
+        const std::string what = fmt::format("puts spindle {}'s shaft ({:.3g} m from spindle {}'s axis) inside spindle {}'s blade's tip "
+                                             "circle ({:.3g} m), which sweeps over it between its own blade and the deck plate: "
+                                             "expected the shaft clear of every other blade",
+                                             i + 1, apart, j + 1, j + 1, b.blade.tip_radius());
+        if (i < tables.size()) throw tables[i].error(tables[i].has("x") ? "x" : "y", what);
+        throw root.error("spindles", what);
+      }
+    }
   if (generated_deck && housing) {
     const auto openings = housing->array_of_tables("openings");
     for (std::size_t i = 0; i < s.housing.openings.size() && i < openings.size(); ++i)
