@@ -456,6 +456,40 @@ TEST_CASE("impulse (Stronge's energetic law): across the sticking limit the impu
   CHECK(worst_ratio <= 2);  // (1.24 measured; 600 before on-ray steps were taken exactly)
 }
 
+TEST_CASE("impulse (Stronge's energetic law): a slip on the outward ray just short of sticking never aborts, and creates no energy", "[strike][physics]") {
+  // An independent review's adversarial contacts: friction within 1e-8 to 1e-4 of holding
+  // the contact, the slip already on the flow's outward ray and just above the stop
+  // tolerance. While the test that a ray was found used a round-off bound relative to the
+  // slip's own rate (about 1e-22 here, against a round-off of 1e-18), 470 of these 20 000 ran
+  // to the step cap (which aborted); with the bound on the rates' scale, none does. Beyond the
+  // cap the legacy law's impulse is taken (flagged), which creates no energy either.
+  std::mt19937_64 rng(61);
+  int fallbacks = 0, trials = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    RandomContact c = random_contact(rng, trial % 2 == 0);
+    const Vec3 t1 = c.n.unitOrthogonal(), t2 = c.n.cross(t1);
+    Eigen::Matrix2d A;
+    A << t1.dot(c.K * t1), t1.dot(c.K * t2), t2.dot(c.K * t1), t2.dot(c.K * t2);
+    const Vec2 kn(t1.dot(c.K * c.n), t2.dot(c.K * c.n));
+    const Vec2 stick = -(A.inverse() * kn);
+    if (!(stick.norm() > 1e-3)) continue;
+    c.mu = stick.norm() * (1 - std::pow(10.0, test::uniform(rng, -8, -4)));
+    c.e = trial % 3 == 0 ? 1.0 : test::uniform(rng, 0, 1);
+    const Vec2 ray = strike::restart_direction(kn, A, c.mu, stick);
+    const double vn = c.v_rel.dot(c.n), slip = -vn * std::pow(10.0, test::uniform(rng, -5, -3));
+    c.v_rel = vn * c.n + slip * (ray.x() * t1 + ray.y() * t2);
+    const auto sol = strike::solve_impulse_energetic(c.K, c.v_rel, c.n, c.e, c.mu);
+    ++trials;
+    fallbacks += sol.step_cap_fallback;
+    const double incoming = 0.5 * c.v_rel.dot(c.K.ldlt().solve(c.v_rel));
+    CHECK(sol.energy_change <= 1e-9 * incoming);
+    CHECK(std::isfinite(sol.impulse.norm()));
+    CHECK(sol.impulse.dot(c.n) > 0);
+  }
+  INFO(fallbacks << " of " << trials << " took the legacy law at the step cap");
+  CHECK(fallbacks == 0);
+}
+
 TEST_CASE("impulse (Stronge's energetic law): at e = 1 and within 1e-7 of it, friction's slips stopping and restarting create no energy", "[strike][physics]") {
   // At e = 1 only friction dissipates, and a slip that stops, sticks or restarts dissipates
   // little: any slip discarded without its impulse, or a work estimate off by its error term,
