@@ -35,7 +35,9 @@ using namespace j232;
 
 namespace {
 
-py::object from_json(const nlohmann::ordered_json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+// Through the text the program writes (json_text: numbers to 12 significant digits), so a dict
+// holds the same numbers as the program's files.
+py::object from_json(const nlohmann::ordered_json& j) { return py::module_::import("json").attr("loads")(report::json_text(j, -1)); }
 
 // A Python value as a TOML node: bool, int, float, str, list/tuple, dict.
 std::unique_ptr<toml::node> to_toml(const py::handle& v, const std::string& key);
