@@ -149,6 +149,9 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
   // that is): friction then holds the contact or the slip restarts along its own direction.
   const double u_stopped = 1e-5 * approach;
   enum class Fast { No, Stepped, Compressed, Done };
+  // How fast the rates can move the slip, per unit p: |k_n| + mu |K_tt| (the scale of the
+  // ray test's round-off and of the stiff-and-small stop).
+  const double rate_bound = kn.norm() + mu * ktt.norm();
   const auto fast_step = [&]() {
     const double speed = u.norm();
     struct Rate {
@@ -196,7 +199,7 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
         double ray = a - h / slope;
         for (int k = 0; k < 3; ++k) ray -= turn_rate(ray) / slope;
         // (A ray found near, and truly one: else the direction is left as it is.)
-        if (std::abs(ray - a) < kFastTurn && std::abs(turn_rate(ray)) <= 1e-9 * std::abs(h) + 1e-12 * (kn.norm() + mu * ktt.norm())) {
+        if (std::abs(ray - a) < kFastTurn && std::abs(turn_rate(ray)) <= 1e-9 * std::abs(h) + 1e-12 * rate_bound) {
           // The transient's friction, across the ray, is what turned the slip onto it: the
           // tangential impulse that makes that turn, K_tt^-1 times it, with the normal
           // velocity it brings (below 1e-6 of the impulse's scale, by the condition above).
@@ -283,7 +286,6 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
   // direction would relax onto the outward ray (or the contact stick) in a transient that
   // explicit steps resolve only in tens of thousands of steps. Settled, and then stuck or
   // restarted along the ray, it ends where that transient would, to that 1e-4.
-  const double rate_bound = kn.norm() + mu * ktt.norm();
   const auto stiff_and_small = [&]() {
     return u.norm() <= 1e-3 * p_scale * rate_bound && (ktt_inv * u).norm() <= 1e-4 * p_scale;
   };
