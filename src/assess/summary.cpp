@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "flight/face_touch.hpp"
+
 namespace j232::assess {
 
 namespace {
@@ -21,7 +23,11 @@ std::string cut_off_limits(const Assessment& a, const scenario::Scenario& s) {
       case flight::CutOff::MaxBounces: what = fmt::format("[run] max_bounces ({})", s.run.max_bounces); break;
       case flight::CutOff::FlightSteps: what = fmt::format("the flight's step cap ({} chords)", flight::kMaxFlightSteps); break;
       case flight::CutOff::MaxStrikes: what = fmt::format("[run] max_strikes ({} blade strikes)", s.run.max_strikes); break;
-      case flight::CutOff::SearchSteps: what = fmt::format("the contact search's step cap ({})", strike::kMaxSearchSteps); break;
+      case flight::CutOff::SearchSteps:
+        what = fmt::format("the contact searches' limits ({} steps against a blade, {} against the scene's faces, or more faces "
+                           "within a nanosecond of flight than a search keeps)",
+                           strike::kMaxSearchSteps, flight::kMaxFaceSearchSteps);
+        break;
       case flight::CutOff::ContactsInPass:
         what = fmt::format("[run] max_contacts_per_pass ({} contacts in one pass)", s.run.max_contacts_per_pass);
         break;

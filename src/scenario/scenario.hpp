@@ -165,6 +165,7 @@ inline bool is_board(MeshLabel l) { return l == MeshLabel::Target || l == MeshLa
 
 struct MeshFile {
   std::string path;
+  std::optional<int> line;  // of its [[meshes]] table's path, for errors about what the mesh holds
   MeshLabel label = MeshLabel::Housing;
   double scale = 1.0;  // file units to metres
   // Guard properties when label is Guard.

@@ -34,6 +34,15 @@ void read_nail(const TableReader& t, NailSpec& n) {
   n.mass_tolerance = t.quantity_or("mass_tolerance", Kind::Mass, n.mass_tolerance, Range::NonNegative);
   if (n.length_tolerance >= n.length) throw t.error("length_tolerance", "expected a tolerance smaller than the length");
   if (n.mass_tolerance >= n.mass) throw t.error("mass_tolerance", "expected a tolerance smaller than the mass");
+  // Its mass over its rod's volume: from wood to the densest metal, or the three values
+  // describe no object (a 20 mm rod of 1 g, a pin of 1 kg).
+  const double density = n.mass / (0.25 * units::pi * n.diameter * n.diameter * n.length);
+  if (!(density >= 500 && density <= 25000)) {
+    const char* key = t.has("mass") ? "mass" : t.has("diameter") ? "diameter" : "length";
+    throw t.error(key, fmt::format("gives a rod {:.4g} m long and {:.4g} m thick a density of {:.4g} kg/m^3; expected 500 to "
+                                   "25000 kg/m^3 (wood to the densest metal): check the mass and the dimensions together",
+                                   n.length, n.diameter, density));
+  }
   if (n.diameter >= n.length) throw t.error("diameter", "expected a nail thinner than it is long");
   t.refuse_unknown_keys();
 }
@@ -131,6 +140,9 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
   h.margin = t.quantity_or("margin", Kind::Length, h.margin, Range::between(0.005, 1));
   if (several_spindles && t.has("deck_radius"))
     throw t.error("deck_radius", "with several spindles the deck's outline follows their tip circles; set housing.margin instead");
+  if (!several_spindles && t.has("deck_radius") && t.has("margin"))
+    throw t.error("margin", "is unused: deck_radius gives the deck's size (margin sets it only when deck_radius is left out); remove "
+                            "one of the two");
   if (auto r = t.optional_quantity("deck_radius", Kind::Length, Range::positive_up_to(10))) h.deck_radius = *r;
   h.skirt_bottom = t.quantity_or("skirt_bottom", Kind::Length, h.skirt_bottom, Range::between(0, 1));
   // The deck plate's height may be given instead of the skirt's depth: then the skirt's
@@ -172,15 +184,42 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
     op.name = o.string_or("name", op.name, {});
     read_arc(o, op.azimuth_from, op.azimuth_to);
     op.top = o.quantity_or("top", Kind::Length, h.skirt_bottom + h.skirt_depth, Range::between(0, 2));
-    if (op.top <= h.skirt_bottom) throw o.error("top", "expected the opening's upper edge above the skirt's bottom");
+    // (Within a micrometre: the same height written in two units is no opening.)
+    if (op.top <= h.skirt_bottom + 1e-6)
+      throw o.error("top", fmt::format("expected the opening's upper edge above the skirt's bottom ({:.4g} m): an opening up to it cuts "
+                                       "nothing",
+                                       h.skirt_bottom));
     op.chute_length = o.quantity_or("chute_length", Kind::Length, 0.0, Range::between(0, 3));
     op.chute_end_top = o.quantity_or("chute_end_top", Kind::Length, op.top, Range::between(0, 2));
     if (o.has("chute_end_top") && op.chute_length == 0.0)
       throw o.error("chute_end_top", "a chute's mouth needs a chute: set chute_length too");
-    if (op.chute_end_top <= h.skirt_bottom)
-      throw o.error("chute_end_top", fmt::format("expected the chute's mouth above the skirt's bottom ({} m)", h.skirt_bottom));
+    if (op.chute_end_top <= h.skirt_bottom + 1e-6)
+      throw o.error("chute_end_top", fmt::format("expected the chute's mouth above the skirt's bottom ({:.4g} m)", h.skirt_bottom));
     o.refuse_unknown_keys();
     h.openings.push_back(op);
+  }
+  // Openings round the whole turn leave no skirt: a deck without one is a skirt whose foot is
+  // at the plate, not openings. (Covered when every arc's end lies inside some arc: a gap
+  // would begin at an arc's end.)
+  if (!h.openings.empty()) {
+    bool whole_turn = true;
+    for (const auto& a : h.openings) {
+      bool covered = false;
+      for (const auto& b : h.openings) {
+        // a's end inside b, a nanoradian clear of b's end (its start included: arcs that meet).
+        double off = std::fmod(std::fmod(a.azimuth_to - b.azimuth_from, units::two_pi) + units::two_pi, units::two_pi);
+        if (off > units::two_pi - 1e-9) off = 0;
+        covered = covered || off < units::arc_span(b.azimuth_from, b.azimuth_to) - 1e-9;
+      }
+      whole_turn = whole_turn && covered;
+    }
+    if (whole_turn) {
+      const auto tables = t.array_of_tables("openings");
+      throw tables.back().error(
+          "azimuth_to", fmt::format("the opening{} cut{} the skirt round the whole turn, so no skirt is left; expected openings that "
+                                    "leave some skirt (a deck without a skirt: housing.skirt_bottom up to the plate)",
+                                    h.openings.size() > 1 ? "s together" : "", h.openings.size() > 1 ? "" : "s"));
+    }
   }
   // A guard given by azimuths hangs below the skirt and across the openings it spans, up
   // to their tops: its lower edge may stand above the skirt's bottom (a flap hung across an
@@ -480,6 +519,7 @@ MeshFile read_mesh_file(const TableReader& m, const std::filesystem::path& base,
   const std::string path = m.string_or("path", "", {});
   if (path.empty()) throw m.error("path", "missing; expected the mesh file's path (OBJ, OFF, PLY or STL)");
   mesh.path = (base / path).string();
+  mesh.line = m.line_of("path");
   const std::string label = m.string_or("label", "", {kMeshLabelNames.begin(), kMeshLabelNames.end()});
   if (label.empty()) throw m.error("label", "missing; expected one of ground, housing, deflector, guard, target, operator_zone");
   mesh.label = static_cast<MeshLabel>(std::find(kMeshLabelNames.begin(), kMeshLabelNames.end(), label) - kMeshLabelNames.begin());
@@ -515,6 +555,8 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
   f.range = t.quantity_or("range", Kind::Length, f.range, Range::between(5, 500));
   f.cell = t.quantity_or("cell", Kind::Length, f.cell, Range::between(0.1, 10));
   if (f.range / f.cell > 1000) throw t.error("cell", fmt::format("expected at most 1000 cells across the range ({:g} m): a coarser cell", f.range));
+  if (f.cell > 0.5 * f.range)
+    throw t.error("cell", fmt::format("expected a cell at most half the range ({:g} m): the maps need cells across it", f.range));
   f.objects_simulated = t.integer_or("objects_simulated", f.objects_simulated, 1, 1'000'000'000);
   f.person_energy = t.quantity_or("person_energy", Kind::Energy, f.person_energy, Range::between(0.01, 1e5));
   f.presented_area = t.quantity_or("presented_area", Kind::Area, f.presented_area, Range::between(0.01, 10));
@@ -664,6 +706,69 @@ double distance_to_path(double x, double y, const PlanPath& path) {
   return best;
 }
 
+// Whether (x, y) lies inside the deck's plan or on its skirt: a round deck's circle, or within
+// the margin of some spindle's tip circle (the outline of several follows their tip circles;
+// between two circles the hull reaches a little further, so this may say "outside" there).
+bool inside_deck(const Scenario& s, double x, double y) {
+  if (s.spindles.size() == 1) return std::hypot(x, y) <= s.housing.deck_radius + 1e-6;
+  for (const auto& sp : s.spindles)
+    if (std::hypot(x - sp.x, y - sp.y) <= sp.blade.tip_radius() + s.housing.margin + 1e-6) return true;
+  return false;
+}
+
+// Points along a deflector's plan path (its arc, or its polyline), about a centimetre apart.
+template <class Visit>
+void deflector_points(const DeflectorSpec& d, Visit&& visit) {
+  if (d.along.empty()) {
+    const double span = units::arc_span(d.azimuth_from, d.azimuth_to);
+    const int n = std::max(2, static_cast<int>(std::ceil(span * d.radius / 0.01)) + 1);
+    for (int k = 0; k < n; ++k) {
+      const double a = d.azimuth_from + span * k / (n - 1);
+      visit(d.radius * std::cos(a), d.radius * std::sin(a));
+    }
+    return;
+  }
+  for (std::size_t i = 0; i + 1 < d.along.size(); ++i) {
+    const double ax = d.along[i][0], ay = d.along[i][1], bx = d.along[i + 1][0], by = d.along[i + 1][1];
+    const int n = std::max(2, static_cast<int>(std::ceil(std::hypot(bx - ax, by - ay) / 0.01)) + 1);
+    for (int k = 0; k < n; ++k) visit(ax + (bx - ax) * k / (n - 1), ay + (by - ay) * k / (n - 1));
+  }
+}
+
+template <class Inside>
+bool deflector_enters(const DeflectorSpec& d, Inside&& inside) {
+  bool any = false;
+  deflector_points(d, [&](double x, double y) { any = any || inside(x, y); });
+  return any;
+}
+
+// How far (x, y) lies outside the board's wall (< 0: inside it): a ring about the deck's
+// centre, or the wall `distance` outside the hull of every tip circle (the hull's distance
+// from a point outside it is the greatest over directions u of p.u less its support
+// max_k(c_k.u + r_k), sampled every half degree).
+double beyond_board(const Scenario& s, double x, double y) {
+  if (s.target.shape == TargetSpec::Shape::Circle) return std::hypot(x, y) - (s.reach() + s.target.distance);
+  double best = -HUGE_VAL;
+  for (int k = 0; k < 720; ++k) {
+    const double a = units::two_pi * k / 720, ux = std::cos(a), uy = std::sin(a);
+    double support = -HUGE_VAL;
+    for (const auto& sp : s.spindles) support = std::max(support, sp.x * ux + sp.y * uy + sp.blade.tip_radius());
+    best = std::max(best, x * ux + y * uy - support);
+  }
+  return best - s.target.distance;
+}
+
+// Whether a deflector's plan path meets the board's wall: points on both sides of it, or one
+// within a millimetre of it.
+bool deflector_crosses_board(const Scenario& s, const DeflectorSpec& d) {
+  bool in = false, out = false, on = false;
+  deflector_points(d, [&](double x, double y) {
+    const double b = beyond_board(s, x, y);
+    in = in || b < 0, out = out || b > 0, on = on || std::abs(b) < 1e-3;
+  });
+  return on || (in && out);
+}
+
 void check_consistency(const TableReader& root, Scenario& s) {
   const bool generated_deck = s.meshes.empty();
   const double plate = s.housing.skirt_bottom + s.housing.skirt_depth;
@@ -696,6 +801,21 @@ void check_consistency(const TableReader& root, Scenario& s) {
       if (sp.geometry.edge.sail_height > 0 && edge && edge->has("sail_height")) throw edge->error("sail_height", what);
       throw height_error(what);
     }
+    // Two knives hung closer than a knife is wide would stand in one another.
+    const auto& arms = sp.blade.arms;
+    for (std::size_t i = 0; i < arms.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j) {
+        const double apart = std::hypot(arms[i].pivot_radius * std::cos(arms[i].azimuth) - arms[j].pivot_radius * std::cos(arms[j].azimuth),
+                                        arms[i].pivot_radius * std::sin(arms[i].azimuth) - arms[j].pivot_radius * std::sin(arms[j].azimuth));
+        if (apart >= sp.geometry.edge.width) continue;
+        const auto arm_tables = blade.array_of_tables("arms", 16);
+        const std::string what = fmt::format("puts arm {}'s pivot {:.3g} m from arm {}'s, closer than a knife is wide ({:.3g} m, "
+                                             "blade.edge.width): the two knives would stand in one another; expected pivots farther "
+                                             "apart",
+                                             i + 1, apart, j + 1, sp.geometry.edge.width);
+        if (i < arm_tables.size()) throw arm_tables[i].error(arm_tables[i].has("azimuth") ? "azimuth" : "pivot_radius", what);
+        throw blade.error("arms", what);
+      }
     // A blade whose lower face hangs below the skirt's foot: a nail its bevel sends down can
     // leave under the skirt without touching it. A design can mean it (a raised skirt), so it
     // is said, not refused.
@@ -769,11 +889,29 @@ void check_consistency(const TableReader& root, Scenario& s) {
     }
   if (generated_deck && housing) {
     const auto openings = housing->array_of_tables("openings");
-    for (std::size_t i = 0; i < s.housing.openings.size() && i < openings.size(); ++i)
+    for (std::size_t i = 0; i < s.housing.openings.size() && i < openings.size(); ++i) {
       if (s.housing.openings[i].top > plate + 1e-12)
         throw openings[i].error("top", fmt::format("expected the opening's top at or below the deck plate ({:.4g} m): the skirt it "
                                                    "cuts ends there (an opening to the top of the skirt: leave top out)",
                                                    plate));
+      // A discharge chute leads the opening out and down; one rising above the plate would
+      // stand where the deck's top is.
+      if (s.housing.openings[i].chute_length > 0 && s.housing.openings[i].chute_end_top > plate + 1e-12)
+        throw openings[i].error("chute_end_top", fmt::format("puts the chute's mouth above the deck plate ({:.4g} m); expected a chute "
+                                                             "that runs out from its opening at or below the plate",
+                                                             plate));
+    }
+    // A panel standing inside the deck ends at the plate; one rising above it would pass
+    // through the plate.
+    const auto deflectors = housing->array_of_tables("deflectors");
+    for (std::size_t i = 0; i < s.housing.deflectors.size() && i < deflectors.size(); ++i) {
+      const DeflectorSpec& d = s.housing.deflectors[i];
+      if (d.top > plate + 1e-12 && deflector_enters(d, [&](double x, double y) { return inside_deck(s, x, y); }))
+        throw deflectors[i].error("top", fmt::format("raises the panel to {:.4g} m, through the deck plate ({:.4g} m) above the part of "
+                                                     "it inside the deck (or on its skirt); expected a top at or below the plate (or the panel outside "
+                                                     "the deck)",
+                                                     d.top, plate));
+    }
     std::size_t present = 0;
     for (const auto& g : housing->array_of_tables("guards")) {
       if (!g.boolean_or("present", true)) continue;
@@ -785,6 +923,36 @@ void check_consistency(const TableReader& root, Scenario& s) {
   // The J232 test's board and operator zone (not a field's).
   if (!s.field.present && generated_deck) {
     const auto target = root.table("target");
+    // The board stands around the mower: beyond the deck's edge, not under it.
+    {
+      const bool several = s.spindles.size() > 1;
+      const double board = several ? s.target.distance : s.reach() + s.target.distance;
+      const double deck = several ? s.housing.margin : s.housing.deck_radius;
+      if (!(board > deck)) {
+        const std::string what =
+            several ? fmt::format("puts the board {:.3g} m outside the tip circles, within the deck's {:.3g} m margin (housing.margin): the "
+                                  "board would stand inside the deck; expected a board beyond the deck's edge",
+                                  s.target.distance, s.housing.margin)
+                    : fmt::format("puts the board {:.3g} m from the deck's centre, within its {:.3g} m radius (housing.deck_radius): the "
+                                  "board would stand inside the deck; expected a board beyond the deck's edge",
+                                  board, s.housing.deck_radius);
+        if (target && target->has("distance")) throw target->error("distance", what);
+        if (housing && housing->has(several ? "margin" : "deck_radius")) throw housing->error(several ? "margin" : "deck_radius", what);
+        throw root.error("target", what);
+      }
+    }
+    // A panel standing across the board's wall (at the board's height) takes its place there:
+    // nails meeting it would bounce, not mark.
+    if (housing) {
+      const auto deflectors = housing->array_of_tables("deflectors");
+      for (std::size_t i = 0; i < s.housing.deflectors.size() && i < deflectors.size(); ++i) {
+        const DeflectorSpec& d = s.housing.deflectors[i];
+        if (d.bottom < s.target.top && d.top > s.target.bottom && deflector_crosses_board(s, d))
+          throw deflectors[i].error(d.along.empty() ? "radius" : "along",
+                                    "stands the panel across the board's wall, at the board's height: nails meeting it there would "
+                                    "bounce, not mark; expected a panel inside the board (or beyond it)");
+      }
+    }
     // A board whose bottom is above the counted height: nails passing under it there would be
     // counted by SAE J232 but meet no board.
     if (s.target.bottom > s.counted_height() + 1e-6) {
@@ -805,22 +973,34 @@ void check_consistency(const TableReader& root, Scenario& s) {
                                       "from {:.4g} m): no counted mark could fall in it; expected a zone on the board's counted part",
                                       s.zone.bottom, s.zone.top, s.zone.bottom >= s.target.top - 1e-6 ? "above the board" : "below the counted part of the board",
                                       s.target.bottom, s.target.top, s.counted_height()));
-    } else if (s.zone.kind == OperatorZoneSpec::Kind::Derived) {
-      // A seat over a blade's disc is a seat inside the deck.
-      for (std::size_t k = 0; k < s.spindles.size(); ++k) {
-        const SpindleSpec& sp = s.spindles[k];
-        const double off = std::hypot(s.zone.seat_x - sp.x, s.zone.seat_y - sp.y), tip = sp.blade.tip_radius();
-        if (off < tip) {
-          const std::string what = fmt::format("puts the operator's seat ({:.3g}, {:.3g}) m over {} blade, {:.3g} m from its axis "
-                                               "within its {:.3g} m tip circle: inside the deck; expected a seat outside it",
-                                               s.zone.seat_x, s.zone.seat_y, s.spindles.size() > 1 ? fmt::format("spindle {}'s", k + 1) : "the",
-                                               off, tip);
-          if (zone && zone->has("seat_x")) throw zone->error("seat_x", what);
-          if (zone && zone->has("seat_y")) throw zone->error("seat_y", what);
-          throw root.error("operator_zone", what);
-        }
+    }
+  }
+  // A seat over a blade's disc is a seat inside the deck (a mesh deck's too).
+  if (!s.field.present && s.zone.kind == OperatorZoneSpec::Kind::Derived) {
+    const auto zone = root.table("operator_zone");
+    for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+      const SpindleSpec& sp = s.spindles[k];
+      const double off = std::hypot(s.zone.seat_x - sp.x, s.zone.seat_y - sp.y), tip = sp.blade.tip_radius();
+      if (off < tip) {
+        const std::string what = fmt::format("puts the operator's seat ({:.3g}, {:.3g}) m over {} blade, {:.3g} m from its axis "
+                                             "within its {:.3g} m tip circle: inside the deck; expected a seat outside it",
+                                             s.zone.seat_x, s.zone.seat_y, s.spindles.size() > 1 ? fmt::format("spindle {}'s", k + 1) : "the",
+                                             off, tip);
+        if (zone && zone->has("seat_x")) throw zone->error("seat_x", what);
+        if (zone && zone->has("seat_y")) throw zone->error("seat_y", what);
+        throw root.error("operator_zone", what);
       }
     }
+  }
+  // A nail wider than the feed's tube cannot drop through it.
+  if (!s.field.present && s.feed.outlet_diameter > 0 && s.nail.diameter >= s.feed.outlet_diameter) {
+    const auto feed = root.table("feed");
+    const std::string what = fmt::format("the nail ({:.4g} m thick) cannot drop through the feed's outlet ({:.4g} m); expected an "
+                                         "outlet wider than the nail",
+                                         s.nail.diameter, s.feed.outlet_diameter);
+    if (feed && feed->has("outlet_diameter")) throw feed->error("outlet_diameter", what);
+    if (auto nail = root.table("nail"); nail && nail->has("diameter")) throw nail->error("diameter", what);
+    throw root.error("feed", what);
   }
   // A board that cannot carry a counted mark is no test (its top within a micrometre of the
   // counted height, as the same height written in two units gives, included).

@@ -464,6 +464,74 @@ std::vector<scenario::GuardSpec> scene_guards(const scenario::Scenario& s) {
   return guards;
 }
 
+namespace {
+
+// Whether a triangle meets the upright cylinder over the plan disc (cx, cy, r) between
+// heights z0 and z1: the triangle clipped to the slab, then that convex polygon against the
+// disc in plan (a corner inside it, an edge within r of its centre, or the centre inside).
+bool meets_cylinder(const std::array<Vec3, 3>& tri, double cx, double cy, double r, double z0, double z1) {
+  std::vector<Vec3> poly(tri.begin(), tri.end());
+  const auto clip = [&](double level, double side) {  // keep side * (z - level) >= 0
+    std::vector<Vec3> out;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Vec3 &a = poly[i], &b = poly[(i + 1) % poly.size()];
+      const double da = side * (a.z() - level), db = side * (b.z() - level);
+      if (da >= 0) out.push_back(a);
+      if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+    }
+    poly = std::move(out);
+  };
+  clip(z0, 1.0);
+  if (std::isfinite(z1) && !poly.empty()) clip(z1, -1.0);
+  if (poly.empty()) return false;
+  const Eigen::Vector2d c(cx, cy);
+  double turning = 0;  // sign of the centre's side of each edge, for "centre inside"
+  bool positive = true, negative = true;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Eigen::Vector2d a = poly[i].head<2>(), b = poly[(i + 1) % poly.size()].head<2>();
+    if ((a - c).norm() < r) return true;
+    const Eigen::Vector2d e = b - a;
+    const double len2 = e.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((c - a).dot(e) / len2, 0.0, 1.0) : 0.0;
+    if ((a + t * e - c).norm() < r) return true;
+    const double side = e.x() * (c.y() - a.y()) - e.y() * (c.x() - a.x());
+    turning += std::abs(side);
+    positive = positive && side >= 0, negative = negative && side <= 0;
+  }
+  return turning > 0 && (positive || negative);
+}
+
+// What a mesh may not hold, as the generated set-up's checks refuse the same of its parts:
+// ground up into a blade's swept disc (from its lower face up), a housing, deflector or
+// guard face within a blade's tip circle at the blade's heights.
+void check_mesh_part(const scenario::Scenario& s, std::size_t index, const scenario::MeshFile& m, const Soup& part) {
+  const bool ground = m.label == scenario::MeshLabel::Ground;
+  if (!(ground || m.label == scenario::MeshLabel::Housing || m.label == scenario::MeshLabel::Deflector ||
+        m.label == scenario::MeshLabel::Guard))
+    return;
+  for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+    const auto& sp = s.spindles[k];
+    const double bottom = sp.geometry.height - 0.5 * sp.geometry.thickness;
+    const double top = ground ? HUGE_VAL : sp.geometry.height + 0.5 * sp.geometry.thickness + sp.geometry.edge.sail_height;
+    const double tip = sp.blade.tip_radius();
+    for (const auto& t : part.triangles) {
+      const std::array<Vec3, 3> tri{part.points[t[0]], part.points[t[1]], part.points[t[2]]};
+      if (!meets_cylinder(tri, sp.x, sp.y, tip, bottom, top)) continue;
+      const std::string blade = s.spindles.size() > 1 ? fmt::format("spindle {}'s blade", k + 1) : std::string("the blade");
+      throw scenario::InputError(
+          s.file, m.line, fmt::format("meshes[{}].path", index + 1), m.path,
+          ground ? fmt::format("the ground mesh rises inside {}'s tip circle ({:.3g} m) to its lower face ({:.4g} m) or above; "
+                               "expected turf below every blade",
+                               blade, tip, bottom)
+                 : fmt::format("the mesh has a face inside {}'s swept disc (its {:.3g} m tip circle, between {:.4g} and {:.4g} m); "
+                               "expected nothing fixed where a blade turns",
+                               blade, tip, bottom, top));
+    }
+  }
+}
+
+}  // namespace
+
 Soup build_scene_soup(const scenario::Scenario& s) {
   Soup soup;
   const OperatorZone zone(s.zone, s.blade_plane());
@@ -473,6 +541,11 @@ Soup build_scene_soup(const scenario::Scenario& s) {
   // standard set-up they do not replace.
   std::uint16_t guard = 0;
   double mesh_reach = 0;
+  double target_top = -HUGE_VAL;
+  std::optional<std::size_t> first_target;
+  std::optional<std::size_t> first_housing;
+  std::vector<Vec3> housing_points;
+  std::size_t zone_faces = 0;  // of the board meshes, in the operator zone and reaching above the counted height
   for (std::size_t i = 0; i < s.meshes.size(); ++i) {
     const auto& m = s.meshes[i];
     Surface label = Surface::Housing;
@@ -492,17 +565,65 @@ Soup build_scene_soup(const scenario::Scenario& s) {
       if (soup.triangles.size() + part.triangles.size() > kMaxSceneTriangles)
         throw std::runtime_error(fmt::format("{}: the scene would hold more than {} triangles", m.path, kMaxSceneTriangles));
     } catch (const std::runtime_error& e) {
-      throw scenario::InputError(s.file, std::nullopt, fmt::format("meshes[{}].path", i + 1), "", e.what());
+      throw scenario::InputError(s.file, m.line, fmt::format("meshes[{}].path", i + 1), "", e.what());
     }
     if (label == Surface::TargetOutside)
       for (std::size_t t = 0; t < part.triangles.size(); ++t) {
         const auto& tri = part.triangles[t];
         if (zone.contains((part.points[tri[0]] + part.points[tri[1]] + part.points[tri[2]]) / 3.0)) part.labels[t] = Surface::TargetZone;
       }
+    check_mesh_part(s, i, m, part);
+    // A board mesh that cannot carry a counted mark is no test (as a generated board's top).
+    if ((label == Surface::TargetOutside || label == Surface::TargetZone) && !s.field.present) {
+      double highest = -HUGE_VAL;
+      for (const auto& p : part.points) highest = std::max(highest, p.z());
+      target_top = std::max(target_top, highest);
+      if (!first_target) first_target = i;
+      for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+        const auto& tri = part.triangles[t];
+        const double top = std::max({part.points[tri[0]].z(), part.points[tri[1]].z(), part.points[tri[2]].z()});
+        zone_faces += part.labels[t] == Surface::TargetZone && top > s.counted_height() + 1e-6;
+      }
+    }
     if (label != Surface::Ground)
       for (const auto& p : part.points) mesh_reach = std::max(mesh_reach, std::hypot(p.x(), p.y()));
+    if (label == Surface::Housing) {
+      if (!first_housing) first_housing = i;
+      housing_points.insert(housing_points.end(), part.points.begin(), part.points.end());
+    }
     soup.append(part);
   }
+  // A housing mesh covers the blades: it rises above each blade and reaches beyond its tip
+  // circle (a deck scaled wrongly lies under the blade, or within its sweep).
+  if (first_housing)
+    for (std::size_t k = 0; k < s.spindles.size(); ++k) {
+      const auto& sp = s.spindles[k];
+      const double top = sp.geometry.height + 0.5 * sp.geometry.thickness + sp.geometry.edge.sail_height;
+      double highest = -HUGE_VAL, farthest = 0;
+      for (const auto& p : housing_points) highest = std::max(highest, p.z()), farthest = std::max(farthest, std::hypot(p.x() - sp.x, p.y() - sp.y));
+      if (highest > top && farthest > sp.blade.tip_radius()) continue;
+      const std::string blade = s.spindles.size() > 1 ? fmt::format("spindle {}'s blade", k + 1) : std::string("the blade");
+      throw scenario::InputError(s.file, s.meshes[*first_housing].line, fmt::format("meshes[{}].path", *first_housing + 1),
+                                 s.meshes[*first_housing].path,
+                                 fmt::format("the housing meshes {} ({}); expected a deck over every blade (check the mesh's scale)",
+                                             highest <= top ? fmt::format("lie wholly below {}'s top ({:.4g} m)", blade, top)
+                                                            : fmt::format("lie within {}'s tip circle", blade),
+                                             highest <= top ? fmt::format("their highest point {:.4g} m", highest)
+                                                            : fmt::format("{:.3g} m at most from its axis, its tip at {:.3g} m", farthest,
+                                                                          sp.blade.tip_radius())));
+    }
+  if (first_target && !(target_top > s.counted_height() + 1e-6))
+    throw scenario::InputError(s.file, s.meshes[*first_target].line, fmt::format("meshes[{}].path", *first_target + 1),
+                               s.meshes[*first_target].path,
+                               fmt::format("the board meshes reach {:.4g} m, at or below the counted height ({:.4g} m); no mark on "
+                                           "them could count, so the test could not fail; expected a board rising above it",
+                                           target_top, s.counted_height()));
+  if (first_target && zone_faces == 0)
+    throw scenario::InputError(s.file, s.meshes[*first_target].line, fmt::format("meshes[{}].path", *first_target + 1),
+                               s.meshes[*first_target].path,
+                               "no face of the board meshes above the counted height lies in the operator zone: no counted mark "
+                               "could fall in it, so its criteria could not fail; expected an operator zone ([operator_zone]) on "
+                               "the board");
   // A field has no board, and its turf reaches beyond the tallied square.
   const bool board = !s.field.present;
   const double ground_half = board ? target_radius(s) + 2.0 : field_ground_half(s) + 2.0;
