@@ -481,12 +481,13 @@ TEST_CASE("replay: a replayed nail is the nail of the run, and its events add up
       if (!replay.struck) continue;
       // The events: every bounce and later strike, one end with the fate, a board event
       // with the board's own energy, times that never go back.
-      int bounces = 0, strikes = 1, boards = 0, passes = 0;
+      int bounces = 0, gentle = 0, strikes = 1, boards = 0, passes = 0;
       double t = replay.strike.time;
       for (const auto& e : replay.events) {
         CHECK(e.time >= t);
         t = e.time;
-        bounces += e.kind == flight::FlightEvent::Kind::Bounce;
+        bounces += e.kind == flight::FlightEvent::Kind::Bounce && !e.gentle;
+        gentle += e.kind == flight::FlightEvent::Kind::Bounce && e.gentle;
         strikes += e.kind == flight::FlightEvent::Kind::Strike;
         passes += e.kind == flight::FlightEvent::Kind::GuardPass;
         if (e.kind == flight::FlightEvent::Kind::Board) {
@@ -498,6 +499,7 @@ TEST_CASE("replay: a replayed nail is the nail of the run, and its events add up
       CHECK(replay.events.back().kind == flight::FlightEvent::Kind::End);
       CHECK(replay.events.back().fate == f.fate);
       CHECK(bounces == f.bounces);
+      CHECK(gentle == f.gentle_contacts);
       CHECK(strikes == f.strikes);
       CHECK(boards == (f.board_energy >= 0 ? 1 : 0));
       marked += f.mark_count > 0, restruck += f.strikes > 1, passed += passes > 0;

@@ -175,7 +175,7 @@ std::string detail(const flight::FlightEvent& e) {
 
 nlohmann::json event_json(const flight::FlightEvent& e) {
   auto v = [](const flight::Vec3& x) { return nlohmann::json::array({x.x(), x.y(), x.z()}); };
-  nlohmann::json j{{"event", flight::event_name(e.kind)}, {"time_s", e.time},   {"centre_m", v(e.centre)},
+  nlohmann::json j{{"event", e.gentle ? "touch" : flight::event_name(e.kind)}, {"time_s", e.time},   {"centre_m", v(e.centre)},
                    {"velocity_m_s", v(e.velocity)},       {"spin_rad_s", v(e.spin)}, {"axis", v(e.axis)},
                    {"speed_before_m_s", e.speed_in}};
   using Kind = flight::FlightEvent::Kind;
@@ -194,7 +194,7 @@ nlohmann::json event_json(const flight::FlightEvent& e) {
 void print_trail(const std::vector<flight::FlightEvent>& events) {
   fmt::print("{:>10}  {:<10}  {:<26}  {:>9}  {:>9}  {}\n", "t (ms)", "event", "centre after (m)", "v (m/s)", "w (rad/s)", "detail");
   for (const auto& e : events)
-    fmt::print("{:>10.3f}  {:<10}  {:<26}  {:>9.2f}  {:>9.0f}  {}\n", 1e3 * e.time, flight::event_name(e.kind), vec(e.centre),
+    fmt::print("{:>10.3f}  {:<10}  {:<26}  {:>9.2f}  {:>9.0f}  {}\n", 1e3 * e.time, e.gentle ? "touch" : flight::event_name(e.kind), vec(e.centre),
                e.velocity.norm(), e.spin.norm(), detail(e));
 }
 
@@ -259,8 +259,9 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
              field::object_fate_name(out.fate), out.exit_speed, out.launch_elevation / units::degree, out.last_strike_speed);
   print_trail(events);
   const auto& f = out.flight;
-  fmt::print("fate: {}{}; {} strike(s), {} bounce(s)\n", flight::fate_name(f.fate),
-             f.fate == flight::Fate::CutOff ? fmt::format(" ({})", flight::cut_off_name(f.cut_off)) : "", f.strikes, f.bounces);
+  fmt::print("fate: {}{}; {} strike(s), {} bounce(s), {} gentle contact(s)\n", flight::fate_name(f.fate),
+             f.fate == flight::Fate::CutOff ? fmt::format(" ({})", flight::cut_off_name(f.cut_off)) : "", f.strikes, f.bounces,
+             f.gentle_contacts);
   if (!o.json.empty()) {
     nlohmann::json j{{"program", "j232 trace"}, {"scenario", s.title}, {"seed", s.run.seed}, {"object", index},
                      {"fate", field::object_fate_name(out.fate)}, {"events", nlohmann::json::array()}};
@@ -321,8 +322,9 @@ int run(const TraceOptions& o) {
     print_trail(r.events);
   }
   const auto& f = r.outcome.flight;
-  fmt::print("fate: {}; {} strike(s), {} bounce(s), {} counted mark(s) (hits {} / punctures {} in the zone, hits {} / punctures {} outside)\n",
-             flight::fate_name(f.fate), f.strikes, f.bounces, f.mark_count - f.uncounted_marks, f.hits_zone, f.punctures_zone,
+  fmt::print("fate: {}; {} strike(s), {} bounce(s), {} gentle contact(s), {} counted mark(s) (hits {} / punctures {} in the zone, hits {} / "
+             "punctures {} outside)\n",
+             flight::fate_name(f.fate), f.strikes, f.bounces, f.gentle_contacts, f.mark_count - f.uncounted_marks, f.hits_zone, f.punctures_zone,
              f.hits_outside, f.punctures_outside);
   if (f.trace.exit != flight::Exit::Inside) fmt::print("left the deck: {}\n", sim.exit_name(f.trace.exit, f.trace.exit_index));
   if (f.trace.first_exit != flight::Exit::Inside &&

@@ -6,6 +6,7 @@ FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<sc
     : chord_tolerance(s.run.chord_tolerance),
       time_limit(s.run.time_limit),
       max_bounces(s.run.max_bounces),
+      max_gentle_contacts(s.run.max_gentle_contacts),
       max_strikes(s.run.max_strikes),
       max_contacts_per_pass(s.run.max_contacts_per_pass),
       rest_speed(s.run.rest_speed),

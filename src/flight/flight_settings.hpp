@@ -14,7 +14,8 @@ namespace j232::flight {
 struct FlightSettings {
   double chord_tolerance = 0.001;  // m: the most a chord may sag from the path
   double time_limit = 3.0;         // s of flight per nail
-  int max_bounces = 400;
+  int max_bounces = 400;             // bounces: contacts approaching at least sqrt(2 g D)
+  int max_gentle_contacts = 100000;  // gentle contacts: slower (a sustained contact's micro-impacts)
   int max_strikes = 500;            // blade strikes of one nail (scenario::RunSpec)
   int max_contacts_per_pass = 400;  // contacts of one pass of an edge
   double rest_speed = 0.3;  // m/s: slower after a bounce (and turning slower at its ends) is at rest

@@ -39,6 +39,25 @@ const char* cut_off_name(CutOff c) {
     case CutOff::ContactsInPass: return "max_contacts_per_pass";
     case CutOff::UnresolvedContact: return "unresolved_blade_contact";
     case CutOff::NonFinite: return "non_finite_state";
+    case CutOff::MaxGentleContacts: return "max_gentle_contacts";
+    case CutOff::Wedged: return "wedged";
+  }
+  return "unknown";
+}
+
+const char* cut_off_setting(CutOff c) {
+  switch (c) {
+    case CutOff::None: return "none";
+    case CutOff::TimeLimit: return "run.time_limit";
+    case CutOff::MaxBounces: return "run.max_bounces";
+    case CutOff::FlightSteps: return "the flight's step cap";
+    case CutOff::MaxStrikes: return "run.max_strikes";
+    case CutOff::SearchSteps: return "the contact searches' limits";
+    case CutOff::ContactsInPass: return "run.max_contacts_per_pass";
+    case CutOff::UnresolvedContact: return "a blade touch the impulse could not resolve";
+    case CutOff::NonFinite: return "a non-finite state";
+    case CutOff::MaxGentleContacts: return "run.max_gentle_contacts";
+    case CutOff::Wedged: return "a wedge that contacts one at a time cannot resolve";
   }
   return "unknown";
 }
@@ -79,6 +98,13 @@ bool in_arc(double a, double from, double to) {
 }
 
 constexpr int kSustainedContacts = 64;   // contacts in one pass before a field's object counts as pushed along
+// Contacts (strikes or bounces) each within kWedgeGap of the one before, kWedgeContacts in a
+// row: the nail is wedged (pinched between a blade and a fixed face, or in a corner), and the
+// impacts, resolved one at a time, accumulate at one instant without end (a Zeno sequence;
+// simultaneous contacts would resolve it). A field's object pushed along by a knife is caught
+// earlier, by kSustainedContacts.
+constexpr int kWedgeContacts = 64;
+constexpr double kWedgeGap = 1e-8;  // s
 constexpr double kSustainedGap = 1e-5;   // s between the last two of them
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
 constexpr double kMaxChord = 0.5;    // m
@@ -127,6 +153,9 @@ struct NailFlight {
   const FirstContact& first;
   random::EventDraws& draws;
   const double length = nail.length, diameter = nail.diameter, mass = nail.mass;
+  // The approach speed below which a contact is gentle: a fall through the object's own
+  // diameter, sqrt(2 g D) (0.22 m/s for a 6d nail).
+  const double gentle_speed = std::sqrt(2 * -kGravity.z() * diameter);
   const FlightSettings& set = *ctx.settings;
 
   FlightResult r{};
@@ -143,6 +172,14 @@ struct NailFlight {
   double struck_flap_time = -HUGE_VAL;
   bool last_contact_guard = false;
   bool ended_at_rest = false;
+  // Contacts within kWedgeGap of the one before, in a row, and when the last was.
+  int wedge_contacts = 0;
+  double last_any_contact = -HUGE_VAL;
+  void note_contact(double t) {
+    wedge_contacts = t - last_any_contact < kWedgeGap ? wedge_contacts + 1 : 0;
+    last_any_contact = t;
+    if (wedge_contacts >= kWedgeContacts) cut(CutOff::Wedged);
+  }
   // A knife riding over an object pressed into the soil (a field's stone) touches it no
   // more in that pass: its spindle's contacts before `ridden_until` are passed over.
   std::size_t ridden_spindle = first.spindle;
@@ -398,6 +435,7 @@ void NailFlight::restrike(const strike::Contact& k) {
   if (sustained) b.velocity = sp.velocity_at(k.point), b.spin = Vec3::Zero(), ++r.pushed_along;
   if (on_blade) r.launch_velocity = b.velocity;  // its launch: the last contact before it touches anything else
   ++r.strikes;
+  note_contact(k.time);
   touch(Touch::Blade);
   trace.last_strike_speed = b.velocity.norm();
   trace.last_strike_velocity = b.velocity;
@@ -509,6 +547,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const double energy_in = ctx.events ? energy() : 0.0;
   // How the surface meets the nail: its touching point's velocity (the centre's when it slides).
   const Vec3 v_in = arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity;
+  const double approach = -v_in.dot(n);
   switch (material.response) {
     case SurfaceMaterial::Response::Board:
       // Reached sliding along the ground (in flight, run() finds the touch first): at the
@@ -571,9 +610,16 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   // Whether a nail that comes to rest under the mower was last turned back by a guard (a
   // bounce on the turf after it does not change that).
   if (hit.surface != scene::Surface::Ground) last_contact_guard = hit.surface == scene::Surface::Guard;
-  ++r.bounces;
+  // A contact approaching slower than a fall through the nail's own diameter is a gentle one:
+  // one of the micro-impacts by which a sustained contact (sliding along an edge, under a
+  // flap, on the turf) is followed. Each obeys the impact law; they are counted apart from
+  // bounces, so that a long slide does not spend the bounce cap.
+  const bool gentle = approach < gentle_speed;
+  ++(gentle ? r.gentle_contacts : r.bounces);
+  note_contact(b.time);
   if (FlightEvent* e = log(FlightEvent::Kind::Bounce, arm ? Vec3(b.position + *arm) : hit.point, n, speed_in))
-    e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard, e->energy_before = energy_in, e->energy_after = energy();
+    e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard, e->energy_before = energy_in, e->energy_after = energy(),
+    e->gentle = gentle;
   return true;
 }
 
@@ -620,8 +666,8 @@ bool NailFlight::slide(const scene::Hit& hit) {
   while (!stopped) {
     Vec3 slide = b.velocity - b.velocity.dot(up) * up;
     const double speed = slide.norm();
-    if (r.bounces > set.max_bounces || !std::isfinite(speed)) {
-      cut(std::isfinite(speed) ? CutOff::MaxBounces : CutOff::NonFinite);
+    if (r.bounces > set.max_bounces || r.gentle_contacts > set.max_gentle_contacts || !std::isfinite(speed)) {
+      cut(!std::isfinite(speed) ? CutOff::NonFinite : r.bounces > set.max_bounces ? CutOff::MaxBounces : CutOff::MaxGentleContacts);
       break;
     }
     if (speed < set.rest_speed || decel <= 0) {
@@ -725,16 +771,19 @@ Fate NailFlight::fate() const {
 // Whether the flight goes on: its state is finite, within the run's limits, and still in
 // the test's space. Sets what ended it.
 bool NailFlight::event_check(double t_end, int& steps) {
+  if (cut_off) return false;  // (a limit met within the last event: a wedge)
   if (!b.position.allFinite() || !b.velocity.allFinite() || !std::isfinite(b.time)) {
     r.non_finite = true;
     cut(CutOff::NonFinite);
     return false;
   }
-  if (b.time >= t_end || r.bounces > set.max_bounces || ++steps > kMaxFlightSteps || r.strikes > set.max_strikes) {
-    cut(b.time >= t_end              ? CutOff::TimeLimit
-        : r.bounces > set.max_bounces ? CutOff::MaxBounces
-        : steps > kMaxFlightSteps     ? CutOff::FlightSteps
-                                      : CutOff::MaxStrikes);
+  if (b.time >= t_end || r.bounces > set.max_bounces || r.gentle_contacts > set.max_gentle_contacts || ++steps > kMaxFlightSteps ||
+      r.strikes > set.max_strikes) {
+    cut(b.time >= t_end                              ? CutOff::TimeLimit
+        : r.bounces > set.max_bounces                 ? CutOff::MaxBounces
+        : r.gentle_contacts > set.max_gentle_contacts ? CutOff::MaxGentleContacts
+        : steps > kMaxFlightSteps                     ? CutOff::FlightSteps
+                                                      : CutOff::MaxStrikes);
     return false;
   }
   const double horizontal2 = b.position.x() * b.position.x() + b.position.y() * b.position.y();

@@ -60,10 +60,15 @@ enum class CutOff : std::uint8_t {
   SearchSteps,       // strike::kMaxSearchSteps steps of one contact search
   ContactsInPass,    // [run] max_contacts_per_pass contacts in one pass
   UnresolvedContact, // a blade touch the impulse could not resolve
-  NonFinite          // a non-finite state
+  NonFinite,         // a non-finite state
+  MaxGentleContacts, // [run] max_gentle_contacts
+  Wedged             // contacts ever closer in time without end: pinched between a blade and a fixed face, or wedged
 };
-inline constexpr int kCutOffReasons = 9;
+inline constexpr int kCutOffReasons = 11;
 const char* cut_off_name(CutOff c);  // "time_limit", "max_bounces", ...
+// The scenario setting that raises the limit ("run.max_bounces"), or what the limit is when
+// no setting raises it ("the flight's step cap").
+const char* cut_off_setting(CutOff c);
 // Chords per flight before the nail is cut off: a nail at rest takes a few hundred at most.
 inline constexpr int kMaxFlightSteps = 200000;
 const char* fate_name(Fate f);
@@ -121,7 +126,8 @@ struct FlightResult {
   // normal and that energy per presented width (what the board model compares).
   double board_energy = -1;            // J; < 0: never reached the board
   double board_energy_per_width = -1;  // J/m
-  int bounces = 0;
+  int bounces = 0;          // contacts with the scene approaching at sqrt(2 g D) or faster
+  int gentle_contacts = 0;  // slower: the micro-impacts of a sustained contact (docs/model.md §5.5)
   int strikes = 1;                        // blade contacts, the first (the feed's) included
   // Passes: an edge's contacts with the nail until they part (docs/model.md §5.1b). A pass
   // with more than [run] max_contacts_per_pass contacts cuts the nail off (counted, never silent).
@@ -159,6 +165,7 @@ struct FlightEvent {
   // Bounce, Slide: the nail's mechanical energy (kinetic, translational and rotational, and
   // potential) just before and just after (a bounce or the fall flat must not create any).
   double energy_before = 0, energy_after = 0;
+  bool gentle = false;                  // Bounce: a gentle contact (approaching slower than sqrt(2 g D))
   int mark = 0;                         // Board: 0 none, 1 hit, 2 puncture
   Fate fate = Fate::OverBoard;          // End
 };

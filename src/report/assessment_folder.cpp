@@ -88,7 +88,7 @@ ScenePath scene_path(const assess::Simulator& sim, const assess::Trajectory& t, 
   for (const auto& [what, n] : touched) touches += fmt::format("{}{} {}", touches.empty() ? "" : ", ", what, n);
   out.info.push_back(fmt::format("replicate {}, nail {} (kept: {})", t.replicate, t.nail, t.why));
   out.info.push_back(fmt::format("fate: {}", flight::fate_name(f.fate)));
-  out.info.push_back(fmt::format("blade strikes: {}; bounces: {}", f.strikes, f.bounces));
+  out.info.push_back(fmt::format("blade strikes: {}; bounces: {}; gentle contacts: {}", f.strikes, f.bounces, f.gentle_contacts));
   if (!touches.empty()) out.info.push_back("touched: " + touches);
   if (f.trace.exit != flight::Exit::Inside) {
     out.info.push_back("way out: " + sim.exit_name(f.trace.exit, f.trace.exit_index));

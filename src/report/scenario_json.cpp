@@ -201,6 +201,7 @@ json run_json(const scenario::RunSpec& r) {
           {"chord_tolerance_m", r.chord_tolerance},
           {"time_limit_s", r.time_limit},
           {"max_bounces", r.max_bounces},
+          {"max_gentle_contacts", r.max_gentle_contacts},
           {"max_strikes", r.max_strikes},
           {"max_contacts_per_pass", r.max_contacts_per_pass},
           {"rest_speed_m_s", r.rest_speed},

@@ -246,6 +246,11 @@ struct RunSpec {
   double chord_tolerance = 0.001;  // max sag of a flight chord, m
   double time_limit = 3.0;         // s of flight per nail
   int max_bounces = 400;  // a tumbling rod bounces about 15 times a flight; nails riding round a closed skirt, hundreds
+  // Gentle contacts (approaching slower than a fall through the object's own diameter): the
+  // micro-impacts by which a sustained contact (sliding along a skirt's foot, under a flap,
+  // on the turf) is followed. Thousands in a long slide; the cap stops a contact that no
+  // longer moves on.
+  int max_gentle_contacts = 100000;
   // Blade strikes of one nail, and contacts of one pass of an edge, beyond which a nail is cut
   // off (counted, never silent): a nail caught between blades, or between a blade and the
   // deck; a nail rolling along an edge touches it many times (a few hundred at most were seen

@@ -359,6 +359,7 @@ void read_run(const TableReader& t, RunSpec& r) {
   // the test off before it happens.
   r.time_limit = t.quantity_or("time_limit", Kind::Time, r.time_limit, Range::between(0.1, 60));
   r.max_bounces = static_cast<int>(t.integer_or("max_bounces", r.max_bounces, 1, 10000));
+  r.max_gentle_contacts = static_cast<int>(t.integer_or("max_gentle_contacts", r.max_gentle_contacts, 1, 10'000'000));
   r.max_strikes = static_cast<int>(t.integer_or("max_strikes", r.max_strikes, 1, 100000));
   r.max_contacts_per_pass = static_cast<int>(t.integer_or("max_contacts_per_pass", r.max_contacts_per_pass, 1, 100000));
   r.rest_speed = t.quantity_or("rest_speed", Kind::Speed, r.rest_speed, Range::between(0.01, 5));
