@@ -9,6 +9,7 @@
 #include "flight/plane_touch.hpp"
 #include "flight/trajectory.hpp"
 #include "scene/scene.hpp"
+#include "units/quantity.hpp"
 
 using namespace j232;
 using flight::Vec3;
@@ -427,5 +428,38 @@ TEST_CASE("rebound off a flap: a head-on strike is the 1-D collision with the fl
       const double flap_v = (30 - v.x()) * m / flap_mass;
       CHECK(0.5 * m * v.squaredNorm() + 0.5 * flap_mass * flap_v * flap_v <= 0.5 * m * 900 * (1 + 1e-12));
     }
+  }
+}
+
+TEST_CASE("flight: a stone skidding from 60 m/s stops where friction and air drag together stop it", "[flight][drag][ground]") {
+  // du/dt = -mu g - k u^2 on flat ground stops in s = ln(1 + k u0^2 / (mu g)) / (2 k) (the
+  // hand calculation); friction alone would give u0^2 / (2 mu g), twice as far here. In a field
+  // the turf and the air rest in the ground's frame while the flight runs in the mower's: the
+  // skid measured in the ground's frame is the same.
+  const auto ground = flat_ground(400.0);
+  const double mu = 0.5, diameter = 0.05, mass = 2650 * units::pi / 6 * diameter * diameter * diameter;
+  const double k = 1.2 * 0.47 * (units::pi / 4 * diameter * diameter) / (2 * mass);
+  const double u0 = 60.0, hand = std::log(1 + k * u0 * u0 / (mu * g)) / (2 * k);
+  for (const double mower_speed : {0.0, 3.0}) {
+    scenario::Scenario s;
+    s.ground.restitution = 0;
+    s.ground.friction = mu;
+    s.ground.roughness = 0;
+    s.run.time_limit = 60;
+    flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+    settings.ground_velocity = {-mower_speed, 0, 0};
+    flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
+    flight::Drag drag;
+    drag.on = true, drag.sphere = true, drag.k_normal = k, drag.air = {-mower_speed, 0, 0};
+    flight::Body b;
+    b.position = {0, 0, 0.5 * diameter + 1e-6};
+    b.velocity = {u0 - mower_speed, 0, -0.01};  // just landing, skimming the turf
+    random::EventDraws rng(1, 0, 0);
+    const auto r = flight::fly(b, projectile::Projectile::sphere(diameter, mass), drag, ctx, {}, {}, rng);
+    const double skid = r.end_position.x() + mower_speed * r.flight_time;  // in the ground's frame
+    INFO("mower at " << mower_speed << " m/s: skid " << skid << " m, hand calculation " << hand << " m (friction alone "
+                     << u0 * u0 / (2 * mu * g) << " m)");
+    CHECK(r.fate != flight::Fate::CutOff);
+    CHECK(skid == Approx(hand).epsilon(0.01));
   }
 }

@@ -107,6 +107,7 @@ constexpr int kWedgeContacts = 64;
 constexpr double kWedgeGap = 1e-8;  // s
 constexpr double kSustainedGap = 1e-5;   // s between the last two of them
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
+constexpr int kMaxSlideParts = 10000;  // parts of one slide (a tenth of the speed each where drag counts: about 60 from 60 m/s)
 constexpr double kMaxChord = 0.5;    // m
 // A lying nail slides with its lowest point this far above the ground (clear of its faces by
 // more than the touch tolerance, so that sliding along them is no touch).
@@ -172,6 +173,7 @@ struct NailFlight {
   double struck_flap_time = -HUGE_VAL;
   bool last_contact_guard = false;
   bool ended_at_rest = false;
+  bool held_by_mower = false;  // at rest pressed against a face of the mower, pushed along by it (not carried by the turf)
   // Contacts within kWedgeGap of the one before, in a row, and when the last was.
   int wedge_contacts = 0;
   double last_any_contact = -HUGE_VAL;
@@ -658,34 +660,61 @@ void NailFlight::lie_down(const Vec3& up, const Vec3& on) {
 bool NailFlight::slide(const scene::Hit& hit) {
   Vec3 up = ctx.scene->face_normal(hit.face);
   if (up.dot(hit.normal) < 0) up = -up;
-  const double decel = set.materials.of(hit.surface, hit.guard).friction * -kGravity.z() * std::max(0.0, up.z());
+  const double friction_decel = set.materials.of(hit.surface, hit.guard).friction * -kGravity.z() * std::max(0.0, up.z());
+  // The turf's own velocity along its face (a field's, seen from the travelling mower; zero in
+  // the J232 test): friction acts on the slip over it, and the still air's drag on the
+  // object's speed through it, which on the ground are the same (both rest in the ground's frame).
+  const Vec3 turf = set.ground_velocity - set.ground_velocity.dot(up) * up;
   const double before = ctx.events ? energy() : 0.0;
   lie_down(up, hit.point);
   if (FlightEvent* e = log(FlightEvent::Kind::Slide, b.position, up, b.velocity.norm())) e->energy_before = before, e->energy_after = energy();
   bool stopped = false;
-  while (!stopped) {
-    Vec3 slide = b.velocity - b.velocity.dot(up) * up;
-    const double speed = slide.norm();
-    if (r.bounces > set.max_bounces || r.gentle_contacts > set.max_gentle_contacts || !std::isfinite(speed)) {
-      cut(!std::isfinite(speed) ? CutOff::NonFinite : r.bounces > set.max_bounces ? CutOff::MaxBounces : CutOff::MaxGentleContacts);
+  bool against_mower = false;  // it has slid into a face of the mower (a skirt, a panel, a guard) on this ground face
+  for (int part = 0; !stopped; ++part) {
+    Vec3 slip = b.velocity - b.velocity.dot(up) * up - turf;
+    const double speed = slip.norm();
+    if (r.bounces > set.max_bounces || r.gentle_contacts > set.max_gentle_contacts || !std::isfinite(speed) || part > kMaxSlideParts) {
+      cut(!std::isfinite(speed)              ? CutOff::NonFinite
+          : r.bounces > set.max_bounces      ? CutOff::MaxBounces
+          : part > kMaxSlideParts            ? CutOff::FlightSteps
+                                             : CutOff::MaxGentleContacts);
       break;
     }
-    if (speed < set.rest_speed || decel <= 0) {
+    // At rest on the turf, or pushed along by the mower (below).
+    if (speed < set.rest_speed || against_mower || (friction_decel <= 0 && !drag.on)) {
+      b.velocity = Vec3::Zero();
+      ended_at_rest = true;
+      held_by_mower = against_mower;
+      log(FlightEvent::Kind::Rest, b.position, up);
+      break;
+    }
+    slip /= speed;
+    // Air drag along the track at slip speed u (its component across the track and off the
+    // ground is taken by friction and the ground): a fast skid's drag outweighs its friction
+    // (a 50 mm stone at 60 m/s: about three times).
+    const auto drag_along = [&](double u) { return drag.on ? std::max(0.0, -drag_acceleration(drag, Vec3(turf + u * slip), b.axis).dot(slip)) : 0.0; };
+    // The lying capsule slides straight at constant deceleration over each part, until it
+    // stops or touches a face (a wall, a skirt's foot, another ground face); the face it lies
+    // on stays kLyingGap below. Where drag counts (above a hundredth of friction), a part ends
+    // where the speed has fallen by a tenth, its deceleration friction plus the drag at its
+    // middle speed (the stop's distance then within 0.1 % of the integral's); else one part
+    // runs to the stop.
+    double end_speed = 0;
+    if (drag_along(speed) > 0.01 * friction_decel) end_speed = 0.9 * speed >= set.rest_speed ? 0.9 * speed : 0.0;
+    const double decel = friction_decel + drag_along(0.5 * (speed + end_speed));
+    if (!(decel > 0)) {
       b.velocity = Vec3::Zero();
       ended_at_rest = true;
       log(FlightEvent::Kind::Rest, b.position, up);
       break;
     }
-    slide /= speed;
-    // The lying capsule slides straight, slowing at mu g, until it stops or touches a face
-    // (a wall, a skirt's foot, another ground face); the face it lies on stays kLyingGap below.
     strike::Motion m;
-    m.p0 = b.position, m.v0 = speed * slide, m.a = -decel * slide, m.t0 = b.time, m.axis0 = b.axis;
-    const double stop = b.time + speed / decel;
+    m.p0 = b.position, m.v0 = turf + speed * slip, m.a = -decel * slip, m.t0 = b.time, m.axis0 = b.axis;
+    const double part_end = b.time + (speed - end_speed) / decel;
     // A slide whose swept box holds more faces than the search keeps (a long slide past a
     // chain curtain, a mesh, the plate's fan) is searched a part at a time, as chords are:
     // the part's end is a point of the same motion, so the slide is unchanged by the split.
-    double until = stop;
+    double until = part_end;
     while (gather(m, b.time, until) > candidates.size()) {
       if (until - b.time <= 1e-9) {  // (as a chord's: too many faces even for a nanosecond's slide)
           cut(CutOff::SearchSteps);
@@ -707,21 +736,27 @@ bool NailFlight::slide(const scene::Hit& hit) {
     stretch(m, t0, wall ? wall->time : until);
     if (!wall) {
       const Vec3 to = m.centre(until);
-      if (ctx.observer) ctx.observer->flew(t0, from, speed * slide, until, to, Vec3::Zero());
+      if (ctx.observer) ctx.observer->flew(t0, from, m.velocity(t0), until, to, m.velocity(until));
       moved(from, to);
-      b.position = to, b.time = until, b.velocity = Vec3::Zero();
+      b.position = to, b.time = until, b.velocity = m.velocity(until);
       last_event = b.time;
+      if (until < part_end || end_speed > 0) continue;  // the slide goes on from the part's end
+      b.velocity = Vec3::Zero();
       ended_at_rest = true;
       log(FlightEvent::Kind::Rest, b.position, up);
       break;
     }
     b.time = wall->time, b.position = wall->centre, b.velocity = m.velocity(wall->time);
     last_event = b.time;
-    if (ctx.observer) ctx.observer->flew(t0, from, speed * slide, b.time, b.position, b.velocity);
+    if (ctx.observer) ctx.observer->flew(t0, from, m.velocity(t0), b.time, b.position, b.velocity);
     moved(from, b.position);
     const scene::Hit met = face_hit(*wall);
     stopped = !respond(met);
     if (set.materials.of(met.surface, met.guard).holds_up) break;  // slid onto another ground face: fly on from there
+    // Pressed into the mower's face by the turf moving under it (in a field), it is pushed
+    // along by the mower: at rest in the mower's frame, held there (the turf's friction
+    // pressing it into the face, the face's stopping its slide along it).
+    against_mower = turf.dot(met.normal) < -1e-9;
   }
   return !(stopped || ended_at_rest || cut_off);
 }
@@ -903,7 +938,7 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
 bool NailFlight::carried() {
   const Vec3& turf = set.ground_velocity;
   const double speed = turf.norm();
-  if (!(speed > 0) || !in_deck || !ctx.spindles) return false;
+  if (!(speed > 0) || !in_deck || !ctx.spindles || held_by_mower) return false;
   strike::Motion m;
   m.p0 = b.position, m.v0 = turf, m.a = Vec3::Zero(), m.t0 = b.time, m.axis0 = b.axis, m.spin = Vec3::Zero();
   // Long enough to cross the whole deck (and no longer than the flight may last).
