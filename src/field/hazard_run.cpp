@@ -174,22 +174,28 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
     landed += w[k] * static_cast<double>(landed_k);
   }
   s.cut_off_share = s.objects ? static_cast<double>(s.cut_off) / static_cast<double>(s.objects) : 0.0;
-  if (s.objects == 0 || s.thrown == 0) {
-    s.valid = false;
-    s.invalid_reason = "no object was thrown: the blades reached none of the field's objects, so there is no hazard to assess";
-  } else if (s.cut_off_share > 0.01) {
+  {
     // Which limits cut them off, so the user knows which setting to raise.
     std::array<std::uint64_t, flight::kCutOffReasons> by{};
     for (const auto& t : run.kinds)
       for (std::size_t i = 0; i < by.size(); ++i) by[i] += t.cut_off_by[i];
-    std::string limits;
     for (int i = 1; i < flight::kCutOffReasons; ++i)
       if (by[static_cast<std::size_t>(i)])
-        limits += fmt::format("{}{} by {}", limits.empty() ? "" : ", ", by[static_cast<std::size_t>(i)], cut_off_setting(static_cast<flight::CutOff>(i)));
+        s.cut_off_limits += fmt::format("{}{} by {}", s.cut_off_limits.empty() ? "" : ", ", by[static_cast<std::size_t>(i)],
+                                        flight::cut_off_setting(static_cast<flight::CutOff>(i)));
+  }
+  if (s.objects == 0 || s.thrown == 0) {
+    s.valid = false;
+    s.invalid_reason = "no object was thrown: the blades reached none of the field's objects, so there is no hazard to assess";
+  } else if (s.cut_off_share > 0.01) {
     s.valid = false;
     s.invalid_reason = fmt::format("{:.2f} % of the objects were cut off still moving by the run's limits (more than 1 %): {}",
-                                   100 * s.cut_off_share, limits);
+                                   100 * s.cut_off_share, s.cut_off_limits);
   }
+  s.warnings = sim.scenario().notes;
+  if (s.valid && s.cut_off_share >= 0.0025)
+    s.warnings.push_back(fmt::format("{:.2f} % of the objects were cut off still moving (a run withholds its answer from 1 %): {}",
+                                     100 * s.cut_off_share, s.cut_off_limits));
   s.thrown_per_km = 1000 * thrown;
   s.landed_outside_deck_share = thrown > 0 ? landed / thrown : 0.0;
   // Throw statistics over the kinds, each weighted as the field holds it.

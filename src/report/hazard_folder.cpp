@@ -42,9 +42,9 @@ HazardOutcome hazard_to_folder(const std::string& scenario_file, const HazardOve
   outcome.valid = sum.valid;
   outcome.summary_text = fmt::format("{}: thrown-object hazard in the field\n{}", s.title, hazard_text(sum));
   // What the reader noticed in the file (a guard named as a flap without `kind`, a blade below
-  // the skirt's foot), as `j232 run` lists among its warnings. (hazard.json has no warnings
-  // list yet: it gains one with the next regeneration of the shipped reports.)
-  for (const auto& note : s.notes) outcome.summary_text += fmt::format("  Warning: {}\n", note);
+  // the skirt's foot) and cut-offs near the limit, as `j232 run` lists among its warnings
+  // (hazard.json's `warnings`, hazard.html's list).
+  for (const auto& w : sum.warnings) outcome.summary_text += fmt::format("  Warning: {}\n", w);
   outcome.summary_text += fmt::format("  {} objects in {:.2f} s on {} thread(s){}: {:.0f} objects/s.\n", run.objects(), run.wall_seconds, run.threads,
                                       p.ranks > 1 ? fmt::format(" in each of {} MPI ranks", p.ranks) : "",
                                       run.wall_seconds > 0 ? static_cast<double>(run.objects()) / run.wall_seconds : 0.0);

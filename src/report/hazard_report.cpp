@@ -193,6 +193,7 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
       {"physics_model", assess::kModelPhysics},
       {"valid", sum.valid},
       {"invalid_reason", sum.invalid_reason},
+      {"warnings", sum.warnings},
       {"frame", "the ground's at each object's strike: origin at the mower's centre then, x along its travel, y to its left"},
       {"field",
        {{"ground_speed_m_s", f.ground_speed},
@@ -368,6 +369,11 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   o += fmt::format("<h1>Thrown-object hazard in the field: {}</h1>\n", escape(s.title));
   if (!sum.valid)
     o += fmt::format("<p class=\"verdict fail\"><strong>No hazard assessment:</strong> {}</p>\n", escape(sum.invalid_reason));
+  if (!sum.warnings.empty()) {
+    o += "<ul class=\"warnings\">\n";
+    for (const auto& w : sum.warnings) o += fmt::format("<li>Warning: {}</li>\n", escape(w));
+    o += "</ul>\n";
+  }
   o += fmt::format(
       "<p>A simulation of this mower at work at {:.1f} km/h over turf strewn with objects ({:.2f} m cut): {:.0f} objects met "
       "per kilometre mowed, {:.0f} of them of a size that can reach a blade, {:.0f} thrown. {} objects were simulated (a "
