@@ -34,8 +34,8 @@ std::string cut_off_limits(const Assessment& a, const scenario::Scenario& s) {
       case flight::CutOff::UnresolvedContact: what = "a blade touch the impulse could not resolve"; break;
       case flight::CutOff::NonFinite: what = "a non-finite state"; break;
       case flight::CutOff::Wedged:
-        what = "a wedge (64 contacts within 10 ns of one another: pinched between a blade and a fixed face, or in a corner; "
-               "contacts resolved one at a time cannot free it)";
+        what = "a wedge (64 contacts with two bodies in turn, each within 10 ns of the one before: pinched between a knife and a "
+               "fixed face, in a corner, or 6 strikes in turn by two knives; contacts resolved one at a time cannot free it)";
         break;
       case flight::CutOff::MaxGentleContacts:
         what = fmt::format("[run] max_gentle_contacts ({} contacts slower than sqrt(2 g D))", s.run.max_gentle_contacts);

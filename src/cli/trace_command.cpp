@@ -160,7 +160,8 @@ std::string detail(const flight::FlightEvent& e) {
     case Kind::GuardPass: {
       std::string what(scene::name(e.surface));
       if (e.surface == scene::Surface::Guard) what = fmt::format("guard {}", e.guard + 1);
-      return fmt::format("{} (face {}), normal {}", what, e.face + 1, vec(e.normal, 2));
+      return fmt::format("{} (face {}), normal {}{}", what, e.face + 1, vec(e.normal, 2),
+                         e.together > 1 ? fmt::format(", {} points together", e.together) : "");
     }
     case Kind::Board:
       return fmt::format("{}: {:.2f} J over {:.1f} mm -> {}", scene::name(e.surface), e.energy, 1e3 * e.width,
@@ -183,6 +184,7 @@ nlohmann::json event_json(const flight::FlightEvent& e) {
     j["point_m"] = v(e.point), j["normal"] = v(e.normal);
   if (e.kind == Kind::Bounce || e.kind == Kind::Board || e.kind == Kind::GuardPass) j["surface"] = scene::name(e.surface), j["face"] = e.face + 1;
   if (e.kind == Kind::Strike) j["spindle"] = e.spindle + 1, j["edge"] = e.edge + 1;
+  if (e.kind == Kind::Bounce && e.together > 1) j["points_together"] = e.together;
   if (e.kind == Kind::Board)
     j["energy_J"] = e.energy, j["presented_width_m"] = e.width, j["mark"] = e.mark == 2 ? "puncture" : e.mark == 1 ? "hit" : "none";
   if (e.kind == Kind::LeftDeck) j["crossing_m"] = v(e.point);

@@ -80,7 +80,7 @@ struct HazardSummary {
   double cut_off_share = 0;
   bool valid = true;         // few enough objects cut off by the run's limits (below 1 %)
   std::string invalid_reason;
-  std::string cut_off_limits;  // "12 by run.time_limit, 3 by a wedge ...": what cut objects off, most named first
+  std::string cut_off_limits;  // "12 by run.time_limit, 3 by a wedge ...": what cut objects off, in the order of the limits
   std::vector<std::string> warnings;  // the reader's notes, and cut-offs from 0.25 % (below the 1 % that withholds the answer)
   std::vector<DirectionCurve> directions;
   std::vector<PlaneResult> planes;

@@ -324,12 +324,41 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       for (int k = 0; k < distinct; ++k) seen = seen || normals[static_cast<std::size_t>(k)].dot(normal) > 1 - 1e-9;
       if (!seen && distinct < 4) normals[static_cast<std::size_t>(distinct++)] = normal;
       if (!touch || fs.face < touch->face) {
+        const FaceTouch kept = touch ? *touch : FaceTouch{};
         touch = FaceTouch{};
         touch->time = t, touch->centre = p.centre, touch->axis = p.axis, touch->point = st.on_triangle, touch->normal = normal;
         touch->face = fs.face;
+        touch->points = kept.points, touch->point_count = kept.point_count;
+      }
+      // The touching points: this face's closest one, and the core's ends within tolerance of
+      // it apart from that one (a nearly flat rod's other end), each moving into it.
+      const auto add = [&](const Vec3& on_face, const Vec3& n, const Vec3& on_core) {
+        if (touch->point_count >= FaceTouch::kMaxTouchPoints) return;
+        const Vec3 arm = on_core - s.r * n - p.centre;
+        for (int k = 0; k < touch->point_count; ++k)
+          if ((touch->points[static_cast<std::size_t>(k)].arm - arm).norm() < s.r && touch->points[static_cast<std::size_t>(k)].normal.dot(n) > 1 - 1e-9) return;
+        touch->points[static_cast<std::size_t>(touch->point_count++)] = TouchPoint{on_face, n, arm, fs.face};
+      };
+      add(st.on_triangle, normal, st.on_segment);
+      for (const double end : {-s.h, s.h}) {
+        const Vec3 tip = p.centre + end * p.axis;
+        if ((tip - st.on_segment).norm() < s.r) continue;  // the closest point already
+        const SegmentTriangle e = segment_triangle(tip, tip, scene.face_edges(fs.face));
+        if (e.distance - s.r > kFaceTolerance) continue;
+        const Vec3 gap = e.on_segment - e.on_triangle;
+        const Vec3 n = gap.norm() > 1e-12 ? Vec3(gap.normalized()) : normal;
+        if ((p.velocity + m.spin.cross(tip - s.r * n - p.centre)).dot(n) < -kApproachSpeed) add(e.on_triangle, n, tip);
       }
     }
-    if (touch) touch->touching = std::max(1, distinct);
+    if (touch) {
+      touch->touching = std::max(1, distinct);
+      // The touch's own point first.
+      for (int k = 1; k < touch->point_count; ++k)
+        if (touch->points[static_cast<std::size_t>(k)].face == touch->face && touch->points[static_cast<std::size_t>(k)].point == touch->point) {
+          std::swap(touch->points[0], touch->points[static_cast<std::size_t>(k)]);
+          break;
+        }
+    }
   };
 
   double t = from;

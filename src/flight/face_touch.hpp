@@ -17,6 +17,7 @@
 // until that point moves into it again; it is stepped past with a plane bound that lets it
 // sink at most kLeavingSlack into the face first. So the capsule never passes through a
 // face, nor a gap narrower than it is, nor bounces off a face that is not there.
+#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -45,6 +46,14 @@ struct SegmentTriangle {  // (no initialisers: the search keeps hundreds of them
 };
 SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::array<Vec3, 3>& triangle);
 
+// One point where the capsule touches a face, its touching point moving into it.
+struct TouchPoint {
+  Vec3 point = Vec3::Zero();   // on the face
+  Vec3 normal = Vec3::UnitZ(); // unit, from the face toward the capsule's core
+  Vec3 arm = Vec3::Zero();     // the capsule's touching point from its centre
+  std::uint32_t face = 0;
+};
+
 struct FaceTouch {
   double time = 0;
   Vec3 centre = Vec3::Zero(), axis = Vec3::UnitZ();  // the capsule then
@@ -52,6 +61,12 @@ struct FaceTouch {
   Vec3 normal = Vec3::UnitZ(); // unit, from the face toward the capsule's core (a face's, an edge's or a corner's)
   std::uint32_t face = 0;
   int touching = 1;            // faces the capsule touches then with points moving into them (> 1: a simultaneous contact)
+  // Every point touching then and moving in (the first is the touch above): on each such face
+  // its closest point, and a core's end within the tolerance of a face elsewhere (a nearly
+  // flat rod's two ends on one face). At most kMaxTouchPoints, the rest not kept.
+  static constexpr int kMaxTouchPoints = 4;
+  std::array<TouchPoint, kMaxTouchPoints> points{};
+  int point_count = 0;
 };
 
 // What a search tells beyond the touch: steps taken, and whether it gave up (the step cap).

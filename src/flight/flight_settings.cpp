@@ -11,6 +11,7 @@ FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<sc
       max_contacts_per_pass(s.run.max_contacts_per_pass),
       rest_speed(s.run.rest_speed),
       law(s.run.restitution_law),
+      contacts(s.run.contact_model),
       board(s.board),
       materials(s, guards) {
   for (const auto& o : s.housing.openings) openings.push_back({o.azimuth_from, o.azimuth_to, o.top});

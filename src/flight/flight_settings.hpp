@@ -20,6 +20,7 @@ struct FlightSettings {
   int max_contacts_per_pass = 400;  // contacts of one pass of an edge
   double rest_speed = 0.3;  // m/s: slower after a bounce (and turning slower at its ends) is at rest
   scenario::RestitutionLaw law = scenario::RestitutionLaw::Energetic;  // how a bounce's restitution is read
+  scenario::ContactModel contacts = scenario::ContactModel::Sequential;  // contacts at one instant: one after the other, or together
   scenario::BoardSpec board;
   // The generated deck's discharge openings, for naming the way out.
   struct Opening {

@@ -127,7 +127,8 @@ struct FlightResult {
   double board_energy = -1;            // J; < 0: never reached the board
   double board_energy_per_width = -1;  // J/m
   int bounces = 0;          // contacts with the scene approaching at sqrt(2 g D) or faster
-  int gentle_contacts = 0;  // slower: the micro-impacts of a sustained contact (docs/model.md §5.5)
+  int gentle_contacts = 0;  // slower: the micro-impacts of a sustained contact (docs/model.md §5.3)
+  int simultaneous_contacts = 0;  // bounces of several points resolved together ([contacts] model = "simultaneous")
   int strikes = 1;                        // blade contacts, the first (the feed's) included
   // Passes: an edge's contacts with the nail until they part (docs/model.md §5.1b). A pass
   // with more than [run] max_contacts_per_pass contacts cuts the nail off (counted, never silent).
@@ -166,6 +167,7 @@ struct FlightEvent {
   // potential) just before and just after (a bounce or the fall flat must not create any).
   double energy_before = 0, energy_after = 0;
   bool gentle = false;                  // Bounce: a gentle contact (approaching slower than sqrt(2 g D))
+  int together = 1;                     // Bounce: points resolved together ([contacts] model = "simultaneous")
   int mark = 0;                         // Board: 0 none, 1 hit, 2 puncture
   Fate fate = Fate::OverBoard;          // End
 };

@@ -206,7 +206,8 @@ json run_json(const scenario::RunSpec& r) {
           {"max_contacts_per_pass", r.max_contacts_per_pass},
           {"rest_speed_m_s", r.rest_speed},
           {"contact_search", r.reference_contact_search ? "fixed_steps" : "advancement"},
-          {"restitution_law", r.restitution_law == scenario::RestitutionLaw::Poisson ? "poisson" : "energetic"}};
+          {"restitution_law", r.restitution_law == scenario::RestitutionLaw::Poisson ? "poisson" : "energetic"},
+          {"contacts", r.contact_model == scenario::ContactModel::Simultaneous ? "simultaneous" : "sequential"}};
 }
 
 }  // namespace

@@ -230,6 +230,11 @@ struct AirSpec {
 // normal impulse) or Poisson's impulse ratio (the earlier law, slip held in its first direction).
 enum class RestitutionLaw { Energetic, Poisson };
 
+// How contacts with the scene at one instant are resolved (docs/model.md §5.3): one after the
+// other (each by the impulse law), or together (Moreau's: one impulse per contact, found at
+// once with Newton's restitution at each and Coulomb friction).
+enum class ContactModel { Sequential, Simultaneous };
+
 struct RunSpec {
   long long replicates = 1000;
   unsigned long long seed = 1;
@@ -265,6 +270,7 @@ struct RunSpec {
   // friction integrated along the impulse; or the Poisson law of earlier versions, kept to
   // compare against.
   RestitutionLaw restitution_law = RestitutionLaw::Energetic;
+  ContactModel contact_model = ContactModel::Sequential;  // [contacts] model
 };
 
 // An uncertainty study of the scenario (`j232 uq`, docs/model.md §6b): inputs varied

@@ -1093,6 +1093,11 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto c = root.table("criteria")) read_criteria(*c, s.criteria);
   if (auto a = root.table("air")) read_air(*a, s.air);
   if (auto r = root.table("run")) read_run(*r, s.run);
+  if (auto c = root.table("contacts")) {
+    s.run.contact_model = c->string_or("model", "sequential", {"sequential", "simultaneous"}) == "simultaneous" ? ContactModel::Simultaneous
+                                                                                                             : ContactModel::Sequential;
+    c->refuse_unknown_keys();
+  }
   if (auto f = root.table("field")) {
     refuse_test_rig(root, s.meshes);
     read_field(*f, s, root.has("restitution"), s.field);
