@@ -796,11 +796,13 @@ bool NailFlight::slide(const scene::Hit& hit) {
   for (int part = 0; !stopped; ++part) {
     Vec3 slip = b.velocity - b.velocity.dot(up) * up - turf;
     const double speed = slip.norm();
-    if (r.bounces > set.max_bounces || r.gentle_contacts > set.max_gentle_contacts || !std::isfinite(speed) || part > kMaxSlideParts) {
-      cut(!std::isfinite(speed)              ? CutOff::NonFinite
-          : r.bounces > set.max_bounces      ? CutOff::MaxBounces
-          : part > kMaxSlideParts            ? CutOff::FlightSteps
-                                             : CutOff::MaxGentleContacts);
+    if (r.bounces > set.max_bounces || r.gentle_contacts > set.max_gentle_contacts || !std::isfinite(speed) || part > kMaxSlideParts ||
+        b.time >= start.time + set.time_limit) {
+      cut(!std::isfinite(speed)                        ? CutOff::NonFinite
+          : b.time >= start.time + set.time_limit      ? CutOff::TimeLimit
+          : r.bounces > set.max_bounces                ? CutOff::MaxBounces
+          : part > kMaxSlideParts                      ? CutOff::FlightSteps
+                                                       : CutOff::MaxGentleContacts);
       break;
     }
     // At rest on the turf, or pushed along by the mower (below).
@@ -834,6 +836,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
     strike::Motion m;
     m.p0 = b.position, m.v0 = turf + speed * slip, m.a = -decel * slip, m.t0 = b.time, m.axis0 = b.axis;
     double part_end = b.time + (speed - end_speed) / decel;
+    if (pressed.squaredNorm() > 0 && m.v0.dot(pressed) > gentle_speed) pressed = Vec3::Zero();  // bounced off the wall: free of it
     if (pressed.squaredNorm() > 0) {
       // Against the wall: what would move it into the wall the wall takes (its velocity and
       // acceleration into it removed), its friction slowing the motion along it; the part
