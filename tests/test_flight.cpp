@@ -465,14 +465,17 @@ TEST_CASE("flight: a stone skidding from 60 m/s stops where friction and air dra
 }
 
 namespace {
-// A 6d nail dropped onto flat turf (restitution e at every angle, friction mu, no roughness),
-// its axis tilted theta from level, falling at 3 m/s with spin w about a level axis across it:
-// the state after its first impact event, and whether that event took several points at once.
+// A dropped nail's first impact event (its state after, and whether it took several points
+// at once), if it had one.
 struct Drop {
   flight::FlightEvent first;
   bool found = false;
 };
-Drop drop_rod(scenario::ContactModel model, double theta, double e, double mu, double w) {
+// The events of a 6d nail dropped onto flat turf (restitution e at every angle, friction mu,
+// no roughness), its axis theta from level along x, 0.1 mm above its touch, moving and
+// spinning as given.
+std::vector<flight::FlightEvent> drop_events(scenario::ContactModel model, double theta, double e, double mu, const Vec3& velocity,
+                                             const Vec3& spin) {
   static const auto ground = flat_ground(10.0);
   scenario::Scenario s;
   s.ground.restitution = e;
@@ -489,12 +492,18 @@ Drop drop_rod(scenario::ContactModel model, double theta, double e, double mu, d
   flight::Body b;
   b.axis = Vec3(std::cos(theta), 0, std::sin(theta));
   b.position = {0, 0, nail.radius() + nail.half_segment() * std::sin(theta) + 1e-4};
-  b.velocity = {0.5, 0.2, -3.0};
-  b.spin = {0, 0, w};  // about the vertical: a rod dropped flat stays flat
+  b.velocity = velocity;
+  b.spin = spin;
   random::EventDraws rng(1, 0, 0);
   flight::fly(b, nail, {}, ctx, {}, {}, rng);
+  return events;
+}
+
+// Falling at 3 m/s with some drift and spin w about the vertical (a rod dropped flat stays
+// flat): its first impact event.
+Drop drop_rod(scenario::ContactModel model, double theta, double e, double mu, double w) {
   Drop d;
-  for (const auto& ev : events)
+  for (const auto& ev : drop_events(model, theta, e, mu, {0.5, 0.2, -3.0}, {0, 0, w}))
     if (ev.kind == flight::FlightEvent::Kind::Bounce) {
       d.first = ev, d.found = true;
       break;
@@ -547,23 +556,8 @@ TEST_CASE("contacts: the two models on single-rod drops, the state after the cas
   // neither creates energy, and the two agree wherever the rod meets the turf at one point
   // only (tilted drops without spin).
   const auto after = [](scenario::ContactModel model, double theta, double e, double mu, double w) {
-    static const auto ground = flat_ground(10.0);
-    scenario::Scenario s;
-    s.ground.restitution = e, s.ground.angle_exponent = 0, s.ground.max_restitution = 1;
-    s.ground.friction = mu, s.ground.roughness = 0;
-    s.run.contact_model = model;
-    flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
-    std::vector<flight::FlightEvent> events;
-    flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
-    ctx.events = &events;
+    const auto events = drop_events(model, theta, e, mu, {0, 0, -3.0}, {0, w, 0});
     const projectile::Projectile nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.0026);
-    flight::Body b;
-    b.axis = Vec3(std::cos(theta), 0, std::sin(theta));
-    b.position = {0, 0, nail.radius() + nail.half_segment() * std::sin(theta) + 1e-4};
-    b.velocity = {0, 0, -3.0};
-    b.spin = {0, w, 0};
-    random::EventDraws rng(1, 0, 0);
-    flight::fly(b, nail, {}, ctx, {}, {}, rng);
     const flight::FlightEvent* last = nullptr;
     double t0 = -1, gain = -HUGE_VAL;
     int impacts = 0;

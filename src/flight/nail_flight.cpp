@@ -289,6 +289,7 @@ struct NailFlight {
   // ground and bounces as a point).
   bool respond(const scene::Hit& hit, const Vec3* arm = nullptr);
   bool respond_together(const FaceTouch& at);
+  void bounced(const scene::Hit& hit, double approach, const Vec3& point, double speed_in, double energy_in, int together);
   void bounce_off(const Vec3& n, double e, double mu, const Vec3* arm, double surface_inverse_mass = 0.0);
   bool slide(const scene::Hit& hit);
   bool after_bounce(const scene::Hit& hit);
@@ -616,6 +617,14 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
     const double out = b.velocity.dot(n);
     if (out < 0 && !arm) b.velocity -= 2 * out * n;
   }
+  bounced(hit, approach, arm ? Vec3(b.position + *arm) : hit.point, speed_in, energy_in, 1);
+  return true;
+}
+
+// What every bounce off the scene records, once the velocities are new: the surface touched,
+// whether a guard turned it back, the count (a bounce or a gentle contact), the wedge watch,
+// and the replay's event.
+void NailFlight::bounced(const scene::Hit& hit, double approach, const Vec3& point, double speed_in, double energy_in, int together) {
   switch (hit.surface) {
     case scene::Surface::Housing: touch(Touch::Housing); break;
     case scene::Surface::Deflector: touch(Touch::Deflector); break;
@@ -631,11 +640,11 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   // bounces, so that a long slide does not spend the bounce cap.
   const bool gentle = approach < gentle_speed;
   ++(gentle ? r.gentle_contacts : r.bounces);
+  if (together > 1) ++r.simultaneous_contacts;
   note_contact(b.time, hit.face);
-  if (FlightEvent* e = log(FlightEvent::Kind::Bounce, arm ? Vec3(b.position + *arm) : hit.point, n, speed_in))
+  if (FlightEvent* e = log(FlightEvent::Kind::Bounce, point, hit.normal, speed_in))
     e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard, e->energy_before = energy_in, e->energy_after = energy(),
-    e->gentle = gentle;
-  return true;
+    e->gentle = gentle, e->together = together;
 }
 
 // The touching points of one instant resolved together (docs/model.md §5.3, [contacts] model
@@ -725,21 +734,7 @@ bool NailFlight::respond_together(const FaceTouch& at) {
   double approach = 0;
   for (int k = 0; k < count; ++k) approach = std::max(approach, pts[static_cast<std::size_t>(k)].approach);
   b.velocity = v, b.spin = w;
-  const scene::Hit& hit = pts[0].hit;
-  switch (hit.surface) {
-    case scene::Surface::Housing: touch(Touch::Housing); break;
-    case scene::Surface::Deflector: touch(Touch::Deflector); break;
-    case scene::Surface::Guard: touch(Touch::GuardBounce); break;
-    default: touch(Touch::Ground); break;
-  }
-  if (hit.surface != scene::Surface::Ground) last_contact_guard = hit.surface == scene::Surface::Guard;
-  const bool gentle = approach < gentle_speed;
-  ++(gentle ? r.gentle_contacts : r.bounces);
-  ++r.simultaneous_contacts;
-  note_contact(b.time, hit.face);
-  if (FlightEvent* e = log(FlightEvent::Kind::Bounce, b.position + pts[0].r, hit.normal, speed_in))
-    e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard, e->energy_before = energy_in, e->energy_after = energy(),
-    e->gentle = gentle, e->together = count;
+  bounced(pts[0].hit, approach, b.position + pts[0].r, speed_in, energy_in, count);
   return true;
 }
 
