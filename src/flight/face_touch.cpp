@@ -332,12 +332,12 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       }
       // The touching points: this face's closest one, and the core's ends within tolerance of
       // it apart from that one (a nearly flat rod's other end), each moving into it.
-      const auto add = [&](const Vec3& on_face, const Vec3& n, const Vec3& on_core) {
+      const auto add = [&](const Vec3& on_face, const Vec3& dir, const Vec3& on_core) {
         if (touch->point_count >= FaceTouch::kMaxTouchPoints) return;
-        const Vec3 arm = on_core - s.r * n - p.centre;
+        const Vec3 arm = on_core - s.r * dir - p.centre;
         for (int k = 0; k < touch->point_count; ++k)
-          if ((touch->points[static_cast<std::size_t>(k)].arm - arm).norm() < s.r && touch->points[static_cast<std::size_t>(k)].normal.dot(n) > 1 - 1e-9) return;
-        touch->points[static_cast<std::size_t>(touch->point_count++)] = TouchPoint{on_face, n, arm, fs.face};
+          if ((touch->points[static_cast<std::size_t>(k)].arm - arm).norm() < s.r && touch->points[static_cast<std::size_t>(k)].normal.dot(dir) > 1 - 1e-9) return;
+        touch->points[static_cast<std::size_t>(touch->point_count++)] = TouchPoint{on_face, dir, arm, fs.face};
       };
       add(st.on_triangle, normal, st.on_segment);
       for (const double end : {-s.h, s.h}) {
@@ -346,8 +346,8 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
         const SegmentTriangle e = segment_triangle(tip, tip, scene.face_edges(fs.face));
         if (e.distance - s.r > kFaceTolerance) continue;
         const Vec3 gap = e.on_segment - e.on_triangle;
-        const Vec3 n = gap.norm() > 1e-12 ? Vec3(gap.normalized()) : normal;
-        if ((p.velocity + m.spin.cross(tip - s.r * n - p.centre)).dot(n) < -kApproachSpeed) add(e.on_triangle, n, tip);
+        const Vec3 dir = gap.norm() > 1e-12 ? Vec3(gap.normalized()) : normal;
+        if ((p.velocity + m.spin.cross(tip - s.r * dir - p.centre)).dot(dir) < -kApproachSpeed) add(e.on_triangle, dir, tip);
       }
     }
     if (touch) {
