@@ -379,10 +379,12 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       safe = s.safe_time(fs.face, p, fs.slack, best, known);
       if (!(safe > 0)) safe = kLeavingSlack / s.bound;
     }
-    fs.safe = at + safe;
+    // Not reached before the chord's end: this search need not look at it again (so nothing
+    // exact is worked out for a face whose plane alone keeps it clear of the whole chord).
+    fs.safe = safe >= until - at ? HUGE_VAL : at + safe;
   };
   const auto bound_all = [&](const Pose& p, double at) {
-    double best = HUGE_VAL;
+    double best = until - at;
     for (std::size_t i = 0; i < n; ++i) {
       bound_from(state[i], p, at, best);
       if (!state[i].leaving) best = std::min(best, state[i].safe - at);
@@ -431,7 +433,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
     }
     if (first == HUGE_VAL) {
       // Clear: the faces reached are bounded again from here.
-      double best = HUGE_VAL;
+      double best = until - next;
       for (std::size_t i = 0; i < n; ++i)
         if (state[i].safe <= next) {
           bound_from(state[i], q, next, best, &state[i].exact);
