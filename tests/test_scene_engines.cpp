@@ -1,8 +1,11 @@
 // The two scene engines (CGAL's AABB tree, Embree's BVH) answer every ray query the same,
 // bit for bit: the same face at the same distance, on the shipped scenes, for rays
 // that start on surfaces as a bouncing nail's do, and for whole assessments.
+// The broad phase (one box tree for both) against a scan of every face.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
@@ -84,4 +87,50 @@ TEST_CASE("scene engines: a whole assessment is the same with either engine", "[
     dumps[e] = report::result_json(s, a, assess::summarise(a, s), p).dump();
   }
   CHECK(dumps[0] == dumps[1]);
+}
+
+TEST_CASE("scene: the broad phase's box query gives exactly the faces a scan of every face gives, in face order", "[scene][engine]") {
+  // The scan decides from the triangle's own corners, apart from the box tree.
+  for (const char* name : {"highway-pivoted-chains.toml", "highway-meshes.toml", "deck-72in-three-spindle.toml"}) {
+    const auto s = scenario::read_scenario(scenario_path(name));
+    const auto soup = scene::build_scene_soup(s);
+    const scene::Scene scene(soup, scene::Engine::Cgal);
+    random::Stream rng(9, 0, 0, random::Purpose::Test);
+    std::vector<std::uint32_t> got(4096), want;
+    long total = 0;
+    for (int q = 0; q < 600; ++q) {
+      const Vec3 c(rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2), rng.uniform(-0.05, 0.4));
+      const Vec3 half(rng.uniform(0, q % 10 == 0 ? 0.5 : 0.05), rng.uniform(0, 0.05), rng.uniform(0, 0.05));
+      const Vec3 lo = c - half, hi = c + half;
+      want.clear();
+      for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+        Vec3 flo = soup.points[soup.triangles[f][0]], fhi = flo;
+        for (const auto k : soup.triangles[f]) flo = flo.cwiseMin(soup.points[k]), fhi = fhi.cwiseMax(soup.points[k]);
+        // (A margin of rounding either way: faces that close to the box's edge are not judged.)
+        const double eps = 1e-12;
+        const bool in = !((flo.array() > hi.array() + eps).any() || (fhi.array() < lo.array() - eps).any());
+        const bool out = (flo.array() > hi.array() - eps).any() || (fhi.array() < lo.array() + eps).any();
+        if (in && !out) want.push_back(f);
+        if (in && out) want.push_back(f | 0x80000000u);  // undecided
+      }
+      const std::size_t n = scene.faces_in_box(lo, hi, got.data(), got.size());
+      REQUIRE(n <= got.size());
+      REQUIRE(std::is_sorted(got.begin(), got.begin() + static_cast<long>(n)));
+      REQUIRE(std::adjacent_find(got.begin(), got.begin() + static_cast<long>(n)) == got.begin() + static_cast<long>(n));
+      std::size_t i = 0;
+      for (const std::uint32_t w : want) {
+        const std::uint32_t f = w & 0x7fffffffu;
+        const bool undecided = w & 0x80000000u;
+        while (i < n && got[i] < f) FAIL("face " << got[i] << " given but outside the box");
+        if (i < n && got[i] == f) {
+          ++i;
+        } else if (!undecided) {
+          FAIL(name << ": face " << f << " meets the box but was not given");
+        }
+      }
+      REQUIRE(i == n);
+      total += static_cast<long>(n);
+    }
+    CHECK(total > 600);  // the queries did find faces
+  }
 }

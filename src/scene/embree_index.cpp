@@ -118,31 +118,4 @@ void EmbreeIndex::closest(const RayQuery& q, const Skip& skip, NearestHit& best)
   rtcIntersect1(impl_->scene, &ctx.embree, &rh);
 }
 
-namespace {
-struct SphereVisit {
-  void (*visit)(void*, std::uint32_t);
-  void* user;
-};
-bool sphere_visit(RTCPointQueryFunctionArguments* args) {
-  const auto* v = static_cast<const SphereVisit*>(args->userPtr);
-  v->visit(v->user, args->primID);
-  return false;  // the query's radius is unchanged
-}
-}  // namespace
-
-void EmbreeIndex::near_sphere(const Vec3& centre, double radius, void (*visit)(void*, std::uint32_t), void* user) const {
-  RTCPointQuery q;
-  q.x = static_cast<float>(centre.x());
-  q.y = static_cast<float>(centre.y());
-  q.z = static_cast<float>(centre.z());
-  q.time = 0;
-  // Widened so that float rounding of the centre cannot leave out a face.
-  q.radius = std::nextafter(static_cast<float>(radius * (1 + 1e-5) + 1e-5 * (1 + centre.cwiseAbs().maxCoeff())),
-                            std::numeric_limits<float>::infinity());
-  RTCPointQueryContext context;
-  rtcInitPointQueryContext(&context);
-  SphereVisit v{visit, user};
-  rtcPointQuery(impl_->scene, &q, &context, sphere_visit, &v);
-}
-
 }  // namespace j232::scene

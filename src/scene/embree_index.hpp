@@ -20,9 +20,6 @@ class EmbreeIndex {
 
   // The nearest hit within best.distance (which it lowers), skipping `skip`.
   void closest(const RayQuery& q, const Skip& skip, NearestHit& best) const;
-  // Calls `visit(face)` for every face whose (widened float) box may meet the sphere
-  // through the box's corners (a superset; the caller decides exactly).
-  void near_sphere(const Vec3& centre, double radius, void (*visit)(void*, std::uint32_t), void* user) const;
 
  private:
   struct Impl;

@@ -2,6 +2,7 @@
 #include "scene/scene.hpp"
 
 #include "scene/ray_triangle.hpp"
+#include "scene/box_tree.hpp"
 #ifdef J232_HAVE_EMBREE
 #include "scene/embree_index.hpp"
 #endif
@@ -102,25 +103,6 @@ struct ClosestHit {
   }
 };
 
-// Every face whose box meets a query box, over CGAL's AABB tree without allocating.
-struct BoxQuery {
-  CGAL::Bbox_3 box;
-};
-template <class Collect>
-struct InBox {
-  const std::vector<std::uint32_t>* soup_face;
-  Collect* collect;
-  bool go_further() const { return true; }
-  template <class Node>
-  bool do_intersect(const BoxQuery& q, const Node& node) const {
-    return CGAL::do_overlap(q.box, node.bbox());
-  }
-  template <class P>
-  void intersection(const BoxQuery&, const P& primitive) {
-    (*collect)((*soup_face)[primitive.id().idx()]);
-  }
-};
-
 }  // namespace
 
 bool engine_available(Engine e) {
@@ -136,19 +118,14 @@ Engine default_engine() { return engine_available(Engine::Embree) ? Engine::Embr
 
 const char* engine_name(Engine e) { return e == Engine::Embree ? "embree" : "cgal"; }
 
-namespace {
-struct FaceBox {
-  Vec3 lo, hi;
-};
-}  // namespace
-
 struct Scene::Impl {
   Soup soup;
   Engine engine = Engine::Cgal;
   std::vector<Vec3> normals;             // per soup triangle, unit
   std::vector<TriangleEdges> triangles;  // per soup triangle: corner, two edges
   std::vector<Scene::Ball> balls;        // per soup triangle: a sphere holding it
-  std::vector<FaceBox> boxes;            // per soup triangle: its box, from the corner and edges as the queries see it
+  std::vector<Box> boxes;                // per soup triangle: its box, from the corner and edges as the queries see it
+  std::unique_ptr<BoxTree> box_tree;     // over `boxes`: the broad phase
   std::unique_ptr<CgalIndex> cgal;
 #ifdef J232_HAVE_EMBREE
   std::unique_ptr<EmbreeIndex> embree;
@@ -180,6 +157,7 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     const Vec3 b = e[0] + e[1], c = e[0] + e[2];
     m.boxes.push_back({e[0].cwiseMin(b).cwiseMin(c), e[0].cwiseMax(b).cwiseMax(c)});
   }
+  m.box_tree = std::make_unique<BoxTree>(m.boxes);
 #ifdef J232_HAVE_EMBREE
   if (engine == Engine::Embree) {
     m.embree = std::make_unique<EmbreeIndex>(m.triangles);
@@ -194,23 +172,15 @@ Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
 
 namespace {
-// The exact decision of faces_in_box, shared by both engines: the face's own box (in
-// double precision) meets the query box. Kept in increasing face order.
+// The faces met, kept in increasing face order (the search's results must not depend on
+// the order a tree visits them in).
 struct BoxCollector {
-  const std::vector<FaceBox>* boxes;
-  Vec3 lo, hi;
   std::uint32_t* out;
   std::size_t capacity, count = 0;
   void operator()(std::uint32_t f) {
-    const FaceBox& box = (*boxes)[f];
-    if ((box.lo.array() > hi.array()).any() || (box.hi.array() < lo.array()).any()) return;
     if (count < capacity) {
       std::size_t i = count;  // insertion keeps the order (the lists are short)
       while (i > 0 && out[i - 1] > f) out[i] = out[i - 1], --i;
-      if (i > 0 && out[i - 1] == f) {  // visited twice (never expected): kept once
-        for (std::size_t k = i; k < count; ++k) out[k] = out[k + 1];
-        return;
-      }
       out[i] = f;
     }
     ++count;
@@ -218,19 +188,12 @@ struct BoxCollector {
 };
 }  // namespace
 
+// One box tree for both engines: neither Embree's point query (a sphere around the box) nor
+// CGAL's tree is as cheap for a box against boxes, and one structure gives one list.
 std::size_t Scene::faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* out, std::size_t capacity) const {
   const Impl& m = *impl_;
-  BoxCollector collect{&m.boxes, lo, hi, out, capacity};
-#ifdef J232_HAVE_EMBREE
-  if (m.embree) {
-    m.embree->near_sphere(0.5 * (lo + hi), 0.5 * (hi - lo).norm(), [](void* u, std::uint32_t f) { (*static_cast<BoxCollector*>(u))(f); },
-                          &collect);
-    return collect.count;
-  }
-#endif
-  BoxQuery q{CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z())};
-  InBox<BoxCollector> traits{&m.cgal->soup_face, &collect};
-  m.cgal->tree.traversal(q, traits);
+  BoxCollector collect{out, capacity};
+  m.box_tree->visit(m.boxes, lo, hi, collect);
   return collect.count;
 }
 
