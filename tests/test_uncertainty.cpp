@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <cmath>
 #include <fstream>
+#include <algorithm>
 #include <map>
 #include <string>
 
@@ -453,4 +454,30 @@ TEST_CASE("uncertainty: keys a study cannot draw are refused with what to do ins
                     Contains("field.objects[N].drag_coefficient"));
   CHECK_THROWS_WITH(study::run_uncertainty(field_file("uq-n.toml", "[uncertainty]\n" + input("field.objects_simulated", "1000", "2000")), 1),
                     Contains("[uncertainty] objects"));
+}
+
+TEST_CASE("uncertainty: the default set draws the model's form (contact model, restitution law), each form one the reader accepts", "[uncertainty][input]") {
+  for (const char* name : {"highway-pivoted.toml", "field/batwing-highway-shoulder.toml"}) {
+    const std::string file = scenario_path(name);
+    const toml::table base = scenario::parse_toml_file(file);
+    const auto plan = study::uncertainty_plan(scenario::read_scenario(base, file));
+    REQUIRE(plan.defaults);
+    std::vector<std::string> forms;
+    for (const auto& in : plan.inputs) {
+      if (in.values.empty()) continue;
+      forms.push_back(in.parameter);
+      CHECK_FALSE(in.basis.empty());
+      for (const auto& v : in.values) {
+        toml::table doc = base;
+        scenario::set_key(doc, in.parameter, v, "test");
+        INFO(in.parameter << " = " << v);
+        const auto s = scenario::read_scenario(doc, file);
+        if (in.parameter == "contacts.model")
+          CHECK((s.run.contact_model == scenario::ContactModel::Simultaneous) == (v == "simultaneous"));
+      }
+    }
+    INFO(name);
+    CHECK(std::count(forms.begin(), forms.end(), "contacts.model") == 1);
+    CHECK(std::count(forms.begin(), forms.end(), "run.restitution_law") == 1);
+  }
 }

@@ -222,6 +222,28 @@ UncertainInput estimated(std::string parameter, std::string low, std::string hig
   return in;
 }
 
+// A choice of the model's own form, drawn with the inputs (issue: a verdict that rests on
+// one contact model is not shown to rest on it until the other is drawn too).
+UncertainInput model_form(std::string parameter, std::vector<std::string> values, std::string basis) {
+  UncertainInput in;
+  in.parameter = std::move(parameter), in.values = std::move(values), in.basis = std::move(basis);
+  return in;
+}
+
+// The contact model: both forms are defensible and neither is exact (docs/model.md §5.3).
+UncertainInput contact_model_form() {
+  return model_form("contacts.model", {"sequential", "simultaneous"},
+                    "model form: the contacts of one instant one after another, or together (Moreau's impact); neither is exact "
+                    "for a rod's multiple impacts (Stoianovici and Hurmuzlu 1996)");
+}
+
+// The restitution law of every impact (docs/model.md §5.1c).
+UncertainInput restitution_law_form() {
+  return model_form("run.restitution_law", {"energetic", "poisson"},
+                    "model form: Stronge's energetic restitution, or Poisson's (the earlier law); the two agree without "
+                    "friction and differ where the slip halts or reverses within an impact");
+}
+
 // A field's estimated inputs (docs/model.md §9): what is known of the field (how many
 // objects, how large, how deep in the turf), of the air under the deck and of the contacts,
 // each over a range about the scenario's own value.
@@ -295,6 +317,8 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
   in.push_back(estimated("ground.max_restitution", "0.5", "0.95", "estimate: the angle law passes 1 at grazing impacts; a bounce off turf loses energy"));
   if (!s.housing.guards.empty())
     in.push_back(estimated("housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25"));
+  in.push_back(contact_model_form());
+  in.push_back(restitution_law_form());
   return in;
 }
 }  // namespace
@@ -331,6 +355,8 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
   };
   if (!s.housing.guards.empty())
     plan.inputs.push_back(estimated("housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25"));
+  plan.inputs.push_back(contact_model_form());
+  plan.inputs.push_back(restitution_law_form());
   return plan;
 }
 
