@@ -702,3 +702,28 @@ TEST_CASE("report pages: a name's control characters (NUL, ESC) never reach a pa
   CHECK(shown.find('\x7f') == std::string::npos);
   CHECK(shown == "lane\xEF\xBF\xBD[31m&lt;b&gt;red\xEF\xBF\xBD\xEF\xBF\xBD" "end\ttab");
 }
+
+TEST_CASE("charts: a logarithmic axis has a tick at each power of ten and draws zero on its floor", "[report]") {
+  report::Chart c("t", "x", "y", 640, 360);
+  c.y_log_range(1e-6, 1);
+  c.points({0.0, 1.0, 2.0}, {0.0, 1e-6, 1.0}, "#000000", "", 2.0, false);  // (open circles: one element each)
+  const std::string svg = c.svg();
+  // The ticks: 10⁻⁶ ... 10⁻¹, 1.
+  for (const char* label : {">10⁻⁶<", ">10⁻³<", ">10⁻¹<", ">1<"}) CHECK(svg.find(label) != std::string::npos);
+  CHECK(svg.find(">10⁻⁷<") == std::string::npos);
+  // Zero and the floor at one height, the top far above them.
+  const auto heights = [&] {
+    std::vector<double> y;
+    for (std::size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) {
+      const std::size_t cy = svg.find("cy=\"", at);
+      y.push_back(std::stod(svg.substr(cy + 4)));
+    }
+    return y;
+  }();
+  REQUIRE(heights.size() == 3);
+  CHECK(heights[0] == heights[1]);
+  CHECK(heights[2] < heights[1] - 100);
+  report::Chart bad("t", "x", "y");
+  bad.y_log_range(0, 1);
+  CHECK_THROWS(bad.svg());
+}

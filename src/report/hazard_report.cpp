@@ -290,7 +290,7 @@ std::string heat(double t) {
 // the part of the square that holds any, on a log colour scale; the mower, its travel and
 // the planes drawn.
 std::string plan_view(const field::FieldSimulator& sim, const field::HazardLayout& l, const std::vector<double>& cells, const std::string& title,
-                      const std::string& what) {
+                      const std::string& what, const std::vector<field::DirectionCurve>& directions) {
   const int n = l.cells();
   int reach = 1;
   for (int iy = 0; iy < n; ++iy)
@@ -345,9 +345,28 @@ std::string plan_view(const field::FieldSimulator& sim, const field::HazardLayou
     else
       c.vline(at, "#009E73", "plane '" + p.name + "'");
   }
-  c.caption(top > 0 ? fmt::format("{} per m2 around the mower, per km mowed, in {:g} m cells: colours on a log scale from {:.2g} (pale) to {:.2g} (dark) per m2.",
-                                  what, block * l.cell, bottom, top)
-                    : what + ": none in the tallied square.");
+  // The hazard distance each way (the estimate): beside the path a line along it, ahead and
+  // behind a line across it. Off the map (or beyond the range tallied) it is named in the caption.
+  std::string drawn, off_map;
+  for (const auto& d : directions) {
+    const bool beside = d.direction == "left" || d.direction == "right";
+    const double at = (d.direction == "left" || d.direction == "front" ? 1.0 : -1.0) * d.hazard_distance;
+    if (d.beyond_range || std::abs(at) > half) {
+      off_map += fmt::format("{}{} {} (off this map)", off_map.empty() && drawn.empty() ? "" : ", ", d.direction,
+                             d.beyond_range ? fmt::format("beyond the {:g} m tallied", l.range) : fmt::format("{:.3g} m", d.hazard_distance));
+      continue;
+    }
+    drawn += fmt::format("{}{} {:.3g} m", drawn.empty() ? "" : ", ", d.direction, d.hazard_distance);
+    if (beside)
+      c.hline(at, "#D55E00", "");
+    else
+      c.vline(at, "#D55E00", "");
+  }
+  c.caption((top > 0 ? fmt::format("{} per m2 around the mower, per km mowed, in {:g} m cells: colours on a log scale from {:.2g} (pale) to {:.2g} (dark) per m2.",
+                                   what, block * l.cell, bottom, top)
+                     : what + ": none in the tallied square.") +
+            (drawn.empty() && off_map.empty() ? std::string()
+                                              : " Orange dashed lines: the hazard distance each way (the estimate): " + drawn + off_map + "."));
   return "<figure>" + c.svg() + "</figure>\n";
 }
 
@@ -402,7 +421,10 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     for (std::size_t k = 0; k < d.distance.size(); ++k)
       if (d.exposure[k].value > 0 || d.exposure[k].high >= sum.acceptable_density) far = std::max(far, d.distance[k] + 2);
   far = std::min(far, range);
-  double highest = 0;
+  // On a logarithmic axis: the probabilities fall by decades with distance, and the acceptable
+  // level may lie far above or below the curves. The axis spans the acceptable level and the
+  // values drawn, eight decades at most; what lies below its floor (zero among it) is drawn on it.
+  double highest = acceptable_p, lowest = acceptable_p;
   for (std::size_t i = 0; i < sum.directions.size(); ++i) {
     const auto& d = sum.directions[i];
     std::vector<double> x, p, lo, hi;
@@ -410,28 +432,24 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
       x.push_back(d.distance[k]), p.push_back(d.probability[k].value), lo.push_back(d.probability[k].low), hi.push_back(d.probability[k].high);
     curves.band(x, lo, hi, palette(i), "");
     curves.line(x, p, palette(i), d.direction, false);
-    for (double v : hi) highest = std::max(highest, v);
+    for (const auto* values : {&p, &lo, &hi})
+      for (double v : *values)
+        if (v > 0) highest = std::max(highest, v), lowest = std::min(lowest, v);
   }
-  // The acceptable level drawn when it is within reach of the curves; far above them, the
-  // axis fits the curves and the caption says how far above it lies.
-  std::string scale_note;
-  if (acceptable_p <= 5 * highest || highest <= 0) {
-    curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {:g} m2)", acceptable_p, s.field.acceptable_area));
-  } else {
-    curves.y_range(0, 1.1 * highest);
-    scale_note = fmt::format(" The acceptable probability, {:.3g} (one hazardous object per {:g} m2), lies {:.0f} times above the "
-                             "highest upper bound drawn, off this scale.",
-                             acceptable_p, s.field.acceptable_area, acceptable_p / highest);
-  }
+  const double top = std::min(1.0, std::pow(10.0, std::ceil(std::log10(highest) + 1e-9)));
+  const double floor = std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) - 1e-9))));
+  curves.y_log_range(floor, top);
+  curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {:g} m2)", acceptable_p, s.field.acceptable_area));
   curves.caption("Beside the path: a person standing at that lateral distance from the mower's centre line while it mows past. Ahead "
                  "and behind: a person on its line whom it approaches no nearer than that distance, or leaves from it. Bands: 95 % "
-                 "intervals." + scale_note);
+                 "intervals. Logarithmic scale: a probability below its floor (none seen there: zero) is drawn on the floor.");
   o += "<figure>" + curves.svg() + "</figure>\n";
 
   o += "<h2>Where objects come down</h2>\n";
-  o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::landings), "First landings outside the deck", "Objects first coming down");
+  o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::landings), "First landings outside the deck", "Objects first coming down",
+                 sum.directions);
   o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::hazardous),
-                 fmt::format("Hazardous ground impacts (at least {:g} J)", s.field.person_energy), "Hazardous impacts");
+                 fmt::format("Hazardous ground impacts (at least {:g} J)", s.field.person_energy), "Hazardous impacts", sum.directions);
 
   if (!sum.planes.empty()) {
     o += "<h2>Planes beside the path</h2>\n<table><tr><th>plane</th><th>where</th><th>receptor</th><th>crossings per km mowed</th>"

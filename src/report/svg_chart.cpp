@@ -5,6 +5,8 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace j232::report {
 
@@ -57,6 +59,16 @@ std::string tick_label(double v, double step) {
   const int decimals = std::clamp(static_cast<int>(-std::floor(std::log10(step) + 1e-9)), 0, 6);
   std::string s = fmt::format("{:.{}f}", v, decimals);
   if (s.front() == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);  // no "-0.0"
+  return s;
+}
+
+// A power of ten as 1, 10, 100 or 10 with its exponent raised (10⁻⁴).
+std::string power_label(double v) {
+  const int k = static_cast<int>(std::lround(std::log10(v)));
+  if (k >= 0 && k <= 2) return fmt::format("{:g}", v);
+  static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string s = k < 0 ? "10⁻" : "10";
+  for (const char c : std::to_string(std::abs(k))) s += digits[c - '0'];
   return s;
 }
 
@@ -185,7 +197,11 @@ struct Chart::Frame {
   double xlo = 0, xhi = 1, ylo = 0, yhi = 1, plot_w = 0, plot_h = 0;
   std::vector<double> xt, yt;
   double sx(double x) const { return kLeft + (x - xlo) / (xhi - xlo) * plot_w; }
-  double sy(double y) const { return kTop + (yhi - y) / (yhi - ylo) * plot_h; }
+  bool ylog = false;
+  double sy(double y) const {
+    if (ylog) return kTop + std::log10(yhi / std::clamp(y, ylo, yhi)) / std::log10(yhi / ylo) * plot_h;
+    return kTop + (yhi - y) / (yhi - ylo) * plot_h;
+  }
 };
 
 Chart::Frame Chart::frame() const {
@@ -206,13 +222,18 @@ Chart::Frame Chart::frame() const {
     ylo = cy - 0.5 * per_px * plot_h, yhi = cy + 0.5 * per_px * plot_h;
   }
   std::vector<double> xt = x_ticks_.empty() ? nice_ticks(xlo, xhi) : x_ticks_;
-  std::vector<double> yt = nice_ticks(ylo, yhi);
+  if (y_log_ && !(ylo > 0 && yhi > ylo)) throw std::invalid_argument("a logarithmic axis needs 0 < low < high");
+  std::vector<double> yt;
+  if (y_log_)
+    for (double k = std::ceil(std::log10(ylo) - 1e-9); k <= std::log10(yhi) + 1e-9; ++k) yt.push_back(std::pow(10.0, k));
+  else
+    yt = nice_ticks(ylo, yhi);
   if (!x_fixed_ && !equal_ && x_ticks_.empty()) xlo = std::min(xlo, xt.front()), xhi = std::max(xhi, xt.back());
   if (!y_fixed_ && !equal_) ylo = std::min(ylo, yt.front()), yhi = std::max(yhi, yt.back());
   std::erase_if(xt, [&](double t) { return t < xlo - 1e-9 * (xhi - xlo) || t > xhi + 1e-9 * (xhi - xlo); });
   std::erase_if(yt, [&](double t) { return t < ylo - 1e-9 * (yhi - ylo) || t > yhi + 1e-9 * (yhi - ylo); });
 
-  return Frame{xlo, xhi, ylo, yhi, plot_w, plot_h, std::move(xt), std::move(yt)};
+  return Frame{xlo, xhi, ylo, yhi, plot_w, plot_h, std::move(xt), std::move(yt), y_log_};
 }
 
 namespace {
@@ -251,7 +272,7 @@ void Chart::draw_axes(std::string& o, const Frame& f) const {
     fmt::format_to(std::back_inserter(o),
                    "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
                    "<text x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
-                   kLeft, sy(t), kLeft + plot_w, kLeft - 6, sy(t) + 4, tick_label(t, y_step));
+                   kLeft, sy(t), kLeft + plot_w, kLeft - 6, sy(t) + 4, f.ylog ? power_label(t) : tick_label(t, y_step));
   fmt::format_to(std::back_inserter(o),
                  "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#444\"/>\n", kLeft, kTop,
                  plot_w, plot_h);

@@ -24,6 +24,9 @@ class Chart {
   // Axis ranges; unset ranges are fitted to the data drawn, widened to nice ticks.
   void x_range(double lo, double hi) { x_lo_ = lo, x_hi_ = hi, x_fixed_ = true; }
   void y_range(double lo, double hi) { y_lo_ = lo, y_hi_ = hi, y_fixed_ = true; }
+  // A logarithmic y axis from lo to hi (both above zero; ticks at the powers of ten between):
+  // values at or below lo, zero among them, are drawn on the axis's floor.
+  void y_log_range(double lo, double hi) { y_range(lo, hi), y_log_ = true; }
   // Custom tick labels (for example azimuths); positions in data units.
   void x_ticks(std::vector<double> at) { x_ticks_ = std::move(at); }
   void equal_aspect() { equal_ = true; }  // one data unit is as long on both axes (plan views)
@@ -81,7 +84,7 @@ class Chart {
   std::string title_, x_title_, y_title_, caption_;
   double width_, height_;
   double x_lo_ = 0, x_hi_ = 0, y_lo_ = 0, y_hi_ = 0;
-  bool x_fixed_ = false, y_fixed_ = false, equal_ = false, any_data_ = false;
+  bool x_fixed_ = false, y_fixed_ = false, equal_ = false, any_data_ = false, y_log_ = false;
   double dx_lo_ = 0, dx_hi_ = 0, dy_lo_ = 0, dy_hi_ = 0;
   std::vector<double> x_ticks_;
 };
