@@ -193,7 +193,7 @@ std::string exits_section(const json& r) {
   const auto& h = r["how_nails_leave"];
   std::string o =
       "<section id=\"exits\">\n<h3>How nails leave the deck</h3>\n<table class=\"numbers\"><thead><tr><th>way out</th>"
-      "<th>struck nails</th><th>share of struck nails</th><th>counted marks</th><th>share of counted marks</th>"
+      "<th>struck nails</th><th>share of struck nails</th><th>counted marks</th><th>share of counted marks (95 %)</th>"
       "<th>where most of its marks left (azimuth)</th></tr></thead><tbody>\n";
   for (std::size_t i = 0; i < h["by_exit"].size(); ++i) {
     const auto& e = h["by_exit"][i];
@@ -208,10 +208,15 @@ std::string exits_section(const json& r) {
                            number(fmt::format("{}.by_exit_azimuth.{}.marks", key, b), row["marks"], "{}"));
       }
     }
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} %</td><td>{}</td><td>{} %</td><td>{}</td></tr>\n",
+    // The marks' share with its 95 % interval (none when no mark was counted).
+    std::string marks_share = number(key + ".share_of_marks", e["share_of_marks"], "{:.1f}", 100) + " %";
+    if (e.contains("share_of_marks_95") && !e["share_of_marks_95"].is_null())
+      marks_share += fmt::format(" ({}&ndash;{})", number(key + ".share_of_marks_95.low", e["share_of_marks_95"]["low"], "{:.1f}", 100),
+                                 number(key + ".share_of_marks_95.high", e["share_of_marks_95"]["high"], "{:.1f}", 100));
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} %</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                      escape(e["exit"].get<std::string>()), number(key + ".nails", e["nails"], "{}"),
                      number(key + ".share_of_struck_nails", e["share_of_struck_nails"], "{:.2f}", 100),
-                     number(key + ".marks", e["marks"], "{}"), number(key + ".share_of_marks", e["share_of_marks"], "{:.1f}", 100), band);
+                     number(key + ".marks", e["marks"], "{}"), marks_share, band);
   }
   o += "</tbody></table>\n<p>Counted marks by the number of blade strikes of their nail: ";
   for (std::size_t i = 0; i < h["by_strikes"].size(); ++i)
@@ -228,7 +233,8 @@ std::string exits_section(const json& r) {
     first = false;
   }
   if (first) o += "no counted marks";
-  o += ". The way out is the nail's last crossing of the deck's outline going out, after which it stayed out (a nail a guard "
+  o += ". Intervals: Wilson's 95 % for the share of marks (each nail marks at most once; nails are drawn independently). "
+       "The way out is the nail's last crossing of the deck's outline going out, after which it stayed out (a nail a guard "
        "turned back in and that left again elsewhere is named by where it finally left); marks.csv gives every mark's trail "
        "(feed station, strikes, speed off the last strike, surfaces touched in order, way out, where it first left, flight "
        "time).</p>\n</section>\n";

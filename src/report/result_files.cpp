@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "assess/model_version.hpp"
+#include "assess/statistics.hpp"
 #include "report/board_views.hpp"
 #include "report/scenario_json.hpp"
 #include "report/text_safety.hpp"
@@ -97,6 +98,14 @@ json exits_json(const assess::Assessment& a) {
   for (const auto& [key, row] : e.marks)
     for (auto n : row) counted += n;
   auto share = [&](std::uint64_t n) { return counted ? static_cast<double>(n) / static_cast<double>(counted) : 0.0; };
+  // A share's 95 % interval: each nail marks the board at most once and nails are drawn
+  // independently, so a way's marks among the counted ones (its nails among the struck) are
+  // binomial: Wilson's interval.
+  auto interval = [](std::uint64_t k, std::uint64_t n) {
+    if (n == 0) return json(nullptr);
+    const assess::Interval w = assess::wilson(k, n);
+    return json{{"low", w.low}, {"high", w.high}};
+  };
   json by_exit = json::array();
   for (const auto& [key, nails] : e.nails) {
     std::array<std::uint64_t, assess::ExitTable::kBands> row{};
@@ -114,8 +123,10 @@ json exits_json(const assess::Assessment& a) {
     by_exit.push_back({{"exit", name != a.exit_names.end() ? name->second : std::string("unnamed")},
                        {"nails", nails},
                        {"share_of_struck_nails", a.struck ? static_cast<double>(nails) / static_cast<double>(a.struck) : 0.0},
+                       {"share_of_struck_nails_95", interval(nails, a.struck)},
                        {"marks", marks},
                        {"share_of_marks", share(marks)},
+                       {"share_of_marks_95", interval(marks, counted)},
                        {"by_exit_azimuth", bands}});
   }
   json by_strikes = json::array();
@@ -129,7 +140,8 @@ json exits_json(const assess::Assessment& a) {
                                               ? std::string(flight::touch_name(static_cast<flight::Touch>(i)))
                                               : std::string("none (straight to the board)")},
                         {"marks", e.marks_by_first_touch[i]},
-                        {"share_of_marks", share(e.marks_by_first_touch[i])}});
+                        {"share_of_marks", share(e.marks_by_first_touch[i])},
+                        {"share_of_marks_95", interval(e.marks_by_first_touch[i], counted)}});
   return {{"counted_marks", counted}, {"by_exit", by_exit}, {"by_strikes", by_strikes}, {"by_first_surface", by_first}};
 }
 
