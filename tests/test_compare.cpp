@@ -7,6 +7,12 @@
 #include "assess/statistics.hpp"
 #include "random/stream.hpp"
 #include "study/compare.hpp"
+#include "report/version_comparison.hpp"
+#include "scenario/input_error.hpp"
+#include <cmath>
+#include <array>
+#include <fstream>
+#include <vector>
 
 using namespace j232;
 
@@ -95,4 +101,82 @@ TEST_CASE("compare: common random numbers make a small design change measurable"
   CHECK(c.replicates == 200);
   CHECK(v.replicates_differing > 20);
   CHECK(v.differing_at_most == 0.0);
+}
+
+TEST_CASE("statistics: Newcombe's interval for two independent proportions, against its formula worked by hand", "[statistics]") {
+  // Wilson's interval written out: (p + z^2/2n -+ z sqrt(p(1-p)/n + z^2/4n^2)) / (1 + z^2/n).
+  const double z = 1.959963984540054;
+  const auto wilson = [&](double k, double n, double& lo, double& hi) {
+    const double p = k / n, c = p + z * z / (2 * n), w = z * std::sqrt(p * (1 - p) / n + z * z / (4 * n * n)), d = 1 + z * z / n;
+    lo = (c - w) / d, hi = (c + w) / d;
+  };
+  for (const auto& [k1, n1, k2, n2] : std::vector<std::array<double, 4>>{{48, 80, 56, 70}, {0, 10, 5, 10}, {9, 10, 10, 10}, {4701, 300000, 5100, 300000}}) {
+    double l1, u1, l2, u2;
+    wilson(k1, n1, l1, u1), wilson(k2, n2, l2, u2);
+    const double p1 = k1 / n1, p2 = k2 / n2, d = p2 - p1;
+    const auto got = assess::newcombe_independent(static_cast<std::uint64_t>(k1), static_cast<std::uint64_t>(n1), static_cast<std::uint64_t>(k2),
+                                                  static_cast<std::uint64_t>(n2));
+    CHECK(got.estimate == Approx(d));
+    CHECK(got.low == Approx(d - std::sqrt((p2 - l2) * (p2 - l2) + (u1 - p1) * (u1 - p1))).margin(1e-12));
+    CHECK(got.high == Approx(d + std::sqrt((u2 - p2) * (u2 - p2) + (p1 - l1) * (p1 - l1))).margin(1e-12));
+    CHECK(got.low < d);
+    CHECK(got.high > d);
+  }
+}
+
+TEST_CASE("compare with an earlier result: itself moves nothing; a changed model, verdict and share are named", "[compare][versions]") {
+  const std::string file = std::string(J232_SOURCE_DIR) + "/reports/highway-pivoted/result.json";
+  const auto before = report::read_result_file(file);
+  SECTION("itself") {
+    const auto c = report::compare_results(before, file, before, file);
+    CHECK(c["identical"].get<bool>());
+    CHECK(c["same_model"].get<bool>());
+    CHECK_FALSE(c["verdict_changed"].get<bool>());
+    REQUIRE(c["what_moved"].size() == 1);
+    CHECK(c["what_moved"][0].get<std::string>().rfind("nothing: the same model and seed", 0) == 0);
+    for (const auto& k : c["criteria"]) CHECK_FALSE(k["moved"].get<bool>());
+    CHECK(report::version_comparison_html(c).find("What moved") != std::string::npos);
+  }
+  SECTION("a later version that moved") {
+    auto now = before;
+    now["model_version"] = now["model_version"].get<int>() + 1;
+    now["verdict"] = "fails";
+    now["replicates_passed"] = 1500;
+    // punctures outside up by half a point (1 500 nails of 300 000); hits outside by a hair.
+    const double fed = now["nails_fed"].get<double>();
+    for (auto& k : now["criteria"]) {
+      if (k["name"] == "punctures_outside") k["mean_share"] = k["mean_share"].get<double>() + 1500 / fed;
+      if (k["name"] == "hits_outside") k["mean_share"] = k["mean_share"].get<double>() + 3 / fed;
+    }
+    const auto c = report::compare_results(before, file, now, "later.json");
+    CHECK_FALSE(c["identical"].get<bool>());
+    CHECK_FALSE(c["same_model"].get<bool>());
+    CHECK(c["verdict_changed"].get<bool>());
+    CHECK(c["pass_probability"]["moved"].get<bool>());
+    for (const auto& k : c["criteria"]) {
+      INFO(k["name"]);
+      CHECK(k["moved"].get<bool>() == (k["name"] == "punctures_outside"));
+      if (k["name"] == "punctures_outside") {
+        CHECK(k["now"]["marks"].get<std::uint64_t>() - k["earlier"]["marks"].get<std::uint64_t>() == 1500);
+        CHECK(k["difference"]["estimate"].get<double>() == Approx(0.005));
+      }
+    }
+    std::string words;
+    for (const auto& m : c["what_moved"]) words += m.get<std::string>() + "\n";
+    CHECK(words.find("the physics changed") != std::string::npos);
+    CHECK(words.find("the verdict changed: passes → fails") != std::string::npos);
+    CHECK(words.find("punctures_outside") != std::string::npos);
+    CHECK(words.find("hits_outside") == std::string::npos);
+  }
+  SECTION("not a result") {
+    const std::string hazard = std::string(J232_SOURCE_DIR) + "/reports/hazard-deck-72in-lawn-stones/hazard.json";
+    try {
+      report::read_result_file(hazard);
+      FAIL("a hazard.json was read as a result");
+    } catch (const scenario::InputError& e) {
+      CHECK(std::string(e.what()).find("hazard.json") != std::string::npos);
+    }
+    CHECK_THROWS_AS(report::read_result_file(std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted.toml"), scenario::InputError);
+    CHECK_THROWS_AS(report::read_result_file("/nonexistent/result.json"), scenario::InputError);
+  }
 }

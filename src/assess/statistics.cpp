@@ -14,6 +14,14 @@ Interval wilson(std::uint64_t k, std::uint64_t n, double z) {
   return {p, k == 0 ? 0.0 : std::max(0.0, centre - half), k == n ? 1.0 : std::min(1.0, centre + half)};
 }
 
+Interval newcombe_independent(std::uint64_t k1, std::uint64_t n1, std::uint64_t k2, std::uint64_t n2, double z) {
+  if (n1 == 0 || n2 == 0) return {0, -1, 1};
+  const Interval first = wilson(k1, n1, z), second = wilson(k2, n2, z);
+  const double d = second.estimate - first.estimate;
+  return {d, d - std::hypot(second.estimate - second.low, first.high - first.estimate),
+          d + std::hypot(second.high - second.estimate, first.estimate - first.low)};
+}
+
 Interval newcombe_paired(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d, double z) {
   const std::uint64_t n = a + b + c + d;
   if (n == 0) return {0, -1, 1};

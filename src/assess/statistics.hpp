@@ -22,6 +22,12 @@ Interval wilson(std::uint64_t successes, std::uint64_t trials, double z = 1.9599
 Interval newcombe_paired(std::uint64_t both, std::uint64_t only_first, std::uint64_t only_second, std::uint64_t neither,
                          double z = 1.959963984540054);
 
+// The difference p2 - p1 of two proportions from independent samples, k1 of n1 and k2 of n2
+// (Newcombe 1998, "Interval estimation for the difference between independent proportions:
+// comparison of eleven methods", Statistics in Medicine 17, method 10: the hybrid score
+// interval from both Wilson intervals).
+Interval newcombe_independent(std::uint64_t k1, std::uint64_t n1, std::uint64_t k2, std::uint64_t n2, double z = 1.959963984540054);
+
 // Quantile p of values (sorted ascending), linear interpolation between order
 // statistics (Hyndman & Fan type 7, as R and NumPy by default).
 double quantile_sorted(const std::vector<double>& sorted, double p);

@@ -9,6 +9,8 @@
 #include "report/terminal_progress.hpp"
 #include "report/atomic_file.hpp"
 #include "report/comparison_report.hpp"
+#include "report/assessment_folder.hpp"
+#include "report/version_comparison.hpp"
 #include "report/hazard_report.hpp"
 #include "scenario/input_error.hpp"
 #include "report/text_safety.hpp"
@@ -52,7 +54,42 @@ int compare_fields(const CompareOptions& o, std::vector<scenario::Scenario>& des
   return kOk;
 }
 
+bool is_result_file(const std::string& path) { return path.size() >= 5 && path.compare(path.size() - 5, 5, ".json") == 0; }
+
+// An earlier result.json beside a scenario (run now, with the earlier run's replicates and
+// seed unless overridden, into OUT/run) or beside another result.json: what moved.
+int compare_with_earlier(const CompareOptions& o) {
+  if (o.scenarios.size() != 2)
+    throw scenario::InputError("", std::nullopt, "scenarios", fmt::format("{} files", o.scenarios.size()),
+                               "an earlier result.json and one scenario (or one later result.json) to compare it with");
+  const auto earlier = report::read_result_file(o.scenarios[0]);
+  std::string now_file = o.scenarios[1];
+  if (!is_result_file(now_file)) {
+    RunOverrides run = o.overrides;
+    if (run.replicates <= 0) run.replicates = earlier["replicates"].get<long long>();
+    if (!run.seed) run.seed = earlier["provenance"]["seed"].get<unsigned long long>();
+    fmt::print("Running {} ({} replicates, seed {}) to compare with {}\n", terminal_safe(now_file), run.replicates, *run.seed,
+               terminal_safe(o.scenarios[0]));
+    std::fflush(stdout);
+    report::assess_to_folder(now_file, run, o.out + "/run");
+    now_file = o.out + "/run/result.json";
+  } else if (o.overrides.replicates > 0 || o.overrides.seed) {
+    throw scenario::InputError("", std::nullopt, o.overrides.seed ? "--seed" : "--replicates", "",
+                               "no run to set: both files are results (give a scenario to run one)");
+  }
+  const auto now = report::read_result_file(now_file);
+  const auto c = report::compare_results(earlier, o.scenarios[0], now, now_file);
+  report::OutputFolder out(o.out, {"versions.html", "versions.json"});
+  report::write_atomically(out.staged("versions.html"), report::version_comparison_html(c));
+  report::write_atomically(out.staged("versions.json"), report::json_text(c) + "\n");
+  out.commit();
+  fmt::print("{}", terminal_safe(report::version_comparison_text(c)));
+  fmt::print("Wrote {}/versions.html and versions.json\n", terminal_safe(o.out));
+  return kOk;
+}
+
 int compare(const CompareOptions& o) {
+  if (is_result_file(o.scenarios.front())) return compare_with_earlier(o);
   std::vector<scenario::Scenario> designs;
   for (const auto& file : o.scenarios) designs.push_back(scenario::read_scenario(file));  // every file checked before running
   std::size_t fields = 0;
@@ -91,7 +128,11 @@ Runner add_compare_command(CLI::App& app) {
   auto o = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(
       "compare", "Compare designs with common random numbers: each design's shares and their differences from the first, with intervals");
-  cmd->add_option("scenarios", o->scenarios, "Two or more scenario files (TOML); the first is the reference")->required()->expected(2, -1);
+  cmd->add_option("scenarios", o->scenarios,
+                  "Two or more scenario files (TOML); the first is the reference. Or an earlier result.json and a scenario "
+                  "(run now with its replicates and seed) or a later result.json: what moved between them")
+      ->required()
+      ->expected(2, -1);
   cmd->add_option("--out", o->out, "Output folder for compare.html, compare.json and compare.csv")->capture_default_str();
   add_run_overrides(*cmd, o->overrides, "the first scenario's (every design runs with the first's)");
   return [o] { return compare(*o); };
