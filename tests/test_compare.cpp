@@ -168,6 +168,32 @@ TEST_CASE("compare with an earlier result: itself moves nothing; a changed model
     CHECK(words.find("punctures_outside") != std::string::npos);
     CHECK(words.find("hits_outside") == std::string::npos);
   }
+  SECTION("the same counts under another limit or another criterion are not 'nothing moved'") {
+    auto now = before;
+    now["criteria"][0]["limit"] = now["criteria"][0]["limit"].get<double>() * 2;
+    auto renamed = now["criteria"][1];
+    renamed["name"] = "a_new_criterion";
+    now["criteria"].push_back(renamed);
+    const auto c = report::compare_results(before, file, now, "later.json");
+    CHECK_FALSE(c["identical"].get<bool>());
+    std::string words;
+    for (const auto& m : c["what_moved"]) words += m.get<std::string>() + "\n";
+    CHECK(words.find("nothing") == std::string::npos);
+    CHECK(words.find("the limit of " + before["criteria"][0]["name"].get<std::string>() + " changed") != std::string::npos);
+    CHECK(words.find("criterion a_new_criterion is newly judged") != std::string::npos);
+  }
+  SECTION("shares of marks have no count behind them: refused") {
+    auto marks = before;
+    marks["denominator"] = "marks";
+    const std::string path = std::string(J232_BINARY_DIR) + "/result-denominator-marks.json";
+    std::ofstream(path) << marks.dump();
+    try {
+      report::read_result_file(path);
+      FAIL("a result with shares of marks was read");
+    } catch (const scenario::InputError& e) {
+      CHECK(std::string(e.what()).find("denominator") != std::string::npos);
+    }
+  }
   SECTION("not a result") {
     const std::string hazard = std::string(J232_SOURCE_DIR) + "/reports/hazard-deck-72in-lawn-stones/hazard.json";
     try {

@@ -436,8 +436,9 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
       for (double v : *values)
         if (v > 0) highest = std::max(highest, v), lowest = std::min(lowest, v);
   }
-  const double top = std::min(1.0, std::pow(10.0, std::ceil(std::log10(highest) + 1e-9)));
-  const double floor = std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) - 1e-9))));
+  // (A value at a power of ten is that decade's end: no empty decade beyond it.)
+  const double top = std::min(1.0, std::pow(10.0, std::ceil(std::log10(highest) - 1e-9)));
+  const double floor = std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9))));
   curves.y_log_range(floor, top);
   curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {:g} m2)", acceptable_p, s.field.acceptable_area));
   curves.caption("Beside the path: a person standing at that lateral distance from the mower's centre line while it mows past. Ahead "

@@ -95,6 +95,12 @@ json read_result_file(const std::string& path) {
   need("replicates_passed", is("replicates_passed", [&](const json& v) { return v.is_number_unsigned() && v.get<std::uint64_t>() <= r["replicates"].get<std::uint64_t>(); }));
   need("nails_fed", is("nails_fed", [](const json& v) { return v.is_number_unsigned() && v.get<std::uint64_t>() > 0; }));
   need("provenance.seed", is("provenance.seed", [](const json& v) { return v.is_number_unsigned(); }));
+  // A share of marks (criteria.denominator = "marks") is a mean of per-replicate ratios: no
+  // binomial count can be rebuilt from it, so such results are not compared.
+  if (const json* d = find(r, "denominator"); d && *d != "nails_fed")
+    throw scenario::InputError(path, std::nullopt, "denominator", d->dump(),
+                               "\"nails_fed\": a result whose shares are of marks cannot be compared this way (its per-criterion "
+                               "counts are not recorded); compare its scenarios with j232 compare A.toml B.toml instead");
   need("criteria", is("criteria", [](const json& v) {
          if (!v.is_array() || v.empty()) return false;
          for (const auto& c : v)
@@ -112,7 +118,8 @@ json compare_results(const json& before, const std::string& before_file, const j
   c["method"] =
       "the two runs share no per-replicate record, so they are judged as independent samples: each share and P(pass) with "
       "its Wilson interval, each difference (now minus earlier) with Newcombe's hybrid score interval for two independent "
-      "proportions (1998, method 10); a difference whose 95 % interval leaves out zero has moved";
+      "proportions (1998, method 10); a difference whose 95 % interval leaves out zero has moved. Runs with the same seed are "
+      "positively correlated, so these intervals are conservative: a difference inside one is not evidence that nothing changed";
   c["earlier"] = side(before, before_file);
   c["now"] = side(now, now_file);
   c["same_model"] = c["earlier"]["model_version"] == c["now"]["model_version"] && c["earlier"]["physics_model"] == c["now"]["physics_model"];
@@ -160,11 +167,22 @@ json compare_results(const json& before, const std::string& before_file, const j
                         {"now", share(k2, n2)},
                         {"difference", interval_json(d)},
                         {"moved", moved(d)}});
-    if (b["limit"] != (*match)["limit"]) moves.push_back(fmt::format("the limit of {} changed", b["name"].get<std::string>()));
+    if (b["limit"] != (*match)["limit"]) {
+      moves.push_back(fmt::format("the limit of {} changed: {} → {}", b["name"].get<std::string>(), b["limit"].dump(), (*match)["limit"].dump()));
+      identical = false;
+    }
     if (moved(d))
       moves.push_back(fmt::format("{}: {:.3f} % → {:.3f} % of nails fed ({} points, 95 % {} to {})", b["name"].get<std::string>(),
                                   100 * static_cast<double>(k1) / static_cast<double>(n1), 100 * static_cast<double>(k2) / static_cast<double>(n2),
                                   points(d.estimate), points(d.low), points(d.high)));
+  }
+  for (const auto& n : now["criteria"]) {
+    bool judged_before = false;
+    for (const auto& b : before["criteria"]) judged_before = judged_before || b["name"] == n["name"];
+    if (!judged_before) {
+      moves.push_back(fmt::format("criterion {} is newly judged", n["name"].get<std::string>()));
+      identical = false;
+    }
   }
   c["criteria"] = criteria;
   c["identical"] = identical;
