@@ -1,6 +1,7 @@
 #include "report/version_comparison.hpp"
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -16,18 +17,12 @@ using json = nlohmann::ordered_json;
 
 namespace {
 
-// The value at `key` (dotted) of `r`, or null.
+// The value at `key` (dotted) of `r`, or null (by the library's JSON pointer).
 const json* find(const json& r, const std::string& key) {
-  const json* at = &r;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t dot = key.find('.', start);
-    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    if (!at->is_object() || !at->contains(part)) return nullptr;
-    at = &(*at)[part];
-    if (dot == std::string::npos) return at;
-    start = dot + 1;
-  }
+  std::string pointer = "/" + key;
+  std::replace(pointer.begin(), pointer.end(), '.', '/');
+  const json::json_pointer at(pointer);
+  return r.contains(at) ? &r.at(at) : nullptr;
 }
 
 json interval_json(const assess::Interval& i) { return {{"estimate", i.estimate}, {"low", i.low}, {"high", i.high}}; }
@@ -58,8 +53,12 @@ json side(const json& r, const std::string& file) {
   return out;
 }
 
+std::string model_version_words(const json& s) {
+  return s["model_version"].is_null() ? "model_version not recorded" : fmt::format("model_version {}", s["model_version"].get<int>());
+}
+
 std::string version_words(const json& s) {
-  std::string o = s["model_version"].is_null() ? "model_version not recorded" : fmt::format("model_version {}", s["model_version"].get<int>());
+  std::string o = model_version_words(s);
   // (fmt, not "literal" + string: GCC 12 warns falsely of an overlapping copy there.)
   if (!s["program_version"].is_null()) o += fmt::format(", j232 {}", s["program_version"].get<std::string>());
   if (!s["git_revision"].is_null()) o += fmt::format(" {}", s["git_revision"].get<std::string>());
@@ -127,8 +126,7 @@ json compare_results(const json& before, const std::string& before_file, const j
   c["verdict_changed"] = before["verdict"] != now["verdict"];
   std::vector<std::string> moves;
   if (!c["same_model"].get<bool>())
-    moves.push_back(fmt::format("the physics changed between them ({} → {})", c["earlier"]["model_version"].is_null() ? "model_version not recorded" : fmt::format("model_version {}", c["earlier"]["model_version"].get<int>()),
-                                c["now"]["model_version"].is_null() ? "model_version not recorded" : fmt::format("model_version {}", c["now"]["model_version"].get<int>())));
+    moves.push_back(fmt::format("the physics changed between them ({} → {})", model_version_words(c["earlier"]), model_version_words(c["now"])));
   if (c["verdict_changed"].get<bool>())
     moves.push_back(fmt::format("the verdict changed: {} → {}", before["verdict"].get<std::string>(), now["verdict"].get<std::string>()));
 
