@@ -4,7 +4,11 @@
 // and thread-count determinism.
 #include <catch2/catch.hpp>
 #include <boost/math/distributions/normal.hpp>
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <fmt/format.h>
+#include <vector>
 #include <string>
 #include <toml++/toml.h>
 
@@ -59,6 +63,7 @@ TEST_CASE("field: the [field] form, with its defaults", "[field][input]") {
 TEST_CASE("field: a steel ball is one size of steel, struck with the scenario's restitution", "[field][input]") {
   const auto s = read(kMower + "[restitution]\ne = 0.8\n" + R"(
 [field]
+support_height = "0 mm"
 [[field.objects]]
 kind = "steel_ball"
 median_size = "60 mm"
@@ -75,7 +80,7 @@ per_area = "0.1 m^-2"
   const field::FieldSimulator sim(s);
   CHECK(sim.reach_share(0) == 1.0);  // lying on the turf, 60 mm tall: above the blade's lower face (2 in - 3 mm)
   // 8 mm: it stands 8 mm tall, and nothing lifts it.
-  CHECK_THROWS_AS(read(kMower + "[field]\n[[field.objects]]\nkind = \"steel_ball\"\nmedian_size = \"8 mm\"\nper_area = \"1 m^-2\"\n"),
+  CHECK_THROWS_AS(read(kMower + "[field]\nsupport_height = \"0 mm\"\n[[field.objects]]\nkind = \"steel_ball\"\nmedian_size = \"8 mm\"\nper_area = \"1 m^-2\"\n"),
                   scenario::InputError);
 }
 
@@ -106,6 +111,101 @@ TEST_CASE("field: bad fields are refused with the key and what was expected", "[
   CHECK_THAT(error_of(kMower + kStones + "[run]\nreplicates = 100\n"), Catch::Contains("replicates"));
   CHECK_THROWS_AS(assess::Simulator(read(kMower + kStones)), scenario::InputError);
   CHECK_THROWS_AS(field::FieldSimulator(read(kMower)), scenario::InputError);
+}
+
+namespace {
+// The stones of kStones held up by supports of mean `mean` (m), under a blade `inches` up,
+// its deck's skirt 1 in above it (the whole deck set to the cut, as a mower's wheels set it).
+std::string supported_stones(double mean, double inches = 2) {
+  std::string mower = kMower, stones = kStones;
+  mower.replace(mower.find("height = \"2 in\""), 15, fmt::format("height = \"{} in\"", inches));
+  mower.replace(mower.find("skirt_bottom = \"3 in\""), std::string("skirt_bottom = \"3 in\"").size(), fmt::format("skirt_bottom = \"{} in\"", inches + 1));
+  stones.replace(stones.find("support_height = \"0 mm\""), 23, fmt::format("support_height = \"{} mm\"", 1e3 * mean));
+  return mower + stones;
+}
+
+// Kolmogorov's statistic of values that should be uniform on [0, 1].
+double ks_uniform(std::vector<double> u) {
+  std::sort(u.begin(), u.end());
+  double d = 0;
+  const double n = static_cast<double>(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const double k = static_cast<double>(i);
+    d = std::max({d, (k + 1) / n - u[i], u[i] - k / n});
+  }
+  return d;
+}
+}  // namespace
+
+TEST_CASE("field: what holds a stone up: the share that reaches and the draws, against an independent quadrature", "[field]") {
+  // kStones (lognormal 30 mm, spread 1.6, 10-70 mm, sunk 20 %) under the 2-in blade (its
+  // lower face 3 mm lower), the skirt's foot 3 in up: a stone of size d reaches when its
+  // support b puts its top b + 0.8 d between the face and the foot. b is exponential of mean
+  // 12 mm. The share, the size's distribution and the support's, worked out here by direct
+  // quadrature over d (not by the simulator's grid and envelope).
+  const double mean = 0.012, face = 2 * units::inch - 0.003, foot = 3 * units::inch;
+  const auto s = read(supported_stones(mean));
+  const field::FieldSimulator sim(s);
+  const auto band_of = [&](double d) { return std::array<double, 2>{std::max(0.0, face - 0.8 * d), foot - 0.8 * d}; };
+  const auto reach = [&](double d) {
+    const auto b = band_of(d);
+    return b[1] > b[0] ? std::exp(-b[0] / mean) - std::exp(-b[1] / mean) : 0.0;
+  };
+  const boost::math::normal_distribution<double> z;
+  const double sl = std::log(1.6);
+  const auto pdf = [&](double d) { return boost::math::pdf(z, std::log(d / 0.030) / sl) / (d * sl); };
+  const double whole = boost::math::cdf(z, std::log(0.070 / 0.030) / sl) - boost::math::cdf(z, std::log(0.010 / 0.030) / sl);
+  constexpr int kSteps = 200000;
+  std::vector<double> sizes(kSteps), cumulative(kSteps + 1, 0.0);
+  for (int i = 0; i < kSteps; ++i) {
+    const double d = 0.010 + (0.060 * (i + 0.5)) / kSteps;  // midpoint rule
+    sizes[static_cast<std::size_t>(i)] = d;
+    cumulative[static_cast<std::size_t>(i) + 1] = cumulative[static_cast<std::size_t>(i)] + pdf(d) * reach(d) * 0.060 / kSteps;
+  }
+  CHECK(sim.reach_share(0) == Approx(cumulative.back() / whole).epsilon(1e-6));
+  // The old model (every stone on the plane) reaches fewer: only those taller than the face.
+  CHECK(sim.reach_share(0) > field::FieldSimulator(read(kMower + kStones)).reach_share(0));
+
+  // Each drawn stone's size and support, through their distribution functions (probability
+  // integral transform): uniform if the draws follow the distributions above.
+  std::vector<double> u_size, u_support;
+  for (std::uint64_t i = 0; i < 3000; ++i) {
+    const auto e = sim.simulate(i).encounter;
+    const double d = e.body.diameter;
+    REQUIRE_FALSE(e.lifted);  // no updraft
+    const auto b = band_of(d);
+    REQUIRE(e.support >= b[0] - 1e-12);
+    REQUIRE(e.support <= b[1] + 1e-12);
+    CHECK(e.height == Approx(e.support + 0.5 * d - 0.2 * d));
+    const std::size_t at = static_cast<std::size_t>(std::lower_bound(sizes.begin(), sizes.end(), d) - sizes.begin());
+    u_size.push_back(cumulative[std::min(at, sizes.size())] / cumulative.back());
+    u_support.push_back((1 - std::exp(-(e.support - b[0]) / mean)) / (1 - std::exp(-(b[1] - b[0]) / mean)));
+  }
+  // Kolmogorov's 1 % critical value 1.63 / sqrt(n), and a grid of 60 um: 0.03 at n = 3000.
+  CHECK(ks_uniform(u_size) < 1.63 / std::sqrt(3000.0));
+  CHECK(ks_uniform(u_support) < 1.63 / std::sqrt(3000.0));
+}
+
+TEST_CASE("field: with supports, the share that reaches falls smoothly with the cut, and small stones are not refused", "[field]") {
+  // Every 1/4 in from 2 to 6 in: falling, never by more than 3x a step (the old model's step
+  // from all to none is what a support's spread removes).
+  double last = 1;
+  for (int quarter = 8; quarter <= 24; ++quarter) {
+    const auto s = read(supported_stones(0.010, quarter / 4.0));
+    const double share = field::FieldSimulator(s).reach_share(0);
+    INFO(quarter / 4.0 << " in: " << share);
+    CHECK(share > 0);
+    CHECK(share < last);
+    if (quarter > 8) CHECK(last / share < 3);
+    last = share;
+  }
+  // The stones too small to stand up to the blade on the plane (refused without support).
+  std::string small = supported_stones(0.010);
+  small.replace(small.find("max_size = \"70 mm\""), 18, "max_size = \"30 mm\"");
+  small.replace(small.find("min_size = \"10 mm\""), 18, "min_size = \"5 mm\"");
+  const field::FieldSimulator sim(read(small));
+  CHECK(sim.reach_share(0) > 0);
+  CHECK(sim.reach_share(0) < 0.2);
 }
 
 TEST_CASE("field: each kind a stratum, drawn among the sizes that can reach a blade", "[field]") {

@@ -256,7 +256,9 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
   fmt::print("{}\nobject {} (seed {}); times on the blades' clock, positions in metres in the mower's frame\n", s.title, index, s.run.seed);
   fmt::print("{} '{}': {:.1f} mm, {:.1f} g, {:.3f} m across the cut, centre {:.1f} mm above the turf{}\n",
              s.field.objects[e.kind].kind == scenario::FieldObjectSpec::Kind::SteelBall ? "steel ball" : "stone", s.field.objects[e.kind].name,
-             1e3 * e.body.diameter, 1e3 * e.body.mass, e.lateral, 1e3 * e.height, e.lifted ? " (lifted by the updraft)" : "");
+             1e3 * e.body.diameter, 1e3 * e.body.mass, e.lateral, 1e3 * e.height,
+             e.lifted ? std::string(" (lifted by the updraft)")
+                      : e.support > 0 ? fmt::format(" (resting {:.1f} mm up, on what holds it: field.support_height)", 1e3 * e.support) : std::string());
   fmt::print("{}: thrown at {:.2f} m/s (ground frame), elevation {:.1f} deg; {:.2f} m/s off its last blade strike\n",
              field::object_fate_name(out.fate), out.exit_speed, out.launch_elevation / units::degree, out.last_strike_speed);
   print_trail(events);

@@ -9,6 +9,7 @@
 #include "scenario/input_error.hpp"
 #include "strike/contact_search.hpp"
 #include "flight/plane_touch.hpp"
+#include "invariant/check.hpp"
 #include "strike/impulse.hpp"
 #include "units/quantity.hpp"
 
@@ -79,46 +80,97 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
     drag.spin_average = scenario_.air.spin_average;
     drag_per_unit_.push_back(drag);
     // The sizes that can reach a blade: lifted by the updraft (drag above weight: below
-    // 3 rho C_d u^2 / (4 rho_s g)), or standing above the lowest blade's lower face.
+    // 3 rho C_d u^2 / (4 rho_s g)), or standing above the lowest blade's lower face (with
+    // support, some of every size stand so: held_up).
     const double u = scenario_.field.updraft_speed;
     const double lifted_below = scenario_.lifted_up_to(o, o.drag_coefficient, u);
     const double tall_above = scenario_.lowest_blade_face() / (1 - o.embedment);
     ReachableSizes reach;
     const double lo = probability_below(o, o.min_size), hi = o.spread <= 1.0 ? 1.0 : probability_below(o, o.max_size);
     const double whole = o.spread <= 1.0 ? 1.0 : hi - lo;
-    auto add = [&](double from, double to) {  // sizes [from, to) within the cut
-      from = std::max(from, o.min_size), to = std::min(to, o.max_size);
-      if (o.spread <= 1.0) {
-        if (o.median_size >= from && o.median_size <= to) reach.pieces.push_back({0.0, 1.0});
-        return;
+    if (scenario_.field.support_height > 0) {
+      sizes_.push_back({});  // held_up reads the kind's spec only; its grid is built here
+      // The lifted sizes [lo, lifted_at); above them, each size reaches with the probability
+      // its support holds it in the band.
+      const double lifted_at = std::clamp(o.spread <= 1.0 ? (o.median_size < lifted_below ? 1.0 : 0.0)
+                                                          : probability_below(o, std::max(lifted_below, o.min_size)),
+                                          lo, hi);
+      reach.lifted_mass = lifted_at - lo;
+      if (hi > lifted_at) {
+        // A grid over [lifted_at, hi] with a node where the object's top on the plane meets
+        // the blade's face: on each cell the reach probability is then monotone in p (rising
+        // below that size, falling above it as the front's gap closes), so the larger of a
+        // cell's ends bounds it there.
+        constexpr int kCells = 1024;
+        for (int i = 0; i <= kCells; ++i) reach.grid.push_back(lifted_at + (hi - lifted_at) * i / kCells);
+        if (o.spread > 1.0 && tall_above > o.min_size && tall_above < o.max_size) {
+          const double peak = probability_below(o, tall_above);
+          if (peak > lifted_at && peak < hi) reach.grid.insert(std::upper_bound(reach.grid.begin(), reach.grid.end(), peak), peak);
+        }
+        const auto w = [&](double p) { return held_up(k, size_at(o, p)).probability; };
+        double mass = 0, left = w(reach.grid.front());
+        reach.cumulative.push_back(0);
+        for (std::size_t i = 0; i + 1 < reach.grid.size(); ++i) {
+          const double a = reach.grid[i], b = reach.grid[i + 1], right = w(b);
+          mass += (b - a) * (left + 4 * w(0.5 * (a + b)) + right) / 6;  // Simpson's rule
+          reach.envelope.push_back(std::max(left, right));
+          reach.cumulative.push_back(reach.cumulative.back() + (b - a) * reach.envelope.back());
+          left = right;
+        }
+        reach.supported_mass = mass;
+        if (!(reach.cumulative.back() > 0)) reach.grid.clear(), reach.envelope.clear(), reach.cumulative.clear(), reach.supported_mass = 0;
       }
-      if (!(to > from)) return;
-      const double a = probability_below(o, from), b = probability_below(o, to);
-      if (!reach.pieces.empty() && a <= reach.pieces.back()[1])
-        reach.pieces.back()[1] = std::max(reach.pieces.back()[1], b);
-      else if (b > a)
-        reach.pieces.push_back({a, b});
-    };
-    add(0.0, lifted_below);
-    add(tall_above, HUGE_VAL);
-    if (reach.pieces.size() == 2 && reach.pieces[1][0] <= reach.pieces[0][1]) {
-      reach.pieces[0][1] = std::max(reach.pieces[0][1], reach.pieces[1][1]);
-      reach.pieces.pop_back();
+      reach.share = std::min(1.0, (reach.lifted_mass + reach.supported_mass) / whole);
+      sizes_.pop_back();
+    } else {
+      auto add = [&](double from, double to) {  // sizes [from, to) within the cut
+        from = std::max(from, o.min_size), to = std::min(to, o.max_size);
+        if (o.spread <= 1.0) {
+          if (o.median_size >= from && o.median_size <= to) reach.pieces.push_back({0.0, 1.0});
+          return;
+        }
+        if (!(to > from)) return;
+        const double a = probability_below(o, from), b = probability_below(o, to);
+        if (!reach.pieces.empty() && a <= reach.pieces.back()[1])
+          reach.pieces.back()[1] = std::max(reach.pieces.back()[1], b);
+        else if (b > a)
+          reach.pieces.push_back({a, b});
+      };
+      add(0.0, lifted_below);
+      add(tall_above, HUGE_VAL);
+      if (reach.pieces.size() == 2 && reach.pieces[1][0] <= reach.pieces[0][1]) {
+        reach.pieces[0][1] = std::max(reach.pieces[0][1], reach.pieces[1][1]);
+        reach.pieces.pop_back();
+      }
+      for (const auto& piece : reach.pieces) reach.share += (piece[1] - piece[0]) / whole;
+      reach.share = std::min(1.0, reach.share);
     }
-    for (const auto& piece : reach.pieces) reach.share += (piece[1] - piece[0]) / whole;
-    reach.share = std::min(1.0, reach.share);
     if (!(reach.share > 0))
       throw scenario::InputError(scenario_.file, std::nullopt, fmt::format("field.objects[{}]", k + 1), "",
                                  "no size of these objects can reach a blade (none stands up to a blade's lower face, none is light "
                                  "enough for the updraft): expected larger objects, less embedment, a lower cut or an updraft");
-    if (!reach.pieces.empty()) {
-      const double largest = size_at(o, reach.pieces.back()[1]);
+    const double largest_p = !reach.grid.empty() ? hi : !reach.pieces.empty() ? reach.pieces.back()[1] : lo + reach.lifted_mass;
+    if (reach.share > 0) {
+      const double largest = size_at(o, largest_p);
       const double mass = o.density * units::pi * largest * largest * largest / 6;
       const double speed = 2.2 * scenario_.tip_speed() + scenario_.field.ground_speed;
       reach.energy_bound = 0.5 * mass * speed * speed + mass * units::standard_gravity * 5.0;
     }
     sizes_.push_back(reach);
   }
+}
+
+FieldSimulator::SupportBand FieldSimulator::held_up(std::size_t kind, double size) const {
+  const auto& o = scenario_.field.objects[kind];
+  const double mean = scenario_.field.support_height, top = size * (1 - o.embedment);
+  const std::optional<double> front_gap = scenario_.front_gap();
+  SupportBand band;
+  band.from = std::max(0.0, scenario_.lowest_blade_face() - top);
+  band.to = front_gap ? *front_gap - top : HUGE_VAL;
+  if (!(band.to > band.from)) return band;
+  // Exponential heights of this mean: P(from < b < to) = exp(-from / mean) - exp(-to / mean).
+  band.probability = std::exp(-band.from / mean) - (band.to < HUGE_VAL ? std::exp(-band.to / mean) : 0.0);
+  return band;
 }
 
 double FieldSimulator::objects_per_metre(std::size_t kind) const { return scenario_.field.objects[kind].per_area * met_width(kind); }
@@ -133,8 +185,41 @@ Encounter FieldSimulator::sample(std::size_t kind, random::Stream& rng) const {
   Encounter e;
   e.kind = kind;
   const auto& o = scenario_.field.objects[e.kind];
-  // A size among those that can reach a blade: a uniform draw over their probability.
   const ReachableSizes& reach = sizes_[e.kind];
+  const double u = scenario_.field.updraft_speed;
+  if (scenario_.field.support_height > 0) {
+    // Lifted, or resting on a support that holds it up to the blade: the size drawn from
+    // the kind's lognormal weighted by its chance to reach (rejection under the grid's
+    // envelope), then its support from the exponential cut to the band that holds it there
+    // (an exponential's tail beyond `from` is `from` plus the same exponential: exact).
+    double p = 0;
+    const bool lifted_piece = rng.uniform() * (reach.lifted_mass + reach.supported_mass) < reach.lifted_mass;
+    if (lifted_piece) {
+      p = (o.spread <= 1.0 ? 0.0 : probability_below(o, o.min_size)) + rng.uniform() * reach.lifted_mass;
+    } else {
+      for (int tries = 0;; ++tries) {
+        J232_CHECK(tries < 1'000'000);  // the envelope bounds a positive mass: draws are accepted
+        const double m = rng.uniform() * reach.cumulative.back();
+        const std::size_t i = std::min<std::size_t>(
+            static_cast<std::size_t>(std::upper_bound(reach.cumulative.begin(), reach.cumulative.end(), m) - reach.cumulative.begin()) - 1,
+            reach.envelope.size() - 1);
+        p = reach.grid[i] + rng.uniform() * (reach.grid[i + 1] - reach.grid[i]);
+        if (rng.uniform() * reach.envelope[i] < held_up(e.kind, size_at(o, p)).probability) break;
+      }
+    }
+    const double size = size_at(o, p);
+    e.body = projectile::Projectile::sphere(size, o.density * units::pi * size * size * size / 6.0);
+    e.lateral = cut_from_ - 0.5 * o.max_size + rng.uniform() * met_width(e.kind);
+    e.lifted = u > 0 && 0.5 * scenario_.air.density * u * u * o.drag_coefficient * 0.25 * units::pi * size * size > e.body.mass * units::standard_gravity;
+    if (!e.lifted) {
+      const SupportBand band = held_up(e.kind, size);
+      const double mean = scenario_.field.support_height;
+      e.support = band.from - mean * std::log1p(rng.uniform() * std::expm1(-(band.to - band.from) / mean));
+    }
+    e.height = e.support + 0.5 * size - o.embedment * size;  // its centre, on its support, sunk by its embedment
+    return e;
+  }
+  // A size among those that can reach a blade: a uniform draw over their probability.
   double total = 0;
   for (const auto& piece : reach.pieces) total += piece[1] - piece[0];
   double p = rng.uniform() * total;
@@ -151,7 +236,6 @@ Encounter FieldSimulator::sample(std::size_t kind, random::Stream& rng) const {
   e.lateral = cut_from_ - 0.5 * o.max_size + rng.uniform() * met_width(e.kind);
   e.height = 0.5 * size - o.embedment * size;  // its centre, sunk by its embedment
   // The updraft's drag against its weight: 1/2 rho u^2 C_d (pi d^2 / 4) > m g.
-  const double u = scenario_.field.updraft_speed;
   e.lifted = u > 0 && 0.5 * scenario_.air.density * u * u * o.drag_coefficient * 0.25 * units::pi * size * size > e.body.mass * units::standard_gravity;
   return e;
 }
@@ -228,7 +312,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   // blade is then still in its way, the knife rides over it (swinging back on its pivot),
   // and it leaves along the ground with what the soil's friction left it.
   flight::FirstContact first{contact->spindle, contact->edge};
-  if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().ground_velocity, body.velocity) &&
+  if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().ground_velocity, body.velocity, e.support) &&
       (body.velocity + hit.spin_after.cross(contact->point - body.position) - spindle.velocity_at(contact->point)).dot(contact->normal) <= 0) {
     out.pressed = true;
     first.ridden_until = contact->time + flight::kRideOverTurn / spindle.omega();

@@ -8,6 +8,7 @@
 // Frame: the mower's (x forward, y to the left, z up, origin on the ground at the deck's
 // centre), travelling at the field's ground speed along +x; objects come at it at that
 // speed. Time 0 is when the object enters the first blade's reach.
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -27,7 +28,8 @@ struct Encounter {
   std::size_t kind = 0;                // field.objects index
   projectile::Projectile body;        // a sphere
   double lateral = 0;                  // y of its centre, m
-  double height = 0;                   // z of its centre (sunk by its embedment), m
+  double support = 0;                  // z of the level it rests on (field.support_height), m
+  double height = 0;                   // z of its centre (on its support, sunk by its embedment), m
   bool lifted = false;                 // drawn up by the updraft: it meets the blades in their plane
 };
 
@@ -104,14 +106,29 @@ class FieldSimulator {
   std::vector<std::vector<strike::Spindle>> spindles_;  // per kind: its restitution and friction on the blades
   std::vector<flight::Drag> drag_per_unit_;             // per kind, for a 1 m sphere (scaled by 1 / size)
   double cut_from_ = 0, cut_to_ = 0;
-  // Per kind, the sizes that can reach a blade: pieces of the lognormal's probability
-  // axis [p_low, p_high) (at most two: the lifted small ones, the tall ones), and their share.
+  // Per kind, the sizes that can reach a blade, on the lognormal's probability axis p.
+  // Without support (field.support_height 0): pieces [p_low, p_high) (at most two: the lifted
+  // small ones, the tall ones), each reaching for certain. With support: the lifted piece,
+  // and above it the supported sizes, each reaching with the probability its support puts
+  // its top between the blade's lower face and the deck's front gap (held_up); drawn by
+  // rejection under a piecewise-constant envelope over a grid of p (exact, docs/model.md §9).
   struct ReachableSizes {
     std::vector<std::array<double, 2>> pieces;
     double share = 0;
     double energy_bound = 0;  // J
+    // With support: the grid over [supported_from, p_high] and its envelope's cumulative mass.
+    std::vector<double> grid, envelope, cumulative;
+    double lifted_mass = 0, supported_mass = 0;  // of p; their sum / the kind's whole is the share
   };
   std::vector<ReachableSizes> sizes_;
+  // The probability that an object of a kind and size rests high enough for its top to
+  // stand above the blade's lower face and low enough to pass under the deck's front, and
+  // the band of support heights that does it.
+  struct SupportBand {
+    double from = 0, to = HUGE_VAL;  // m
+    double probability = 0;
+  };
+  SupportBand held_up(std::size_t kind, double size) const;
 };
 
 }  // namespace j232::field

@@ -154,8 +154,8 @@ double effective_mass(const projectile::Projectile& nail, const Vec3& axis, cons
   return 1.0 / (1.0 / nail.mass + rn.dot(strike::inverse_inertia(nail, axis) * rn));
 }
 
-bool soil_reaction(const Vec3& centre, double radius, double mu, const Vec3& turf, Vec3& velocity) {
-  if (!(centre.z() - radius <= 1e-3) || !(velocity.z() < 0)) return false;
+bool soil_reaction(const Vec3& centre, double radius, double mu, const Vec3& turf, Vec3& velocity, double support) {
+  if (!(centre.z() - radius <= support + 1e-3) || !(velocity.z() < 0)) return false;
   const double into = -velocity.z();
   velocity.z() = 0;
   const double sx = velocity.x() - turf.x(), sy = velocity.y() - turf.y();  // the slip over the turf

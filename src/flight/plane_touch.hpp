@@ -56,7 +56,8 @@ void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& a
 // velocity points into it; otherwise nothing happens. Without it the rigid blade and rigid
 // ground would trade impulses at one instant without end (a wedge). Returns whether it acted.
 // `turf`: the ground's velocity (a field's, moving under the mower); friction acts on the
-// slip against it.
-bool soil_reaction(const Vec3& centre, double radius, double mu, const Vec3& turf, Vec3& velocity);
+// slip against it. `support`: the height of what the object rests on (a field object's
+// crown, clump or thatch above the plane the wheels ride on; 0: that plane).
+bool soil_reaction(const Vec3& centre, double radius, double mu, const Vec3& turf, Vec3& velocity, double support = 0);
 
 }  // namespace j232::flight

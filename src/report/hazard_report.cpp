@@ -65,6 +65,17 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
                            "still; the air still",
                            f.ground_speed * 3.6),
                "scenario (ground speed an estimate unless given)"});
+  if (f.support_height > 0)
+    a.push_back({fmt::format("Each object rests on what holds it up (crowns and clods of the ground, thatch, clumps): its resting "
+                             "level above the plane the wheels ride on exponential with mean {:.3g} mm, drawn for each object. One "
+                             "whose top then stands above the blades' lower face can be struck; one standing at or above the deck's "
+                             "front gap is pushed aside by the deck, not struck; the turf the thrown objects meet is that plane",
+                             1e3 * f.support_height),
+                 "scenario (field.support_height: an estimate; docs/model.md §9)"});
+  else
+    a.push_back({"Every object lies on the plane the wheels ride on (field.support_height 0): only those standing above the blades' "
+                 "lower face, or lifted, are struck",
+                 "scenario (a stated simplification; docs/model.md §9)"});
   if (f.updraft_speed > 0)
     a.push_back({fmt::format("The air the blades draw up, {:g} m/s at the turf, lifts an object into the blades' plane when its drag "
                              "exceeds its weight; the others are struck where they lie",
@@ -197,6 +208,8 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
       {"frame", "the ground's at each object's strike: origin at the mower's centre then, x along its travel, y to its left"},
       {"field",
        {{"ground_speed_m_s", f.ground_speed},
+        {"updraft_speed_m_s", f.updraft_speed},
+        {"support_height_mean_m", f.support_height},
         {"cut_width_m", sum.cut_width},
         {"objects_met_per_km", sum.objects_per_km},
         {"objects_that_can_reach_a_blade_per_km", sum.reaching_per_km},

@@ -333,6 +333,11 @@ struct FieldSpec {
   // The air the blades draw up under the deck, at the turf (an estimate; 0: none): an object
   // whose drag in it, 1/2 rho u^2 C_d A, exceeds its weight is lifted into the blades' plane.
   double updraft_speed = 0.0;
+  // What holds an object up above the plane the mower's wheels ride on (crowns and clods of
+  // the ground, thatch, clumps, stones on stones): the height of its resting level, drawn
+  // for each object from an exponential distribution of this mean (m; an estimate, docs/model.md
+  // §9). 0: every object lies on that plane.
+  double support_height = 0.010;
   std::vector<FieldObjectSpec> objects;
   std::vector<FieldPlaneSpec> planes;
   double range = 100;                         // m: the ground tallied out to this in every direction

@@ -574,6 +574,7 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
   const double lowest_face = s.lowest_blade_face();
   const std::optional<double> front_gap = s.front_gap();
   f.updraft_speed = t.quantity_or("updraft_speed", Kind::Speed, f.updraft_speed, Range::between(0, 100));
+  f.support_height = t.quantity_or("support_height", Kind::Length, f.support_height, Range::between(0, 0.2));
   const auto tables = t.array_of_tables("objects", 16);
   if (tables.empty())
     throw t.error("objects", "missing: a field without objects throws nothing; expected [[field.objects]] tables with kind, "
@@ -621,10 +622,13 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
     // Lifted by the updraft (its drag above its weight), an object meets the blade in the
     // blade's plane: 3 rho C_d u^2 / (4 rho_s g) is the largest size it lifts.
     const double lifted_up_to = s.lifted_up_to(obj, obj.drag_coefficient, f.updraft_speed);
-    if (top <= lowest_face && obj.min_size >= lifted_up_to)
+    // Held up by what they rest on (field.support_height), some of every size reach a blade.
+    if (f.support_height == 0 && top <= lowest_face && obj.min_size >= lifted_up_to)
       throw o.error("max_size", fmt::format("no object stands up to the blade: the largest stands {:.3g} m above the turf, the blade's "
-                                            "lower face {:.3g} m; the mower passes over them all (expected larger objects, less "
-                                            "embedment, a lower cut, or field.updraft_speed to lift them)",
+                                            "lower face {:.3g} m, and field.support_height is 0 (every object lies on the plane the "
+                                            "wheels ride on); the mower passes over them all (expected larger objects, less "
+                                            "embedment, a lower cut, field.support_height for what holds them up, or "
+                                            "field.updraft_speed to lift them)",
                                             top, lowest_face));
     f.objects.push_back(obj);
   }

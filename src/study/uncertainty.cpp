@@ -311,6 +311,11 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
                                ? "estimate: no measurement of the air under a deck at the turf; the scenario's value + 25 %, and down to "
                                  "where it still lifts the smallest objects that reach a blade only when lifted"
                                : "estimate: no measurement of the air under a deck at the turf; the scenario's value +/- 25 %"));
+  if (f.support_height > 0)
+    in.push_back(estimated("field.support_height", fmt::format("{:.4g} mm", 500 * f.support_height), fmt::format("{:.4g} mm", 2000 * f.support_height),
+                           "estimate: no survey of what holds objects up on a mowed verge (ground roughness, thatch, clumps); "
+                           "within a factor of 2, uniform in its logarithm",
+                           "loguniform"));
   in.insert(in.end(), kinds.begin(), kinds.end());
   in.push_back(estimated("bevel_angle", "20 deg", "45 deg", "estimate: mower blades are ground to about 30 deg; no figure for industrial cutters"));
   in.push_back(estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"));
