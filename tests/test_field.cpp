@@ -19,6 +19,7 @@
 #include "field/hazard_tally.hpp"
 #include "flight/nail_flight.hpp"
 #include "random/stream.hpp"
+#include "report/hazard_report.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "units/quantity.hpp"
@@ -480,6 +481,28 @@ TEST_CASE("field: designs compared object by object, with common random numbers"
   // The same on one thread.
   const auto one = field::compare_fields({without, with}, 1);
   for (std::size_t j = 0; j < one.designs[1].differences.size(); ++j) CHECK(one.designs[1].differences[j].per_km.value == c.designs[1].differences[j].per_km.value);
+  // Each design's own hazard is what j232 hazard gives for it over the same objects.
+  with.field.objects_simulated = without.field.objects_simulated;
+  with.run.seed = without.run.seed;
+  const field::FieldSimulator sim(with);
+  const auto alone = field::summarise(sim, field::run_hazard(sim, 2));
+  const auto& compared = c.designs[1].hazard;
+  REQUIRE(compared.directions.size() == alone.directions.size());
+  for (std::size_t i = 0; i < alone.directions.size(); ++i) {
+    CHECK(compared.directions[i].hazard_distance == alone.directions[i].hazard_distance);
+    CHECK(compared.directions[i].hazard_distance_upper == alone.directions[i].hazard_distance_upper);
+    for (std::size_t k = 0; k < alone.directions[i].probability.size(); ++k)
+      CHECK(compared.directions[i].probability[k].value == alone.directions[i].probability[k].value);
+  }
+  REQUIRE(compared.planes.size() == 2);
+  CHECK(compared.planes[1].probability.value == alone.planes[1].probability.value);
+  CHECK(compared.planes[1].probability.value > 0);
+  CHECK(compared.planes[1].probability.value < c.designs[0].hazard.planes[1].probability.value);  // the chains protect the path
+  const std::string text = report::hazard_comparison_text(c);
+  CHECK_THAT(text, Catch::Contains("hazard distance (estimate / conservative): left") && Catch::Contains("P(struck) in one pass"));
+  const std::string html = report::hazard_comparison_html(c);
+  CHECK_THAT(html, Catch::Contains("Each design's hazard") && Catch::Contains("Probability of being struck in one pass: left"));
+  CHECK(report::hazard_comparison_json(c)["designs"][1]["person_at_plane"][0]["plane"] == "path on the left");
 }
 
 TEST_CASE("field: the strips' vertical planes count what an explicit plane at the same distance counts", "[field]") {

@@ -5,8 +5,12 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <set>
+#include <string>
+#include <vector>
 
+#include "field/hazard_run.hpp"
 #include "report_fortran.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "scenario/input_error.hpp"
 #include "report/sweep_report.hpp"
 #include "study/sweep.hpp"
@@ -147,7 +151,7 @@ TEST_CASE("sweep: over a J232 scenario, P(pass) with its interval at every point
   spec.x = study::parse_axis("housing.skirt_bottom=6 in,1 in", "--x");  // a key of the file itself
   spec.replicates = 40;
   const auto t = study::run_sweep(spec, 2, nullptr);
-  REQUIRE(t.assessment);
+  REQUIRE(t.kind == study::SweepTable::Kind::Assessment);
   REQUIRE(t.rows.size() == 2);
   for (const auto& r : t.rows) {
     const double p = r.values[study::column(t, "p_pass")];
@@ -176,4 +180,66 @@ TEST_CASE("sweep: bad sweep input names the key and value", "[sweep][input]") {
   CHECK_THROWS_WITH(study::parse_axis("restitution=0.5,1.5", "--x"), Catch::Contains("1.5") && Catch::Contains("between 0 and 1"));
   CHECK_THROWS_WITH(study::parse_axis("blade_speed=700 rmp", "--x"), Catch::Contains("rmp"));
   CHECK_THROWS_WITH(study::parse_axis("blade_speed", "--series"), Catch::Contains("PARAMETER=V1,V2"));
+}
+
+TEST_CASE("sweep: cut_height sets the whole mower, not the ground, and refuses what would go under the turf", "[sweep][field]") {
+  const std::string shoulder = std::string(J232_SOURCE_DIR) + "/scenarios/field/batwing-highway-shoulder.toml";
+  auto s = scenario::read_scenario(shoulder);
+  const auto before = s;
+  study::set_cut_height(s, 4 * units::inch);  // the file's blades at 3 in: everything 1 in up
+  for (std::size_t k = 0; k < s.spindles.size(); ++k)
+    CHECK(s.spindles[k].geometry.height == Approx(before.spindles[k].geometry.height + units::inch));
+  CHECK(s.housing.skirt_bottom == Approx(before.housing.skirt_bottom + units::inch));
+  for (std::size_t i = 0; i < s.housing.openings.size(); ++i)
+    CHECK(s.housing.openings[i].top == Approx(before.housing.openings[i].top + units::inch));
+  for (std::size_t i = 0; i < s.housing.guards.size(); ++i)
+    CHECK(s.housing.guards[i].bottom == Approx(before.housing.guards[i].bottom + units::inch));
+  CHECK(s.front_gap().value() == Approx(before.front_gap().value() + units::inch));
+  // The skirt's foot (1.5 in below the blades) under the turf at a 1.4-in cut; a mesh deck.
+  auto low = before;
+  CHECK_THROWS_WITH(study::set_cut_height(low, 1.4 * units::inch), Catch::Contains("skirt's foot") && Catch::Contains("below the turf"));
+  auto meshes = scenario::read_scenario(std::string(J232_SOURCE_DIR) + "/scenarios/highway-meshes.toml");
+  CHECK_THROWS_WITH(study::set_cut_height(meshes, 4 * units::inch), Catch::Contains("meshes"));
+}
+
+TEST_CASE("sweep: over a field scenario, each point a hazard run, the same as that run made directly", "[sweep][field]") {
+  study::SweepSpec spec;
+  spec.source = "test";
+  spec.base = std::string(J232_SOURCE_DIR) + "/scenarios/field/batwing-highway-shoulder.toml";
+  spec.x = study::parse_axis("cut_height=2.5 in,4 in", "--x");
+  spec.objects = 2000;
+  const auto t = study::run_sweep(spec, 2, nullptr);
+  REQUIRE(t.kind == study::SweepTable::Kind::Hazard);
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[0].x == Approx(2.5));  // on the axis in inches
+  CHECK(t.planes == std::vector<std::string>{"traffic lane", "path on the left"});
+  const std::size_t path = study::column(t, "plane_path_on_the_left_hazardous_per_km");
+  CHECK(study::column(t, "plane_traffic_lane_hazardous_per_km_high") < path);
+  for (const auto& r : t.rows) {
+    CHECK(r.values[path + 1] <= r.values[path]);
+    CHECK(r.values[path] <= r.values[path + 2]);
+    CHECK(r.values[study::column(t, "objects")] == 2000);
+  }
+  CHECK(t.rows[1].values[path] < t.rows[0].values[path]);  // a higher cut: fewer hazardous crossings
+  // The 4-in point, made directly.
+  auto s = scenario::read_scenario(spec.base);
+  study::set_cut_height(s, 4 * units::inch);
+  s.field.objects_simulated = 2000;
+  const field::FieldSimulator sim(s);
+  const auto sum = field::summarise(sim, field::run_hazard(sim, 1));
+  CHECK(t.rows[1].values[study::column(t, "thrown_per_km")] == sum.thrown_per_km);
+  CHECK(t.rows[1].values[path] == sum.planes[1].hazardous_per_km.value);
+  CHECK(t.rows[1].values[study::column(t, "left_hazard_distance_upper_m")] == sum.directions[0].hazard_distance_upper);
+  const auto charts = report::sweep_charts(spec, t);
+  REQUIRE(charts.size() == 4);
+  CHECK(charts[1].first == "plane-2");
+  CHECK(charts[1].second.find("path on the left") != std::string::npos);
+  CHECK(charts[2].first == "hazard-distance");
+  // Objects are a field's; replicates a J232 scenario's.
+  spec.replicates = 10;
+  CHECK_THROWS_WITH(study::run_sweep(spec, 1, nullptr), Catch::Contains("run.objects"));
+  study::SweepSpec j232 = spec;
+  j232.base = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted.toml";
+  j232.replicates = 0;
+  CHECK_THROWS_WITH(study::run_sweep(j232, 1, nullptr), Catch::Contains("field scenario"));
 }

@@ -23,7 +23,7 @@ struct SweepOptions {
   std::string base, x, title, name;
   std::vector<std::string> series;
   std::string out = "results/sweeps";
-  long long replicates = 0;
+  long long replicates = 0, objects = 0;
   int threads = 0;
 };
 
@@ -59,7 +59,7 @@ void run_one(const study::SweepSpec& spec, const SweepOptions& o) {
     written.push_back((dir / fmt::format("{}-{}.svg", spec.name, suffix)).string());
     report::write_atomically(written.back(), svg);
   }
-  fmt::print("{}: {} points ({} of {}). Wrote {}\n", spec.title, table.rows.size(), table.assessment ? "J232 assessments" : "impacts",
+  fmt::print("{}: {} points ({} of {}). Wrote {}\n", spec.title, table.rows.size(), study::points_name(table.kind),
              spec.base, fmt::join(written, ", "));
 }
 
@@ -76,12 +76,14 @@ int sweep(const SweepOptions& o) {
     spec.name = o.name.empty() ? std::filesystem::path(o.base).stem().string() + "-" + spec.x.info.name : o.name;
     spec.title = o.title.empty() ? spec.name : o.title;
     spec.replicates = o.replicates;
+    spec.objects = o.objects;
     run_one(spec, o);
     return kOk;
   }
   for (const auto& f : o.files) {
     study::SweepSpec spec = study::read_sweep_file(f);
     if (o.replicates > 0) spec.replicates = o.replicates;
+    if (o.objects > 0) spec.objects = o.objects;
     run_one(spec, o);
   }
   return kOk;
@@ -92,15 +94,16 @@ int sweep(const SweepOptions& o) {
 Runner add_sweep_command(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* cmd =
-      app.add_subcommand("sweep", "Parameter study over an impact case (object speed) or a J232 scenario (P(pass)); CSV and SVG charts");
+      app.add_subcommand("sweep", "Parameter study over an impact case (object speed), a J232 scenario (P(pass)) or a field scenario (its hazard); CSV and SVG charts");
   cmd->add_option("files", o->files, "Sweep files (TOML); see sweeps/");
-  cmd->add_option("--base", o->base, "Without a sweep file: the impact case or J232 scenario to vary");
+  cmd->add_option("--base", o->base, "Without a sweep file: the impact case, J232 scenario or field scenario to vary");
   cmd->add_option("--x", o->x, "The x-axis parameter and values: blade_speed=\"700 rpm,800 rpm\"");
   cmd->add_option("--series", o->series, "A series parameter (one curve per value), repeatable: restitution=0.5,0.9");
   cmd->add_option("--title", o->title, "Chart title");
   cmd->add_option("--name", o->name, "Stem of the output files");
   cmd->add_option("--out", o->out, "Output folder")->capture_default_str();
   cmd->add_option("--replicates", o->replicates, "J232 scenarios: replicates per point")->check(CLI::PositiveNumber);
+  cmd->add_option("--objects", o->objects, "Field scenarios: objects per point (hazard runs)")->check(CLI::PositiveNumber);
   cmd->add_option("--threads", o->threads, "Worker threads, 0 = all cores")->check(CLI::NonNegativeNumber)->each([](const std::string& t) { warn_threads_beyond_cores(std::atoll(t.c_str())); });
   return [o] { return sweep(*o); };
 }

@@ -25,8 +25,9 @@ struct ChunkSums {
   std::vector<std::uint64_t> differing;
 };
 
-// A thread's watches, one per design, each filling a tally nobody reads (the watch keeps the
-// object's own counts).
+// A thread's watches, one per design and kind, each filling its tally (merged into each
+// design's whole run after: its hazard distances and P(struck)); the watch also keeps the
+// object's own counts for the paired differences. Design d's kind k at first[d] + k.
 struct Watches {
   std::deque<HazardTally> tallies;
   std::deque<ObjectWatch> watches;
@@ -63,9 +64,13 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   for (const auto& sim : sims) weight.push_back(weights_per_object(*sim, n));
   std::vector<ChunkSums> sums(chunks);
   if (progress) progress->total = static_cast<long long>(n), progress->done = 0;
+  std::vector<std::size_t> first(nd, 0);
+  for (std::size_t d = 1; d < nd; ++d) first[d] = first[d - 1] + sims[d - 1]->kinds();
   tbb::enumerable_thread_specific<std::unique_ptr<Watches>> local([&] {
     auto w = std::make_unique<Watches>();
-    for (std::size_t d = 0; d < nd; ++d) w->tallies.emplace_back(HazardLayout::of(designs[d].field)), w->watches.emplace_back(w->tallies.back());
+    for (std::size_t d = 0; d < nd; ++d)
+      for (std::size_t k = 0; k < sims[d]->kinds(); ++k)
+        w->tallies.emplace_back(HazardLayout::of(designs[d].field)), w->watches.emplace_back(w->tallies.back());
     return w;
   });
   const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
@@ -82,7 +87,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
         const std::uint64_t last = std::min(n, (c + 1) * kObjectsPerChunk);
         for (std::uint64_t i = c * kObjectsPerChunk; i < last; ++i) {
           for (std::size_t d = 0; d < nd; ++d) {
-            ObjectWatch& watch = w.watches[d];
+            ObjectWatch& watch = w.watches[first[d] + static_cast<std::size_t>(i % sims[d]->kinds())];
             const ObjectOutcome o = sims[d]->simulate(i, &watch);
             watch.finish(o);
             const bool thrown = counted_thrown(o.fate);
@@ -155,6 +160,15 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
         const double half = total.differing[(d - 1) * figures + j] == 0 ? missed : 1.959963984540054 * std::sqrt(variance);
         fd.differences.push_back({names[j], {mean, mean - half, mean + half}, total.differing[(d - 1) * figures + j]});
       }
+    // The design's whole run (whole counts: merged in any order, the same sums), summarised
+    // as j232 hazard summarises one: its hazard distances, P(struck), planes.
+    HazardRun run;
+    for (std::size_t k = 0; k < sims[d]->kinds(); ++k) run.kinds.emplace_back(HazardLayout::of(designs[d].field));
+    for (const auto& w : local)
+      for (std::size_t k = 0; k < sims[d]->kinds(); ++k) run.kinds[k].merge(w->tallies[first[d] + k]);
+    fd.hazard = summarise(*sims[d], run);
+    fd.range = designs[d].field.range;
+    fd.acceptable_probability = -std::expm1(-designs[d].field.presented_area / designs[d].field.acceptable_area);
     out.designs.push_back(std::move(fd));
   }
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

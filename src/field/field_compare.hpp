@@ -28,6 +28,9 @@ struct FieldDesign {
   std::string file, title;
   std::vector<FieldFigure> figures;
   std::vector<FieldDifference> differences;  // against the first design (empty for it)
+  HazardSummary hazard;  // its own run's whole summary (hazard distances, P(struck), planes), as j232 hazard gives it
+  double range = 0;                   // m: its tally's range (a hazard distance beyond it is only "beyond")
+  double acceptable_probability = 0;  // of a person struck in one pass: one hazardous impact per acceptable area
 };
 struct FieldComparison {
   std::vector<FieldDesign> designs;

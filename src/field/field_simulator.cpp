@@ -136,8 +136,11 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
         else if (b > a)
           reach.pieces.push_back({a, b});
       };
+      // Standing up to the blade, and low enough to pass under the deck's front (the reader
+      // refuses a file whose largest does not; a sweep's cut_height can lower the deck).
+      const std::optional<double> front_gap = scenario_.front_gap();
       add(0.0, lifted_below);
-      add(tall_above, HUGE_VAL);
+      add(tall_above, front_gap ? *front_gap / (1 - o.embedment) : HUGE_VAL);
       if (reach.pieces.size() == 2 && reach.pieces[1][0] <= reach.pieces[0][1]) {
         reach.pieces[0][1] = std::max(reach.pieces[0][1], reach.pieces[1][1]);
         reach.pieces.pop_back();

@@ -528,6 +528,23 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   return o;
 }
 
+namespace {
+// A compared design's own hazard: its distances each way and P(struck) at its person planes
+// (or why there is no assessment).
+std::string hazard_of_design_text(const field::FieldDesign& d) {
+  if (!d.hazard.valid) return fmt::format("  NO HAZARD ASSESSMENT for this design: {}\n", d.hazard.invalid_reason);
+  std::string o = "  hazard distance (estimate / conservative):";
+  for (const auto& c : d.hazard.directions)
+    o += fmt::format(" {} {} / {};", c.direction, distance_words(c, false, d.range), distance_words(c, true, d.range));
+  o.back() = '\n';
+  for (const auto& pl : d.hazard.planes)
+    if (pl.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && pl.along_path)
+      o += fmt::format("  a person at plane '{}': P(struck) in one pass {:.3g} ({:.3g}-{:.3g})\n", pl.plane.name, pl.probability.value,
+                       pl.probability.low, pl.probability.high);
+  return o;
+}
+}  // namespace
+
 json hazard_comparison_json(const field::FieldComparison& c) {
   json designs = json::array();
   for (const auto& d : c.designs) {
@@ -537,6 +554,22 @@ json hazard_comparison_json(const field::FieldComparison& c) {
       differences.push_back({{"name", f.name}, {"per_km", estimate_json(f.per_km)}, {"objects_differing", f.objects_differing}});
     json dj = {{"file", d.file}, {"title", d.title}, {"figures", figures}};
     if (!d.differences.empty()) dj["minus_first"] = differences;
+    dj["valid"] = d.hazard.valid;
+    dj["invalid_reason"] = d.hazard.invalid_reason;
+    json distances = json::array(), struck = json::array();
+    for (const auto& dir : d.hazard.directions)
+      distances.push_back({{"direction", dir.direction},
+                           {"deck_extent_m", dir.deck_extent},
+                           {"estimate_m", dir.hazard_distance},
+                           {"conservative_m", dir.hazard_distance_upper},
+                           {"beyond_range", dir.beyond_range},
+                           {"conservative_beyond_range", dir.upper_beyond_range}});
+    for (const auto& pl : d.hazard.planes)
+      if (pl.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && pl.along_path)
+        struck.push_back({{"plane", pl.plane.name}, {"p_struck_in_one_pass", estimate_json(pl.probability)}});
+    dj["hazard_distance"] = distances;
+    dj["person_at_plane"] = struck;
+    dj["range_m"] = d.range;
     designs.push_back(dj);
   }
   return {{"kind", "field designs compared (j232 compare)"},
@@ -587,9 +620,71 @@ std::string hazard_comparison_text(const field::FieldComparison& c) {
       }
       o += "\n";
     }
+    o += hazard_of_design_text(design);
   }
   return o;
 }
+
+namespace {
+// Each design's own hazard: a table of its distances and P(struck) at its person planes, and
+// per direction a chart of P(struck) against distance with every design's curve.
+std::string comparison_hazard_html(const field::FieldComparison& c) {
+  std::string o = "<h2>Each design's hazard</h2>\n<p>From each design's own run over the same objects, as <code>j232 hazard</code> "
+                  "gives it: the hazard distance (hazardous impacts below the acceptable density for good; conservative: on "
+                  "the density's 95 % upper bound) and a person's probability of being struck in one pass.</p>\n";
+  o += "<table><tr><th>design</th><th>hazard distance (estimate / conservative)</th><th>a person at a plane: P(struck) in one pass "
+       "(95 %)</th></tr>\n";
+  for (std::size_t d = 0; d < c.designs.size(); ++d) {
+    const auto& design = c.designs[d];
+    o += fmt::format("<tr><td>{}{}</td><td>", d == 0 ? "reference: " : fmt::format("design {}: ", d + 1), escape(design.title));
+    if (!design.hazard.valid) {
+      o += fmt::format("<strong>no hazard assessment</strong>: {}</td><td></td></tr>\n", escape(design.hazard.invalid_reason));
+      continue;
+    }
+    for (const auto& dir : design.hazard.directions)
+      o += fmt::format("{}: {} / {}<br>", dir.direction, distance_words(dir, false, design.range), distance_words(dir, true, design.range));
+    o += "</td><td>";
+    for (const auto& pl : design.hazard.planes)
+      if (pl.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && pl.along_path)
+        o += fmt::format("'{}': {:.3g} ({:.3g}-{:.3g})<br>", escape(pl.plane.name), pl.probability.value, pl.probability.low,
+                         pl.probability.high);
+    o += "</td></tr>\n";
+  }
+  o += "</table>\n";
+  const auto& first = c.designs.front().hazard.directions;
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    Chart chart(fmt::format("Probability of being struck in one pass: {}", first[i].direction), "distance from the mower (m)", "probability");
+    const double acceptable = c.designs.front().acceptable_probability;
+    double highest = acceptable, lowest = acceptable, far = 5;
+    for (const auto& design : c.designs)
+      if (i < design.hazard.directions.size()) {
+        const auto& dir = design.hazard.directions[i];
+        for (std::size_t k = 0; k < dir.distance.size(); ++k)
+          if (dir.exposure[k].value > 0 || dir.exposure[k].high >= design.hazard.acceptable_density) far = std::max(far, dir.distance[k] + 2);
+        far = std::min(far, design.range);
+      }
+    for (std::size_t d = 0; d < c.designs.size(); ++d) {
+      if (!c.designs[d].hazard.valid || i >= c.designs[d].hazard.directions.size()) continue;
+      const auto& dir = c.designs[d].hazard.directions[i];
+      std::vector<double> x, p, lo, hi;
+      for (std::size_t k = 0; k < dir.distance.size() && dir.distance[k] <= far; ++k)
+        x.push_back(dir.distance[k]), p.push_back(dir.probability[k].value), lo.push_back(dir.probability[k].low),
+            hi.push_back(dir.probability[k].high);
+      chart.band(x, lo, hi, palette(d), "");
+      chart.line(x, p, palette(d), d == 0 ? "reference" : fmt::format("design {}", d + 1), false);
+      for (const auto* values : {&p, &lo, &hi})
+        for (double v : *values)
+          if (v > 0) highest = std::max(highest, v), lowest = std::min(lowest, v);
+    }
+    const double top = std::min(1.0, std::pow(10.0, std::ceil(std::log10(highest) - 1e-9)));
+    chart.y_log_range(std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9)))), top);
+    chart.hline(acceptable, "#000000", fmt::format("acceptable ({:.3g})", acceptable));
+    chart.caption(escape(first[i].meaning) + ". Bands: 95 % intervals; logarithmic scale, zero on the floor.");
+    o += "<figure>" + chart.svg() + "</figure>\n";
+  }
+  return o;
+}
+}  // namespace
 
 std::string hazard_comparison_html(const field::FieldComparison& c) {
   std::string o = page_head("Field designs compared");
@@ -619,6 +714,7 @@ std::string hazard_comparison_html(const field::FieldComparison& c) {
     o += "</tr>\n";
   }
   o += "</table>\n";
+  o += comparison_hazard_html(c);
   o += fmt::format("<section id=\"provenance\"><p class=\"small\">{:.1f} s.</p></section>\n", c.wall_seconds);
   o += page_foot();
   return o;

@@ -1,5 +1,7 @@
 #include "report/sweep_report.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 
 #include "assess/tally.hpp"
@@ -24,6 +26,80 @@ std::string sweep_csv(const SweepSpec& spec, const SweepTable& t) {
   return o;
 }
 
+namespace {
+// A field's sweep: each plane's hazardous crossings per km (log axis, 95 % intervals), the
+// hazard distance each way, and the objects thrown per km.
+std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const SweepSpec& spec, const SweepTable& t) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const std::size_t n_series = t.series_labels.size();
+  const auto series_rows = [&](std::size_t s) {
+    std::vector<const SweepTable::Row*> rows;
+    for (const auto& r : t.rows)
+      if (r.series == s) rows.push_back(&r);
+    return rows;
+  };
+  const std::string objects = t.rows.empty() ? "0" : fmt::format("{:.0f}", t.rows.front().values[column(t, "objects")]);
+  // Each plane's three columns (plane_NAME_hazardous_per_km, _low, _high), in the planes' order.
+  std::vector<std::size_t> plane_columns;
+  const std::string suffix = "_hazardous_per_km";
+  for (std::size_t k = 0; k < t.columns.size(); ++k)
+    if (t.columns[k].rfind("plane_", 0) == 0 && t.columns[k].size() > suffix.size() &&
+        t.columns[k].compare(t.columns[k].size() - suffix.size(), suffix.size(), suffix) == 0)
+      plane_columns.push_back(k);
+  for (std::size_t i = 0; i < t.planes.size() && i < plane_columns.size(); ++i) {
+    const std::size_t v = plane_columns[i], lo = v + 1, hi = v + 2;
+    report::Chart c(fmt::format("{}: plane '{}'", spec.title, t.planes[i]), spec.x.info.axis_title, "hazardous crossings per km mowed");
+    double highest = 0, lowest = HUGE_VAL;
+    for (std::size_t s = 0; s < n_series; ++s) {
+      std::vector<double> x, y, yl, yh;
+      for (const auto* r : series_rows(s)) {
+        x.push_back(r->x), y.push_back(r->values[v]), yl.push_back(r->values[lo]), yh.push_back(r->values[hi]);
+        for (double w : {r->values[v], r->values[lo], r->values[hi]})
+          if (w > 0) highest = std::max(highest, w), lowest = std::min(lowest, w);
+      }
+      c.error_bars(x, yl, yh, report::palette(s));
+      c.line(x, y, report::palette(s), t.series_labels[s].empty() ? "hazardous per km" : t.series_labels[s]);
+    }
+    if (highest > 0) {
+      const double top = std::pow(10.0, std::ceil(std::log10(highest) - 1e-9));
+      c.y_log_range(std::max(top * 1e-10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9))), top);
+    }
+    c.caption(fmt::format("Bars: 95 % intervals (Fay and Feuer's, for the strata's weighted counts), {} objects per point; a "
+                          "zero is drawn on the axis's floor.",
+                          objects));
+    out.emplace_back(fmt::format("plane-{}", i + 1), c.svg());
+  }
+  report::Chart d(spec.title + ": hazard distance", spec.x.info.axis_title, "hazard distance (m)");
+  double farthest = 0;
+  for (std::size_t k = 0; k < t.directions.size(); ++k) {
+    const std::size_t est = column(t, t.directions[k] + "_hazard_distance_m"), up = column(t, t.directions[k] + "_hazard_distance_upper_m");
+    for (std::size_t s = 0; s < n_series; ++s) {
+      std::vector<double> x, y, yu;
+      for (const auto* r : series_rows(s)) {
+        x.push_back(r->x), y.push_back(r->values[est]), yu.push_back(r->values[up]);
+        farthest = std::max({farthest, r->values[est], r->values[up]});
+      }
+      const std::string label = t.directions[k] + (t.series_labels[s].empty() ? "" : ", " + t.series_labels[s]);
+      d.line(x, y, report::palette(k), label, true, s > 0);
+      d.line(x, yu, report::palette(k), "", false, true);
+    }
+  }
+  d.y_range(0, 1.1 * farthest + 1e-9);
+  d.caption("Markers: the estimate; thin dashed: the conservative distance (the density's 95 % upper bound). At the deck's edge "
+            "where hazardous impacts are below the acceptable density everywhere beyond it; the CSV flags a distance beyond the range.");
+  out.emplace_back("hazard-distance", d.svg());
+  report::Chart th(spec.title + ": objects thrown", spec.x.info.axis_title, "objects thrown per km mowed");
+  for (std::size_t s = 0; s < n_series; ++s) {
+    std::vector<double> x, y;
+    for (const auto* r : series_rows(s)) x.push_back(r->x), y.push_back(r->values[column(t, "thrown_per_km")]);
+    th.line(x, y, report::palette(s), t.series_labels[s].empty() ? "thrown per km" : t.series_labels[s]);
+  }
+  th.caption("Objects the blades threw per km mowed (every kind).");
+  out.emplace_back("thrown", th.svg());
+  return out;
+}
+}  // namespace
+
 std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& spec, const SweepTable& t) {
   std::vector<std::pair<std::string, std::string>> out;
   const std::size_t n_series = t.series_labels.size();
@@ -33,7 +109,8 @@ std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& s
       if (r.series == s) rows.push_back(&r);
     return rows;
   };
-  if (t.assessment) {
+  if (t.kind == SweepTable::Kind::Hazard) return hazard_sweep_charts(spec, t);
+  if (t.kind == SweepTable::Kind::Assessment) {
     report::Chart chart(spec.title, spec.x.info.axis_title, "P(pass one J232 test)");
     const std::size_t p = column(t, "p_pass"), lo = column(t, "p_pass_low"), hi = column(t, "p_pass_high");
     for (std::size_t s = 0; s < n_series; ++s) {

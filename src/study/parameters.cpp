@@ -21,6 +21,7 @@ ParameterInfo parameter_info(const std::string& name) {
   if (name == "bevel_angle") return {Parameter::BevelAngle, name, Kind::Angle, "edge bevel angle (deg)", units::degree};
   if (name == "edge_friction") return {Parameter::EdgeFriction, name, Kind::Dimensionless, "nail-on-blade friction", 1.0};
   if (name == "sail_height") return {Parameter::SailHeight, name, Kind::Length, "sail height (mm)", 0.001};
+  if (name == "cut_height") return {Parameter::CutHeight, name, Kind::Length, "cut height (in)", units::inch};
   if (name == "object_speed") return {Parameter::ObjectSpeed, name, Kind::Speed, "object speed toward the blade (m/s)", 1.0};
   return {Parameter::FileKey, name, Kind::Dimensionless, name, 1.0};
 }
@@ -86,6 +87,9 @@ Setting make_setting(const ParameterInfo& info, const std::string& text, const s
     case Parameter::SailHeight:
       if (s.si < 0 || s.si > 0.2) throw refuse("expected a sail height from 0 to 200 mm");
       break;
+    case Parameter::CutHeight:
+      if (!(s.si > 0) || s.si > 1) throw refuse("expected a cut height above 0 and up to 1 m");
+      break;
     default:
       if (!(s.si > 0)) throw refuse(fmt::format("expected a positive {}", units::describe(info.kind)));
   }
@@ -148,6 +152,7 @@ void apply(const Setting& s, scenario::ImpactCase& c) {
     case Parameter::EdgeFriction:
     case Parameter::SailHeight:
       throw std::invalid_argument(s.info.name + ": an impact case has no blade edge geometry; it is a J232 parameter");
+    case Parameter::CutHeight: throw std::invalid_argument("cut_height: an impact case has no deck or ground; it is a J232 or field parameter");
     case Parameter::FileKey: break;
   }
 }
@@ -190,8 +195,39 @@ void apply(const Setting& s, scenario::Scenario& sc) {
     case Parameter::SailHeight:
       for (auto& sp : sc.spindles) sp.geometry.edge.sail_height = s.si;
       break;
+    case Parameter::CutHeight: set_cut_height(sc, s.si); break;
     case Parameter::FileKey: break;
   }
+}
+
+void set_cut_height(scenario::Scenario& sc, double height) {
+  if (!sc.meshes.empty())
+    throw std::invalid_argument("cut_height: a deck from meshes cannot be moved; sweep the blades' height key and the meshes' files instead");
+  double lowest = HUGE_VAL;
+  for (const auto& sp : sc.spindles) lowest = std::min(lowest, sp.geometry.height);
+  const double shift = height - lowest;
+  auto& h = sc.housing;
+  for (auto& sp : sc.spindles) sp.geometry.height += shift;
+  h.skirt_bottom += shift;
+  for (auto& op : h.openings) op.top += shift, op.chute_end_top += shift;
+  for (auto& g : h.guards) {
+    g.bottom += shift;
+    if (g.top > 0) g.top += shift;  // 0: the deck's top, wherever it is
+  }
+  for (auto& d : h.deflectors) d.bottom += shift, d.top += shift;
+  // What hangs lowest may reach the turf (a guard's edge, a deflector's); the skirt's foot
+  // and a blade's lower face must stay above it.
+  const auto above_turf = [&](const char* what, double z, bool may_touch) {
+    if (z < 0 || (!may_touch && z == 0))
+      throw std::invalid_argument(fmt::format("cut_height {:.4g} in: {} would be {:.3g} mm {} the turf (the mower set {:.4g} in "
+                                              "lower than its file's)",
+                                              height / units::inch, what, std::abs(1e3 * z), z < 0 ? "below" : "on",
+                                              -shift / units::inch));
+  };
+  above_turf("the skirt's foot", h.skirt_bottom, false);
+  for (const auto& g : h.guards) above_turf("a guard's lower edge", g.bottom, true);
+  for (const auto& d : h.deflectors) above_turf("a deflector's lower edge", d.bottom, true);
+  for (const auto& sp : sc.spindles) above_turf("a blade's lower face", sp.geometry.height - 0.5 * sp.geometry.thickness, false);
 }
 
 }  // namespace j232::study

@@ -18,6 +18,11 @@
 //   bevel_angle      "30 deg"    J232 only: every blade edge's bevel (a deck's blades alike)
 //   edge_friction    0.4         J232 only: nail-on-blade Coulomb friction, every blade
 //   sail_height      "20 mm"     J232 only: every blade's sail (0: none)
+//   cut_height       "4 in"      J232 or field: the lowest blade's mid-plane above the turf, the
+//                                mower set to it as its wheels set it: every blade, the deck, its
+//                                skirt, openings, chutes, guards and deflectors move up or down
+//                                together; the ground, the board and the field stay (a generated
+//                                deck only)
 // (`lift_angle`, a tilt of the contact normal in earlier versions, is refused: the lift
 // now follows from the edge's geometry and friction.)
 //
@@ -33,7 +38,7 @@
 
 namespace j232::study {
 
-enum class Parameter { BladeSpeed, BladeMass, Restitution, ContactRadius, PivotPosition, ObjectMass, ObjectSpeed, BevelAngle, EdgeFriction, SailHeight, FileKey };
+enum class Parameter { BladeSpeed, BladeMass, Restitution, ContactRadius, PivotPosition, ObjectMass, ObjectSpeed, BevelAngle, EdgeFriction, SailHeight, CutHeight, FileKey };
 
 struct ParameterInfo {
   Parameter parameter;
@@ -63,6 +68,9 @@ void apply_to_document(const Setting& s, toml::table& document, const std::strin
 void apply(const Setting& s, scenario::ImpactCase& c);
 void apply(const Setting& s, scenario::Scenario& sc);
 
+// The mower set to cut at `height` (cut_height above); throws std::invalid_argument for a
+// mesh deck, or a skirt, guard, deflector or blade that would go below the turf.
+void set_cut_height(scenario::Scenario& sc, double height);
 // The blade with its masses scaled to `mass` / re-split at pivot position `s_over_l`.
 void scale_blade_mass(blade::Blade& b, double mass);
 void set_pivot_position(blade::Blade& b, double s_over_l);

@@ -2,11 +2,13 @@
 #include "study/sweep.hpp"
 
 #include <fmt/format.h>
+#include <optional>
 #include <stdexcept>
 
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
 #include "blade/blade_model.hpp"
+#include "field/hazard_run.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "scenario/toml_reader.hpp"
@@ -131,13 +133,84 @@ std::vector<double> assessment_point(const SweepSpec& spec, const Point& p, cons
   return v;
 }
 
+// A plane's name as a CSV column's stem: lower case, a run of anything else one '_'.
+std::string column_stem(const std::string& name) {
+  std::string o;
+  for (char c : name) {
+    const bool word = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+    const bool upper = c >= 'A' && c <= 'Z';
+    if (word || upper) o += upper ? static_cast<char>(c - 'A' + 'a') : c;
+    else if (!o.empty() && o.back() != '_') o += '_';
+  }
+  while (!o.empty() && o.back() == '_') o.pop_back();
+  return o.empty() ? "plane" : o;
+}
+
+// A field scenario's point: one hazard run. Its columns (the planes' and the directions'
+// names) are the first point's; every point must have the same planes.
+std::vector<double> hazard_point(const SweepSpec& spec, const Point& p, const toml::table& base, int threads, SweepTable& t) {
+  auto sc =
+      prepare<scenario::Scenario>(spec, p, base, [](const toml::table& d, const std::string& f) { return scenario::read_scenario(d, f); });
+  if (spec.objects > 0) sc.field.objects_simulated = spec.objects;
+  if (spec.seed) sc.run.seed = *spec.seed;
+  if (!sc.field.present) throw point_error(spec, p, "the base is a field scenario at its other points; here it has no [field]");
+  std::optional<field::FieldSimulator> made;
+  try {
+    made.emplace(sc);
+  } catch (const InputError& e) {  // what the point's settings made of the field (no size can reach a blade, say)
+    throw point_error(spec, p, e.what());
+  }
+  const field::FieldSimulator& sim = *made;
+  const field::HazardRun run = field::run_hazard(sim, threads);
+  const field::HazardSummary sum = field::summarise(sim, run);
+  // A run with too many objects cut off by its limits has no hazard to plot.
+  if (!sum.valid) throw point_error(spec, p, "the hazard run is invalid here: " + sum.invalid_reason);
+  std::vector<std::string> planes, directions;
+  for (const auto& pl : sum.planes) planes.push_back(pl.plane.name);
+  for (const auto& d : sum.directions) directions.push_back(d.direction);
+  if (t.rows.empty() && t.planes.empty() && t.directions.empty()) {
+    t.planes = planes, t.directions = directions;
+    for (const auto& d : directions)
+      for (const char* c : {"hazard_distance_m", "hazard_distance_upper_m", "beyond_range", "upper_beyond_range"})
+        t.columns.push_back(fmt::format("{}_{}", d, c));
+    for (std::size_t i = 0; i < planes.size(); ++i)
+      for (const char* c : {"hazardous_per_km", "hazardous_per_km_low", "hazardous_per_km_high"})
+        t.columns.push_back(fmt::format("plane_{}_{}", column_stem(planes[i]), c));
+  } else if (planes != t.planes || directions != t.directions) {
+    throw point_error(spec, p, "the planes differ from the sweep's first point: every point must tally the same planes");
+  }
+  std::vector<double> v{static_cast<double>(sum.objects), sum.reaching_per_km, sum.thrown_per_km, sum.last_strike_speed_mean,
+                        100 * sum.cut_off_share};
+  for (const auto& d : sum.directions)
+    v.insert(v.end(), {d.hazard_distance, d.hazard_distance_upper, d.beyond_range ? 1.0 : 0.0, d.upper_beyond_range ? 1.0 : 0.0});
+  for (const auto& pl : sum.planes) v.insert(v.end(), {pl.hazardous_per_km.value, pl.hazardous_per_km.low, pl.hazardous_per_km.high});
+  return v;
+}
+
 }  // namespace
+
+const char* points_name(SweepTable::Kind kind) {
+  switch (kind) {
+    case SweepTable::Kind::Impact: return "impacts";
+    case SweepTable::Kind::Assessment: return "J232 assessments";
+    case SweepTable::Kind::Hazard: return "hazard runs";
+  }
+  return "points";
+}
 
 SweepTable run_sweep(const SweepSpec& spec, int threads, SweepProgress* progress) {
   const toml::table base = scenario::parse_toml_file(spec.base);
   SweepTable t;
-  t.assessment = !base.contains("contact");
-  if (t.assessment)
+  t.kind = base.contains("contact") ? SweepTable::Kind::Impact : base.contains("field") ? SweepTable::Kind::Hazard : SweepTable::Kind::Assessment;
+  if (t.kind != SweepTable::Kind::Hazard && spec.objects > 0)
+    throw InputError(spec.source, std::nullopt, "run.objects", std::to_string(spec.objects),
+                     "objects per point are for a field scenario's sweep; a J232 scenario takes run.replicates");
+  if (t.kind == SweepTable::Kind::Hazard && spec.replicates > 0)
+    throw InputError(spec.source, std::nullopt, "run.replicates", std::to_string(spec.replicates),
+                     "a field scenario's sweep takes run.objects (objects per point), not replicates");
+  if (t.kind == SweepTable::Kind::Hazard)
+    t.columns = {"objects", "reaching_per_km", "thrown_per_km", "last_strike_speed_m_s", "cut_off_percent"};  // then per direction and plane
+  else if (t.kind == SweepTable::Kind::Assessment)
     t.columns = {"replicates",
                  "p_pass",
                  "p_pass_low",
@@ -168,7 +241,11 @@ SweepTable run_sweep(const SweepSpec& spec, int threads, SweepProgress* progress
     const Point& p = all[i];
     const Setting& x = *p.settings.back();
     SweepTable::Row row{p.series, t.series_labels[p.series], x.text, display(x), {}};
-    row.values = t.assessment ? assessment_point(spec, p, base, threads, t.required_pass_probability) : impact_point(spec, p, base);
+    switch (t.kind) {
+      case SweepTable::Kind::Impact: row.values = impact_point(spec, p, base); break;
+      case SweepTable::Kind::Assessment: row.values = assessment_point(spec, p, base, threads, t.required_pass_probability); break;
+      case SweepTable::Kind::Hazard: row.values = hazard_point(spec, p, base, threads, t); break;
+    }
     t.rows.push_back(std::move(row));
     if (progress) progress->point(i + 1, all.size());
   }

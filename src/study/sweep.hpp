@@ -10,7 +10,9 @@
 // v' the speed after impact, v0 the object's speed toward the blade before it, omega L
 // the blade's tip speed (the Fortran's Z = (VA2 - 440) / (4 pi rpm) for a 2 ft blade).
 // Over a J232 scenario each point is a full Monte Carlo assessment: P(pass) with its
-// 95 % interval, and the four mean shares.
+// 95 % interval, and the four mean shares. Over a field scenario each point is a hazard
+// run (j232 hazard): objects thrown per km, each plane's hazardous flux with its 95 %
+// interval, and the hazard distance each way (estimate and conservative).
 //
 // Sweep file (TOML):
 //   title = "..."              base = "path/relative/to/this/file.toml"
@@ -19,6 +21,7 @@
 //               (or from = "0.25 lb"  to = "22 lb"  steps = 8)
 //   [[series]]  parameter = "restitution"   values = [0.3, 0.5, 0.7, 0.9]
 //   [run]       replicates = 200            (J232 scenarios only)
+//               objects = 50000             (field scenarios only)
 // Parameters: study/parameters.hpp.
 #include <optional>
 #include <string>
@@ -42,6 +45,7 @@ struct SweepSpec {
   Axis x;
   std::vector<Axis> series;
   long long replicates = 0;  // J232 scenarios: replicates per point (0: the scenario's)
+  long long objects = 0;     // field scenarios: objects per point (0: the scenario's field.objects_simulated)
   std::optional<unsigned long long> seed;
 };
 
@@ -52,7 +56,7 @@ Axis parse_axis(const std::string& text, const std::string& option);
 
 // A finished sweep: one row per point, in series-major order.
 struct SweepTable {
-  bool assessment = false;           // J232 scenario (true) or impact case
+  enum class Kind { Impact, Assessment, Hazard } kind = Kind::Impact;  // an impact case, a J232 scenario, a field scenario
   std::vector<std::string> columns;  // CSV header after the label columns
   struct Row {
     std::size_t series = 0;
@@ -64,7 +68,11 @@ struct SweepTable {
   std::vector<Row> rows;
   std::vector<std::string> series_labels;
   double required_pass_probability = 0;
+  // Hazard sweeps: the planes' names and the directions, in their columns' order.
+  std::vector<std::string> planes, directions;
 };
+// How the kinds are named in messages ("J232 assessments").
+const char* points_name(SweepTable::Kind kind);
 
 struct SweepProgress {
   virtual ~SweepProgress() = default;

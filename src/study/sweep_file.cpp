@@ -105,7 +105,11 @@ SweepSpec read_sweep_file(const std::string& file) {
       spec.series.push_back(read_axis(*list->get(i)->as_table(), file, fmt::format("series[{}].", i + 1)));
   }
   if (const auto* run = doc.get_as<toml::table>("run")) {
-    refuse_unknown(*run, {"replicates", "seed"}, file, "run.");
+    refuse_unknown(*run, {"replicates", "objects", "seed"}, file, "run.");
+    if (const auto* r = run->get("objects")) {
+      spec.objects = r->value<long long>().value_or(0);
+      if (spec.objects <= 0) throw InputError(file, line_of(*r), "run.objects", value_text(*r), "expected a positive integer");
+    }
     if (const auto* r = run->get("replicates")) {
       spec.replicates = r->value<long long>().value_or(0);
       if (spec.replicates <= 0) throw InputError(file, line_of(*r), "run.replicates", value_text(*r), "expected a positive integer");
