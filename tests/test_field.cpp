@@ -554,3 +554,34 @@ TEST_CASE("field: the hazard distance is the outer edge of the last cell at or a
   CHECK(left.probability[3].value == Approx(-std::expm1(-left.exposure[3].value * 0.58)));
   CHECK(left.exposure[3].value == Approx(w * static_cast<double>(count)).epsilon(1e-12));
 }
+
+TEST_CASE("field: the setback at other acceptable densities, and a season's passes", "[field]") {
+  std::string text = kMower + kStones + "[[field.planes]]\nname = \"path\"\nside = \"left\"\ndistance = \"2.5 m\"\n";
+  text.replace(text.find("objects_simulated = 4000"), 24, "objects_simulated = 3000\npasses_per_season = 20\npeople_per_pass = 3");
+  auto s = read(text);
+  CHECK(s.field.passes_per_season == 20);
+  CHECK(s.field.people_per_pass == 3);
+  const field::FieldSimulator sim(s);
+  const auto sum = field::summarise(sim, field::run_hazard(sim, 2));
+  for (const auto& d : sum.directions) {
+    REQUIRE(d.setbacks.size() == std::size(field::kSetbackFactors));
+    CHECK(d.setbacks[2].acceptable_density == Approx(1 / s.field.acceptable_area));
+    CHECK(d.setbacks[2].estimate == d.hazard_distance);  // the scenario's own
+    CHECK(d.setbacks[2].conservative == d.hazard_distance_upper);
+    for (std::size_t b = 0; b + 1 < d.setbacks.size(); ++b) {  // stricter: never nearer
+      CHECK(d.setbacks[b].estimate >= d.setbacks[b + 1].estimate);
+      CHECK(d.setbacks[b].conservative >= d.setbacks[b + 1].conservative);
+      CHECK(d.setbacks[b].conservative >= d.setbacks[b].estimate);
+    }
+  }
+  const auto& path = sum.planes.at(1);
+  REQUIRE(path.probability.value > 0);
+  CHECK(path.probability_per_season.value == Approx(1 - std::pow(1 - path.probability.value, 20)).epsilon(1e-12));
+  CHECK(path.probability_per_season.high == Approx(1 - std::pow(1 - path.probability.high, 20)).epsilon(1e-12));
+  CHECK(path.people_struck_per_season.value == Approx(60 * path.probability.value));
+  CHECK(path.probability_per_season.value > path.probability.value);
+  CHECK(path.probability_per_season.value < 20 * path.probability.value);
+  std::string none = kMower + kStones;
+  none.replace(none.find("objects_simulated = 4000"), 24, "objects_simulated = 4000\npasses_per_season = 0");
+  CHECK_THAT(error_of(none), Catch::Contains("field.passes_per_season") && Catch::Contains("0"));
+}

@@ -269,6 +269,11 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
       c.exposure.push_back(exposure);
       c.probability.push_back(struck(exposure, f.presented_area));
     }
+    for (double factor : kSetbackFactors) {
+      DirectionCurve at = c;
+      hazard_distance(l.cell, factor * s.acceptable_density, at);
+      c.setbacks.push_back({factor * s.acceptable_density, at.hazard_distance, at.hazard_distance_upper, at.beyond_range, at.upper_beyond_range});
+    }
     hazard_distance(l.cell, s.acceptable_density, c);
     s.directions.push_back(std::move(c));
   }
@@ -296,7 +301,14 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
     r.along_path = r.plane.side == scenario::FieldPlaneSpec::Side::Left || r.plane.side == scenario::FieldPlaneSpec::Side::Right;
     if (r.along_path) {
       r.hazardous_per_area = rate.scaled(1.0 / band);
-      if (person) r.probability = struck(r.hazardous_per_area, f.presented_area);
+      if (person) {
+        r.probability = struck(r.hazardous_per_area, f.presented_area);
+        // Passes are independent draws of the same field: at least once in n passes.
+        const double n = static_cast<double>(f.passes_per_season);
+        const auto season = [&](double p1) { return -std::expm1(n * std::log1p(-p1)); };
+        r.probability_per_season = {season(r.probability.value), season(r.probability.low), season(r.probability.high)};
+        r.people_struck_per_season = r.probability.scaled(n * f.people_per_pass);
+      }
     }
     s.planes.push_back(std::move(r));
   }

@@ -60,7 +60,18 @@ struct DirectionCurve {
   // upper end: the conservative one); beyond_range when it never does within the range.
   double hazard_distance = 0, hazard_distance_upper = 0;
   bool beyond_range = false, upper_beyond_range = false;
+  // The same at other acceptable densities (kSetbackFactors times the scenario's): how the
+  // setback moves with what is judged acceptable.
+  struct Setback {
+    double acceptable_density = 0;  // per m^2 per pass
+    double estimate = 0, conservative = 0;
+    bool beyond_range = false, conservative_beyond_range = false;
+  };
+  std::vector<Setback> setbacks;
 };
+// The acceptable densities the setbacks are given at, as multiples of the scenario's: ten
+// times stricter to ten times laxer, by half decades.
+inline constexpr double kSetbackFactors[] = {0.1, 0.316227766016838, 1.0, 3.16227766016838, 10.0};
 
 struct PlaneResult {
   scenario::FieldPlaneSpec plane;
@@ -68,6 +79,10 @@ struct PlaneResult {
   Estimate hazardous_per_km;    // within the receptor's band, with at least its energy
   Estimate hazardous_per_area;  // per m^2 of the band, per pass (a person standing at the plane)
   Estimate probability;         // person: struck in one pass, 1 - exp(-flux A); vehicle: empty
+  // person: over the season's passes (field.passes_per_season), a person there every pass
+  // struck at least once, 1 - (1 - p)^passes; and the people struck per season when
+  // field.people_per_pass stand there each pass, passes x people x p
+  Estimate probability_per_season, people_struck_per_season;
   bool along_path = true;       // left or right: the per-area figures hold; ahead or behind: per km only
   std::vector<double> per_km_by_height;  // every crossing, by 0.25 m band
 };

@@ -157,6 +157,14 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
                          {"conservative_m", d.hazard_distance_upper},
                          {"beyond_range", d.beyond_range},
                          {"conservative_beyond_range", d.upper_beyond_range}});
+    json setbacks = json::array();
+    for (const auto& b : d.setbacks)
+      setbacks.push_back({{"acceptable_area_m2", 1 / b.acceptable_density},
+                          {"estimate_m", b.estimate},
+                          {"conservative_m", b.conservative},
+                          {"beyond_range", b.beyond_range},
+                          {"conservative_beyond_range", b.conservative_beyond_range}});
+    distances.back()["at_other_acceptable_densities"] = setbacks;
     json points = json::array();
     for (std::size_t k = 0; k < d.distance.size(); ++k) {
       json point = {{"distance_m", d.distance[k]}, {"density_per_m2", estimate_json(d.density[k])}};
@@ -177,7 +185,11 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
                {"hazardous_per_km", estimate_json(r.hazardous_per_km)},
                {"hazardous_per_m2_per_pass", r.along_path ? estimate_json(r.hazardous_per_area) : json(nullptr)},
                {"crossings_per_km_by_height", {{"band_m", field::kHeightBand}, {"per_km", r.per_km_by_height}, {"note", "the last band: 4 m and above"}}}};
-    if (r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path) pj["p_struck_per_pass"] = estimate_json(r.probability);
+    if (r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path) {
+      pj["p_struck_per_pass"] = estimate_json(r.probability);
+      pj["p_struck_per_season"] = estimate_json(r.probability_per_season);
+      pj["people_struck_per_season"] = estimate_json(r.people_struck_per_season);
+    }
     if (!r.along_path)
       pj["note"] = "a plane across the path, this far ahead of (behind) the mower at each object's strike: per km only";
     planes.push_back(pj);
@@ -209,6 +221,8 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
       {"field",
        {{"ground_speed_m_s", f.ground_speed},
         {"updraft_speed_m_s", f.updraft_speed},
+        {"passes_per_season", f.passes_per_season},
+        {"people_per_pass", f.people_per_pass},
         {"support_height_mean_m", f.support_height},
         {"cut_width_m", sum.cut_width},
         {"objects_met_per_km", sum.objects_per_km},
@@ -281,9 +295,13 @@ std::string hazard_text(const field::HazardSummary& sum) {
   for (const auto& d : sum.directions)
     o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d, false, d.distance.empty() ? 0 : d.distance.back()),
                      distance_words(d, true, d.distance.empty() ? 0 : d.distance.back()));
-  for (const auto& r : sum.planes)
+  for (const auto& r : sum.planes) {
     o += fmt::format("  Plane '{}' ({} {:g} m, {}): {:.3g} hazardous per km mowed (95 %: {:.3g}-{:.3g})\n", r.plane.name, side_name(r.plane.side),
                      r.plane.distance, receptor_name(r.plane.receptor), r.hazardous_per_km.value, r.hazardous_per_km.low, r.hazardous_per_km.high);
+    if (r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path && r.probability_per_season.value != r.probability.value)
+      o += fmt::format("    a person there: P(struck) {:.3g} in one pass, {:.3g} (95 %: {:.3g}-{:.3g}) over the season's passes\n",
+                       r.probability.value, r.probability_per_season.value, r.probability_per_season.low, r.probability_per_season.high);
+  }
   return o;
 }
 
@@ -426,6 +444,24 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", d.direction, escape(d.meaning),
                      distance_words(d, false, range), distance_words(d, true, range));
   o += "</table>\n";
+  // How the setback moves with what is judged acceptable: each distance at other densities.
+  o += "<p>How the hazard distance moves with the acceptable density (estimate / conservative; the scenario's in bold):</p>\n"
+       "<table><tr><th>one hazardous impact per</th>";
+  for (const auto& d : sum.directions) o += fmt::format("<th>{}</th>", d.direction);
+  o += "</tr>\n";
+  for (std::size_t b = 0; !sum.directions.empty() && b < sum.directions.front().setbacks.size(); ++b) {
+    const double area = 1 / sum.directions.front().setbacks[b].acceptable_density;
+    const bool own = std::abs(area - s.field.acceptable_area) < 1e-9 * area;
+    o += fmt::format("<tr><td>{}{:.3g} m&sup2;{}</td>", own ? "<strong>" : "", area, own ? "</strong>" : "");
+    for (const auto& d : sum.directions) {
+      field::DirectionCurve at = d;  // the setback's figures in the curve's fields, for distance_words
+      at.hazard_distance = d.setbacks[b].estimate, at.hazard_distance_upper = d.setbacks[b].conservative;
+      at.beyond_range = d.setbacks[b].beyond_range, at.upper_beyond_range = d.setbacks[b].conservative_beyond_range;
+      o += fmt::format("<td>{} / {}</td>", distance_words(at, false, range), distance_words(at, true, range));
+    }
+    o += "</tr>\n";
+  }
+  o += "</table>\n";
 
   Chart curves("Probability of being struck by a hazardous object in one pass", "distance from the mower (m)", "probability");
   const double acceptable_p = -std::expm1(-s.field.presented_area / s.field.acceptable_area);
@@ -467,13 +503,20 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
 
   if (!sum.planes.empty()) {
     o += "<h2>Planes beside the path</h2>\n<table><tr><th>plane</th><th>where</th><th>receptor</th><th>crossings per km mowed</th>"
-         "<th>hazardous per km mowed (95 %)</th><th>person standing there: P(struck) in one pass (95 %)</th></tr>\n";
+         "<th>hazardous per km mowed (95 %)</th><th>person standing there: P(struck) in one pass (95 %)</th>";
+    o += fmt::format("<th>over a season of {} pass{} (95 %): a person there each pass struck at least once; people struck ({:g} a "
+                       "pass)</th></tr>\n",
+                       s.field.passes_per_season, s.field.passes_per_season == 1 ? "" : "es", s.field.people_per_pass);
     for (const auto& r : sum.planes) {
       const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path;
-      o += fmt::format("<tr><td>{}</td><td>{} {:g} m</td><td>{}</td><td>{:.3g}</td><td>{:.3g} ({:.3g}-{:.3g})</td><td>{}</td></tr>\n",
+      o += fmt::format("<tr><td>{}</td><td>{} {:g} m</td><td>{}</td><td>{:.3g}</td><td>{:.3g} ({:.3g}-{:.3g})</td><td>{}</td><td>{}</td></tr>\n",
                        escape(r.plane.name), side_name(r.plane.side), r.plane.distance, receptor_name(r.plane.receptor), r.crossings_per_km,
                        r.hazardous_per_km.value, r.hazardous_per_km.low, r.hazardous_per_km.high,
-                       person ? fmt::format("{:.3g} ({:.3g}-{:.3g})", r.probability.value, r.probability.low, r.probability.high) : "-");
+                       person ? fmt::format("{:.3g} ({:.3g}-{:.3g})", r.probability.value, r.probability.low, r.probability.high) : "-",
+                       person ? fmt::format("{:.3g} ({:.3g}-{:.3g}); {:.3g} ({:.3g}-{:.3g})", r.probability_per_season.value,
+                                            r.probability_per_season.low, r.probability_per_season.high, r.people_struck_per_season.value,
+                                            r.people_struck_per_season.low, r.people_struck_per_season.high)
+                              : "-");
     }
     o += "</table>\n";
     Chart heights("Crossings of each plane by height", "height above the ground (m)", "crossings per km mowed");

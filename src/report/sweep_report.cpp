@@ -69,25 +69,27 @@ std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const Sweep
                           objects));
     out.emplace_back(fmt::format("plane-{}", i + 1), c.svg());
   }
-  report::Chart d(spec.title + ": hazard distance", spec.x.info.axis_title, "hazard distance (m)");
-  double farthest = 0;
+  // The hazard distance, a chart per direction: a colour per series, the estimate solid with
+  // markers and the conservative distance dashed in the same colour.
   for (std::size_t k = 0; k < t.directions.size(); ++k) {
+    report::Chart d(fmt::format("{}: hazard distance, {}", spec.title, t.directions[k]), spec.x.info.axis_title, "hazard distance (m)");
     const std::size_t est = column(t, t.directions[k] + "_hazard_distance_m"), up = column(t, t.directions[k] + "_hazard_distance_upper_m");
+    double farthest = 0;
     for (std::size_t s = 0; s < n_series; ++s) {
       std::vector<double> x, y, yu;
       for (const auto* r : series_rows(s)) {
         x.push_back(r->x), y.push_back(r->values[est]), yu.push_back(r->values[up]);
         farthest = std::max({farthest, r->values[est], r->values[up]});
       }
-      const std::string label = t.directions[k] + (t.series_labels[s].empty() ? "" : ", " + t.series_labels[s]);
-      d.line(x, y, report::palette(k), label, true, s > 0);
-      d.line(x, yu, report::palette(k), "", false, true);
+      d.line(x, y, report::palette(s), t.series_labels[s].empty() ? "estimate" : t.series_labels[s], true, false);
+      d.line(x, yu, report::palette(s), t.series_labels[s].empty() ? "conservative" : "", false, true);
     }
+    d.y_range(0, 1.1 * farthest + 1e-9);
+    d.caption("Solid with markers: the estimate; dashed: the conservative distance (on the density's 95 % upper bound). At the deck's "
+              "edge where hazardous impacts stay below the acceptable density everywhere beyond it; the CSV flags a distance beyond "
+              "the range.");
+    out.emplace_back("hazard-distance-" + t.directions[k], d.svg());
   }
-  d.y_range(0, 1.1 * farthest + 1e-9);
-  d.caption("Markers: the estimate; thin dashed: the conservative distance (the density's 95 % upper bound). At the deck's edge "
-            "where hazardous impacts are below the acceptable density everywhere beyond it; the CSV flags a distance beyond the range.");
-  out.emplace_back("hazard-distance", d.svg());
   report::Chart th(spec.title + ": objects thrown", spec.x.info.axis_title, "objects thrown per km mowed");
   for (std::size_t s = 0; s < n_series; ++s) {
     std::vector<double> x, y;

@@ -349,6 +349,10 @@ struct FieldSpec {
   double presented_area = 0.58;               // m^2
   double acceptable_area = 55.74;             // m^2 (600 ft^2)
   double person_height = 1.8;                 // m: the band a person stands in at a plane
+  // A season's exposure (stated inputs; 1 and 1: a season of one pass, one person): the passes
+  // the mower makes along the path, and the people at a person plane at each pass.
+  long long passes_per_season = 1;
+  double people_per_pass = 1;
   // A vehicle in a lane: hazardous impacts on the windshield's band (estimates).
   double vehicle_energy = 2.0;                // J
   double windshield_bottom = 0.9, windshield_top = 1.5;  // m above ground

@@ -563,6 +563,8 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
   f.presented_area = t.quantity_or("presented_area", Kind::Area, f.presented_area, Range::between(0.01, 10));
   f.acceptable_area = t.quantity_or("acceptable_area", Kind::Area, f.acceptable_area, Range::between(0.1, 1e6));
   f.person_height = t.quantity_or("person_height", Kind::Length, f.person_height, Range::between(0.3, 2.5));
+  f.passes_per_season = t.integer_or("passes_per_season", f.passes_per_season, 1, 100000);
+  f.people_per_pass = t.quantity_or("people_per_pass", Kind::Dimensionless, f.people_per_pass, Range::between(0, 1e6));
   f.vehicle_energy = t.quantity_or("vehicle_energy", Kind::Energy, f.vehicle_energy, Range::between(0.001, 1e5));
   f.windshield_bottom = t.quantity_or("windshield_bottom", Kind::Length, f.windshield_bottom, Range::between(0, 5));
   f.windshield_top = t.quantity_or("windshield_top", Kind::Length, f.windshield_top, Range::between(0, 5));
@@ -615,7 +617,8 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
     obj.drag_coefficient = o.quantity_or("drag_coefficient", Kind::Dimensionless, obj.drag_coefficient, Range::between(0, 3));
     o.refuse_unknown_keys();
     const double top = obj.max_size * (1 - obj.embedment);
-    if (front_gap && top >= *front_gap)
+    // With supports the model leaves out what stands at or above the gap (pushed aside).
+    if (f.support_height == 0 && front_gap && top >= *front_gap)
       throw o.error("max_size", fmt::format("objects standing {:.3g} m above the turf cannot pass under the deck's front ({:.3g} m above "
                                             "the turf): the deck pushes them along; expected a smaller max_size or a higher skirt",
                                             top, *front_gap));

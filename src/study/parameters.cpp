@@ -201,6 +201,11 @@ void apply(const Setting& s, scenario::Scenario& sc) {
 }
 
 void set_cut_height(scenario::Scenario& sc, double height) {
+  // The J232 rig is set from the blades' plane when the file is read (the board's top, the
+  // counted height's checks); moved after, the board would be left behind.
+  if (!sc.field.present)
+    throw std::invalid_argument("cut_height: a J232 scenario's board is set from the blades' plane as the file is read; sweep the blades' "
+                                "height key ([blade] height) and the housing's keys instead");
   if (!sc.meshes.empty())
     throw std::invalid_argument("cut_height: a deck from meshes cannot be moved; sweep the blades' height key and the meshes' files instead");
   double lowest = HUGE_VAL;

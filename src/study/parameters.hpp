@@ -18,11 +18,10 @@
 //   bevel_angle      "30 deg"    J232 only: every blade edge's bevel (a deck's blades alike)
 //   edge_friction    0.4         J232 only: nail-on-blade Coulomb friction, every blade
 //   sail_height      "20 mm"     J232 only: every blade's sail (0: none)
-//   cut_height       "4 in"      J232 or field: the lowest blade's mid-plane above the turf, the
+//   cut_height       "4 in"      field only: the lowest blade's mid-plane above the turf, the
 //                                mower set to it as its wheels set it: every blade, the deck, its
 //                                skirt, openings, chutes, guards and deflectors move up or down
-//                                together; the ground, the board and the field stay (a generated
-//                                deck only)
+//                                together; the ground and the field stay (a generated deck only)
 // (`lift_angle`, a tilt of the contact normal in earlier versions, is refused: the lift
 // now follows from the edge's geometry and friction.)
 //

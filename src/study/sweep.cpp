@@ -1,6 +1,7 @@
 // Running a sweep: every point, each an impact or a whole assessment (study/sweep.hpp).
 #include "study/sweep.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <optional>
 #include <stdexcept>
@@ -173,9 +174,15 @@ std::vector<double> hazard_point(const SweepSpec& spec, const Point& p, const to
     for (const auto& d : directions)
       for (const char* c : {"hazard_distance_m", "hazard_distance_upper_m", "beyond_range", "upper_beyond_range"})
         t.columns.push_back(fmt::format("{}_{}", d, c));
-    for (std::size_t i = 0; i < planes.size(); ++i)
+    std::vector<std::string> stems;  // unique: two planes of one name get _2, _3...
+    for (const auto& name : planes) {
+      std::string stem = column_stem(name);
+      for (int k = 2; std::find(stems.begin(), stems.end(), stem) != stems.end(); ++k) stem = fmt::format("{}_{}", column_stem(name), k);
+      stems.push_back(stem);
+    }
+    for (const auto& stem : stems)
       for (const char* c : {"hazardous_per_km", "hazardous_per_km_low", "hazardous_per_km_high"})
-        t.columns.push_back(fmt::format("plane_{}_{}", column_stem(planes[i]), c));
+        t.columns.push_back(fmt::format("plane_{}_{}", stem, c));
   } else if (planes != t.planes || directions != t.directions) {
     throw point_error(spec, p, "the planes differ from the sweep's first point: every point must tally the same planes");
   }
