@@ -207,6 +207,19 @@ TEST_CASE("field: with supports, the share that reaches falls smoothly with the 
   const field::FieldSimulator sim(read(small));
   CHECK(sim.reach_share(0) > 0);
   CHECK(sim.reach_share(0) < 0.2);
+  // Stones taller than the deck's front gap: with supports, left to the model (pushed aside)
+  // and said; without, refused (the test above).
+  std::string tall = supported_stones(0.010);
+  tall.replace(tall.find("max_size = \"70 mm\""), 18, "max_size = \"150 mm\"");
+  const auto s = read(tall);
+  REQUIRE(s.notes.size() == 1);
+  CHECK_THAT(s.notes[0], Catch::Contains("max_size") && Catch::Contains("pushed aside"));
+  const field::FieldSimulator with_tall(s);
+  for (std::uint64_t i = 0; i < 200; ++i) {  // every stone drawn stands below the front gap (the skirt's foot, 3 in up)
+    const auto e = with_tall.simulate(i).encounter;
+    CHECK(e.support + 0.8 * e.body.diameter < 3 * units::inch + 1e-12);
+  }
+  CHECK(with_tall.reach_share(0) > 0);
 }
 
 TEST_CASE("field: each kind a stratum, drawn among the sizes that can reach a blade", "[field]") {

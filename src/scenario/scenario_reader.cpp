@@ -550,7 +550,8 @@ void read_air(const TableReader& a, AirSpec& air) {
 
 
 // The field a hazard scenario mows (FieldSpec). `s` has its blades and deck read.
-void read_field(const TableReader& t, const Scenario& s, bool root_has_restitution, FieldSpec& f) {
+// `s_notes`: where what it accepted but says goes (Scenario::notes).
+void read_field(const TableReader& t, const Scenario& s, bool root_has_restitution, FieldSpec& f, std::vector<std::string>& s_notes) {
   f.present = true;
   f.ground_speed = t.quantity_or("ground_speed", Kind::Speed, f.ground_speed, Range::positive_up_to(15));
   f.range = t.quantity_or("range", Kind::Length, f.range, Range::between(5, 500));
@@ -617,7 +618,13 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
     obj.drag_coefficient = o.quantity_or("drag_coefficient", Kind::Dimensionless, obj.drag_coefficient, Range::between(0, 3));
     o.refuse_unknown_keys();
     const double top = obj.max_size * (1 - obj.embedment);
-    // With supports the model leaves out what stands at or above the gap (pushed aside).
+    // With supports the model leaves out what stands at or above the gap (pushed aside), and
+    // says so.
+    if (f.support_height > 0 && front_gap && top >= *front_gap)
+      s_notes.push_back(o.error("max_size", fmt::format("the largest stand {:.3g} m above the turf, at or above the deck's front gap "
+                                                        "({:.3g} m): those are pushed aside by the deck, not struck",
+                                                        top, *front_gap))
+                            .what());
     if (f.support_height == 0 && front_gap && top >= *front_gap)
       throw o.error("max_size", fmt::format("objects standing {:.3g} m above the turf cannot pass under the deck's front ({:.3g} m above "
                                             "the turf): the deck pushes them along; expected a smaller max_size or a higher skirt",
@@ -1107,7 +1114,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   }
   if (auto f = root.table("field")) {
     refuse_test_rig(root, s.meshes);
-    read_field(*f, s, root.has("restitution"), s.field);
+    read_field(*f, s, root.has("restitution"), s.field, s.notes);
     // An object thrown across a field flies for seconds, not the board's fraction of one.
     if (!(root.table("run") && root.table("run")->has("time_limit"))) s.run.time_limit = 20.0;
   }
