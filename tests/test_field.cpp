@@ -214,6 +214,8 @@ TEST_CASE("field: with supports, the share that reaches falls smoothly with the 
   const auto s = read(tall);
   CAPTURE(s.notes);
   CHECK(std::count_if(s.notes.begin(), s.notes.end(), [](const std::string& n) { return n.find("pushed aside") != std::string::npos; }) == 1);
+  // The blade hangs below the skirt's foot (2 in against 3 in): said in a field's words.
+  CHECK(std::count_if(s.notes.begin(), s.notes.end(), [](const std::string& n) { return n.find("objects it sends down") != std::string::npos; }) == 1);
   const field::FieldSimulator with_tall(s);
   for (std::uint64_t i = 0; i < 200; ++i) {  // every stone drawn stands below the front gap (the skirt's foot, 3 in up)
     const auto e = with_tall.simulate(i).encounter;

@@ -836,9 +836,9 @@ void check_consistency(const TableReader& root, Scenario& s) {
     // is said, not refused.
     if (generated_deck && bottom < s.housing.skirt_bottom - 1e-12)
       s.notes.push_back(height_error(fmt::format("the blade's lower face at {:.4g} m hangs below the skirt's foot at {:.4g} m "
-                                                 "(housing.skirt_bottom): nails it sends down can leave under the skirt without "
+                                                 "(housing.skirt_bottom): {} it sends down can leave under the skirt without "
                                                  "touching it; a raised skirt may mean this",
-                                                 bottom, s.housing.skirt_bottom))
+                                                 bottom, s.housing.skirt_bottom, root.has("field") ? "objects" : "nails"))
                             .what());
   }
   // Nothing fixed may stand in a blade's swept disc (its tip circle, over the height from its
