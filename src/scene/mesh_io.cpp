@@ -18,7 +18,7 @@ constexpr std::uintmax_t kMaxMeshBytes = 512ull << 20;
 constexpr std::size_t kMaxMeshFaces = 2'000'000;
 
 // CGAL 5.5's PLY reader trusts its header (a `property` before any `element`, or a vertex
-// coordinate of a type it has no reader for, crashes it; a 32-bit list count lets one face
+// coordinate of a type it has no reader for or given as a list, crashes it; a 32-bit list count lets one face
 // allocate gigabytes; all found by fuzzing): the header is checked here first. Empty when
 // sound.
 std::string ply_header_problem(const std::string& path) {
@@ -60,7 +60,8 @@ std::string ply_header_problem(const std::string& path) {
       if (!element) return fmt::format("line {}: a property before any element", n);
       std::string type, name;
       words >> type;
-      if (type == "list") {
+      const bool list = type == "list";
+      if (list) {
         std::string count_type;
         words >> count_type >> type;
         if (!kTypes.count(count_type)) return fmt::format("line {}: unknown property type", n);
@@ -70,8 +71,13 @@ std::string ply_header_problem(const std::string& path) {
           return fmt::format("line {}: a list's count must be uchar or ushort", n);
       }
       if (!(words >> name) || !kTypes.count(type)) return fmt::format("line {}: expected \"property TYPE NAME\"", n);
-      if (element_name == "vertex" && (name == "x" || name == "y" || name == "z") && !kReal.count(type))
-        return fmt::format("line {}: vertex coordinate {} must be float or double", n, name);
+      // CGAL reads a vertex's coordinates as numbers and a face's indices as a list, casting
+      // without a check: a list coordinate (or scalar indices) is a null dereference in it
+      // (found by fuzzing).
+      if (element_name == "vertex" && (name == "x" || name == "y" || name == "z") && (list || !kReal.count(type)))
+        return fmt::format("line {}: vertex coordinate {} must be a float or double, not a list", n, name);
+      if (element_name == "face" && (name == "vertex_indices" || name == "vertex_index") && !list)
+        return fmt::format("line {}: a face's {} must be a list", n, name);
     } else if (word != "format" && word != "comment" && word != "obj_info" && !word.empty()) {
       return fmt::format("line {}: unknown header keyword \"{}\"", n, word.substr(0, 40));
     }
