@@ -184,62 +184,54 @@ double FieldSimulator::objects_per_metre() const {
   return sum;
 }
 
+double FieldSimulator::drawn_size_probability(std::size_t kind, random::Stream& rng) const {
+  const auto& o = scenario_.field.objects[kind];
+  const ReachableSizes& reach = sizes_[kind];
+  if (scenario_.field.support_height > 0) {
+    // Lifted, or resting on a support that holds it up to the blade: the size drawn from
+    // the kind's lognormal weighted by its chance to reach (rejection under the grid's
+    // envelope).
+    if (rng.uniform() * (reach.lifted_mass + reach.supported_mass) < reach.lifted_mass)
+      return (o.spread <= 1.0 ? 0.0 : probability_below(o, o.min_size)) + rng.uniform() * reach.lifted_mass;
+    for (int tries = 0;; ++tries) {
+      J232_CHECK(tries < 1'000'000);  // the envelope bounds a positive mass: draws are accepted
+      const double m = rng.uniform() * reach.cumulative.back();
+      const std::size_t i = std::min<std::size_t>(
+          static_cast<std::size_t>(std::upper_bound(reach.cumulative.begin(), reach.cumulative.end(), m) - reach.cumulative.begin()) - 1,
+          reach.envelope.size() - 1);
+      const double p = reach.grid[i] + rng.uniform() * (reach.grid[i + 1] - reach.grid[i]);
+      if (rng.uniform() * reach.envelope[i] < held_up(kind, size_at(o, p)).probability) return p;
+    }
+  }
+  // Without supports: a uniform draw over the sizes that reach.
+  double total = 0;
+  for (const auto& piece : reach.pieces) total += piece[1] - piece[0];
+  double p = rng.uniform() * total;
+  for (const auto& piece : reach.pieces) {
+    if (p < piece[1] - piece[0]) return piece[0] + p;
+    p -= piece[1] - piece[0];
+  }
+  return reach.pieces.empty() ? 0.5 : reach.pieces.back()[1];
+}
+
 Encounter FieldSimulator::sample(std::size_t kind, random::Stream& rng) const {
   Encounter e;
   e.kind = kind;
   const auto& o = scenario_.field.objects[e.kind];
-  const ReachableSizes& reach = sizes_[e.kind];
-  const double u = scenario_.field.updraft_speed;
-  if (scenario_.field.support_height > 0) {
-    // Lifted, or resting on a support that holds it up to the blade: the size drawn from
-    // the kind's lognormal weighted by its chance to reach (rejection under the grid's
-    // envelope), then its support from the exponential cut to the band that holds it there
-    // (an exponential's tail beyond `from` is `from` plus the same exponential: exact).
-    double p = 0;
-    const bool lifted_piece = rng.uniform() * (reach.lifted_mass + reach.supported_mass) < reach.lifted_mass;
-    if (lifted_piece) {
-      p = (o.spread <= 1.0 ? 0.0 : probability_below(o, o.min_size)) + rng.uniform() * reach.lifted_mass;
-    } else {
-      for (int tries = 0;; ++tries) {
-        J232_CHECK(tries < 1'000'000);  // the envelope bounds a positive mass: draws are accepted
-        const double m = rng.uniform() * reach.cumulative.back();
-        const std::size_t i = std::min<std::size_t>(
-            static_cast<std::size_t>(std::upper_bound(reach.cumulative.begin(), reach.cumulative.end(), m) - reach.cumulative.begin()) - 1,
-            reach.envelope.size() - 1);
-        p = reach.grid[i] + rng.uniform() * (reach.grid[i + 1] - reach.grid[i]);
-        if (rng.uniform() * reach.envelope[i] < held_up(e.kind, size_at(o, p)).probability) break;
-      }
-    }
-    const double size = size_at(o, p);
-    e.body = projectile::Projectile::sphere(size, o.density * units::pi * size * size * size / 6.0);
-    e.lateral = cut_from_ - 0.5 * o.max_size + rng.uniform() * met_width(e.kind);
-    e.lifted = u > 0 && 0.5 * scenario_.air.density * u * u * o.drag_coefficient * 0.25 * units::pi * size * size > e.body.mass * units::standard_gravity;
-    if (!e.lifted) {
-      const SupportBand band = held_up(e.kind, size);
-      const double mean = scenario_.field.support_height;
-      e.support = band.from - mean * std::log1p(rng.uniform() * std::expm1(-(band.to - band.from) / mean));
-    }
-    e.height = e.support + 0.5 * size - o.embedment * size;  // its centre, on its support, sunk by its embedment
-    return e;
-  }
-  // A size among those that can reach a blade: a uniform draw over their probability.
-  double total = 0;
-  for (const auto& piece : reach.pieces) total += piece[1] - piece[0];
-  double p = rng.uniform() * total;
-  double at = reach.pieces.empty() ? 0.5 : reach.pieces.back()[1];
-  for (const auto& piece : reach.pieces) {
-    if (p < piece[1] - piece[0]) {
-      at = piece[0] + p;
-      break;
-    }
-    p -= piece[1] - piece[0];
-  }
-  const double size = size_at(o, at);
+  const double size = size_at(o, drawn_size_probability(kind, rng));
   e.body = projectile::Projectile::sphere(size, o.density * units::pi * size * size * size / 6.0);
   e.lateral = cut_from_ - 0.5 * o.max_size + rng.uniform() * met_width(e.kind);
-  e.height = 0.5 * size - o.embedment * size;  // its centre, sunk by its embedment
   // The updraft's drag against its weight: 1/2 rho u^2 C_d (pi d^2 / 4) > m g.
+  const double u = scenario_.field.updraft_speed;
   e.lifted = u > 0 && 0.5 * scenario_.air.density * u * u * o.drag_coefficient * 0.25 * units::pi * size * size > e.body.mass * units::standard_gravity;
+  if (scenario_.field.support_height > 0 && !e.lifted) {
+    // Its support from the exponential cut to the band that holds it up to the blade (an
+    // exponential's tail beyond `from` is `from` plus the same exponential: exact).
+    const SupportBand band = held_up(e.kind, size);
+    const double mean = scenario_.field.support_height;
+    e.support = band.from - mean * std::log1p(rng.uniform() * std::expm1(-(band.to - band.from) / mean));
+  }
+  e.height = e.support + 0.5 * size - o.embedment * size;  // its centre, on its support, sunk by its embedment
   return e;
 }
 

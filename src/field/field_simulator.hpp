@@ -101,6 +101,7 @@ class FieldSimulator {
 
  private:
   Encounter sample(std::size_t kind, random::Stream& rng) const;  // one object of a kind, among its sizes that reach
+  double drawn_size_probability(std::size_t kind, random::Stream& rng) const;  // its size's place on the lognormal's axis
   scenario::Scenario scenario_;
   std::unique_ptr<flight::Mower> mower_;
   std::vector<std::vector<strike::Spindle>> spindles_;  // per kind: its restitution and friction on the blades

@@ -32,6 +32,14 @@ const char* receptor_name(scenario::FieldPlaneSpec::Receptor r) {
 }
 const char* kind_name(scenario::FieldObjectSpec::Kind k) { return k == scenario::FieldObjectSpec::Kind::SteelBall ? "steel_ball" : "stone"; }
 
+// A probability chart's logarithmic axis: from the decade above the highest value drawn
+// (at most 1; a value at a power of ten is that decade's end) down to the lowest's decade,
+// eight decades at most and one at least.
+void probability_log_axis(Chart& chart, double highest, double lowest) {
+  const double top = std::min(1.0, std::pow(10.0, std::ceil(std::log10(highest) - 1e-9)));
+  chart.y_log_range(std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9)))), top);
+}
+
 std::string distance_words(const field::DirectionCurve& c, bool conservative, double range) {
   const bool beyond = conservative ? c.upper_beyond_range : c.beyond_range;
   const double d = conservative ? c.hazard_distance_upper : c.hazard_distance;
@@ -486,9 +494,7 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
         if (v > 0) highest = std::max(highest, v), lowest = std::min(lowest, v);
   }
   // (A value at a power of ten is that decade's end: no empty decade beyond it.)
-  const double top = std::min(1.0, std::pow(10.0, std::ceil(std::log10(highest) - 1e-9)));
-  const double floor = std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9))));
-  curves.y_log_range(floor, top);
+  probability_log_axis(curves, highest, lowest);
   curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {:g} m2)", acceptable_p, s.field.acceptable_area));
   curves.caption("Beside the path: a person standing at that lateral distance from the mower's centre line while it mows past. Ahead "
                  "and behind: a person on its line whom it approaches no nearer than that distance, or leaves from it. Bands: 95 % "
@@ -719,8 +725,7 @@ std::string comparison_hazard_html(const field::FieldComparison& c) {
         for (double v : *values)
           if (v > 0) highest = std::max(highest, v), lowest = std::min(lowest, v);
     }
-    const double top = std::min(1.0, std::pow(10.0, std::ceil(std::log10(highest) - 1e-9)));
-    chart.y_log_range(std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9)))), top);
+    probability_log_axis(chart, highest, lowest);
     chart.hline(acceptable, "#000000", fmt::format("acceptable ({:.3g})", acceptable));
     chart.caption(escape(first[i].meaning) + ". Bands: 95 % intervals; logarithmic scale, zero on the floor.");
     o += "<figure>" + chart.svg() + "</figure>\n";
