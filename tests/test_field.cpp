@@ -600,3 +600,45 @@ TEST_CASE("field: the setback at other acceptable densities, and a season's pass
   none.replace(none.find("objects_simulated = 4000"), 24, "objects_simulated = 4000\npasses_per_season = 0");
   CHECK_THAT(error_of(none), Catch::Contains("field.passes_per_season") && Catch::Contains("0"));
 }
+
+TEST_CASE("field: --units us shows the same figures in ft, mph, ft-lb and per mile; the JSON keeps SI", "[field][units]") {
+  const report::DisplayUnits us = report::display_units("us"), si = report::display_units("si");
+  CHECK(us.length(0.3048) == Approx(1.0).epsilon(1e-15));
+  CHECK(us.per_mowed(1.0) == Approx(1.609344).epsilon(1e-15));     // per km -> per mile
+  CHECK(us.energy(79.0) == Approx(58.267).epsilon(1e-4));           // DDESB's 79 J is its 58 ft-lb
+  CHECK(us.area(55.74) == Approx(600.0).epsilon(1e-3));             // and its 55.7 m2, 600 ft2
+  CHECK(us.speed(44.704) == Approx(100.0).epsilon(1e-12));          // mph
+  CHECK(us.travel(8 / 3.6) == Approx(4.97).epsilon(1e-3));
+  CHECK(si.length(3.0) == 3.0);
+  CHECK(si.per_area(2.0) == 2.0);
+  CHECK(us.per_area(1.0) == Approx(0.09290304).epsilon(1e-15));     // per m2 -> per ft2
+  try {
+    report::display_units("metric");
+    FAIL("refused");
+  } catch (const scenario::InputError& e) {
+    CHECK_THAT(std::string(e.what()), Catch::Contains("--units") && Catch::Contains("metric") && Catch::Contains("us"));
+  }
+
+  std::string text = kMower + kStones + "[[field.planes]]\nname = \"path\"\nside = \"left\"\ndistance = \"2.5 m\"\n";
+  text.replace(text.find("objects_simulated = 4000"), 24, "objects_simulated = 1500");
+  const auto s = read(text);
+  const field::FieldSimulator sim(s);
+  const auto run = field::run_hazard(sim, 2);
+  const auto sum = field::summarise(sim, run);
+  const std::string in_si = report::hazard_text(sum), in_us = report::hazard_text(sum, us);
+  CHECK(in_si == report::hazard_text(sum, si));
+  CHECK_THAT(in_si, Catch::Contains("per km mowed") && Catch::Contains("left 2.5 m"));
+  // Each figure converted, not relabelled: the plane's rate, the cut, the speed, the plane's place.
+  const auto& path = sum.planes.back();
+  CHECK_THAT(in_us, Catch::Contains(fmt::format("{:.3g} hazardous per mile mowed", 1.609344 * path.hazardous_per_km.value)));
+  CHECK_THAT(in_us, Catch::Contains(fmt::format("({:.2f} ft cut)", sum.cut_width / 0.3048)));
+  CHECK_THAT(in_us, Catch::Contains(fmt::format("{:.0f} mph mean", sum.exit_speed_mean / 0.44704)));
+  CHECK_THAT(in_us, Catch::Contains("left 8.2 ft"));
+  CHECK_THAT(in_us, !Catch::Contains(" m/s") && !Catch::Contains("per km") && !Catch::Contains(" m)"));
+  const auto result = report::hazard_json(sim, run, sum, {});
+  const std::string page = report::hazard_html(sim, run, sum, result, us);
+  CHECK_THAT(page, Catch::Contains("at least 58.3 ft-lb") && Catch::Contains("one per 600 ft&sup2;") && Catch::Contains("distance from the mower (ft)") &&
+                       Catch::Contains("hazard.json and hazard.csv keep SI units") && Catch::Contains("per ft2 of ground"));
+  CHECK_THAT(page, !Catch::Contains("(m)") && !Catch::Contains(" m/s") && !Catch::Contains("per km"));
+  CHECK(report::hazard_html(sim, run, sum, result) == report::hazard_html(sim, run, sum, result, si));
+}

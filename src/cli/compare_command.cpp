@@ -27,6 +27,7 @@ using report::terminal_safe;
 struct CompareOptions {
   std::vector<std::string> scenarios;
   std::string out = "results/compare";
+  std::string units = "si";
   RunOverrides overrides;
 };
 
@@ -46,10 +47,11 @@ int compare_fields(const CompareOptions& o, std::vector<scenario::Scenario>& des
   }
   const auto j = report::hazard_comparison_json(c);
   report::write_atomically(out.staged("compare.csv"), report::hazard_comparison_csv(c));
-  report::write_atomically(out.staged("compare.html"), report::hazard_comparison_html(c));
+  const report::DisplayUnits units = report::display_units(o.units);
+  report::write_atomically(out.staged("compare.html"), report::hazard_comparison_html(c, units));
   report::write_atomically(out.staged("compare.json"), report::json_text(j) + "\n");
   out.commit();
-  fmt::print("{}", terminal_safe(report::hazard_comparison_text(c)));
+  fmt::print("{}", terminal_safe(report::hazard_comparison_text(c, units)));
   fmt::print("Wrote {}/compare.html, compare.json and compare.csv\n", terminal_safe(o.out));
   return kOk;
 }
@@ -89,6 +91,9 @@ int compare_with_earlier(const CompareOptions& o) {
 }
 
 int compare(const CompareOptions& o) {
+  const bool us = report::display_units(o.units).us;  // (a bad name refused before anything runs)
+  if (us && is_result_file(o.scenarios.front()))
+    throw scenario::InputError("", std::nullopt, "--units", o.units, "si: comparing results across versions gives shares of nails, which have no units");
   if (is_result_file(o.scenarios.front())) return compare_with_earlier(o);
   std::vector<scenario::Scenario> designs;
   for (const auto& file : o.scenarios) designs.push_back(scenario::read_scenario(file));  // every file checked before running
@@ -98,6 +103,9 @@ int compare(const CompareOptions& o) {
   if (fields > 0)
     throw scenario::InputError(designs[fields == 1 && designs.front().field.present ? 0 : 0].file, std::nullopt, "field", "",
                                "compare either J232 test scenarios or field scenarios ([field]), not both");
+  if (us)
+    throw scenario::InputError(designs.front().file, std::nullopt, "--units", o.units,
+                               "si: J232 test designs are compared by shares of nails, which have no units (--units us is for field scenarios)");
   if (o.overrides.replicates > 0) designs.front().run.replicates = o.overrides.replicates;
   if (o.overrides.seed) designs.front().run.seed = *o.overrides.seed;
   const int threads = o.overrides.threads >= 0 ? o.overrides.threads : designs.front().run.threads;
@@ -134,6 +142,9 @@ Runner add_compare_command(CLI::App& app) {
       ->required()
       ->expected(2, -1);
   cmd->add_option("--out", o->out, "Output folder for compare.html, compare.json and compare.csv")->capture_default_str();
+  cmd->add_option("--units", o->units,
+                  "Field designs: units of compare.html and the table, si (m, per km) or us (ft, per mile); the JSON and CSV keep SI")
+      ->capture_default_str();
   add_run_overrides(*cmd, o->overrides, "the first scenario's (every design runs with the first's)");
   return [o] { return compare(*o); };
 }

@@ -16,12 +16,15 @@ using report::terminal_safe;
 
 struct HazardOptions {
   std::string scenario;
+  std::string units = "si";
   std::string out = "hazard";
   report::HazardOverrides overrides;
 };
 
 int hazard(const HazardOptions& o) {
-  const report::HazardOutcome outcome = report::hazard_to_folder(o.scenario, o.overrides, o.out);
+  report::HazardOverrides overrides = o.overrides;
+  overrides.units = report::display_units(o.units);
+  const report::HazardOutcome outcome = report::hazard_to_folder(o.scenario, overrides, o.out);
   if (!outcome.writer) return kOk;
   fmt::print("{}", terminal_safe(outcome.summary_text));
   fmt::print("  Wrote {}/hazard.html, {}/hazard.json and {}/hazard.csv\n", terminal_safe(o.out), terminal_safe(o.out), terminal_safe(o.out));
@@ -43,6 +46,10 @@ Runner add_hazard_command(CLI::App& app) {
       ->check(CLI::Range(0, 1024))
       ->each([](const std::string& t) { warn_threads_beyond_cores(std::atoll(t.c_str())); });
   cmd->add_option("--out", o->out, "Output folder for hazard.html, hazard.json and hazard.csv")->capture_default_str();
+  cmd->add_option("--units", o->units,
+                  "Units of hazard.html and the summary: si (m, m/s, J, per km) or us (ft, mph, ft-lb, per mile); hazard.json and "
+                  "hazard.csv keep SI")
+      ->capture_default_str();
   return [o] { return hazard(*o); };
 }
 

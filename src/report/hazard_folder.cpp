@@ -36,11 +36,11 @@ HazardOutcome hazard_to_folder(const std::string& scenario_file, const HazardOve
   const HazardProvenance p{j232::version, j232::git_revision, utc_now(), s.run.seed, run.threads, assess::cluster::size(), run.wall_seconds};
   outcome.result = hazard_json(sim, run, sum, p);
   write_atomically(folder->staged("hazard.csv"), hazard_csv(sum));
-  write_atomically(folder->staged("hazard.html"), hazard_html(sim, run, sum, outcome.result));
+  write_atomically(folder->staged("hazard.html"), hazard_html(sim, run, sum, outcome.result, o.units));
   write_atomically(folder->staged("hazard.json"), json_text(outcome.result) + "\n");
   folder->commit();
   outcome.valid = sum.valid;
-  outcome.summary_text = fmt::format("{}: thrown-object hazard in the field\n{}", s.title, hazard_text(sum));
+  outcome.summary_text = fmt::format("{}: thrown-object hazard in the field\n{}", s.title, hazard_text(sum, o.units));
   // What the reader noticed in the file (a guard named as a flap without `kind`, a blade below
   // the skirt's foot) and cut-offs near the limit, as `j232 run` lists among its warnings
   // (hazard.json's `warnings`, hazard.html's list).

@@ -6,12 +6,15 @@
 #include <optional>
 #include <string>
 
+#include "report/display_units.hpp"
+
 namespace j232::report {
 
 struct HazardOverrides {
   long long objects = 0;  // 0: the scenario's field.objects_simulated
   std::optional<unsigned long long> seed;
   int threads = -1;       // -1: the scenario's
+  DisplayUnits units;     // of hazard.html and the terminal's summary (the JSON and CSV keep SI)
 };
 
 struct HazardOutcome {

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fmt/format.h>
 
 #include "assess/model_version.hpp"
+#include "report/display_units.hpp"
 #include "report/html_page.hpp"
 #include "report/svg_chart.hpp"
 #include "units/quantity.hpp"
@@ -40,12 +42,28 @@ void probability_log_axis(Chart& chart, double highest, double lowest) {
   chart.y_log_range(std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9)))), top);
 }
 
-std::string distance_words(const field::DirectionCurve& c, bool conservative, double range) {
+std::string distance_words(const field::DirectionCurve& c, bool conservative, double range, const DisplayUnits& u) {
   const bool beyond = conservative ? c.upper_beyond_range : c.beyond_range;
   const double d = conservative ? c.hazard_distance_upper : c.hazard_distance;
-  if (beyond) return fmt::format("beyond {:.0f} m (the range)", range);
-  if (d <= c.deck_extent + 1e-9) return fmt::format("the deck's edge ({:.1f} m)", c.deck_extent);
-  return fmt::format("{:.0f} m", d);
+  if (beyond) return fmt::format("beyond {:.0f} {} (the range)", u.length(range), u.length_unit());
+  if (d <= c.deck_extent + 1e-9) return fmt::format("the deck's edge ({:.1f} {})", u.length(c.deck_extent), u.length_unit());
+  return fmt::format("{:.0f} {}", u.length(d), u.length_unit());
+}
+
+// Words written in SI (a direction's meaning, a compared figure's name) in US units: "per m2"
+// as "per ft2", "at least 79 J" as "at least 58.3 ft-lb".
+std::string in_feet(std::string words) {
+  for (std::size_t at = words.find(" m2"); at != std::string::npos; at = words.find(" m2", at)) words.replace(at, 3, " ft2");
+  const std::string least = "at least ";
+  for (std::size_t at = words.find(least); at != std::string::npos; at = words.find(least, at + 1)) {
+    const std::size_t number = at + least.size(), unit = words.find(" J", number);
+    if (unit == std::string::npos) break;
+    char* end = nullptr;
+    const double joules = std::strtod(words.c_str() + number, &end);
+    if (end != words.c_str() + unit) continue;  // not "at least <number> J"
+    words.replace(number, unit + 2 - number, fmt::format("{:.3g} ft-lb", DisplayUnits{true}.energy(joules)));
+  }
+  return words;
 }
 
 }  // namespace
@@ -292,20 +310,22 @@ std::string hazard_csv(const field::HazardSummary& sum) {
   return o;
 }
 
-std::string hazard_text(const field::HazardSummary& sum) {
+std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u) {
   std::string o;
   if (!sum.valid) o += fmt::format("  NO HAZARD ASSESSMENT: {}\n", sum.invalid_reason);
-  o += fmt::format("  {:.0f} objects met per km mowed ({:.2f} m cut), {:.0f} thrown per km; speed off the last blade strike {:.0f} m/s "
-                   "mean (95th percentile {:.0f}), off the first {:.0f} m/s mean\n",
-                   sum.objects_per_km, sum.cut_width, sum.thrown_per_km, sum.last_strike_speed_mean, sum.last_strike_speed_q95,
-                   sum.exit_speed_mean);
+  o += fmt::format("  {:.0f} objects met per {} mowed ({:.2f} {} cut), {:.0f} thrown per {}; speed off the last blade strike {:.0f} {} "
+                   "mean (95th percentile {:.0f}), off the first {:.0f} {} mean\n",
+                   u.per_mowed(sum.objects_per_km), u.mowed(), u.length(sum.cut_width), u.length_unit(), u.per_mowed(sum.thrown_per_km),
+                   u.mowed(), u.speed(sum.last_strike_speed_mean), u.speed_unit(), u.speed(sum.last_strike_speed_q95),
+                   u.speed(sum.exit_speed_mean), u.speed_unit());
   o += "  Hazard distance (hazardous impacts fall below the acceptable density), estimate / conservative (95 % upper bound):\n";
   for (const auto& d : sum.directions)
-    o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d, false, d.distance.empty() ? 0 : d.distance.back()),
-                     distance_words(d, true, d.distance.empty() ? 0 : d.distance.back()));
+    o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d, false, d.distance.empty() ? 0 : d.distance.back(), u),
+                     distance_words(d, true, d.distance.empty() ? 0 : d.distance.back(), u));
   for (const auto& r : sum.planes) {
-    o += fmt::format("  Plane '{}' ({} {:g} m, {}): {:.3g} hazardous per km mowed (95 %: {:.3g}-{:.3g})\n", r.plane.name, side_name(r.plane.side),
-                     r.plane.distance, receptor_name(r.plane.receptor), r.hazardous_per_km.value, r.hazardous_per_km.low, r.hazardous_per_km.high);
+    o += fmt::format("  Plane '{}' ({} {} {}, {}): {:.3g} hazardous per {} mowed (95 %: {:.3g}-{:.3g})\n", r.plane.name,
+                     side_name(r.plane.side), u.figure(u.length(r.plane.distance)), u.length_unit(), receptor_name(r.plane.receptor),
+                     u.per_mowed(r.hazardous_per_km.value), u.mowed(), u.per_mowed(r.hazardous_per_km.low), u.per_mowed(r.hazardous_per_km.high));
     if (r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path && r.probability_per_season.value != r.probability.value)
       o += fmt::format("    a person there: P(struck) {:.3g} in one pass, {:.3g} (95 %: {:.3g}-{:.3g}) over the season's passes\n",
                        r.probability.value, r.probability_per_season.value, r.probability_per_season.low, r.probability_per_season.high);
@@ -329,7 +349,7 @@ std::string heat(double t) {
 // the part of the square that holds any, on a log colour scale; the mower, its travel and
 // the planes drawn.
 std::string plan_view(const field::FieldSimulator& sim, const field::HazardLayout& l, const std::vector<double>& cells, const std::string& title,
-                      const std::string& what, const std::vector<field::DirectionCurve>& directions) {
+                      const std::string& what, const std::vector<field::DirectionCurve>& directions, const DisplayUnits& u) {
   const int n = l.cells();
   int reach = 1;
   for (int iy = 0; iy < n; ++iy)
@@ -352,32 +372,32 @@ std::string plan_view(const field::FieldSimulator& sim, const field::HazardLayou
           const int cx = l.half_cells - reach + bx * block + ix, cy = l.half_cells - reach + by * block + iy;
           sum += cells[static_cast<std::size_t>(cy * n + cx)];
         }
-      const double d = sum / area;
+      const double d = u.per_area(u.per_mowed(sum / area));
       density[static_cast<std::size_t>(by * blocks + bx)] = d;
       if (d > 0) top = std::max(top, d), bottom = std::min(bottom, d);
     }
-  Chart c(title, "ahead of the mower (m)", "to its left (m)", 640, 640);
+  Chart c(title, fmt::format("ahead of the mower ({})", u.length_unit()), fmt::format("to its left ({})", u.length_unit()), 640, 640);
   c.equal_aspect();
-  const double half = reach * l.cell;
+  const double half = u.length(reach * l.cell), cell = u.length(l.cell);
   c.x_range(-half, half), c.y_range(-half, half);
   const double span = top > bottom ? std::log10(top / bottom) : 1.0;
   for (int by = 0; by < blocks; ++by)
     for (int bx = 0; bx < blocks; ++bx) {
       const double d = density[static_cast<std::size_t>(by * blocks + bx)];
       if (d <= 0) continue;
-      const double x0 = -half + bx * block * l.cell, y0 = -half + by * block * l.cell;
-      c.rect(x0, y0, x0 + block * l.cell, y0 + block * l.cell, heat(std::log10(d / bottom) / span), 1.0, "");
+      const double x0 = -half + bx * block * cell, y0 = -half + by * block * cell;
+      c.rect(x0, y0, x0 + block * cell, y0 + block * cell, heat(std::log10(d / bottom) / span), 1.0, "");
     }
   const auto& outline = sim.mower().footprint().outline;
   if (!outline.empty()) {
     std::vector<double> x, y;
-    for (const auto& p : outline) x.push_back(p.x()), y.push_back(p.y());
-    x.push_back(outline.front().x()), y.push_back(outline.front().y());
+    for (const auto& p : outline) x.push_back(u.length(p.x())), y.push_back(u.length(p.y()));
+    x.push_back(u.length(outline.front().x())), y.push_back(u.length(outline.front().y()));
     c.line(x, y, "#000000", "the mower's deck", false);
   }
   c.segments({0.0}, {0.0}, {std::max(2.0, 0.2 * half)}, {0.0}, "#0072B2", "its travel", 2.5);
   for (const auto& p : l.planes) {
-    const double at = p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Front ? p.distance : -p.distance;
+    const double at = u.length(p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Front ? p.distance : -p.distance);
     if (std::abs(at) > half) continue;
     if (p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Right)
       c.hline(at, "#009E73", "plane '" + p.name + "'");
@@ -389,20 +409,22 @@ std::string plan_view(const field::FieldSimulator& sim, const field::HazardLayou
   std::string drawn, off_map;
   for (const auto& d : directions) {
     const bool beside = d.direction == "left" || d.direction == "right";
-    const double at = (d.direction == "left" || d.direction == "front" ? 1.0 : -1.0) * d.hazard_distance;
+    const double at = (d.direction == "left" || d.direction == "front" ? 1.0 : -1.0) * u.length(d.hazard_distance);
     if (d.beyond_range || std::abs(at) > half) {
       off_map += fmt::format("{}{} {} (off this map)", off_map.empty() && drawn.empty() ? "" : ", ", d.direction,
-                             d.beyond_range ? fmt::format("beyond the {:g} m tallied", l.range) : fmt::format("{:.3g} m", d.hazard_distance));
+                             d.beyond_range ? fmt::format("beyond the {} {} tallied", u.figure(u.length(l.range)), u.length_unit())
+                                            : fmt::format("{:.3g} {}", u.length(d.hazard_distance), u.length_unit()));
       continue;
     }
-    drawn += fmt::format("{}{} {:.3g} m", drawn.empty() ? "" : ", ", d.direction, d.hazard_distance);
+    drawn += fmt::format("{}{} {:.3g} {}", drawn.empty() ? "" : ", ", d.direction, u.length(d.hazard_distance), u.length_unit());
     if (beside)
       c.hline(at, "#D55E00", "");
     else
       c.vline(at, "#D55E00", "");
   }
-  c.caption((top > 0 ? fmt::format("{} per m2 around the mower, per km mowed, in {:g} m cells: colours on a log scale from {:.2g} (pale) to {:.2g} (dark) per m2.",
-                                   what, block * l.cell, bottom, top)
+  c.caption((top > 0 ? fmt::format("{} per {} around the mower, per {} mowed, in {:.3g} {} cells: colours on a log scale from {:.2g} (pale) "
+                                   "to {:.2g} (dark) per {}.",
+                                   what, u.area_unit(), u.mowed(), block * cell, u.length_unit(), bottom, top, u.area_unit())
                      : what + ": none in the tallied square.") +
             (drawn.empty() && off_map.empty() ? std::string()
                                               : " Orange dashed lines: the hazard distance each way (the estimate): " + drawn + off_map + "."));
@@ -420,7 +442,8 @@ std::vector<double> per_km(const field::FieldSimulator& sim, const field::Hazard
 
 }  // namespace
 
-std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum, const json& result) {
+std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum, const json& result,
+                        const DisplayUnits& u) {
   const scenario::Scenario& s = sim.scenario();
   const field::HazardLayout& layout = run.kinds.front().layout;
   std::string o = page_head("Thrown-object hazard: " + s.title);
@@ -433,24 +456,29 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     o += "</ul>\n";
   }
   o += fmt::format(
-      "<p>A simulation of this mower at work at {:.1f} km/h over turf strewn with objects ({:.2f} m cut): {:.0f} objects met "
-      "per kilometre mowed, {:.0f} of them of a size that can reach a blade, {:.0f} thrown. {} objects were simulated (a "
+      "<p>A simulation of this mower at work at {:.1f} {} over turf strewn with objects ({:.2f} {} cut): {:.0f} objects met "
+      "per {} mowed, {:.0f} of them of a size that can reach a blade, {:.0f} thrown. {} objects were simulated (a "
       "Monte Carlo sample, each kind its own stratum, drawn among the sizes that can reach a blade). Every figure is an "
       "estimate from that sample, with its 95 % interval; the figures are of the simulated model with its stated "
-      "assumptions (below), not a measurement.</p>\n",
-      s.field.ground_speed * 3.6, sum.cut_width, sum.objects_per_km, sum.reaching_per_km, sum.thrown_per_km, sum.objects);
+      "assumptions (below), not a measurement.{}</p>\n",
+      u.travel(s.field.ground_speed), u.travel_unit(), u.length(sum.cut_width), u.length_unit(), u.per_mowed(sum.objects_per_km),
+      u.us ? "mile" : "kilometre", u.per_mowed(sum.reaching_per_km), u.per_mowed(sum.thrown_per_km), sum.objects,
+      u.us ? " Figures in US customary units (ft, mph, ft-lb, per mile mowed); the assumptions quote the scenario's own inputs, and "
+             "hazard.json and hazard.csv keep SI units."
+           : "");
   o += "<h2>Hazard distances</h2>\n";
   o += fmt::format(
-      "<p>How far from the mower a person must be for the hazardous objects (with at least {:g} J) they meet in one pass to "
-      "fall below one per {:g} m&sup2; for good: beside the path, the larger of those coming down per m&sup2; of ground and "
-      "those flying or skidding through per m&sup2; of the vertical plane there; ahead and behind, those coming down on the "
+      "<p>How far from the mower a person must be for the hazardous objects (with at least {} {}) they meet in one pass to "
+      "fall below one per {} {} for good: beside the path, the larger of those coming down per {} of ground and "
+      "those flying or skidding through per {} of the vertical plane there; ahead and behind, those coming down on the "
       "mower's line. The conservative distance uses the 95 % interval's upper end.</p>\n",
-      s.field.person_energy, s.field.acceptable_area);
+      u.figure(u.energy(s.field.person_energy)), u.energy_unit(), u.figure(u.area(s.field.acceptable_area)), u.area_unit_html(), u.area_unit_html(),
+      u.area_unit_html());
   o += "<table><tr><th>direction</th><th>who</th><th>estimate</th><th>conservative</th></tr>\n";
   const double range = layout.range;
   for (const auto& d : sum.directions)
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", d.direction, escape(d.meaning),
-                     distance_words(d, false, range), distance_words(d, true, range));
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", d.direction, escape(u.us ? in_feet(d.meaning) : d.meaning),
+                     distance_words(d, false, range, u), distance_words(d, true, range, u));
   o += "</table>\n";
   // How the setback moves with what is judged acceptable: each distance at other densities.
   o += "<p>How the hazard distance moves with the acceptable density (estimate / conservative; the scenario's in bold):</p>\n"
@@ -460,18 +488,20 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   for (std::size_t b = 0; !sum.directions.empty() && b < sum.directions.front().setbacks.size(); ++b) {
     const double area = 1 / sum.directions.front().setbacks[b].acceptable_density;
     const bool own = std::abs(area - s.field.acceptable_area) < 1e-9 * area;
-    o += fmt::format("<tr><td>{}{:.3g} m&sup2;{}</td>", own ? "<strong>" : "", area, own ? "</strong>" : "");
+    o += fmt::format("<tr><td>{}{} {}{}</td>", own ? "<strong>" : "", fmt::format(fmt::runtime(u.us ? "{:.4g}" : "{:.3g}"), u.area(area)), u.area_unit_html(),
+                     own ? "</strong>" : "");
     for (const auto& d : sum.directions) {
       field::DirectionCurve at = d;  // the setback's figures in the curve's fields, for distance_words
       at.hazard_distance = d.setbacks[b].estimate, at.hazard_distance_upper = d.setbacks[b].conservative;
       at.beyond_range = d.setbacks[b].beyond_range, at.upper_beyond_range = d.setbacks[b].conservative_beyond_range;
-      o += fmt::format("<td>{} / {}</td>", distance_words(at, false, range), distance_words(at, true, range));
+      o += fmt::format("<td>{} / {}</td>", distance_words(at, false, range, u), distance_words(at, true, range, u));
     }
     o += "</tr>\n";
   }
   o += "</table>\n";
 
-  Chart curves("Probability of being struck by a hazardous object in one pass", "distance from the mower (m)", "probability");
+  Chart curves("Probability of being struck by a hazardous object in one pass", fmt::format("distance from the mower ({})", u.length_unit()),
+               "probability");
   const double acceptable_p = -std::expm1(-s.field.presented_area / s.field.acceptable_area);
   double far = 5;
   for (const auto& d : sum.directions)
@@ -486,7 +516,8 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     const auto& d = sum.directions[i];
     std::vector<double> x, p, lo, hi;
     for (std::size_t k = 0; k < d.distance.size() && d.distance[k] <= far; ++k)
-      x.push_back(d.distance[k]), p.push_back(d.probability[k].value), lo.push_back(d.probability[k].low), hi.push_back(d.probability[k].high);
+      x.push_back(u.length(d.distance[k])), p.push_back(d.probability[k].value), lo.push_back(d.probability[k].low),
+          hi.push_back(d.probability[k].high);
     curves.band(x, lo, hi, palette(i), "");
     curves.line(x, p, palette(i), d.direction, false);
     for (const auto* values : {&p, &lo, &hi})
@@ -495,7 +526,8 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   }
   // (A value at a power of ten is that decade's end: no empty decade beyond it.)
   probability_log_axis(curves, highest, lowest);
-  curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {:g} m2)", acceptable_p, s.field.acceptable_area));
+  curves.hline(acceptable_p, "#000000",
+               fmt::format("acceptable ({:.3g}: one per {} {})", acceptable_p, u.figure(u.area(s.field.acceptable_area)), u.area_unit()));
   curves.caption("Beside the path: a person standing at that lateral distance from the mower's centre line while it mows past. Ahead "
                  "and behind: a person on its line whom it approaches no nearer than that distance, or leaves from it. Bands: 95 % "
                  "intervals. Logarithmic scale: a probability below its floor (none seen there: zero) is drawn on the floor.");
@@ -503,21 +535,24 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
 
   o += "<h2>Where objects come down</h2>\n";
   o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::landings), "First landings outside the deck", "Objects first coming down",
-                 sum.directions);
+                 sum.directions, u);
   o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::hazardous),
-                 fmt::format("Hazardous ground impacts (at least {:g} J)", s.field.person_energy), "Hazardous impacts", sum.directions);
+                 fmt::format("Hazardous ground impacts (at least {} {})", u.figure(u.energy(s.field.person_energy)), u.energy_unit()), "Hazardous impacts",
+                 sum.directions, u);
 
   if (!sum.planes.empty()) {
-    o += "<h2>Planes beside the path</h2>\n<table><tr><th>plane</th><th>where</th><th>receptor</th><th>crossings per km mowed</th>"
-         "<th>hazardous per km mowed (95 %)</th><th>person standing there: P(struck) in one pass (95 %)</th>";
+    o += fmt::format("<h2>Planes beside the path</h2>\n<table><tr><th>plane</th><th>where</th><th>receptor</th><th>crossings per {0} mowed</th>"
+                     "<th>hazardous per {0} mowed (95 %)</th><th>person standing there: P(struck) in one pass (95 %)</th>",
+                     u.mowed());
     o += fmt::format("<th>over a season of {} pass{} (95 %): a person there each pass struck at least once; people struck ({:g} a "
                        "pass)</th></tr>\n",
                        s.field.passes_per_season, s.field.passes_per_season == 1 ? "" : "es", s.field.people_per_pass);
     for (const auto& r : sum.planes) {
       const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path;
-      o += fmt::format("<tr><td>{}</td><td>{} {:g} m</td><td>{}</td><td>{:.3g}</td><td>{:.3g} ({:.3g}-{:.3g})</td><td>{}</td><td>{}</td></tr>\n",
-                       escape(r.plane.name), side_name(r.plane.side), r.plane.distance, receptor_name(r.plane.receptor), r.crossings_per_km,
-                       r.hazardous_per_km.value, r.hazardous_per_km.low, r.hazardous_per_km.high,
+      o += fmt::format("<tr><td>{}</td><td>{} {} {}</td><td>{}</td><td>{:.3g}</td><td>{:.3g} ({:.3g}-{:.3g})</td><td>{}</td><td>{}</td></tr>\n",
+                       escape(r.plane.name), side_name(r.plane.side), u.figure(u.length(r.plane.distance)), u.length_unit(), receptor_name(r.plane.receptor),
+                       u.per_mowed(r.crossings_per_km), u.per_mowed(r.hazardous_per_km.value), u.per_mowed(r.hazardous_per_km.low),
+                       u.per_mowed(r.hazardous_per_km.high),
                        person ? fmt::format("{:.3g} ({:.3g}-{:.3g})", r.probability.value, r.probability.low, r.probability.high) : "-",
                        person ? fmt::format("{:.3g} ({:.3g}-{:.3g}); {:.3g} ({:.3g}-{:.3g})", r.probability_per_season.value,
                                             r.probability_per_season.low, r.probability_per_season.high, r.people_struck_per_season.value,
@@ -525,45 +560,51 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
                               : "-");
     }
     o += "</table>\n";
-    Chart heights("Crossings of each plane by height", "height above the ground (m)", "crossings per km mowed");
+    Chart heights("Crossings of each plane by height", fmt::format("height above the ground ({})", u.length_unit()),
+                  fmt::format("crossings per {} mowed", u.mowed()));
     for (std::size_t i = 0; i < sum.planes.size(); ++i) {
       std::vector<double> edges, h;
-      for (int b = 0; b <= field::kHeightBands; ++b) edges.push_back(b * field::kHeightBand);
-      heights.bars(edges, sum.planes[i].per_km_by_height, palette(i), sum.planes[i].plane.name);
+      for (int b = 0; b <= field::kHeightBands; ++b) edges.push_back(u.length(b * field::kHeightBand));
+      for (double v : sum.planes[i].per_km_by_height) h.push_back(u.per_mowed(v));
+      heights.bars(edges, h, palette(i), sum.planes[i].plane.name);
     }
-    heights.caption("Every crossing, hazardous or not, in 0.25 m bands (the last: 4 m and above). A vehicle's hazard is the windshield "
-                    "band's; a person's, the band up to their height.");
+    heights.caption(fmt::format("Every crossing, hazardous or not, in {:.3g} {} bands (the last: {:.3g} {} and above). A vehicle's hazard is "
+                                "the windshield band's; a person's, the band up to their height.",
+                                u.length(field::kHeightBand), u.length_unit(), u.length(field::kHeightBands * field::kHeightBand - field::kHeightBand),
+                                u.length_unit()));
     o += "<figure>" + heights.svg() + "</figure>\n";
   }
 
   o += "<h2>The throw</h2>\n";
   o += fmt::format("<p>Speed off the last blade strike (the speed objects leave with: many are struck again inside the deck, "
-                   "faster) {:.0f} m/s on average (95th percentile {:.0f} m/s); off the first strike {:.0f} m/s on average (95th "
-                   "percentile {:.0f} m/s), launch elevation {:.1f}&deg; on average; {:.0f} % of the thrown objects first came down outside "
-                   "the deck; the farthest ground contact was {:.0f} m from the mower.</p>\n",
-                   sum.last_strike_speed_mean, sum.last_strike_speed_q95, sum.exit_speed_mean, sum.exit_speed_q95, sum.launch_elevation_mean,
-                   100 * sum.landed_outside_deck_share, sum.max_distance);
+                   "faster) {0:.0f} {6} on average (95th percentile {1:.0f} {6}); off the first strike {2:.0f} {6} on average (95th "
+                   "percentile {3:.0f} {6}), launch elevation {4:.1f}&deg; on average; {5:.0f} % of the thrown objects first came down outside "
+                   "the deck; the farthest ground contact was {7:.0f} {8} from the mower.</p>\n",
+                   u.speed(sum.last_strike_speed_mean), u.speed(sum.last_strike_speed_q95), u.speed(sum.exit_speed_mean),
+                   u.speed(sum.exit_speed_q95), sum.launch_elevation_mean, 100 * sum.landed_outside_deck_share, u.speed_unit(),
+                   u.length(sum.max_distance), u.length_unit());
   {
-    Chart reach("How far thrown objects reach", "distance from the mower (m)", "share of thrown objects beyond it");
+    Chart reach("How far thrown objects reach", fmt::format("distance from the mower ({})", u.length_unit()), "share of thrown objects beyond it");
     const auto& r = result["throw"]["reach"];
     std::vector<double> x, y;
-    for (const auto& point : r) x.push_back(point["distance_m"].get<double>()), y.push_back(point["share_beyond"].get<double>());
+    for (const auto& point : r) x.push_back(u.length(point["distance_m"].get<double>())), y.push_back(point["share_beyond"].get<double>());
     reach.line(x, y, palette(0), "", true);
     reach.caption("Each thrown object's farthest ground contact from the mower (its first landing or a later bounce), every kind "
                   "weighted as the field holds it.");
     o += "<figure>" + reach.svg() + "</figure>\n";
   }
-  o += "<h2>Objects simulated</h2>\n<table><tr><th>kind</th><th>met per km</th><th>share that can reach a blade</th><th>simulated</th>";
+  o += fmt::format("<h2>Objects simulated</h2>\n<table><tr><th>kind</th><th>met per {}</th><th>share that can reach a blade</th><th>simulated</th>",
+                   u.mowed());
   for (int i = 0; i < field::kObjectFates; ++i) o += fmt::format("<th>{}</th>", field::object_fate_name(static_cast<field::ObjectFate>(i)));
   o += "<th>at rest under the deck</th><th>left the square</th><th>a knife rode over</th><th>pushed along by an arm</th></tr>\n";
   for (std::size_t k = 0; k < run.kinds.size(); ++k) {
     const auto& t = run.kinds[k];
-    o += fmt::format("<tr><td>{}</td><td>{:.0f}</td><td>{:.3g}</td><td>{}</td>", escape(s.field.objects[k].name), 1000 * sim.objects_per_metre(k),
+    o += fmt::format("<tr><td>{}</td><td>{:.0f}</td><td>{:.3g}</td><td>{}</td>", escape(s.field.objects[k].name), u.per_mowed(1000 * sim.objects_per_metre(k)),
                      sim.reach_share(k), t.objects);
     for (int i = 0; i < field::kObjectFates; ++i) o += fmt::format("<td>{}</td>", t.fates[static_cast<std::size_t>(i)]);
     o += fmt::format("<td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", t.at_rest_under_deck, t.left_square, t.ridden_over, t.pushed_along);
   }
-  o += fmt::format("</table>\n<p>The tallied square reaches &plusmn;{:g} m from the mower.</p>\n", range);
+  o += fmt::format("</table>\n<p>The tallied square reaches &plusmn;{} {} from the mower.</p>\n", u.figure(u.length(range)), u.length_unit());
 
   o += "<h2>Assumptions</h2>\n<table><tr><th>assumption</th><th>source</th></tr>\n";
   for (const auto& a : result["assumptions"])
@@ -580,11 +621,11 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
 namespace {
 // A compared design's own hazard: its distances each way and P(struck) at its person planes
 // (or why there is no assessment).
-std::string hazard_of_design_text(const field::FieldDesign& d) {
+std::string hazard_of_design_text(const field::FieldDesign& d, const DisplayUnits& u) {
   if (!d.hazard.valid) return fmt::format("  NO HAZARD ASSESSMENT for this design: {}\n", d.hazard.invalid_reason);
   std::string o = "  hazard distance (estimate / conservative):";
   for (const auto& c : d.hazard.directions)
-    o += fmt::format(" {} {} / {};", c.direction, distance_words(c, false, d.range), distance_words(c, true, d.range));
+    o += fmt::format(" {} {} / {};", c.direction, distance_words(c, false, d.range, u), distance_words(c, true, d.range, u));
   o.back() = '\n';
   for (const auto& pl : d.hazard.planes)
     if (pl.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && pl.along_path)
@@ -654,22 +695,23 @@ std::string hazard_comparison_csv(const field::FieldComparison& c) {
   return o;
 }
 
-std::string hazard_comparison_text(const field::FieldComparison& c) {
+std::string hazard_comparison_text(const field::FieldComparison& c, const DisplayUnits& u) {
   std::string o;
   for (std::size_t d = 0; d < c.designs.size(); ++d) {
     const auto& design = c.designs[d];
     o += fmt::format("{} {}\n", d == 0 ? "reference:" : fmt::format("design {}:", d + 1), design.title);
     for (std::size_t j = 0; j < design.figures.size(); ++j) {
       const auto& f = design.figures[j].per_km;
-      o += fmt::format("  {:<58} {:>10.4g} per km ({:.4g}-{:.4g})", design.figures[j].name, f.value, f.low, f.high);
+      o += fmt::format("  {:<58} {:>10.4g} per {} ({:.4g}-{:.4g})", u.us ? in_feet(design.figures[j].name) : design.figures[j].name, u.per_mowed(f.value), u.mowed(), u.per_mowed(f.low),
+                       u.per_mowed(f.high));
       if (d > 0) {
         const auto& x = design.differences[j];
-        o += fmt::format("  minus the reference {:+.4g} ({:+.4g} to {:+.4g}; {} objects differ)", x.per_km.value, x.per_km.low, x.per_km.high,
-                         x.objects_differing);
+        o += fmt::format("  minus the reference {:+.4g} ({:+.4g} to {:+.4g}; {} objects differ)", u.per_mowed(x.per_km.value),
+                         u.per_mowed(x.per_km.low), u.per_mowed(x.per_km.high), x.objects_differing);
       }
       o += "\n";
     }
-    o += hazard_of_design_text(design);
+    o += hazard_of_design_text(design, u);
   }
   return o;
 }
@@ -677,7 +719,7 @@ std::string hazard_comparison_text(const field::FieldComparison& c) {
 namespace {
 // Each design's own hazard: a table of its distances and P(struck) at its person planes, and
 // per direction a chart of P(struck) against distance with every design's curve.
-std::string comparison_hazard_html(const field::FieldComparison& c) {
+std::string comparison_hazard_html(const field::FieldComparison& c, const DisplayUnits& u) {
   std::string o = "<h2>Each design's hazard</h2>\n<p>From each design's own run over the same objects, as <code>j232 hazard</code> "
                   "gives it: the hazard distance (hazardous impacts below the acceptable density for good; conservative: on "
                   "the density's 95 % upper bound) and a person's probability of being struck in one pass.</p>\n";
@@ -691,7 +733,7 @@ std::string comparison_hazard_html(const field::FieldComparison& c) {
       continue;
     }
     for (const auto& dir : design.hazard.directions)
-      o += fmt::format("{}: {} / {}<br>", dir.direction, distance_words(dir, false, design.range), distance_words(dir, true, design.range));
+      o += fmt::format("{}: {} / {}<br>", dir.direction, distance_words(dir, false, design.range, u), distance_words(dir, true, design.range, u));
     o += "</td><td>";
     for (const auto& pl : design.hazard.planes)
       if (pl.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && pl.along_path)
@@ -702,7 +744,8 @@ std::string comparison_hazard_html(const field::FieldComparison& c) {
   o += "</table>\n";
   const auto& first = c.designs.front().hazard.directions;
   for (std::size_t i = 0; i < first.size(); ++i) {
-    Chart chart(fmt::format("Probability of being struck in one pass: {}", first[i].direction), "distance from the mower (m)", "probability");
+    Chart chart(fmt::format("Probability of being struck in one pass: {}", first[i].direction),
+                fmt::format("distance from the mower ({})", u.length_unit()), "probability");
     const double acceptable = c.designs.front().acceptable_probability;
     double highest = acceptable, lowest = acceptable, far = 5;
     for (const auto& design : c.designs)
@@ -717,7 +760,7 @@ std::string comparison_hazard_html(const field::FieldComparison& c) {
       const auto& dir = c.designs[d].hazard.directions[i];
       std::vector<double> x, p, lo, hi;
       for (std::size_t k = 0; k < dir.distance.size() && dir.distance[k] <= far; ++k)
-        x.push_back(dir.distance[k]), p.push_back(dir.probability[k].value), lo.push_back(dir.probability[k].low),
+        x.push_back(u.length(dir.distance[k])), p.push_back(dir.probability[k].value), lo.push_back(dir.probability[k].low),
             hi.push_back(dir.probability[k].high);
       chart.band(x, lo, hi, palette(d), "");
       chart.line(x, p, palette(d), d == 0 ? "reference" : fmt::format("design {}", d + 1), false);
@@ -734,35 +777,38 @@ std::string comparison_hazard_html(const field::FieldComparison& c) {
 }
 }  // namespace
 
-std::string hazard_comparison_html(const field::FieldComparison& c) {
+std::string hazard_comparison_html(const field::FieldComparison& c, const DisplayUnits& u) {
   std::string o = page_head("Field designs compared");
   o += "<h1>Field designs compared: thrown-object hazard</h1>\n";
   o += fmt::format(
       "<p>{} objects met in turn by every design with common random numbers (seed {}): object i of each design is drawn from the "
       "same seed and index and its flight's random events are keyed by their number, so the differences are judged object by "
       "object. Figures per km mowed with 95 % intervals (each design: quasi-Poisson; differences: normal, from the paired "
-      "differences; the objects whose own counts differ are counted).</p>\n",
-      c.objects, c.seed);
+      "differences; the objects whose own counts differ are counted).{}</p>\n",
+      c.objects, c.seed,
+      u.us ? " Figures per mile mowed and distances in feet (US customary units); compare.json and compare.csv keep SI units (per km, m)."
+           : "");
   o += "<table><tr><th>figure</th>";
   for (std::size_t d = 0; d < c.designs.size(); ++d)
     o += fmt::format("<th>{}{}</th>", d == 0 ? "reference: " : fmt::format("design {}: ", d + 1), escape(c.designs[d].title));
   o += "</tr>\n";
   for (std::size_t j = 0; j < c.designs.front().figures.size(); ++j) {
-    o += fmt::format("<tr><td>{}</td>", escape(c.designs.front().figures[j].name));
+    const std::string& name = c.designs.front().figures[j].name;
+    o += fmt::format("<tr><td>{}{}</td>", escape(u.us ? in_feet(name) : name), u.us ? " (per mile)" : "");
     for (std::size_t d = 0; d < c.designs.size(); ++d) {
       const auto& f = c.designs[d].figures[j].per_km;
-      o += fmt::format("<td>{:.4g} ({:.4g}-{:.4g})", f.value, f.low, f.high);
+      o += fmt::format("<td>{:.4g} ({:.4g}-{:.4g})", u.per_mowed(f.value), u.per_mowed(f.low), u.per_mowed(f.high));
       if (d > 0) {
         const auto& x = c.designs[d].differences[j];
-        o += fmt::format("<br><small>minus the reference: {:+.4g} ({:+.4g} to {:+.4g}); {} objects differ</small>", x.per_km.value, x.per_km.low,
-                         x.per_km.high, x.objects_differing);
+        o += fmt::format("<br><small>minus the reference: {:+.4g} ({:+.4g} to {:+.4g}); {} objects differ</small>", u.per_mowed(x.per_km.value),
+                         u.per_mowed(x.per_km.low), u.per_mowed(x.per_km.high), x.objects_differing);
       }
       o += "</td>";
     }
     o += "</tr>\n";
   }
   o += "</table>\n";
-  o += comparison_hazard_html(c);
+  o += comparison_hazard_html(c, u);
   o += fmt::format("<section id=\"provenance\"><p class=\"small\">{:.1f} s.</p></section>\n", c.wall_seconds);
   o += page_foot();
   return o;

@@ -10,6 +10,7 @@
 #include "field/field_compare.hpp"
 #include "field/field_simulator.hpp"
 #include "field/hazard_run.hpp"
+#include "report/display_units.hpp"
 #include "report/scenario_json.hpp"
 
 namespace j232::report {
@@ -28,16 +29,17 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s);
 nlohmann::ordered_json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum,
                                    const HazardProvenance& p);
 std::string hazard_csv(const field::HazardSummary& sum);
+// (In the units `u` names: SI by default.)
 std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum,
-                        const nlohmann::ordered_json& result);
+                        const nlohmann::ordered_json& result, const DisplayUnits& u = {});
 // The terminal's summary: the hazard distances and the planes, with their intervals.
-std::string hazard_text(const field::HazardSummary& sum);
+std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u = {});
 
 // Field designs compared (j232 compare of field scenarios): compare.json, .csv, .html and
 // the terminal's table.
 nlohmann::ordered_json hazard_comparison_json(const field::FieldComparison& c);
 std::string hazard_comparison_csv(const field::FieldComparison& c);
-std::string hazard_comparison_html(const field::FieldComparison& c);
-std::string hazard_comparison_text(const field::FieldComparison& c);
+std::string hazard_comparison_html(const field::FieldComparison& c, const DisplayUnits& u = {});
+std::string hazard_comparison_text(const field::FieldComparison& c, const DisplayUnits& u = {});
 
 }  // namespace j232::report

@@ -13,6 +13,12 @@ for threads in 1 2; do
   "$j232" hazard "$scenario" --objects "$objects" --threads $threads --out "$out/$([ $threads = 1 ] && echo one || echo two)" >/dev/null || code=$?
   case $code in 0|4) ;; *) echo "hazard_check: exit $code" >&2; exit 1 ;; esac
 done
+# In US units: the same run, its page in ft, mph and ft-lb, its JSON and CSV the SI ones.
+code=0
+"$j232" hazard "$scenario" --objects "$objects" --threads 2 --units us --out "$out/us" >"$out/us.txt" || code=$?
+case $code in 0|4) ;; *) echo "hazard_check: exit $code with --units us" >&2; exit 1 ;; esac
+cmp "$out/two/hazard.csv" "$out/us/hazard.csv"
+grep -q "per mile mowed" "$out/us.txt"
 python3 - "$out" "$objects" <<'PY'
 import json, math, sys
 out = sys.argv[1]
@@ -47,5 +53,10 @@ csv = open(f"{out}/one/hazard.csv").read().splitlines()
 assert csv[0].startswith("what,name,distance_m,density_per_m2"), csv[0]
 assert sum(1 for l in csv if l.startswith("plane,")) == len(a["planes"])
 assert "nan" not in open(f"{out}/one/hazard.csv").read().lower()
+u = json.load(open(f"{out}/us/hazard.json"))
+u.pop("provenance")
+assert u == b, "hazard.json with --units us differs from the SI run's"
+us_html = open(f"{out}/us/hazard.html").read().split("<h2>Assumptions")[0]  # (the assumptions quote the scenario's inputs)
+assert "distance from the mower (ft)" in us_html and "ft-lb" in us_html and " m/s" not in us_html, "hazard.html in US units"
 print("hazard_check: ok")
 PY
