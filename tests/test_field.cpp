@@ -518,6 +518,13 @@ TEST_CASE("field: designs compared object by object, with common random numbers"
   const std::string html = report::hazard_comparison_html(c);
   CHECK_THAT(html, Catch::Contains("Each design's hazard") && Catch::Contains("Probability of being struck in one pass: left"));
   CHECK(report::hazard_comparison_json(c)["designs"][1]["person_at_plane"][0]["plane"] == "path on the left");
+  // In US units: every rate per mile (the figure's own, converted), the threshold in ft-lb.
+  const report::DisplayUnits us{true};
+  const std::string us_text = report::hazard_comparison_text(c, us), us_html = report::hazard_comparison_html(c, us);
+  const auto& thrown_per_km = c.designs[1].figures[0].per_km;
+  CHECK_THAT(us_text, Catch::Contains(fmt::format("{:.4g} per mile", 1.609344 * thrown_per_km.value)) && !Catch::Contains("per km") &&
+                          !Catch::Contains(" J)") && Catch::Contains("ft-lb)"));
+  CHECK_THAT(us_html, Catch::Contains("distance from the mower (ft)") && Catch::Contains("Figures per mile mowed") && !Catch::Contains("(m)"));
 }
 
 TEST_CASE("field: the strips' vertical planes count what an explicit plane at the same distance counts", "[field]") {

@@ -783,9 +783,9 @@ std::string hazard_comparison_html(const field::FieldComparison& c, const Displa
   o += fmt::format(
       "<p>{} objects met in turn by every design with common random numbers (seed {}): object i of each design is drawn from the "
       "same seed and index and its flight's random events are keyed by their number, so the differences are judged object by "
-      "object. Figures per km mowed with 95 % intervals (each design: quasi-Poisson; differences: normal, from the paired "
+      "object. Figures per {} mowed with 95 % intervals (each design: quasi-Poisson; differences: normal, from the paired "
       "differences; the objects whose own counts differ are counted).{}</p>\n",
-      c.objects, c.seed,
+      c.objects, c.seed, u.mowed(),
       u.us ? " Figures per mile mowed and distances in feet (US customary units); compare.json and compare.csv keep SI units (per km, m)."
            : "");
   o += "<table><tr><th>figure</th>";
