@@ -59,6 +59,44 @@ TEST_CASE("field: the [field] form, with its defaults", "[field][input]") {
   CHECK(s.run.time_limit == Approx(20.0));  // a field's flights last seconds
   CHECK(s.field.person_energy == Approx(79));
   CHECK(s.field.acceptable_area == Approx(55.74));
+  CHECK(!o.rolls);  // a stone skids unless the scenario calls it round
+  CHECK(s.ground.rolling_resistance == Approx(0.3));
+  std::string round = kMower + "[ground]\nrolling_resistance = 0.2\n" + kStones;
+  round.replace(round.find("embedment = 0.2"), 15, "embedment = 0.2\nrolls = true");
+  const auto r = read(round);
+  CHECK(r.field.objects[0].rolls);
+  CHECK(r.ground.rolling_resistance == Approx(0.2));
+  // A J232 test's nails do not roll: the key is refused there, naming it.
+  CHECK_THAT(error_of(kMower + "[ground]\nrolling_resistance = 0.2\n"), Catch::Contains("ground.rolling_resistance") && Catch::Contains("field scenario"));
+  CHECK_THAT(error_of(kMower + "[ground]\nrolling_resistance = 3\n" + kStones), Catch::Contains("ground.rolling_resistance") && Catch::Contains("3"));
+  std::string bad = kMower + kStones;
+  bad.replace(bad.find("embedment = 0.2"), 15, "embedment = 0.2\nrolls = \"yes\"");
+  CHECK_THAT(error_of(bad), Catch::Contains("rolls"));
+}
+
+TEST_CASE("field: stones that roll go farther than stones that skid, over the same objects", "[field][ground]") {
+  auto s = read(kMower + kStones);
+  s.field.objects_simulated = 1500;
+  const field::FieldSimulator skid_sim(s);
+  const auto skid_run = field::run_hazard(skid_sim, 2);
+  const auto skid = field::summarise(skid_sim, skid_run);
+  s.field.objects[0].rolls = true;
+  const field::FieldSimulator roll_sim(s);
+  const auto roll_run = field::run_hazard(roll_sim, 2);
+  const auto roll = field::summarise(roll_sim, roll_run);
+  // The same objects are struck the same way (the strike does not know how they end), and
+  // rolling adds distance once they are down: the objects whose farthest contact lies
+  // beyond 10 m grow (the farthest of all flies out of the tallied square either way).
+  CHECK(roll.thrown_per_km == skid.thrown_per_km);
+  CHECK(roll.max_distance >= skid.max_distance);
+  const auto beyond = [](const field::HazardRun& r, double d) {
+    std::uint64_t n = 0;
+    const auto& far = r.kinds[0].farthest;
+    for (std::size_t i = static_cast<std::size_t>(d / 0.25); i < far.size(); ++i) n += far[i];
+    return n;
+  };
+  INFO("beyond 10 m: skidding " << beyond(skid_run, 10) << ", rolling " << beyond(roll_run, 10) << "; beyond 3 m " << beyond(skid_run, 3) << ", " << beyond(roll_run, 3) << "; beyond 30 m " << beyond(skid_run, 30) << ", " << beyond(roll_run, 30));
+  CHECK(beyond(roll_run, 10) > beyond(skid_run, 10) + 20);
 }
 
 TEST_CASE("field: a steel ball is one size of steel, struck with the scenario's restitution", "[field][input]") {

@@ -464,6 +464,72 @@ TEST_CASE("flight: a stone skidding from 60 m/s stops where friction and air dra
   }
 }
 
+TEST_CASE("flight: a ball slips until it rolls, then rolls to a stop, as an independent integration of the same law gives", "[flight][drag][ground]") {
+  // A sphere landing flat out without spin: friction mu g slows its centre and spins it up
+  // until its contact stops slipping (at 5/7 of its speed without drag), then it rolls,
+  // slowed by the ground's rolling resistance rho g and 5/7 of its drag. Without drag the
+  // distances are closed-form: slipping (24/49) v0^2 / (2 mu g), rolling (5 v0 / 7)^2 / (2 rho g).
+  // With drag, against a fine RK4 integration of the same two phases written here.
+  const auto ground = flat_ground(400.0);
+  const double mu = 0.5, rho = 0.3, diameter = 0.05, mass = 2650 * units::pi / 6 * diameter * diameter * diameter;
+  const double k = 1.2 * 0.47 * (units::pi / 4 * diameter * diameter) / (2 * mass);
+  for (const bool with_drag : {false, true}) {
+    for (const double u0 : {5.0, 30.0}) {
+      double hand = 0;
+      if (!with_drag) {
+        hand = 24.0 / 49.0 * u0 * u0 / (2 * mu * g) + std::pow(5 * u0 / 7, 2) / (2 * rho * g);
+      } else {
+        // Phase 1: v' = -mu g - k v^2, (omega R)' = 5/2 mu g, until v = omega R; phase 2:
+        // v' = -(rho g + 5/7 k v^2) until v = 0 (integrated to 0.3 m/s, the rest speed, then
+        // no further: the flight stops there too).
+        double v = u0, wr = 0, x = 0;
+        const double dt = 1e-5;
+        while (v > wr) {
+          const auto f = [&](double vv) { return -mu * g - k * vv * vv; };
+          const double k1 = f(v), k2 = f(v + 0.5 * dt * k1), k3 = f(v + 0.5 * dt * k2), k4 = f(v + dt * k3);
+          x += dt * (v + dt * (k1 + k2 + k3) / 6);  // position by the same stages
+          v += dt * (k1 + 2 * k2 + 2 * k3 + k4) / 6, wr += 2.5 * mu * g * dt;
+        }
+        while (v > 0.3) {
+          const auto f = [&](double vv) { return -rho * g - 5.0 / 7.0 * k * vv * vv; };
+          const double k1 = f(v), k2 = f(v + 0.5 * dt * k1), k3 = f(v + 0.5 * dt * k2), k4 = f(v + dt * k3);
+          x += dt * (v + dt * (k1 + k2 + k3) / 6);
+          v += dt * (k1 + 2 * k2 + 2 * k3 + k4) / 6;
+        }
+        hand = x;
+      }
+      scenario::Scenario s;
+      s.ground.restitution = 0;
+      s.ground.friction = mu;
+      s.ground.roughness = 0;
+      s.ground.rolling_resistance = rho;
+      s.run.time_limit = 60;
+      flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+      flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
+      ctx.rolls = true;
+      std::vector<flight::FlightEvent> events;
+      ctx.events = &events;
+      flight::Drag drag;
+      drag.on = with_drag, drag.sphere = true, drag.k_normal = k;
+      flight::Body b;
+      b.position = {0, 0, 0.5 * diameter + 1e-6};
+      b.velocity = {u0, 0, -0.01};  // just landing, skimming the turf
+      random::EventDraws rng(1, 0, 0);
+      const auto r = flight::fly(b, projectile::Projectile::sphere(diameter, mass), drag, ctx, {}, {}, rng);
+      // (Without drag the last 0.3 m/s, the rest speed, rolls on no further: rho g stops it in
+      // 0.3^2 / (2 rho g) = 15 mm, within the tolerance below.)
+      INFO("drag " << with_drag << ", from " << u0 << " m/s: rolled to " << r.end_position.x() << " m, hand calculation " << hand << " m");
+      CHECK(r.fate != flight::Fate::CutOff);
+      CHECK(r.end_position.x() == Approx(hand).epsilon(0.01).margin(0.02));
+      // It rolls far beyond where the same ball skidding at mu g would stop.
+      CHECK(r.end_position.x() > 1.2 * (with_drag ? std::log(1 + k * u0 * u0 / (mu * g)) / (2 * k) : u0 * u0 / (2 * mu * g)));
+      // No energy is created along the way (translation, spin and height).
+      for (const auto& e : events)
+        if (e.energy_before > 0) CHECK(e.energy_after <= e.energy_before * (1 + 1e-9));
+    }
+  }
+}
+
 namespace {
 // A dropped nail's first impact event (its state after, and whether it took several points
 // at once), if it had one.

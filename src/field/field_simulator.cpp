@@ -326,6 +326,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
     watch->thrown(e.body.mass, contact->time);
     context.observer = watch->observer();
   }
+  context.rolls = s.field.objects[e.kind].rolls;
   random::EventDraws draws(s.run.seed, 0, index);  // its flight's random events, each keyed by its number
   out.flight = flight::fly(body, e.body, drag, context, phases, first, draws);
   out.fate = out.flight.fate == flight::Fate::CutOff ? ObjectFate::CutOff : ObjectFate::Thrown;

@@ -13,7 +13,8 @@ FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<sc
       law(s.run.restitution_law),
       contacts(s.run.contact_model),
       board(s.board),
-      materials(s, guards) {
+      materials(s, guards),
+      rolling_resistance(s.ground.rolling_resistance) {
   for (const auto& o : s.housing.openings) openings.push_back({o.azimuth_from, o.azimuth_to, o.top});
 }
 

@@ -35,6 +35,8 @@ struct FlightSettings {
   // A field's flat soil under the turf (z = 0) takes a strike that drives an object lying on
   // it into it (flight::soil_reaction); the J232 test's nails fall onto the blade.
   bool soil_under_strikes = false;
+  // A round object rolling on the ground slows by this many g (GroundSpec::rolling_resistance).
+  double rolling_resistance = 0.3;
 
   FlightSettings() = default;
   // `guards`: indexed as the scene numbers them.

@@ -112,7 +112,8 @@ constexpr int kBladePinch = 6;
 constexpr double kWedgeGap = 1e-8;  // s
 constexpr double kSustainedGap = 1e-5;   // s between the last two of them
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
-constexpr int kMaxSlideParts = 10000;  // parts of one slide (a tenth of the speed each where drag counts: about 60 from 60 m/s)
+constexpr int kMaxSlideParts = 10000;
+constexpr double kRollingSlip = 1e-6;  // m/s: a ball whose contact slips slower than this rolls  // parts of one slide (a tenth of the speed each where drag counts: about 60 from 60 m/s)
 constexpr double kMaxChord = 0.5;    // m
 // A lying nail slides with its lowest point this far above the ground (clear of its faces by
 // more than the touch tolerance, so that sliding along them is no touch).
@@ -292,6 +293,8 @@ struct NailFlight {
   void bounced(const scene::Hit& hit, double approach, const Vec3& point, double speed_in, double energy_in, int together);
   void bounce_off(const Vec3& n, double e, double mu, const Vec3* arm, double surface_inverse_mass = 0.0);
   bool slide(const scene::Hit& hit);
+  // A sphere that rolls on the ground rather than skids (FlightContext::rolls).
+  bool rolling() const { return ctx.rolls && nail.half_segment() == 0; }
   bool after_bounce(const scene::Hit& hit);
   Fate fate() const;
 };
@@ -803,6 +806,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
     // At rest on the turf, or pushed along by the mower (below).
     if (speed < set.rest_speed || against_mower || (friction_decel <= 0 && !drag.on)) {
       b.velocity = Vec3::Zero();
+      b.spin = Vec3::Zero();
       ended_at_rest = true;
       held_by_mower = against_mower;
       log(FlightEvent::Kind::Rest, b.position, up);
@@ -820,17 +824,48 @@ bool NailFlight::slide(const scene::Hit& hit) {
     // middle speed (the stop's distance then within 0.1 % of the integral's); else one part
     // runs to the stop.
     double end_speed = 0;
-    if (drag_along(speed) > 0.01 * friction_decel) end_speed = 0.9 * speed >= set.rest_speed ? 0.9 * speed : 0.0;
-    const double decel = friction_decel + drag_along(0.5 * (speed + end_speed));
-    if (!(decel > 0)) {
+    // A ball (rolling()) slips at the turf's friction until its contact point stops slipping,
+    // then rolls, slowed by the ground's rolling resistance and by drag (of which its spin
+    // takes 2/7: a rolling solid sphere's effective mass is 7/5 of its mass). Friction -mu g
+    // u_hat at the contact (u its slip) slows the centre by mu g and spins it up by
+    // (5/2) mu g / R about up x u_hat, so the slip closes at (7/2) mu g along u_hat.
+    const double radius = nail.radius();
+    Vec3 contact_slip = Vec3::Zero(), spin_rate = Vec3::Zero();
+    bool rolling_now = false;
+    if (rolling()) {
+      contact_slip = b.velocity - turf + b.spin.cross(Vec3(-radius * up));
+      contact_slip -= contact_slip.dot(up) * up;
+      rolling_now = contact_slip.norm() <= kRollingSlip;
+      if (rolling_now) {  // rolling: the spin that rolls it, about a horizontal axis across the track
+        b.spin = up.cross(Vec3(speed * slip)) / radius;
+        b.axis = slip;  // (a sphere's axis is any: along the track, so that the roll is across it)
+      }
+    }
+    const double resisting = rolling_now ? set.rolling_resistance * -kGravity.z() * std::max(0.0, up.z()) : friction_decel;
+    const double drag_share = rolling_now ? 5.0 / 7.0 : 1.0;
+    if (drag_along(speed) > 0.01 * resisting) end_speed = 0.9 * speed >= set.rest_speed ? 0.9 * speed : 0.0;
+    const double drag_mid = drag_share * drag_along(0.5 * (speed + end_speed));
+    Vec3 accel = -(resisting + drag_mid) * slip;
+    double decel = resisting + drag_mid;
+    double slip_ends = HUGE_VAL;  // a slipping ball: when its contact stops slipping
+    if (rolling() && !rolling_now) {
+      const Vec3 across = contact_slip.normalized();
+      accel = -friction_decel * across - drag_mid * slip;
+      decel = -accel.dot(slip);
+      spin_rate = 2.5 * friction_decel / radius * up.cross(across);
+      const double closing = 3.5 * friction_decel + drag_mid * slip.dot(across);
+      if (closing > 0) slip_ends = contact_slip.norm() / closing;
+    }
+    if (!(decel > 0) && slip_ends == HUGE_VAL) {
       b.velocity = Vec3::Zero();
+      b.spin = Vec3::Zero();
       ended_at_rest = true;
       log(FlightEvent::Kind::Rest, b.position, up);
       break;
     }
     strike::Motion m;
-    m.p0 = b.position, m.v0 = turf + speed * slip, m.a = -decel * slip, m.t0 = b.time, m.axis0 = b.axis;
-    double part_end = b.time + (speed - end_speed) / decel;
+    m.p0 = b.position, m.v0 = turf + speed * slip, m.a = accel, m.t0 = b.time, m.axis0 = b.axis;
+    double part_end = b.time + std::min(decel > 0 ? (speed - end_speed) / decel : HUGE_VAL, slip_ends);
     if (pressed.squaredNorm() > 0 && m.v0.dot(pressed) > gentle_speed) pressed = Vec3::Zero();  // bounced off the wall: free of it
     if (pressed.squaredNorm() > 0) {
       // Against the wall: what would move it into the wall the wall takes (its velocity and
@@ -871,14 +906,17 @@ bool NailFlight::slide(const scene::Hit& hit) {
     const double t0 = b.time;
     const Vec3 from = b.position;
     stretch(m, t0, wall ? wall->time : until);
+    b.spin += spin_rate * ((wall ? wall->time : until) - t0);  // a slipping ball spun up by friction
+    if (rolling_now) b.spin = up.cross(Vec3(m.velocity(wall ? wall->time : until) - turf)) / radius;
     if (!wall) {
       const Vec3 to = m.centre(until);
       if (ctx.observer) ctx.observer->flew(t0, from, m.velocity(t0), until, to, m.velocity(until));
       moved(from, to);
       b.position = to, b.time = until, b.velocity = m.velocity(until);
       last_event = b.time;
-      if (until < part_end || end_speed > 0) continue;  // the slide goes on from the part's end
+      if (until < part_end || end_speed > 0 || slip_ends < HUGE_VAL) continue;  // the slide goes on from the part's end
       b.velocity = Vec3::Zero();
+      b.spin = Vec3::Zero();
       ended_at_rest = true;
       log(FlightEvent::Kind::Rest, b.position, up);
       break;
@@ -921,7 +959,9 @@ bool NailFlight::after_bounce(const scene::Hit& hit) {
   Vec3 up = ctx.scene->face_normal(hit.face);
   if (up.dot(hit.normal) < 0) up = -up;
   if (material.holds_up && up.z() > 0 && b.velocity.dot(up) < kSlideBelow && swing < kSlideBelow) {
-    b.spin = Vec3::Zero();  // lying on the ground, it slides without turning
+    // Lying on the ground, it slides without turning; a ball that rolls keeps the spin about
+    // the ground's plane it has (its contact's slip decides how it goes on).
+    b.spin = rolling() ? Vec3(b.spin - b.spin.dot(up) * up) : Vec3::Zero();
     if (!slide(hit)) return false;
   }
   const bool within_friction_cone = up.z() * std::sqrt(1 + material.friction * material.friction) >= 1;

@@ -220,6 +220,8 @@ struct FlightContext {
   // When set, every stretch of its motion is appended (auditing a replay; null in a run).
   std::vector<FlightStretch>* stretches = nullptr;
   FlightObserver* observer = nullptr;  // when set, told of every free stretch and ground contact
+  // A sphere that rolls on the ground (a field's ball or round stone) rather than skids.
+  bool rolls = false;
 };
 
 // A knife that rode over a field's object pressed into the soil touches it no more for this

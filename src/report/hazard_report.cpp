@@ -111,6 +111,19 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
     a.push_back({"No lift of objects into the blades by the air the blades draw up (field.updraft_speed 0: objects are struck where "
                  "they lie)",
                  "docs/model.md §9 (a stated simplification)"});
+  {
+    std::string skid, roll;
+    for (const auto& o : f.objects) (o.rolls ? roll : skid) += fmt::format("{}'{}'", (o.rolls ? roll : skid).empty() ? "" : ", ", o.name);
+    a.push_back({fmt::format("On the ground, an object too slow to bounce on{}{}{}",
+                             skid.empty() ? "" : fmt::format(" skids at the turf's friction ({:g}), slowed by drag too ({})", s.ground.friction, skid),
+                             skid.empty() || roll.empty() ? "" : ";",
+                             roll.empty() ? ""
+                                          : fmt::format(" rolls ({}): it slips at the turf's friction until its contact stops slipping, then "
+                                                        "rolls, slowed by {:g} g of rolling resistance and by drag",
+                                                        roll, s.ground.rolling_resistance)),
+                 roll.empty() ? "scenario (an angular stone skids: field.objects.rolls false, the default for stones)"
+                              : "scenario (ground.rolling_resistance: an estimate, a golf green's 0.05-0.09 g the low end; docs/model.md §9)"});
+  }
   a.push_back({"Flight in the mower's frame (deck, guards, turf as in the J232 model); positions and energies tallied in the ground's "
                "frame at each object's strike (the mower's travel added); the turf under a bounce taken as still",
                "docs/model.md §9"});
@@ -159,6 +172,7 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
                        {"restitution_on_blade", o.restitution ? json(*o.restitution) : json("scenario [restitution]")},
                        {"friction_on_blade", o.friction},
                        {"drag_coefficient", o.drag_coefficient},
+                       {"on_the_ground", o.rolls ? "rolls" : "skids"},
                        {"met_per_km", 1000 * sim.objects_per_metre(k)},
                        {"share_that_can_reach_a_blade", sim.reach_share(k)},
                        {"simulated",

@@ -217,7 +217,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
   for (const auto& sp : s.spindles) spindles.push_back(spindle_json(sp));
   for (const auto& m : s.meshes) meshes.push_back({{"path", m.path}, {"label", scenario::mesh_label_name(m.label)}, {"scale", m.scale}});
   const scene::MeshRoles roles = scene::mesh_roles(s);
-  return {
+  json j = {
       {"file", s.file},
       {"title", s.title},
       {"spindles", spindles},
@@ -245,6 +245,8 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
       {"uncertainty", uncertainty_json(s.uncertainty)},
       {"run", run_json(s.run)},
   };
+  if (s.field.present) j["ground"]["rolling_resistance"] = s.ground.rolling_resistance;  // round objects roll on it (nails do not)
+  return j;
 }
 
 std::vector<Assumption> assumptions(const scenario::Scenario& s) {

@@ -148,6 +148,10 @@ struct GroundSpec {  // turf
   double max_restitution = 0.8;    // cap at shallow impacts (estimate)
   double friction = 0.5;
   double roughness = 10 * kDegree;  // std. dev. of the local surface normal's tilt, rad
+  // A round object rolling on it (a field's steel ball, or stones the scenario calls round)
+  // slows by this many g once it rolls without slipping (a golf ball on a green about 0.05-0.09;
+  // a mowed verge's taller grass more: an estimate). Field scenarios only: nails do not roll.
+  double rolling_resistance = 0.3;
   // e_n for an impact whose path makes `angle` (rad, 0-pi/2) with the surface.
   double restitution_at(double angle) const {
     if (angle_exponent == 0.0) return restitution;
@@ -318,6 +322,10 @@ struct FieldObjectSpec {
   std::optional<double> restitution = 0.5;
   double friction = 0.4;                   // on the blade, Coulomb
   double drag_coefficient = 0.6;           // on its cross-section (a smooth sphere: 0.47)
+  // On the ground it rolls (a ball; a rounded stone) rather than skids (an angular stone, the
+  // default for stones): slipping at the turf's friction until it rolls, then slowed by its
+  // rolling resistance (GroundSpec::rolling_resistance).
+  bool rolls = false;
 };
 
 struct FieldPlaneSpec {  // a vertical plane beside the mower's path: a lane, a fence, a footpath

@@ -490,7 +490,7 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
 }
 
 // The scenario's parts, each from its table (keys checked, unknown ones refused).
-void read_ground(const TableReader& g, GroundSpec& ground) {
+void read_ground(const TableReader& g, GroundSpec& ground, bool field) {
   ground.restitution = g.quantity_or("restitution", Kind::Dimensionless, ground.restitution, Range::UnitInterval);
   ground.angle_exponent = g.quantity_or("angle_exponent", Kind::Dimensionless, ground.angle_exponent, Range::between(0, 3));
   ground.max_restitution = g.quantity_or("max_restitution", Kind::Dimensionless, ground.max_restitution, Range::between(0, 0.99));
@@ -498,6 +498,9 @@ void read_ground(const TableReader& g, GroundSpec& ground) {
     throw g.error("max_restitution", fmt::format("expected at least the perpendicular restitution ({:g})", ground.restitution));
   ground.friction = g.quantity_or("friction", Kind::Dimensionless, ground.friction, Range::between(0, 2));
   ground.roughness = g.quantity_or("roughness", Kind::Angle, ground.roughness, Range::between(0, 45 * units::degree));
+  if (!field && g.has("rolling_resistance"))
+    throw g.error("rolling_resistance", "a field scenario's ([field]): round objects roll there; the J232 test's nails do not");
+  ground.rolling_resistance = g.quantity_or("rolling_resistance", Kind::Dimensionless, ground.rolling_resistance, Range::between(0, 2));
   g.refuse_unknown_keys();
 }
 
@@ -591,6 +594,7 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
       // A ball bearing: one size, steel, smooth, the blade's own restitution on steel.
       obj.density = 7850, obj.spread = 1.0, obj.drag_coefficient = 0.47, obj.embedment = 0.0;
       obj.restitution.reset();
+      obj.rolls = true;
     }
     // No default size: how far objects fly and how many the blade reaches follow from it.
     if (!o.has("median_size")) throw o.error("median_size", "missing: the objects' median size, such as \"15 mm\"");
@@ -616,6 +620,7 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
     if (auto e = o.optional_quantity("restitution", Kind::Dimensionless, Range::UnitInterval)) obj.restitution = *e;
     obj.friction = o.quantity_or("friction", Kind::Dimensionless, obj.friction, Range::between(0, 2));
     obj.drag_coefficient = o.quantity_or("drag_coefficient", Kind::Dimensionless, obj.drag_coefficient, Range::between(0, 3));
+    obj.rolls = o.boolean_or("rolls", obj.rolls);
     o.refuse_unknown_keys();
     const double top = obj.max_size * (1 - obj.embedment);
     // With supports the model leaves out what stands at or above the gap (pushed aside), and
@@ -1092,7 +1097,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (s.housing.deck_radius <= reach)
     throw root.table("housing")->error("deck_radius", fmt::format("expected a deck wider than the blade's tip circle ({:.4g} m)", reach));
 
-  if (auto g = root.table("ground")) read_ground(*g, s.ground);
+  if (auto g = root.table("ground")) read_ground(*g, s.ground, root.has("field"));
 
   s.target.top = s.blade_plane() + 0.610;
   if (auto t = root.table("target")) read_target(*t, s.target, reach, s.housing.deck_radius);

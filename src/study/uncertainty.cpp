@@ -303,6 +303,11 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
     }
     kinds.push_back(estimated(at + "drag_coefficient", fmt::format("{:.3g}", cd_low), fmt::format("{:.3g}", cd_high),
                               "handbook: a smooth sphere 0.47; angular stones up to about 0.8 (estimate; and the scenario's value)"));
+    if (o.kind == scenario::FieldObjectSpec::Kind::Stone)
+      kinds.push_back(model_form(at + "rolls", {"false", "true"},
+                                 fmt::format("model form: angular {} skid on the ground, rounded ones roll; how round a field's stones "
+                                             "are is not surveyed",
+                                             o.name)));
   }
   std::vector<UncertainInput> in;
   if (f.updraft_speed > 0 && updraft_low < f.updraft_speed)
@@ -320,6 +325,9 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
   in.push_back(estimated("bevel_angle", "20 deg", "45 deg", "estimate: mower blades are ground to about 30 deg; no figure for industrial cutters"));
   in.push_back(estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"));
   in.push_back(estimated("ground.max_restitution", "0.5", "0.95", "estimate: the angle law passes 1 at grazing impacts; a bounce off turf loses energy"));
+  in.push_back(estimated("ground.rolling_resistance", "0.1", "0.6",
+                         "estimate: a ball rolling on a golf green slows by 0.05-0.09 g and on a football pitch by about 0.07-0.2 g; "
+                         "a verge mowed at 3-6 in, taller, more"));
   if (!s.housing.guards.empty())
     in.push_back(estimated("housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25"));
   in.push_back(contact_model_form());
