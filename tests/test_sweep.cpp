@@ -245,3 +245,35 @@ TEST_CASE("sweep: over a field scenario, each point a hazard run, the same as th
   j232.replicates = 0;
   CHECK_THROWS_WITH(study::run_sweep(j232, 1, nullptr), Catch::Contains("field scenario"));
 }
+
+TEST_CASE("sweep: a point that cannot be assessed is recorded with why, and the sweep goes on", "[sweep][field]") {
+  study::SweepSpec spec;
+  spec.source = "test";
+  spec.name = "cut";
+  spec.base = std::string(J232_SOURCE_DIR) + "/scenarios/field/batwing-highway-shoulder.toml";
+  spec.x = study::parse_axis("cut_height=1.2 in,4 in", "--x");  // at 1.2 in the skirt's foot would be under the turf
+  spec.objects = 1000;
+  const auto t = study::run_sweep(spec, 2, nullptr);
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.any_invalid());
+  CHECK_THAT(t.rows[0].invalid, Catch::Contains("cut_height = 1.2 in") && Catch::Contains("skirt's foot"));
+  CHECK(t.rows[0].values.empty());
+  CHECK(t.rows[1].invalid.empty());
+  CHECK(t.rows[1].values.size() == t.columns.size());
+  // The CSV: the point's row with empty values and the reason in a last `note` column.
+  const std::string csv = report::sweep_csv(spec, t);
+  const auto first_line_end = csv.find('\n');
+  CHECK(csv.substr(0, first_line_end).size() > 5);
+  CHECK(csv.compare(first_line_end - 5, 5, ",note") == 0);
+  const auto row = csv.substr(first_line_end + 1, csv.find('\n', first_line_end + 1) - first_line_end - 1);
+  CHECK_THAT(row, Catch::StartsWith("\"\",\"1.2 in\",1.2" + std::string(t.columns.size(), ',') + ",\"") && Catch::Contains("skirt's foot"));
+  // The charts draw the one point assessed and name the other in their captions.
+  for (const auto& [name, svg] : report::sweep_charts(spec, t)) {
+    INFO(name);
+    CHECK_THAT(svg, Catch::Contains("Not assessed, so not drawn") && Catch::Contains("cut_height = 1.2 in"));
+    CHECK(svg.find("nan") == std::string::npos);
+  }
+  // No point assessed at all: refused, with the first point's reason.
+  spec.x = study::parse_axis("cut_height=1.1 in,1.2 in", "--x");
+  CHECK_THROWS_WITH(study::run_sweep(spec, 2, nullptr), Catch::Contains("no point could be assessed") && Catch::Contains("skirt's foot"));
+}

@@ -59,8 +59,11 @@ void run_one(const study::SweepSpec& spec, const SweepOptions& o) {
     written.push_back((dir / fmt::format("{}-{}.svg", spec.name, suffix)).string());
     report::write_atomically(written.back(), svg);
   }
-  fmt::print("{}: {} points ({} of {}). Wrote {}\n", spec.title, table.rows.size(), study::points_name(table.kind),
-             spec.base, fmt::join(written, ", "));
+  std::size_t invalid = 0;
+  for (const auto& r : table.rows)
+    if (!r.invalid.empty()) ++invalid, fmt::print("  Warning: not assessed: {}\n", r.invalid);
+  fmt::print("{}: {} points ({} of {}{}). Wrote {}\n", spec.title, table.rows.size(), study::points_name(table.kind), spec.base,
+             invalid ? fmt::format("; {} not assessed, named in the CSV's note column", invalid) : "", fmt::join(written, ", "));
 }
 
 int sweep(const SweepOptions& o) {

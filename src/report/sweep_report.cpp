@@ -15,16 +15,44 @@ using study::SweepTable;
 using study::Parameter;
 
 std::string sweep_csv(const SweepSpec& spec, const SweepTable& t) {
+  // A point not assessed has empty values and, in a last `note` column (there only when some
+  // point was not assessed), why.
+  const bool notes = t.any_invalid();
   std::string o = fmt::format("series,{},{}", spec.x.info.name, spec.x.info.name + "_value");
   for (const auto& c : t.columns) o += "," + c;
-  o += "\n";
+  o += notes ? ",note\n" : "\n";
   for (const auto& r : t.rows) {
     o += fmt::format("\"{}\",\"{}\",{:.8g}", r.series_label, r.x_text, r.x);
-    for (double v : r.values) o += fmt::format(",{:.8g}", v);
+    if (r.invalid.empty())
+      for (double v : r.values) o += fmt::format(",{:.8g}", v);
+    else
+      o += std::string(t.columns.size(), ',');
+    if (notes) {
+      std::string quoted;
+      for (char ch : r.invalid) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+      o += r.invalid.empty() ? "," : ",\"" + quoted + "\"";
+    }
     o += "\n";
   }
   return o;
 }
+
+namespace {
+// The points a chart leaves out (not assessed), for its caption; empty when it draws them all.
+std::string left_out(const SweepSpec& spec, const SweepTable& t) {
+  std::string o;
+  for (const auto& r : t.rows)
+    if (!r.invalid.empty())
+      o += fmt::format("{}{}{}{}", o.empty() ? "" : "; ", r.series_label.empty() ? "" : r.series_label + ", ", spec.x.info.name + " = ", r.x_text);
+  return o.empty() ? o : " Not assessed, so not drawn (the CSV's note says why): " + o + ".";
+}
+// The first point assessed (the sweep has one: run_sweep refuses a sweep with none).
+const SweepTable::Row& first_assessed(const SweepTable& t) {
+  for (const auto& r : t.rows)
+    if (r.invalid.empty()) return r;
+  return t.rows.front();
+}
+}  // namespace
 
 namespace {
 // A field's sweep: each plane's hazardous crossings per km (log axis, 95 % intervals), the
@@ -35,10 +63,10 @@ std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const Sweep
   const auto series_rows = [&](std::size_t s) {
     std::vector<const SweepTable::Row*> rows;
     for (const auto& r : t.rows)
-      if (r.series == s) rows.push_back(&r);
+      if (r.series == s && r.invalid.empty()) rows.push_back(&r);
     return rows;
   };
-  const std::string objects = t.rows.empty() ? "0" : fmt::format("{:.0f}", t.rows.front().values[column(t, "objects")]);
+  const std::string objects = t.rows.empty() ? "0" : fmt::format("{:.0f}", first_assessed(t).values[column(t, "objects")]);
   // Each plane's three columns (plane_NAME_hazardous_per_km, _low, _high), in the planes' order.
   std::vector<std::size_t> plane_columns;
   const std::string suffix = "_hazardous_per_km";
@@ -65,8 +93,8 @@ std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const Sweep
       c.y_log_range(std::max(top * 1e-10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9))), top);
     }
     c.caption(fmt::format("Bars: 95 % intervals (Fay and Feuer's, for the strata's weighted counts), {} objects per point; a "
-                          "zero is drawn on the axis's floor.",
-                          objects));
+                          "zero is drawn on the axis's floor.{}",
+                          objects, left_out(spec, t)));
     out.emplace_back(fmt::format("plane-{}", i + 1), c.svg());
   }
   // The hazard distance, a chart per direction: a colour per series, the estimate solid with
@@ -87,7 +115,7 @@ std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const Sweep
     d.y_range(0, 1.1 * farthest + 1e-9);
     d.caption("Solid with markers: the estimate; dashed: the conservative distance (on the density's 95 % upper bound). At the deck's "
               "edge where hazardous impacts stay below the acceptable density everywhere beyond it; the CSV flags a distance beyond "
-              "the range.");
+              "the range." + left_out(spec, t));
     out.emplace_back("hazard-distance-" + t.directions[k], d.svg());
   }
   report::Chart th(spec.title + ": objects thrown", spec.x.info.axis_title, "objects thrown per km mowed");
@@ -96,7 +124,7 @@ std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const Sweep
     for (const auto* r : series_rows(s)) x.push_back(r->x), y.push_back(r->values[column(t, "thrown_per_km")]);
     th.line(x, y, report::palette(s), t.series_labels[s].empty() ? "thrown per km" : t.series_labels[s]);
   }
-  th.caption("Objects the blades threw per km mowed (every kind).");
+  th.caption("Objects the blades threw per km mowed (every kind)." + left_out(spec, t));
   out.emplace_back("thrown", th.svg());
   return out;
 }
@@ -108,7 +136,7 @@ std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& s
   auto series_rows = [&](std::size_t s) {
     std::vector<const SweepTable::Row*> rows;
     for (const auto& r : t.rows)
-      if (r.series == s) rows.push_back(&r);
+      if (r.series == s && r.invalid.empty()) rows.push_back(&r);
     return rows;
   };
   if (t.kind == SweepTable::Kind::Hazard) return hazard_sweep_charts(spec, t);
@@ -126,8 +154,8 @@ std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& s
     }
     chart.hline(t.required_pass_probability, "#c62828", fmt::format("required {:g}", t.required_pass_probability));
     chart.y_range(0, 1.05);
-    chart.caption(fmt::format("Bands and bars: Wilson 95 % intervals, {} replicates per point.",
-                              t.rows.empty() ? 0 : static_cast<long long>(t.rows.front().values[0])));
+    chart.caption(fmt::format("Bands and bars: Wilson 95 % intervals, {} replicates per point.{}",
+                              t.rows.empty() ? 0 : static_cast<long long>(first_assessed(t).values[0]), left_out(spec, t)));
     out.emplace_back("pass-probability", chart.svg());
     // Each criterion's share per point: the mean and the 5-95 % range of single tests, and
     // its limit, so the margin to the limit shows, not only P(pass)'s jump.
@@ -149,12 +177,12 @@ std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& s
         c.band(x, yl, yh, report::palette(s), "");
         c.line(x, y, report::palette(s), label);
       }
-      const double lim = t.rows.empty() ? 0 : 100 * t.rows.front().values[limit];
+      const double lim = t.rows.empty() ? 0 : 100 * first_assessed(t).values[limit];
       c.hline(lim, "#c62828", fmt::format("limit {:g} %", lim));
       c.y_range(0, 1.1 * std::max(top, lim) + 1e-9);
       c.caption(
           "Line: mean share over the replicates; band: 5-95 % range of the share in single "
-          "tests; dashed: the criterion's limit.");
+          "tests; dashed: the criterion's limit." + left_out(spec, t));
       out.emplace_back("share-" + name, c.svg());
     }
     return out;

@@ -64,19 +64,32 @@ InputError point_error(const SweepSpec& spec, const Point& p, const std::string&
   return InputError(spec.source, std::nullopt, "sweep point", at, what);
 }
 
+// A point the sweep cannot assess (the reader refuses what its settings make of the base,
+// or its run is invalid): a J232 or field sweep records it and goes on; an impact sweep stops.
+struct InvalidPoint {
+  explicit InvalidPoint(InputError e, std::optional<InputError> r = std::nullopt) : error(std::move(e)), reader(std::move(r)) {}
+  InputError error;                  // naming the point
+  std::optional<InputError> reader;  // the reader's own refusal, when it was that
+};
+
 // The base with a point's settings: file keys into the document, which is then read
 // (with all the reader's checks), then the named parameters onto what was read.
 template <class Input, class Read>
 Input prepare(const SweepSpec& spec, const Point& p, const toml::table& base, Read read) {
   toml::table doc = base;
   for (const auto* s : p.settings) apply_to_document(*s, doc, spec.source);
-  Input input = read(doc, spec.base);
+  std::optional<Input> input;
   try {
-    for (const auto* s : p.settings) apply(*s, input);
-  } catch (const std::invalid_argument& e) {
-    throw point_error(spec, p, e.what());
+    input.emplace(read(doc, spec.base));
+  } catch (const InputError& e) {  // the point's settings make a scenario the reader refuses
+    throw InvalidPoint(point_error(spec, p, e.what()), e);
   }
-  return input;
+  try {
+    for (const auto* s : p.settings) apply(*s, *input);
+  } catch (const std::invalid_argument& e) {
+    throw InvalidPoint(point_error(spec, p, e.what()));
+  }
+  return std::move(*input);
 }
 
 std::vector<double> impact_point(const SweepSpec& spec, const Point& p, const toml::table& base) {
@@ -119,7 +132,7 @@ std::vector<double> assessment_point(const SweepSpec& spec, const Point& p, cons
   const assess::Assessment a = assess::run_assessment(sim, threads);
   const assess::Summary sum = assess::summarise(a, sc);
   // A point where the test did not really happen has no P(pass) to plot.
-  if (!sum.validity.valid) throw point_error(spec, p, "the simulated test is invalid here: " + sum.validity.reasons.front());
+  if (!sum.validity.valid) throw InvalidPoint(point_error(spec, p, "the simulated test is invalid here: " + sum.validity.reasons.front()));
   required = sum.required;
   std::vector<double> v{static_cast<double>(sum.replicates),
                         sum.pass.estimate,
@@ -159,17 +172,18 @@ std::vector<double> hazard_point(const SweepSpec& spec, const Point& p, const to
   try {
     made.emplace(sc);
   } catch (const InputError& e) {  // what the point's settings made of the field (no size can reach a blade, say)
-    throw point_error(spec, p, e.what());
+    throw InvalidPoint(point_error(spec, p, e.what()));
   }
   const field::FieldSimulator& sim = *made;
   const field::HazardRun run = field::run_hazard(sim, threads);
   const field::HazardSummary sum = field::summarise(sim, run);
   // A run with too many objects cut off by its limits has no hazard to plot.
-  if (!sum.valid) throw point_error(spec, p, "the hazard run is invalid here: " + sum.invalid_reason);
+  if (!sum.valid) throw InvalidPoint(point_error(spec, p, "the hazard run is invalid here: " + sum.invalid_reason));
   std::vector<std::string> planes, directions;
   for (const auto& pl : sum.planes) planes.push_back(pl.plane.name);
   for (const auto& d : sum.directions) directions.push_back(d.direction);
-  if (t.rows.empty() && t.planes.empty() && t.directions.empty()) {
+  const bool first = std::none_of(t.rows.begin(), t.rows.end(), [](const SweepTable::Row& r) { return r.invalid.empty(); });
+  if (first && t.planes.empty() && t.directions.empty()) {  // the first point assessed names the columns
     t.planes = planes, t.directions = directions;
     for (const auto& d : directions)
       for (const char* c : {"hazard_distance_m", "hazard_distance_upper_m", "beyond_range", "upper_beyond_range"})
@@ -247,14 +261,25 @@ SweepTable run_sweep(const SweepSpec& spec, int threads, SweepProgress* progress
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Point& p = all[i];
     const Setting& x = *p.settings.back();
-    SweepTable::Row row{p.series, t.series_labels[p.series], x.text, display(x), {}};
-    switch (t.kind) {
-      case SweepTable::Kind::Impact: row.values = impact_point(spec, p, base); break;
-      case SweepTable::Kind::Assessment: row.values = assessment_point(spec, p, base, threads, t.required_pass_probability); break;
-      case SweepTable::Kind::Hazard: row.values = hazard_point(spec, p, base, threads, t); break;
+    SweepTable::Row row{p.series, t.series_labels[p.series], x.text, display(x), {}, {}};
+    try {
+      switch (t.kind) {
+        case SweepTable::Kind::Impact: row.values = impact_point(spec, p, base); break;
+        case SweepTable::Kind::Assessment: row.values = assessment_point(spec, p, base, threads, t.required_pass_probability); break;
+        case SweepTable::Kind::Hazard: row.values = hazard_point(spec, p, base, threads, t); break;
+      }
+    } catch (const InvalidPoint& e) {
+      if (t.kind == SweepTable::Kind::Impact) throw e.reader ? *e.reader : e.error;  // an impact is computed, not simulated: the spec is at fault
+      row.invalid = e.error.what();
     }
     t.rows.push_back(std::move(row));
     if (progress) progress->point(i + 1, all.size());
+  }
+  // Not one point assessed: nothing to draw, and likely the sweep's own fault.
+  if (std::all_of(t.rows.begin(), t.rows.end(), [](const SweepTable::Row& r) { return !r.invalid.empty(); })) {
+    const auto first = std::find_if(t.rows.begin(), t.rows.end(), [](const SweepTable::Row& r) { return !r.invalid.empty(); });
+    if (first != t.rows.end())
+      throw InputError(spec.source, std::nullopt, "sweep", spec.name, "no point could be assessed; the first: " + first->invalid);
   }
   return t;
 }

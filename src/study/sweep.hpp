@@ -63,9 +63,17 @@ struct SweepTable {
     std::string series_label;  // "700 rpm, 16 lb" ("" with no series)
     std::string x_text;
     double x = 0;  // in the axis' display unit
-    std::vector<double> values;
+    std::vector<double> values;  // empty at a point not assessed
+    // Why the point has no values (a J232 or field sweep's point the reader refused, or whose
+    // run was invalid: too many nails or objects cut off); empty: assessed. The sweep goes on.
+    std::string invalid;
   };
   std::vector<Row> rows;
+  bool any_invalid() const {
+    for (const auto& r : rows)
+      if (!r.invalid.empty()) return true;
+    return false;
+  }
   std::vector<std::string> series_labels;
   double required_pass_probability = 0;
   // Hazard sweeps: the planes' names and the directions, in their columns' order.
