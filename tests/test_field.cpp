@@ -179,50 +179,67 @@ double ks_uniform(std::vector<double> u) {
 TEST_CASE("field: what holds a stone up: the share that reaches and the draws, against an independent quadrature", "[field]") {
   // kStones (lognormal 30 mm, spread 1.6, 10-70 mm, sunk 20 %) under the 2-in blade (its
   // lower face 3 mm lower), the skirt's foot 3 in up: a stone of size d reaches when its
-  // support b puts its top b + 0.8 d between the face and the foot. b is exponential of mean
-  // 12 mm. The share, the size's distribution and the support's, worked out here by direct
-  // quadrature over d (not by the simulator's grid and envelope).
+  // support b puts its top b + 0.8 d between the face and the foot. b is exponential (or
+  // half-normal) of mean 12 mm. The share, the size's distribution and the support's, worked
+  // out here by direct quadrature over d (not by the simulator's grid and envelope).
   const double mean = 0.012, face = 2 * units::inch - 0.003, foot = 3 * units::inch;
-  const auto s = read(supported_stones(mean));
-  const field::FieldSimulator sim(s);
-  const auto band_of = [&](double d) { return std::array<double, 2>{std::max(0.0, face - 0.8 * d), foot - 0.8 * d}; };
-  const auto reach = [&](double d) {
-    const auto b = band_of(d);
-    return b[1] > b[0] ? std::exp(-b[0] / mean) - std::exp(-b[1] / mean) : 0.0;
-  };
-  const boost::math::normal_distribution<double> z;
-  const double sl = std::log(1.6);
-  const auto pdf = [&](double d) { return boost::math::pdf(z, std::log(d / 0.030) / sl) / (d * sl); };
-  const double whole = boost::math::cdf(z, std::log(0.070 / 0.030) / sl) - boost::math::cdf(z, std::log(0.010 / 0.030) / sl);
-  constexpr int kSteps = 200000;
-  std::vector<double> sizes(kSteps), cumulative(kSteps + 1, 0.0);
-  for (int i = 0; i < kSteps; ++i) {
-    const double d = 0.010 + (0.060 * (i + 0.5)) / kSteps;  // midpoint rule
-    sizes[static_cast<std::size_t>(i)] = d;
-    cumulative[static_cast<std::size_t>(i) + 1] = cumulative[static_cast<std::size_t>(i)] + pdf(d) * reach(d) * 0.060 / kSteps;
-  }
-  CHECK(sim.reach_share(0) == Approx(cumulative.back() / whole).epsilon(1e-6));
-  // The old model (every stone on the plane) reaches fewer: only those taller than the face.
-  CHECK(sim.reach_share(0) > field::FieldSimulator(read(kMower + kStones)).reach_share(0));
+  for (const bool half_normal : {false, true}) {
+    INFO((half_normal ? "half-normal" : "exponential") << " supports");
+    std::string text = supported_stones(mean);
+    if (half_normal) text.replace(text.find("support_height"), 0, "support_shape = \"half_normal\"\n");
+    const auto s = read(text);
+    REQUIRE((s.field.support_shape == scenario::FieldSpec::SupportShape::HalfNormal) == half_normal);
+    const field::FieldSimulator sim(s);
+    // P(b > x): exp(-x / mean), or for the half-normal of that mean (sigma = mean sqrt(pi/2))
+    // 2 (1 - Phi(x / sigma)), from Boost's normal distribution (not the erfc the code uses).
+    const boost::math::normal_distribution<double> z;
+    const double sigma = mean * std::sqrt(units::pi / 2);
+    const auto tail = [&](double x) { return half_normal ? 2 * boost::math::cdf(boost::math::complement(z, x / sigma)) : std::exp(-x / mean); };
+    const auto band_of = [&](double d) { return std::array<double, 2>{std::max(0.0, face - 0.8 * d), foot - 0.8 * d}; };
+    const auto reach = [&](double d) {
+      const auto b = band_of(d);
+      return b[1] > b[0] ? tail(b[0]) - tail(b[1]) : 0.0;
+    };
+    const double sl = std::log(1.6);
+    const auto pdf = [&](double d) { return boost::math::pdf(z, std::log(d / 0.030) / sl) / (d * sl); };
+    const double whole = boost::math::cdf(z, std::log(0.070 / 0.030) / sl) - boost::math::cdf(z, std::log(0.010 / 0.030) / sl);
+    constexpr int kSteps = 200000;
+    std::vector<double> sizes(kSteps), cumulative(kSteps + 1, 0.0);
+    for (int i = 0; i < kSteps; ++i) {
+      const double d = 0.010 + (0.060 * (i + 0.5)) / kSteps;  // midpoint rule
+      sizes[static_cast<std::size_t>(i)] = d;
+      cumulative[static_cast<std::size_t>(i) + 1] = cumulative[static_cast<std::size_t>(i)] + pdf(d) * reach(d) * 0.060 / kSteps;
+    }
+    CHECK(sim.reach_share(0) == Approx(cumulative.back() / whole).epsilon(1e-6));
+    // The old model (every stone on the plane) reaches fewer: only those taller than the face.
+    CHECK(sim.reach_share(0) > field::FieldSimulator(read(kMower + kStones)).reach_share(0));
 
-  // Each drawn stone's size and support, through their distribution functions (probability
-  // integral transform): uniform if the draws follow the distributions above.
-  std::vector<double> u_size, u_support;
-  for (std::uint64_t i = 0; i < 3000; ++i) {
-    const auto e = sim.simulate(i).encounter;
-    const double d = e.body.diameter;
-    REQUIRE_FALSE(e.lifted);  // no updraft
-    const auto b = band_of(d);
-    REQUIRE(e.support >= b[0] - 1e-12);
-    REQUIRE(e.support <= b[1] + 1e-12);
-    CHECK(e.height == Approx(e.support + 0.5 * d - 0.2 * d));
-    const std::size_t at = static_cast<std::size_t>(std::lower_bound(sizes.begin(), sizes.end(), d) - sizes.begin());
-    u_size.push_back(cumulative[std::min(at, sizes.size())] / cumulative.back());
-    u_support.push_back((1 - std::exp(-(e.support - b[0]) / mean)) / (1 - std::exp(-(b[1] - b[0]) / mean)));
+    // Each drawn stone's size and support, through their distribution functions (probability
+    // integral transform): uniform if the draws follow the distributions above.
+    std::vector<double> u_size, u_support;
+    for (std::uint64_t i = 0; i < 3000; ++i) {
+      const auto e = sim.simulate(i).encounter;
+      const double d = e.body.diameter;
+      REQUIRE_FALSE(e.lifted);  // no updraft
+      const auto b = band_of(d);
+      REQUIRE(e.support >= b[0] - 1e-12);
+      REQUIRE(e.support <= b[1] + 1e-12);
+      CHECK(e.height == Approx(e.support + 0.5 * d - 0.2 * d));
+      const std::size_t at = static_cast<std::size_t>(std::lower_bound(sizes.begin(), sizes.end(), d) - sizes.begin());
+      u_size.push_back(cumulative[std::min(at, sizes.size())] / cumulative.back());
+      u_support.push_back((tail(b[0]) - tail(e.support)) / (tail(b[0]) - tail(b[1])));
+    }
+    // Kolmogorov's 1 % critical value 1.63 / sqrt(n), and a grid of 60 um: 0.03 at n = 3000.
+    CHECK(ks_uniform(u_size) < 1.63 / std::sqrt(3000.0));
+    CHECK(ks_uniform(u_support) < 1.63 / std::sqrt(3000.0));
   }
-  // Kolmogorov's 1 % critical value 1.63 / sqrt(n), and a grid of 60 um: 0.03 at n = 3000.
-  CHECK(ks_uniform(u_size) < 1.63 / std::sqrt(3000.0));
-  CHECK(ks_uniform(u_support) < 1.63 / std::sqrt(3000.0));
+  // A shape with no supports to shape is refused, naming the key.
+  std::string none = kMower + kStones;
+  none.replace(none.find("support_height"), 0, "support_shape = \"half_normal\"\n");
+  CHECK_THAT(error_of(none), Catch::Contains("field.support_shape") && Catch::Contains("support_height above 0"));
+  std::string odd = supported_stones(mean);
+  odd.replace(odd.find("support_height"), 0, "support_shape = \"uniform\"\n");
+  CHECK_THAT(error_of(odd), Catch::Contains("field.support_shape") && Catch::Contains("uniform"));
 }
 
 TEST_CASE("field: with supports, the share that reaches falls smoothly with the cut, and small stones are not refused", "[field]") {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <boost/math/distributions/normal.hpp>
+#include <boost/math/special_functions/erf.hpp>
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -171,6 +172,12 @@ FieldSimulator::SupportBand FieldSimulator::held_up(std::size_t kind, double siz
   band.from = std::max(0.0, scenario_.lowest_blade_face() - top);
   band.to = front_gap ? *front_gap - top : HUGE_VAL;
   if (!(band.to > band.from)) return band;
+  if (scenario_.field.support_shape == scenario::FieldSpec::SupportShape::HalfNormal) {
+    // Half-normal heights of this mean (sigma = mean sqrt(pi/2)): P(b > x) = erfc(x / (sigma sqrt 2)).
+    const double scale = mean * std::sqrt(units::pi);  // sigma sqrt 2
+    band.probability = std::erfc(band.from / scale) - (band.to < HUGE_VAL ? std::erfc(band.to / scale) : 0.0);
+    return band;
+  }
   // Exponential heights of this mean: P(from < b < to) = exp(-from / mean) - exp(-to / mean).
   band.probability = std::exp(-band.from / mean) - (band.to < HUGE_VAL ? std::exp(-band.to / mean) : 0.0);
   return band;
@@ -229,7 +236,15 @@ Encounter FieldSimulator::sample(std::size_t kind, random::Stream& rng) const {
     // exponential's tail beyond `from` is `from` plus the same exponential: exact).
     const SupportBand band = held_up(e.kind, size);
     const double mean = scenario_.field.support_height;
-    e.support = band.from - mean * std::log1p(rng.uniform() * std::expm1(-(band.to - band.from) / mean));
+    if (scenario_.field.support_shape == scenario::FieldSpec::SupportShape::HalfNormal) {
+      // By inversion of the half-normal's tail between the band's ends.
+      const double scale = mean * std::sqrt(units::pi), upper = std::erfc(band.from / scale);
+      const double lower = band.to < HUGE_VAL ? std::erfc(band.to / scale) : 0.0;
+      const double q = upper - rng.uniform() * (upper - lower);
+      e.support = std::clamp(q > 0 ? scale * boost::math::erfc_inv(q) : band.from, band.from, band.to);
+    } else {
+      e.support = band.from - mean * std::log1p(rng.uniform() * std::expm1(-(band.to - band.from) / mean));
+    }
   }
   e.height = e.support + 0.5 * size - o.embedment * size;  // its centre, on its support, sunk by its embedment
   return e;

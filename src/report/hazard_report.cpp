@@ -93,11 +93,12 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
                "scenario (ground speed an estimate unless given)"});
   if (f.support_height > 0)
     a.push_back({fmt::format("Each object rests on what holds it up (crowns and clods of the ground, thatch, clumps): its resting "
-                             "level above the plane the wheels ride on exponential with mean {:.3g} mm, drawn for each object. One "
+                             "level above the plane the wheels ride on {} with mean {:.3g} mm, drawn for each object. One "
                              "whose top then stands above the blades' lower face can be struck; one standing at or above the deck's "
                              "front gap is pushed aside by the deck, not struck; the turf the thrown objects meet is that plane",
+                             f.support_shape == scenario::FieldSpec::SupportShape::HalfNormal ? "half-normal" : "exponential",
                              1e3 * f.support_height),
-                 "scenario (field.support_height: an estimate; docs/model.md §9)"});
+                 "scenario (field.support_height and support_shape: estimates; docs/model.md §9)"});
   else
     a.push_back({"Every object lies on the plane the wheels ride on (field.support_height 0): only those standing above the blades' "
                  "lower face, or lifted, are struck",
@@ -264,6 +265,7 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
         {"passes_per_season", f.passes_per_season},
         {"people_per_pass", f.people_per_pass},
         {"support_height_mean_m", f.support_height},
+        {"support_shape", f.support_shape == scenario::FieldSpec::SupportShape::HalfNormal ? "half_normal" : "exponential"},
         {"cut_width_m", sum.cut_width},
         {"objects_met_per_km", sum.objects_per_km},
         {"objects_that_can_reach_a_blade_per_km", sum.reaching_per_km},

@@ -346,6 +346,10 @@ struct FieldSpec {
   // for each object from an exponential distribution of this mean (m; an estimate, docs/model.md
   // §9). 0: every object lies on that plane.
   double support_height = 0.010;
+  // The supports' distribution of that mean: exponential (many low, a long tail of tall
+  // ones), or half-normal (fewer tall ones: sigma = mean sqrt(pi / 2)). Not surveyed: at high
+  // cuts the tail decides how many reach (docs/model.md §9.1).
+  enum class SupportShape { Exponential, HalfNormal } support_shape = SupportShape::Exponential;
   std::vector<FieldObjectSpec> objects;
   std::vector<FieldPlaneSpec> planes;
   double range = 100;                         // m: the ground tallied out to this in every direction

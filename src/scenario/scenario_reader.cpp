@@ -581,6 +581,10 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
   const std::optional<double> front_gap = s.front_gap();
   f.updraft_speed = t.quantity_or("updraft_speed", Kind::Speed, f.updraft_speed, Range::between(0, 100));
   f.support_height = t.quantity_or("support_height", Kind::Length, f.support_height, Range::between(0, 0.2));
+  const std::string shape = t.string_or("support_shape", "exponential", {"exponential", "half_normal"});
+  if (f.support_height == 0 && t.has("support_shape"))
+    throw t.error("support_shape", "a support_height above 0: with none, every object lies on the plane and there is no shape to give");
+  f.support_shape = shape == "half_normal" ? FieldSpec::SupportShape::HalfNormal : FieldSpec::SupportShape::Exponential;
   const auto tables = t.array_of_tables("objects", 16);
   if (tables.empty())
     throw t.error("objects", "missing: a field without objects throws nothing; expected [[field.objects]] tables with kind, "

@@ -321,6 +321,10 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
                            "estimate: no survey of what holds objects up on a mowed verge (ground roughness, thatch, clumps); "
                            "within a factor of 2, uniform in its logarithm",
                            "loguniform"));
+  if (f.support_height > 0)
+    in.push_back(model_form("field.support_shape", {"exponential", "half_normal"},
+                            "model form: how the supports' heights are spread about their mean (a long tail of tall ones, or "
+                            "fewer); not surveyed, and at high cuts it decides how many objects reach a blade"));
   in.insert(in.end(), kinds.begin(), kinds.end());
   in.push_back(estimated("bevel_angle", "20 deg", "45 deg", "estimate: mower blades are ground to about 30 deg; no figure for industrial cutters"));
   in.push_back(estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"));
