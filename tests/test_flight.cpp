@@ -4,8 +4,14 @@
 #include <cmath>
 #include <random>
 
+#include <toml++/toml.h>
+
 #include "flight/deck_outline.hpp"
+#include "scenario/ground_kinds.hpp"
+#include "scenario/input_error.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "flight/nail_flight.hpp"
+#include "flight/penetration.hpp"
 #include "flight/plane_touch.hpp"
 #include "flight/trajectory.hpp"
 #include "scene/scene.hpp"
@@ -461,6 +467,89 @@ TEST_CASE("flight: a stone skidding from 60 m/s stops where friction and air dra
                      << u0 * u0 / (2 * mu * g) << " m)");
     CHECK(r.fate != flight::Fate::CutOff);
     CHECK(skid == Approx(hand).epsilon(0.01));
+  }
+}
+
+TEST_CASE("flight: a nail meeting soil point-first and fast sinks in and stays; flat, slow or on turf it bounces", "[flight][ground]") {
+  // Young's equation by hand for a 2 g, 2.51 mm nail at 30 m/s into S = 6 (bare soil), N =
+  // 0.935: 0.0008 * 6 * 0.935 * 0.46 * 0.002^0.15 * (0.002 / 4.948e-6)^0.7 * ln(1 + 0.1935).
+  const double m = 0.002, d = 0.00251, area = units::pi / 4 * d * d;
+  const double hand = 0.0008 * 6 * 0.935 * 0.46 * std::pow(m, 0.15) * std::pow(m / area, 0.7) * std::log(1 + 2.15e-4 * 900);
+  CHECK(flight::young_depth(6, m, d, 30) == Approx(hand).epsilon(1e-12));
+  CHECK(hand == Approx(0.0096).epsilon(0.01));  // about 10 mm: deeper than two shank diameters
+  CHECK(flight::young_depth(6, m, d, 5) < 2 * d);  // at 5 m/s, 0.3 mm: it does not stay
+  CHECK(flight::young_depth(0, m, d, 30) == 0);
+  CHECK(flight::young_depth(6, m, d, 80) > flight::young_depth(6, m, d, 60));  // the high-speed branch goes on rising
+  const auto ground = flat_ground(50.0);
+  const auto nail = projectile::Projectile::capsule(0.0508, d, m);
+  struct Case {
+    const char* kind;
+    double speed;
+    bool point_first, stays;
+  };
+  for (const Case c : {Case{"bare_soil", 30, true, true}, Case{"bare_soil", 30, false, false}, Case{"bare_soil", 5, true, false},
+                       Case{"turf", 30, true, false}, Case{"turf_on_topsoil", 30, true, true}}) {
+    INFO(c.kind << " at " << c.speed << " m/s, " << (c.point_first ? "point-first" : "flat"));
+    const std::string file = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted.toml";
+    toml::table doc = toml::parse_file(file);
+    doc.insert_or_assign("ground", toml::table{{"kind", c.kind}});
+    const auto s = scenario::read_scenario(doc, file);
+    REQUIRE(s.ground.kind == c.kind);
+    flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+    flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
+    std::vector<flight::FlightEvent> events;
+    ctx.events = &events;
+    flight::Body b;
+    // Falling at 60 deg to the turf along its axis (point-first), or lying flat across its path.
+    const Vec3 dir(std::cos(units::pi / 3), 0, -std::sin(units::pi / 3));
+    b.axis = c.point_first ? dir : Vec3(0, 1, 0);
+    b.position = {0, 0, (c.point_first ? 0.5 * nail.length * std::sin(units::pi / 3) : 0.0) + 0.01};
+    b.velocity = c.speed * dir;
+    random::EventDraws rng(1, 0, 0);
+    const auto r = flight::fly(b, nail, flight::Drag{}, ctx, {}, {}, rng);
+    int bounces = 0;
+    for (const auto& e : events) bounces += e.kind == flight::FlightEvent::Kind::Bounce;
+    if (c.stays) {
+      CHECK(bounces == 0);
+      CHECK(r.flight_time < 0.01);
+      CHECK(r.end_position.norm() < 0.1);  // where it met the soil
+    } else {
+      CHECK(bounces > 0);
+    }
+  }
+}
+
+TEST_CASE("ground kinds: each sets its figures, a key given overrides its kind's, and turf is the earlier ground", "[flight][ground][input]") {
+  const std::string file = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted.toml";
+  const auto with_ground = [&](toml::table ground) {
+    toml::table doc = toml::parse_file(file);
+    doc.insert_or_assign("ground", std::move(ground));
+    return scenario::read_scenario(doc, file);
+  };
+  // The default kind's row is the GroundSpec's own defaults (the earlier releases' turf).
+  const scenario::GroundSpec defaults;
+  const auto* turf = scenario::ground_kind("turf");
+  REQUIRE(turf);
+  CHECK(turf->restitution == defaults.restitution);
+  CHECK(turf->friction == defaults.friction);
+  CHECK(turf->roughness_deg * units::degree == Approx(defaults.roughness).epsilon(1e-15));
+  CHECK(turf->rolling_resistance == defaults.rolling_resistance);
+  CHECK(turf->penetrability == defaults.penetrability);
+  for (const auto& k : scenario::kGroundKinds) {
+    const auto s = with_ground(toml::table{{"kind", k.name}});
+    CHECK(s.ground.restitution == k.restitution);
+    CHECK(s.ground.friction == k.friction);
+    CHECK(s.ground.penetrability == k.penetrability);
+    CHECK(s.ground.max_restitution >= s.ground.restitution);
+  }
+  const auto over = with_ground(toml::table{{"kind", "concrete"}, {"friction", 0.3}});
+  CHECK(over.ground.friction == 0.3);
+  CHECK(over.ground.restitution == scenario::ground_kind("concrete")->restitution);
+  try {
+    with_ground(toml::table{{"kind", "gravel"}});
+    FAIL("refused");
+  } catch (const scenario::InputError& e) {
+    CHECK_THAT(std::string(e.what()), Catch::Contains("ground.kind") && Catch::Contains("gravel") && Catch::Contains("bare_soil"));
   }
 }
 

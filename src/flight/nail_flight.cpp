@@ -8,6 +8,7 @@
 #include "board/board.hpp"
 #include "invariant/check.hpp"
 #include "flight/face_touch.hpp"
+#include "flight/penetration.hpp"
 #include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"
 #include "units/quantity.hpp"
@@ -113,7 +114,8 @@ constexpr double kWedgeGap = 1e-8;  // s
 constexpr double kSustainedGap = 1e-5;   // s between the last two of them
 constexpr double kSlideBelow = 0.5;  // m/s: a rebound weaker than this does not leave the ground
 constexpr int kMaxSlideParts = 10000;
-constexpr double kRollingSlip = 1e-6;  // m/s: a ball whose contact slips slower than this rolls  // parts of one slide (a tenth of the speed each where drag counts: about 60 from 60 m/s)
+constexpr double kRollingSlip = 1e-6;
+constexpr double kSinksDeeper = 2.0;  // shank diameters: a nail sunk deeper stays (an estimate)  // m/s: a ball whose contact slips slower than this rolls  // parts of one slide (a tenth of the speed each where drag counts: about 60 from 60 m/s)
 constexpr double kMaxChord = 0.5;    // m
 // A lying nail slides with its lowest point this far above the ground (clear of its faces by
 // more than the touch tolerance, so that sliding along them is no touch).
@@ -293,6 +295,10 @@ struct NailFlight {
   void bounced(const scene::Hit& hit, double approach, const Vec3& point, double speed_in, double energy_in, int together);
   void bounce_off(const Vec3& n, double e, double mu, const Vec3* arm, double surface_inverse_mass = 0.0);
   bool slide(const scene::Hit& hit);
+  // A nail meeting soil point-first (touching at an end, its axis within 45 deg of the
+  // surface's inward normal, moving along it toward the point) that Young's equation sinks
+  // deeper than two shank diameters stays there (docs/model.md §5.3a). Returns true when it did.
+  bool sinks_in(const SurfaceMaterial& material, const Vec3& n, const Vec3& arm);
   // A sphere that rolls on the ground rather than skids (FlightContext::rolls).
   bool rolling() const { return ctx.rolls && nail.half_segment() == 0; }
   bool after_bounce(const scene::Hit& hit);
@@ -588,6 +594,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   }
   if (ctx.observer && hit.surface == scene::Surface::Ground)
     ctx.observer->met_ground(b.time, arm ? Vec3(b.position + *arm) : hit.point, b.velocity, in_deck);
+  if (material.penetrability > 0 && arm && sinks_in(material, n, *arm)) return false;
   // The facet the nail meets: on a rough surface the local normal, tilted at random; one it
   // would meet from behind is no facet it can meet, and is drawn again.
   Vec3 facet = n;
@@ -769,6 +776,25 @@ void NailFlight::lie_down(const Vec3& up, const Vec3& on) {
     if (worst <= 0) break;
     b.position += (worst + kLyingGap) * away;
   }
+}
+
+bool NailFlight::sinks_in(const SurfaceMaterial& material, const Vec3& n, const Vec3& arm) {
+  const double h = nail.half_segment();
+  if (!(h > 0)) return false;  // a sphere (a field's stone) is blunt: it bounces
+  const double along = arm.dot(b.axis);
+  if (std::abs(along) < h - 1e-9) return false;  // touching along its shank, not at an end
+  const Vec3 point_dir = along > 0 ? b.axis : Vec3(-b.axis);
+  if (point_dir.dot(-n) < std::cos(0.25 * units::pi)) return false;  // more flat than point-first
+  const double speed = (b.velocity + b.spin.cross(arm)).dot(point_dir);
+  if (!(speed > 0)) return false;
+  const double depth = young_depth(material.penetrability, mass, nail.diameter, speed);
+  if (depth < kSinksDeeper * nail.diameter) return false;
+  const double before = ctx.events ? energy() : 0.0;
+  b.velocity = Vec3::Zero(), b.spin = Vec3::Zero();
+  ended_at_rest = true;
+  touch(Touch::Ground);
+  if (FlightEvent* e = log(FlightEvent::Kind::Rest, b.position + arm, n, speed)) e->energy_before = before, e->energy_after = energy();
+  return true;
 }
 
 // On the ground after `hit` with too little rebound to fly: slides to rest, or into a wall

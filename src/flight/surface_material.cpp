@@ -16,6 +16,7 @@ SurfaceMaterials::SurfaceMaterials(const scenario::Scenario& s, const std::vecto
   turf.friction = s.ground.friction;
   turf.roughness = s.ground.roughness;
   turf.holds_up = true;
+  turf.penetrability = s.ground.penetrability;
   kinds_[static_cast<std::size_t>(scene::Surface::Ground)] = turf;
   SurfaceMaterial board;
   board.response = SurfaceMaterial::Response::Board;

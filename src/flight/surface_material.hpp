@@ -34,6 +34,7 @@ struct SurfaceMaterial {
   double roughness = 0.0;  // rad: std. dev. of the local normal's tilt (0: smooth)
   double openness = 0.0, pass_speed_factor = 1.0;  // a curtain's
   bool holds_up = false;  // a nail can slide and come to rest on it
+  double penetrability = 0.0;  // Young's S of soil a point-first nail sinks into (0: none)
   // A flap (Response::Flap): a plate hinged at `hinge_height` with moment of inertia
   // `flap_inertia` about its hinge (kg m^2, of the width that swings as one). Struck at
   // depth d below the hinge along its normal it moves as a mass I / d^2 there.

@@ -1,5 +1,7 @@
 #include "report/scenario_json.hpp"
 
+#include "scenario/ground_kinds.hpp"
+
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -246,6 +248,10 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
       {"run", run_json(s.run)},
   };
   if (s.field.present) j["ground"]["rolling_resistance"] = s.ground.rolling_resistance;  // round objects roll on it (nails do not)
+  // (The default kind, turf, with nothing sinking in, is the earlier releases' ground: named
+  // only when it is another, so that results of the same physics read the same.)
+  if (s.ground.kind != "turf") j["ground"]["kind"] = s.ground.kind;
+  if (s.ground.penetrability > 0) j["ground"]["penetrability"] = s.ground.penetrability;
   return j;
 }
 
@@ -362,7 +368,14 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                                  "roughness {:.0f} deg",
                                  s.ground.restitution, s.ground.angle_exponent, s.ground.max_restitution, s.ground.friction,
                                  s.ground.roughness / units::degree),
-               fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)});
+               s.ground.kind == "turf" ? fmt::format("{} (turf: value an estimate; angle law from rockfall data, Wyllie 2014)", params)
+                                       : fmt::format("{} ([ground] kind = \"{}\": {}; angle law from rockfall data, Wyllie 2014)", params,
+                                                     s.ground.kind, scenario::ground_kind(s.ground.kind)->basis)});
+  if (s.ground.penetrability > 0)
+    a.push_back({fmt::format("A nail meeting the ground point-first (at an end, within 45 deg of square on) sinks in by Young's "
+                             "penetration equation, penetrability S {:g}, and stays when that is deeper than two shank diameters",
+                             s.ground.penetrability),
+                 "Young 1997 (SAND97-2426), extrapolated from penetrators of kilograms to a 2 g nail: an estimate (docs/model.md §5.3a)"});
   a.push_back({!s.air.drag      ? std::string(s.field.present ? "Air drag off (conservative: faster objects)" : "Air drag off (conservative: faster nails)")
                : s.field.present ? fmt::format("Air drag on: rho {:g} kg/m3; each object a sphere with its kind's drag coefficient on its "
                                                "cross-section",

@@ -137,7 +137,8 @@ struct HousingSpec {
   std::vector<DeflectorSpec> deflectors;
 };
 
-struct GroundSpec {  // turf
+struct GroundSpec {  // what the mower stands on: `kind` sets the rest (scenario/ground_kinds.hpp)
+  std::string kind = "turf";
   // Normal restitution depends on the impact angle (docs/model.md §5.3): rockfall field
   // data (Wyllie 2014) fit e_n = 19.5 theta^-1.03 (theta in degrees between the path and
   // the surface), so shallow impacts keep more of their normal speed. j232 keeps the
@@ -152,6 +153,10 @@ struct GroundSpec {  // turf
   // slows by this many g once it rolls without slipping (a golf ball on a green about 0.05-0.09;
   // a mowed verge's taller grass more: an estimate). Field scenarios only: nails do not roll.
   double rolling_resistance = 0.3;
+  // Young's penetrability number S of the soil under it (0: a nail is taken not to sink in).
+  // A nail arriving point-first sinks in by Young's equation; deep enough, it stays
+  // (flight/penetration.hpp, docs/model.md §5.3a).
+  double penetrability = 0.0;
   // e_n for an impact whose path makes `angle` (rad, 0-pi/2) with the surface.
   double restitution_at(double angle) const {
     if (angle_exponent == 0.0) return restitution;

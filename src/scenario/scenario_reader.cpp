@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "scenario/blade_input.hpp"
+#include "scenario/ground_kinds.hpp"
 #include "scenario/impact_input.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/scenario_reader.hpp"
@@ -491,6 +492,15 @@ void refuse_what_meshes_replace(const TableReader& root, const std::vector<MeshF
 
 // The scenario's parts, each from its table (keys checked, unknown ones refused).
 void read_ground(const TableReader& g, GroundSpec& ground, bool field) {
+  // The kind first: its figures are the defaults the keys below override.
+  std::vector<std::string> kinds;
+  for (const auto& k : kGroundKinds) kinds.emplace_back(k.name);
+  ground.kind = g.string_or("kind", "turf", kinds);
+  if (const GroundKind* k = ground_kind(ground.kind)) {
+    ground.restitution = k->restitution, ground.friction = k->friction, ground.roughness = k->roughness_deg * units::degree;
+    ground.rolling_resistance = k->rolling_resistance, ground.penetrability = k->penetrability;
+    ground.max_restitution = std::max(ground.max_restitution, ground.restitution);
+  }
   ground.restitution = g.quantity_or("restitution", Kind::Dimensionless, ground.restitution, Range::UnitInterval);
   ground.angle_exponent = g.quantity_or("angle_exponent", Kind::Dimensionless, ground.angle_exponent, Range::between(0, 3));
   ground.max_restitution = g.quantity_or("max_restitution", Kind::Dimensionless, ground.max_restitution, Range::between(0, 0.99));
@@ -501,6 +511,7 @@ void read_ground(const TableReader& g, GroundSpec& ground, bool field) {
   if (!field && g.has("rolling_resistance"))
     throw g.error("rolling_resistance", "a field scenario's ([field]): round objects roll there; the J232 test's nails do not");
   ground.rolling_resistance = g.quantity_or("rolling_resistance", Kind::Dimensionless, ground.rolling_resistance, Range::between(0, 2));
+  ground.penetrability = g.quantity_or("penetrability", Kind::Dimensionless, ground.penetrability, Range::between(0, 100));
   g.refuse_unknown_keys();
 }
 
