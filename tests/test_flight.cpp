@@ -471,25 +471,33 @@ TEST_CASE("flight: a stone skidding from 60 m/s stops where friction and air dra
 }
 
 TEST_CASE("flight: a nail meeting soil point-first and fast sinks in and stays; flat, slow or on turf it bounces", "[flight][ground]") {
-  // Young's equation by hand for a 2 g, 2.51 mm nail at 30 m/s into S = 6 (bare soil), N =
-  // 0.935: 0.0008 * 6 * 0.935 * 0.46 * 0.002^0.15 * (0.002 / 4.948e-6)^0.7 * ln(1 + 0.1935).
-  const double m = 0.002, d = 0.00251, area = units::pi / 4 * d * d;
-  const double hand = 0.0008 * 6 * 0.935 * 0.46 * std::pow(m, 0.15) * std::pow(m / area, 0.7) * std::log(1 + 2.15e-4 * 900);
-  CHECK(flight::young_depth(6, m, d, 30) == Approx(hand).epsilon(1e-12));
-  CHECK(hand == Approx(0.0096).epsilon(0.01));  // about 10 mm: deeper than two shank diameters
+  // Young's equation by hand in its English units for a 2 g (0.004409 lb), 2.51 mm (0.0988 in)
+  // nail at 30 m/s (98.43 ft/s) into S = 6 (bare soil), N = 0.935, K = 0.4 W^0.15:
+  // D = 0.3 S N K (W/A)^0.7 ln(1 + 2e-5 V^2) ft.
+  const double m = 0.002, d = 0.00251;
+  const double w = 0.004409245, a = 3.14159265 / 4 * 0.0988189 * 0.0988189, v = 98.4252;
+  const double hand = 0.3048 * 0.3 * 6 * 0.935 * 0.4 * std::pow(w, 0.15) * std::pow(w / a, 0.7) * std::log(1 + 2e-5 * v * v);
+  CHECK(flight::young_depth(6, m, d, 30) == Approx(hand).epsilon(1e-5));
+  CHECK(hand == Approx(0.0109).epsilon(0.01));  // about 11 mm: deeper than two shank diameters
   CHECK(flight::young_depth(6, m, d, 5) < 2 * d);  // at 5 m/s, 0.3 mm: it does not stay
   CHECK(flight::young_depth(0, m, d, 30) == 0);
-  CHECK(flight::young_depth(6, m, d, 80) > flight::young_depth(6, m, d, 60));  // the high-speed branch goes on rising
+  // The two branches meet at 200 ft/s (60.96 m/s) to 1 % (0.3 ln 1.8 = 0.1763 against 0.178), and the upper goes on rising.
+  CHECK(flight::young_depth(6, m, d, 60.9599) == Approx(flight::young_depth(6, m, d, 60.9601)).epsilon(0.01));
+  CHECK(flight::young_depth(6, m, d, 80) > flight::young_depth(6, m, d, 60));
   const auto ground = flat_ground(50.0);
   const auto nail = projectile::Projectile::capsule(0.0508, d, m);
+  enum class Lead { Point, Head, Flat, Yawed };
   struct Case {
     const char* kind;
     double speed;
-    bool point_first, stays;
+    Lead lead;
+    bool stays;
   };
-  for (const Case c : {Case{"bare_soil", 30, true, true}, Case{"bare_soil", 30, false, false}, Case{"bare_soil", 5, true, false},
-                       Case{"turf", 30, true, false}, Case{"turf_on_topsoil", 30, true, true}}) {
-    INFO(c.kind << " at " << c.speed << " m/s, " << (c.point_first ? "point-first" : "flat"));
+  for (const Case c : {Case{"bare_soil", 30, Lead::Point, true}, Case{"bare_soil", 30, Lead::Flat, false}, Case{"bare_soil", 5, Lead::Point, false},
+                       Case{"bare_soil", 30, Lead::Head, false}, Case{"bare_soil", 30, Lead::Yawed, false}, Case{"turf", 30, Lead::Point, false},
+                       Case{"turf_on_topsoil", 30, Lead::Point, true}, Case{"concrete", 30, Lead::Point, false}}) {
+    const bool point_first = c.lead == Lead::Point || c.lead == Lead::Yawed;
+    INFO(c.kind << " at " << c.speed << " m/s, lead " << static_cast<int>(c.lead));
     const std::string file = std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted.toml";
     toml::table doc = toml::parse_file(file);
     doc.insert_or_assign("ground", toml::table{{"kind", c.kind}});
@@ -500,11 +508,14 @@ TEST_CASE("flight: a nail meeting soil point-first and fast sinks in and stays; 
     std::vector<flight::FlightEvent> events;
     ctx.events = &events;
     flight::Body b;
-    // Falling at 60 deg to the turf along its axis (point-first), or lying flat across its path.
+    // Falling at 60 deg to the turf along its axis, the point (+axis) first, or the head first,
+    // or lying flat across its path; or yawed: the point down at 60 deg but moving at 45 deg
+    // to its axis (Young's equation is for a penetrator moving along its axis).
     const Vec3 dir(std::cos(units::pi / 3), 0, -std::sin(units::pi / 3));
-    b.axis = c.point_first ? dir : Vec3(0, 1, 0);
-    b.position = {0, 0, (c.point_first ? 0.5 * nail.length * std::sin(units::pi / 3) : 0.0) + 0.01};
-    b.velocity = c.speed * dir;
+    b.axis = c.lead == Lead::Point || c.lead == Lead::Yawed ? dir : c.lead == Lead::Head ? Vec3(-dir) : Vec3(0, 1, 0);
+    b.position = {0, 0, (c.lead == Lead::Flat ? 0.0 : 0.5 * nail.length * std::sin(units::pi / 3)) + 0.01};
+    b.velocity = c.lead == Lead::Yawed ? Vec3(c.speed * Vec3(std::cos(units::pi / 3 + units::pi / 4), 0, -std::sin(units::pi / 3 + units::pi / 4))) : Vec3(c.speed * dir);
+    (void)point_first;
     random::EventDraws rng(1, 0, 0);
     const auto r = flight::fly(b, nail, flight::Drag{}, ctx, {}, {}, rng);
     int bounces = 0;
@@ -531,6 +542,7 @@ TEST_CASE("ground kinds: each sets its figures, a key given overrides its kind's
   const auto* turf = scenario::ground_kind("turf");
   REQUIRE(turf);
   CHECK(turf->restitution == defaults.restitution);
+  CHECK(turf->angle_exponent == defaults.angle_exponent);
   CHECK(turf->friction == defaults.friction);
   CHECK(turf->roughness_deg * units::degree == Approx(defaults.roughness).epsilon(1e-15));
   CHECK(turf->rolling_resistance == defaults.rolling_resistance);
@@ -562,6 +574,7 @@ TEST_CASE("flight: a ball slips until it rolls, then rolls to a stop, as an inde
   const auto ground = flat_ground(400.0);
   const double mu = 0.5, rho = 0.3, diameter = 0.05, mass = 2650 * units::pi / 6 * diameter * diameter * diameter;
   const double k = 1.2 * 0.47 * (units::pi / 4 * diameter * diameter) / (2 * mass);
+  for (const double mower_speed : {0.0, 3.0})
   for (const bool with_drag : {false, true}) {
     for (const double u0 : {5.0, 30.0}) {
       double hand = 0;
@@ -594,24 +607,27 @@ TEST_CASE("flight: a ball slips until it rolls, then rolls to a stop, as an inde
       s.ground.rolling_resistance = rho;
       s.run.time_limit = 60;
       flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+      settings.ground_velocity = {-mower_speed, 0, 0};  // in the mower's frame the turf and the air move back
       flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
       ctx.rolls = true;
       std::vector<flight::FlightEvent> events;
       ctx.events = &events;
       flight::Drag drag;
-      drag.on = with_drag, drag.sphere = true, drag.k_normal = k;
+      drag.on = with_drag, drag.sphere = true, drag.k_normal = k, drag.air = {-mower_speed, 0, 0};
       flight::Body b;
       b.position = {0, 0, 0.5 * diameter + 1e-6};
-      b.velocity = {u0, 0, -0.01};  // just landing, skimming the turf
+      b.velocity = {u0 - mower_speed, 0, -0.01};  // just landing, skimming the turf (u0 over the ground)
       random::EventDraws rng(1, 0, 0);
       const auto r = flight::fly(b, projectile::Projectile::sphere(diameter, mass), drag, ctx, {}, {}, rng);
+      const double rolled = r.end_position.x() + mower_speed * r.flight_time;  // in the ground's frame
       // (Without drag the last 0.3 m/s, the rest speed, rolls on no further: rho g stops it in
       // 0.3^2 / (2 rho g) = 15 mm, within the tolerance below.)
-      INFO("drag " << with_drag << ", from " << u0 << " m/s: rolled to " << r.end_position.x() << " m, hand calculation " << hand << " m");
+      INFO("mower at " << mower_speed << " m/s, drag " << with_drag << ", from " << u0 << " m/s: rolled to " << rolled << " m, hand calculation "
+                       << hand << " m");
       CHECK(r.fate != flight::Fate::CutOff);
-      CHECK(r.end_position.x() == Approx(hand).epsilon(0.01).margin(0.02));
+      CHECK(rolled == Approx(hand).epsilon(0.01).margin(0.02));
       // It rolls far beyond where the same ball skidding at mu g would stop.
-      CHECK(r.end_position.x() > 1.2 * (with_drag ? std::log(1 + k * u0 * u0 / (mu * g)) / (2 * k) : u0 * u0 / (2 * mu * g)));
+      CHECK(rolled > 1.2 * (with_drag ? std::log(1 + k * u0 * u0 / (mu * g)) / (2 * k) : u0 * u0 / (2 * mu * g)));
       // No energy is created along the way (translation, spin and height).
       for (const auto& e : events)
         if (e.energy_before > 0) CHECK(e.energy_after <= e.energy_before * (1 + 1e-9));

@@ -273,6 +273,20 @@ TEST_CASE("sweep: a point that cannot be assessed is recorded with why, and the 
     CHECK_THAT(svg, Catch::Contains("Not assessed, so not drawn") && Catch::Contains("cut_height = 1.2 in"));
     CHECK(svg.find("nan") == std::string::npos);
   }
+  // A gap is not bridged: with a point not assessed between two that are, each series' line
+  // is drawn in two pieces (one more unfilled path than without the middle point).
+  spec.objects = 500;
+  spec.x = study::parse_axis("cut_height=4 in,4.5 in", "--x");
+  const auto whole = report::sweep_charts(spec, study::run_sweep(spec, 2, nullptr));
+  spec.x = study::parse_axis("cut_height=4 in,1.2 in,4.5 in", "--x");
+  const auto gapped = report::sweep_charts(spec, study::run_sweep(spec, 2, nullptr));
+  const auto lines = [](const std::string& svg) {
+    std::size_t n = 0;
+    for (auto at = svg.find("fill=\"none\""); at != std::string::npos; at = svg.find("fill=\"none\"", at + 1)) ++n;
+    return n;
+  };
+  REQUIRE(whole.back().first == "thrown");
+  CHECK(lines(gapped.back().second) == lines(whole.back().second) + 1);
   // No point assessed at all: refused, with the first point's reason.
   spec.x = study::parse_axis("cut_height=1.1 in,1.2 in", "--x");
   CHECK_THROWS_WITH(study::run_sweep(spec, 2, nullptr), Catch::Contains("no point could be assessed") && Catch::Contains("skirt's foot"));

@@ -784,12 +784,15 @@ void NailFlight::lie_down(const Vec3& up, const Vec3& on) {
 bool NailFlight::sinks_in(const SurfaceMaterial& material, const Vec3& n, const Vec3& arm) {
   const double h = nail.half_segment();
   if (!(h > 0)) return false;  // a sphere (a field's stone) is blunt: it bounces
-  const double along = arm.dot(b.axis);
-  if (std::abs(along) < h - 1e-9) return false;  // touching along its shank, not at an end
-  const Vec3 point_dir = along > 0 ? b.axis : Vec3(-b.axis);
-  if (point_dir.dot(-n) < std::cos(0.25 * units::pi)) return false;  // more flat than point-first
-  const double speed = (b.velocity + b.spin.cross(arm)).dot(point_dir);
-  if (!(speed > 0)) return false;
+  // The point is the +axis end (the end the feed holds up: a falling nail's heavy head leads);
+  // the head, blunt and about 2.7 times the shank's width, is taken not to sink in.
+  if (arm.dot(b.axis) < h - 1e-9) return false;  // touching at the head or along the shank
+  if (b.axis.dot(-n) < std::cos(0.25 * units::pi)) return false;  // more flat than point-first
+  // Moving along its axis (Young's equation is for a penetrator without yaw): the point's
+  // velocity within 30 deg of it.
+  const Vec3 v_point = b.velocity + b.spin.cross(arm);
+  const double speed = v_point.dot(b.axis);
+  if (!(speed > 0) || speed < std::cos(units::pi / 6) * v_point.norm()) return false;
   const double depth = young_depth(material.penetrability, mass, nail.diameter, speed);
   if (depth < kSinksDeeper * nail.diameter) return false;
   const double before = ctx.events ? energy() : 0.0;
@@ -864,7 +867,10 @@ bool NailFlight::slide(const scene::Hit& hit) {
     if (rolling()) {
       contact_slip = b.velocity - turf + b.spin.cross(Vec3(-radius * up));
       contact_slip -= contact_slip.dot(up) * up;
-      rolling_now = contact_slip.norm() <= kRollingSlip;
+      // Rolling on holds only while friction can keep the contact still: drag slows the centre
+      // and not the spin, and friction must give the spin 2/7 of that deceleration, at most
+      // mu g n_z (a small fast stone's drag breaks it: it slips, friction forward).
+      rolling_now = contact_slip.norm() <= kRollingSlip && 2.0 / 7.0 * drag_along(speed) <= friction_decel;
       if (rolling_now) {  // rolling: the spin that rolls it, about a horizontal axis across the track
         b.spin = up.cross(Vec3(speed * slip)) / radius;
         b.axis = slip;  // (a sphere's axis is any: along the track, so that the roll is across it)
@@ -878,12 +884,15 @@ bool NailFlight::slide(const scene::Hit& hit) {
     double decel = resisting + drag_mid;
     double slip_ends = HUGE_VAL;  // a slipping ball: when its contact stops slipping
     if (rolling() && !rolling_now) {
-      const Vec3 across = contact_slip.normalized();
+      // (No slip yet but more drag than friction can hold: the contact starts to slip
+      // backward, friction acting forward.)
+      const Vec3 across = contact_slip.norm() > kRollingSlip ? Vec3(contact_slip.normalized()) : Vec3(-slip);
       accel = -friction_decel * across - drag_mid * slip;
       decel = -accel.dot(slip);
       spin_rate = 2.5 * friction_decel / radius * up.cross(across);
       const double closing = 3.5 * friction_decel + drag_mid * slip.dot(across);
-      if (closing > 0) slip_ends = contact_slip.norm() / closing;
+      // (From no slip the part runs by the speed's rule: the slip has yet to open.)
+      if (closing > 0 && contact_slip.norm() > kRollingSlip) slip_ends = contact_slip.norm() / closing;
     }
     if (!(decel > 0) && slip_ends == HUGE_VAL) {
       b.velocity = Vec3::Zero();

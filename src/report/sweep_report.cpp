@@ -46,6 +46,20 @@ std::string left_out(const SweepSpec& spec, const SweepTable& t) {
       o += fmt::format("{}{}{}{}", o.empty() ? "" : "; ", r.series_label.empty() ? "" : r.series_label + ", ", spec.x.info.name + " = ", r.x_text);
   return o.empty() ? o : " Not assessed, so not drawn (the CSV's note says why): " + o + ".";
 }
+// A series' points in runs between the points not assessed: a line is not drawn across a gap.
+std::vector<std::vector<const SweepTable::Row*>> series_runs(const SweepTable& t, std::size_t s) {
+  std::vector<std::vector<const SweepTable::Row*>> runs(1);
+  for (const auto& r : t.rows) {
+    if (r.series != s) continue;
+    if (!r.invalid.empty()) {
+      if (!runs.back().empty()) runs.emplace_back();
+      continue;
+    }
+    runs.back().push_back(&r);
+  }
+  if (runs.size() > 1 && runs.back().empty()) runs.pop_back();
+  return runs;
+}
 // The first point assessed (the sweep has one: run_sweep refuses a sweep with none).
 const SweepTable::Row& first_assessed(const SweepTable& t) {
   for (const auto& r : t.rows)
@@ -60,12 +74,7 @@ namespace {
 std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const SweepSpec& spec, const SweepTable& t) {
   std::vector<std::pair<std::string, std::string>> out;
   const std::size_t n_series = t.series_labels.size();
-  const auto series_rows = [&](std::size_t s) {
-    std::vector<const SweepTable::Row*> rows;
-    for (const auto& r : t.rows)
-      if (r.series == s && r.invalid.empty()) rows.push_back(&r);
-    return rows;
-  };
+
   const std::string objects = t.rows.empty() ? "0" : fmt::format("{:.0f}", first_assessed(t).values[column(t, "objects")]);
   // Each plane's three columns (plane_NAME_hazardous_per_km, _low, _high), in the planes' order.
   std::vector<std::size_t> plane_columns;
@@ -79,14 +88,18 @@ std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const Sweep
     report::Chart c(fmt::format("{}: plane '{}'", spec.title, t.planes[i]), spec.x.info.axis_title, "hazardous crossings per km mowed");
     double highest = 0, lowest = HUGE_VAL;
     for (std::size_t s = 0; s < n_series; ++s) {
-      std::vector<double> x, y, yl, yh;
-      for (const auto* r : series_rows(s)) {
-        x.push_back(r->x), y.push_back(r->values[v]), yl.push_back(r->values[lo]), yh.push_back(r->values[hi]);
-        for (double w : {r->values[v], r->values[lo], r->values[hi]})
-          if (w > 0) highest = std::max(highest, w), lowest = std::min(lowest, w);
+      bool first_run = true;
+      for (const auto& run : series_runs(t, s)) {
+        std::vector<double> x, y, yl, yh;
+        for (const auto* r : run) {
+          x.push_back(r->x), y.push_back(r->values[v]), yl.push_back(r->values[lo]), yh.push_back(r->values[hi]);
+          for (double w : {r->values[v], r->values[lo], r->values[hi]})
+            if (w > 0) highest = std::max(highest, w), lowest = std::min(lowest, w);
+        }
+        c.error_bars(x, yl, yh, report::palette(s));
+        c.line(x, y, report::palette(s), !first_run ? "" : t.series_labels[s].empty() ? "hazardous per km" : t.series_labels[s]);
+        first_run = false;
       }
-      c.error_bars(x, yl, yh, report::palette(s));
-      c.line(x, y, report::palette(s), t.series_labels[s].empty() ? "hazardous per km" : t.series_labels[s]);
     }
     if (highest > 0) {
       const double top = std::pow(10.0, std::ceil(std::log10(highest) - 1e-9));
@@ -104,13 +117,17 @@ std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const Sweep
     const std::size_t est = column(t, t.directions[k] + "_hazard_distance_m"), up = column(t, t.directions[k] + "_hazard_distance_upper_m");
     double farthest = 0;
     for (std::size_t s = 0; s < n_series; ++s) {
-      std::vector<double> x, y, yu;
-      for (const auto* r : series_rows(s)) {
-        x.push_back(r->x), y.push_back(r->values[est]), yu.push_back(r->values[up]);
-        farthest = std::max({farthest, r->values[est], r->values[up]});
+      bool first_run = true;
+      for (const auto& run : series_runs(t, s)) {
+        std::vector<double> x, y, yu;
+        for (const auto* r : run) {
+          x.push_back(r->x), y.push_back(r->values[est]), yu.push_back(r->values[up]);
+          farthest = std::max({farthest, r->values[est], r->values[up]});
+        }
+        d.line(x, y, report::palette(s), !first_run ? "" : t.series_labels[s].empty() ? "estimate" : t.series_labels[s], true, false);
+        d.line(x, yu, report::palette(s), !first_run || !t.series_labels[s].empty() ? "" : "conservative", false, true);
+        first_run = false;
       }
-      d.line(x, y, report::palette(s), t.series_labels[s].empty() ? "estimate" : t.series_labels[s], true, false);
-      d.line(x, yu, report::palette(s), t.series_labels[s].empty() ? "conservative" : "", false, true);
     }
     d.y_range(0, 1.1 * farthest + 1e-9);
     d.caption("Solid with markers: the estimate; dashed: the conservative distance (on the density's 95 % upper bound). At the deck's "
@@ -120,9 +137,13 @@ std::vector<std::pair<std::string, std::string>> hazard_sweep_charts(const Sweep
   }
   report::Chart th(spec.title + ": objects thrown", spec.x.info.axis_title, "objects thrown per km mowed");
   for (std::size_t s = 0; s < n_series; ++s) {
-    std::vector<double> x, y;
-    for (const auto* r : series_rows(s)) x.push_back(r->x), y.push_back(r->values[column(t, "thrown_per_km")]);
-    th.line(x, y, report::palette(s), t.series_labels[s].empty() ? "thrown per km" : t.series_labels[s]);
+    bool first_run = true;
+    for (const auto& run : series_runs(t, s)) {
+      std::vector<double> x, y;
+      for (const auto* r : run) x.push_back(r->x), y.push_back(r->values[column(t, "thrown_per_km")]);
+      th.line(x, y, report::palette(s), !first_run ? "" : t.series_labels[s].empty() ? "thrown per km" : t.series_labels[s]);
+      first_run = false;
+    }
   }
   th.caption("Objects the blades threw per km mowed (every kind)." + left_out(spec, t));
   out.emplace_back("thrown", th.svg());
@@ -144,13 +165,16 @@ std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& s
     report::Chart chart(spec.title, spec.x.info.axis_title, "P(pass one J232 test)");
     const std::size_t p = column(t, "p_pass"), lo = column(t, "p_pass_low"), hi = column(t, "p_pass_high");
     for (std::size_t s = 0; s < n_series; ++s) {
-      std::vector<double> x, y, yl, yh;
-      for (const auto* r : series_rows(s))
-        x.push_back(r->x), y.push_back(r->values[p]), yl.push_back(r->values[lo]), yh.push_back(r->values[hi]);
-      const std::string label = t.series_labels[s].empty() ? "P(pass)" : t.series_labels[s];
-      chart.band(x, yl, yh, report::palette(s), "");
-      chart.error_bars(x, yl, yh, report::palette(s));
-      chart.line(x, y, report::palette(s), label);
+      bool first_run = true;
+      for (const auto& run : series_runs(t, s)) {
+        std::vector<double> x, y, yl, yh;
+        for (const auto* r : run) x.push_back(r->x), y.push_back(r->values[p]), yl.push_back(r->values[lo]), yh.push_back(r->values[hi]);
+        const std::string label = !first_run ? "" : t.series_labels[s].empty() ? "P(pass)" : t.series_labels[s];
+        chart.band(x, yl, yh, report::palette(s), "");
+        chart.error_bars(x, yl, yh, report::palette(s));
+        chart.line(x, y, report::palette(s), label);
+        first_run = false;
+      }
     }
     chart.hline(t.required_pass_probability, "#c62828", fmt::format("required {:g}", t.required_pass_probability));
     chart.y_range(0, 1.05);
@@ -168,14 +192,18 @@ std::vector<std::pair<std::string, std::string>> sweep_charts(const SweepSpec& s
       report::Chart c(fmt::format("{}: {}", spec.title, words[k]), spec.x.info.axis_title, "share of the nails fed (%)");
       double top = 0;
       for (std::size_t s = 0; s < n_series; ++s) {
-        std::vector<double> x, y, yl, yh;
-        for (const auto* r : series_rows(s)) {
-          x.push_back(r->x), y.push_back(100 * r->values[mean]), yl.push_back(100 * r->values[q05]), yh.push_back(100 * r->values[q95]);
-          top = std::max(top, 100 * r->values[q95]);
+        bool first_run = true;
+        for (const auto& run : series_runs(t, s)) {
+          std::vector<double> x, y, yl, yh;
+          for (const auto* r : run) {
+            x.push_back(r->x), y.push_back(100 * r->values[mean]), yl.push_back(100 * r->values[q05]), yh.push_back(100 * r->values[q95]);
+            top = std::max(top, 100 * r->values[q95]);
+          }
+          const std::string label = !first_run ? "" : t.series_labels[s].empty() ? "mean share" : t.series_labels[s];
+          c.band(x, yl, yh, report::palette(s), "");
+          c.line(x, y, report::palette(s), label);
+          first_run = false;
         }
-        const std::string label = t.series_labels[s].empty() ? "mean share" : t.series_labels[s];
-        c.band(x, yl, yh, report::palette(s), "");
-        c.line(x, y, report::palette(s), label);
       }
       const double lim = t.rows.empty() ? 0 : 100 * first_assessed(t).values[limit];
       c.hline(lim, "#c62828", fmt::format("limit {:g} %", lim));

@@ -498,6 +498,7 @@ void read_ground(const TableReader& g, GroundSpec& ground, bool field) {
   ground.kind = g.string_or("kind", "turf", kinds);
   if (const GroundKind* k = ground_kind(ground.kind)) {
     ground.restitution = k->restitution, ground.friction = k->friction, ground.roughness = k->roughness_deg * units::degree;
+    ground.angle_exponent = k->angle_exponent;
     ground.rolling_resistance = k->rolling_resistance, ground.penetrability = k->penetrability;
     ground.max_restitution = std::max(ground.max_restitution, ground.restitution);
   }
