@@ -50,9 +50,10 @@ std::string distance_words(const field::DirectionCurve& c, bool conservative, do
   return fmt::format("{:.0f} {}", u.length(d), u.length_unit());
 }
 
-// Words written in SI (a direction's meaning, a compared figure's name) in US units: "per m2"
-// as "per ft2", "at least 79 J" as "at least 58.3 ft-lb".
-std::string in_feet(std::string words) {
+// Words written in SI (a direction's meaning, a compared figure's name) in the display's
+// units: unchanged in SI; in US units "per m2" as "per ft2", "at least 79 J" as "at least 58.3 ft-lb".
+std::string in_units(std::string words, const DisplayUnits& u) {
+  if (!u.us) return words;
   for (std::size_t at = words.find(" m2"); at != std::string::npos; at = words.find(" m2", at)) words.replace(at, 3, " ft2");
   const std::string least = "at least ";
   for (std::size_t at = words.find(least); at != std::string::npos; at = words.find(least, at + 1)) {
@@ -493,7 +494,7 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   o += "<table><tr><th>direction</th><th>who</th><th>estimate</th><th>conservative</th></tr>\n";
   const double range = layout.range;
   for (const auto& d : sum.directions)
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", d.direction, escape(u.us ? in_feet(d.meaning) : d.meaning),
+    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", d.direction, escape(in_units(d.meaning, u)),
                      distance_words(d, false, range, u), distance_words(d, true, range, u));
   o += "</table>\n";
   // How the setback moves with what is judged acceptable: each distance at other densities.
@@ -718,7 +719,7 @@ std::string hazard_comparison_text(const field::FieldComparison& c, const Displa
     o += fmt::format("{} {}\n", d == 0 ? "reference:" : fmt::format("design {}:", d + 1), design.title);
     for (std::size_t j = 0; j < design.figures.size(); ++j) {
       const auto& f = design.figures[j].per_km;
-      o += fmt::format("  {:<58} {:>10.4g} per {} ({:.4g}-{:.4g})", u.us ? in_feet(design.figures[j].name) : design.figures[j].name, u.per_mowed(f.value), u.mowed(), u.per_mowed(f.low),
+      o += fmt::format("  {:<58} {:>10.4g} per {} ({:.4g}-{:.4g})", in_units(design.figures[j].name, u), u.per_mowed(f.value), u.mowed(), u.per_mowed(f.low),
                        u.per_mowed(f.high));
       if (d > 0) {
         const auto& x = design.differences[j];
@@ -810,7 +811,7 @@ std::string hazard_comparison_html(const field::FieldComparison& c, const Displa
   o += "</tr>\n";
   for (std::size_t j = 0; j < c.designs.front().figures.size(); ++j) {
     const std::string& name = c.designs.front().figures[j].name;
-    o += fmt::format("<tr><td>{}{}</td>", escape(u.us ? in_feet(name) : name), u.us ? " (per mile)" : "");
+    o += fmt::format("<tr><td>{}{}</td>", escape(in_units(name, u)), u.us ? " (per mile)" : "");
     for (std::size_t d = 0; d < c.designs.size(); ++d) {
       const auto& f = c.designs[d].figures[j].per_km;
       o += fmt::format("<td>{:.4g} ({:.4g}-{:.4g})", u.per_mowed(f.value), u.per_mowed(f.low), u.per_mowed(f.high));
