@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <algorithm>
 #include <map>
@@ -13,9 +14,14 @@
 #include "scenario/scenario_reader.hpp"
 #include "scenario/toml_override.hpp"
 #include "scenario/toml_reader.hpp"
+#include "flight/nail_flight.hpp"
 #include "report/uncertainty_report.hpp"
 #include "study/sensitivity.hpp"
 #include "study/uncertainty.hpp"
+#include "study/drivers.hpp"
+#include "assess/runner.hpp"
+#include "assess/simulator.hpp"
+#include "assess/summary.hpp"
 #include "field_scenario.hpp"
 
 using namespace j232;
@@ -474,10 +480,117 @@ TEST_CASE("uncertainty: the default set draws the model's form (contact model, r
         const auto s = scenario::read_scenario(doc, file);
         if (in.parameter == "contacts.model")
           CHECK((s.run.contact_model == scenario::ContactModel::Simultaneous) == (v == "simultaneous"));
+        if (in.parameter == "ground.kind") CHECK(s.ground.kind == v);
       }
     }
     INFO(name);
     CHECK(std::count(forms.begin(), forms.end(), "contacts.model") == 1);
     CHECK(std::count(forms.begin(), forms.end(), "run.restitution_law") == 1);
+    // A J232 test's ground is drawn over every kind; its restitution and cap are the kind's,
+    // never drawn beside it (they would override it).
+    const bool field = std::string(name).rfind("field/", 0) == 0;
+    CHECK(std::count(forms.begin(), forms.end(), "ground.kind") == (field ? 0 : 1));
+    if (!field)
+      for (const auto& in : plan.inputs) CHECK((in.parameter != "ground.restitution" && in.parameter != "ground.max_restitution"));
   }
+}
+
+TEST_CASE("uncertainty: uq.csv holds every assessment exactly, and reads back; a broken table is refused by line and column", "[uncertainty][report]") {
+  study::UncertaintyResult r;
+  r.title = "test", r.scenario_file = "test.toml";
+  r.output_info = study::uq_outputs(scenario::Scenario{});
+  scenario::UncertainInput input;
+  input.parameter = "bevel_angle", input.low = "20 deg", input.high = "45 deg", input.basis = "test";
+  r.plan.inputs.push_back(input);
+  r.plan.base_draws = 2;
+  r.design = study::saltelli_design(1, 2);
+  const auto runs = r.design.runs();
+  for (std::size_t run = 0; run < runs.size(); ++run) {
+    r.values.push_back({0.1 + 1.0 / 3 * static_cast<double>(run)});  // no short decimal
+    std::vector<double> out(r.output_info.size());
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] = std::nextafter(1.0 / 7 * static_cast<double>(k + run), 2.0);
+    r.outputs.push_back(out);
+    r.runs.push_back({out, run == 3 ? 0.0125 : 0.0, run == 3 ? static_cast<int>(flight::CutOff::MaxBounces) : 0});
+  }
+  const std::string path = "uq-roundtrip-test.csv";
+  std::ofstream(path) << report::uncertainty_csv(r);
+  const auto t = report::read_uncertainty_csv(path);
+  REQUIRE(t.cells.size() == runs.size());
+  REQUIRE(t.columns.size() == 1 + r.output_info.size());
+  CHECK(t.columns[0] == "bevel_angle");
+  for (std::size_t run = 0; run < runs.size(); ++run) {
+    CHECK(t.cells[run][0] == r.values[run][0]);  // bit for bit
+    for (std::size_t k = 0; k < r.output_info.size(); ++k) CHECK(t.cells[run][1 + k] == r.outputs[run][k]);
+    CHECK(t.runs[run].cut_off_share == r.runs[run].cut_off_share);
+    CHECK(t.runs[run].cut_off_limit == r.runs[run].cut_off_limit);
+    CHECK(t.lines[run] == static_cast<int>(run) + 2);
+  }
+  // Broken: a cell that is not a number, a row out of order, a missing cut-off column.
+  const auto refused = [&](const std::string& text, const std::string& says) {
+    std::ofstream(path) << text;
+    INFO(text);
+    CHECK_THROWS_WITH(report::read_uncertainty_csv(path), Catch::Contains(says));
+  };
+  const std::string head = "assessment,block,bevel_angle,p_pass,cut_off_share,cut_off_mostly_by\n";
+  refused(head + "1,A,25,x,0,none\n", ":2: p_pass = x");
+  refused(head + "2,A,25,0.5,0,none\n", "the rows in order");
+  refused(head + "1,A,25,0.5,0,tired\n", "cut_off_mostly_by = tired");
+  refused(head + "1,A,25,0.5,0\n", "cells, as the header has");
+  refused("assessment,block,bevel_angle,p_pass\n", "expected a uq.csv of this version");
+  std::remove(path.c_str());
+  CHECK_THROWS_WITH(report::read_uncertainty_csv(path), Catch::Contains("cannot be read"));
+}
+
+TEST_CASE("drivers: each input at its ends, paired with the scenario as written; an ignored input moves nothing", "[uncertainty][drivers]") {
+  const auto file = with_uncertainty("drivers-ignored.toml", R"(
+[air]
+drag = false
+[uncertainty]
+replicates = 10
+[[uncertainty.inputs]]
+parameter = "air.cd_axial"
+low = 0.5
+high = 1.0
+basis = "test: drag is off, so this must not matter"
+[[uncertainty.inputs]]
+parameter = "board.crush_depth"
+low = "3 mm"
+high = "12 mm"
+basis = "test"
+)");
+  const int punctures_outside = 3;
+  const auto a = study::deciding_drivers(file, punctures_outside, 2), b = study::deciding_drivers(file, punctures_outside, 1);
+  REQUIRE(a.ranked.size() == 2);
+  CHECK(a.replicates == 10);
+  CHECK_FALSE(a.default_inputs);
+  // The crush depth moves the board's marks; drag's coefficient, with drag off, nothing.
+  CHECK(a.ranked[0].input == "board.crush_depth");
+  CHECK(a.ranked[0].largest_change > 0);
+  CHECK(a.ranked[1].input == "air.cd_axial");
+  CHECK(a.ranked[1].largest_change == 0.0);
+  for (const auto& e : a.ranked[1].ends) CHECK((e.change.mean == 0.0 && e.change.low == 0.0 && e.change.high == 0.0));
+  // Any thread count, the same numbers.
+  for (std::size_t i = 0; i < a.ranked.size(); ++i)
+    for (std::size_t e = 0; e < a.ranked[i].ends.size(); ++e) CHECK(a.ranked[i].ends[e].share == b.ranked[i].ends[e].share);
+  // Independently: each end's share and change from runs of its own (the scenario with the
+  // key written in, run by the assessment alone).
+  const auto share_of = [&](const std::string& extra) {
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string path = std::string(J232_BINARY_DIR) + "/drivers-end.toml";
+    std::ofstream(path) << text.substr(0, text.find("[uncertainty]")) << extra << "\n[uncertainty]\nreplicates = 10\n";
+    auto s = scenario::read_scenario(path);
+    s.run.replicates = 10, s.run.until_settled = false, s.run.target_half_width.reset();
+    const assess::Simulator sim(s);
+    return assess::summarise(assess::run_assessment(sim, 2), s).criteria[punctures_outside].mean_share;
+  };
+  const double as_written = share_of("");
+  CHECK(a.share == Approx(as_written).margin(1e-15));
+  const auto& crush = a.ranked[0].ends;
+  REQUIRE(crush.size() == 2);
+  CHECK(crush[0].value == "3 mm");
+  const double shallow = share_of("[board]\ncrush_depth = \"3 mm\"\n");
+  CHECK(crush[0].share == Approx(shallow).margin(1e-15));
+  CHECK(crush[0].change.mean == Approx(shallow - as_written).margin(1e-12));
+  CHECK((crush[0].change.low <= crush[0].change.mean && crush[0].change.mean <= crush[0].change.high));
 }

@@ -188,6 +188,7 @@ Runner add_batch_command(CLI::App& app) {
                 "Also compare the scenarios as designs: all run with the first's seed and replicates (common random numbers), "
                 "each judged against the first replicate by replicate (compare.html/.json/.csv, and in the summary)");
   add_run_overrides(*cmd, o->overrides, "each scenario's");
+  add_drivers_option(*cmd, o->overrides);
   add_stop_rule_options(*cmd, o->overrides);
   add_trajectories_option(*cmd, o->overrides);
   return [o] { return batch(*o); };

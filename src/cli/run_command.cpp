@@ -45,6 +45,7 @@ Runner add_run_command(CLI::App& app) {
   add_stop_rule_options(*cmd, o->overrides);
   add_trajectories_option(*cmd, o->overrides);
   add_uncertainty_option(*cmd, o->overrides);
+  add_drivers_option(*cmd, o->overrides);
   cmd->add_option("--out", o->out, "Output folder for report.html, result.json and marks.csv")->capture_default_str();
   return [o] { return run(*o); };
 }

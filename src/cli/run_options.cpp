@@ -44,6 +44,13 @@ void add_uncertainty_option(CLI::App& cmd, RunOverrides& o) {
                "summarise it in the report; writes uq.html, uq.json and uq.csv beside it");
 }
 
+void add_drivers_option(CLI::App& cmd, RunOverrides& o) {
+  cmd.add_flag("--drivers", o.drivers,
+               "Also find the inputs that most move the deciding criterion: each uncertain input (the [uncertainty] set, or the "
+               "default estimated one) at its range's ends, paired runs of the study's replicates (about 25 runs of 50 "
+               "replicates), in the report and result.json");
+}
+
 void add_run_overrides(CLI::App& cmd, RunOverrides& o, const std::string& whose) {
   cmd.add_option("--replicates", o.replicates, fmt::format("Replicates of the whole test (overrides {} [run] replicates)", whose))
       ->check(CLI::Range(1LL, 100'000'000LL));

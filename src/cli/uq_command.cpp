@@ -6,6 +6,7 @@
 #include <iterator>
 #include <sstream>
 #include <map>
+#include <set>
 #include <optional>
 #include <fmt/format.h>
 #include <memory>
@@ -19,6 +20,9 @@
 #include "report/atomic_file.hpp"
 #include "report/text_safety.hpp"
 #include "report/uncertainty_report.hpp"
+#include "random/stream.hpp"
+#include "scenario/input_error.hpp"
+#include "scenario/scenario_reader.hpp"
 #include "study/uncertainty.hpp"
 #include "report/result_files.hpp"
 
@@ -32,6 +36,85 @@ struct UqOptions {
   std::string out = "results/uq";
   int threads = 0;
   bool resume = false;
+  std::string reuse;     // a finished study's uq.csv whose assessments are taken, not rerun
+  std::size_t recheck = 8;  // of those, how many are rerun and must come out the same
+};
+
+// The assessments of a finished study (its uq.csv) taken in place of running them, but for
+// `recheck` of them chosen at random, which are run again and must reproduce the file's
+// numbers exactly: a shipped study checked, and its report rebuilt, in a fraction of its
+// time. The file must be of this study: the same inputs, outputs and draws.
+class Reuse {
+ public:
+  Reuse(const UqOptions& o, const study::UncertaintyPlan& plan, const std::vector<study::UqOutput>& outputs) {
+    if (o.reuse.empty()) return;
+    table_ = report::read_uncertainty_csv(o.reuse);
+    auto& t = *table_;
+    std::vector<std::string> expected;
+    for (const auto& in : plan.inputs) expected.push_back(report::csv_text_cell(in.parameter));
+    for (const auto& out : outputs) expected.push_back(out.name);
+    if (t.columns != expected) {
+      std::string names;
+      for (const auto& e : expected) names += (names.empty() ? "" : ",") + e;
+      throw scenario::InputError(o.reuse, 1, "header", "its inputs and outputs",
+                                 fmt::format("this study's: {} (the file is of another study)", names));
+    }
+    const std::size_t runs = (plan.inputs.size() + 2) * plan.base_draws;
+    if (t.cells.size() != runs)
+      throw scenario::InputError(o.reuse, static_cast<int>(t.cells.size()) + 1, "rows", std::to_string(t.cells.size()),
+                                 fmt::format("{} assessments, as this study has ({} base draws x ({} inputs + 2))", runs, plan.base_draws,
+                                             plan.inputs.size()));
+    for (std::size_t run = 0; run < t.cells.size(); ++run)
+      t.runs[run].outputs.assign(t.cells[run].begin() + static_cast<std::ptrdiff_t>(plan.inputs.size()), t.cells[run].end());
+    // Which to run again: a partial Fisher-Yates shuffle on a keyed stream of the seed.
+    std::vector<std::size_t> order(runs);
+    for (std::size_t i = 0; i < runs; ++i) order[i] = i;
+    random::Stream pick(seed_of(o.scenario), 0, 0, random::Purpose::Recheck);
+    for (std::size_t i = 0; i < std::min(o.recheck, runs); ++i) {
+      const std::size_t j = i + static_cast<std::size_t>(pick.uniform() * static_cast<double>(runs - i));
+      std::swap(order[i], order[std::min(j, runs - 1)]);
+      rerun_.insert(order[i]);
+    }
+  }
+  bool active() const { return table_.has_value(); }
+  std::size_t rerun_count() const { return rerun_.size(); }
+  std::optional<study::UqRun> recall(std::size_t run) const {
+    if (!table_ || rerun_.count(run)) return std::nullopt;
+    return table_->runs[run];
+  }
+  // A rerun assessment against the file's: every output, its cut-off share and limit alike.
+  void compare(std::size_t run, const study::UqRun& now) {
+    if (!table_ || !rerun_.count(run)) return;
+    const study::UqRun& then = table_->runs[run];
+    if (now.outputs == then.outputs && now.cut_off_share == then.cut_off_share && now.cut_off_limit == then.cut_off_limit) return;
+    std::string what = "its cut-off share or limit";
+    for (std::size_t k = 0; k < now.outputs.size() && k < then.outputs.size(); ++k)
+      if (now.outputs[k] != then.outputs[k]) {
+        what = fmt::format("{}: {} in the file, {} now", table_->columns[k + table_->columns.size() - now.outputs.size()], then.outputs[k], now.outputs[k]);
+        break;
+      }
+    differing_.push_back(fmt::format("assessment {} (line {}): {}", run + 1, table_->lines[run], what));
+  }
+  // After the study: every taken assessment's inputs were this study's draws, and every rerun
+  // one came out the same; otherwise refused, naming the first that did not.
+  void verify(const study::UncertaintyResult& r) const {
+    if (!table_) return;
+    for (std::size_t run = 0; run < r.values.size(); ++run)
+      for (std::size_t i = 0; i < r.values[run].size(); ++i)
+        if (r.values[run][i] != table_->cells[run][i])
+          throw scenario::InputError(table_->file, table_->lines[run], table_->columns[i], fmt::format("{}", table_->cells[run][i]),
+                                     fmt::format("{}, this study's draw {} (the file is of another study)", r.values[run][i], run + 1));
+    if (!differing_.empty())
+      throw scenario::InputError(table_->file, std::nullopt, "--recheck", fmt::format("{} assessments run again", rerun_.size()),
+                                 fmt::format("{} of them differ from the file (made by another program or from other inputs); first: {}",
+                                             differing_.size(), differing_.front()));
+  }
+
+ private:
+  static std::uint64_t seed_of(const std::string& file) { return scenario::read_scenario(file).run.seed; }
+  std::optional<report::UncertaintyTable> table_;
+  std::set<std::size_t> rerun_;
+  std::vector<std::string> differing_;
 };
 
 // The study's journal, DIR/uq-journal.csv: a first line naming the inputs' digest, then a
@@ -121,12 +204,24 @@ int uq(const UqOptions& o) {
   report::OutputFolder out(o.out, {"uq.csv", "uq.html", "uq.json"});
   Journal journal(out.folder() + "/uq-journal.csv", report::inputs_digest(o.scenario, RunOverrides{}), o.resume);
   if (journal.kept()) fmt::print("Resuming: {} assessments kept from the journal\n", journal.kept());
-  const auto hooks = journal.hooks();
+  const auto kept = journal.hooks();
+  std::optional<Reuse> reuse;
+  if (!o.reuse.empty()) {
+    const auto nominal = scenario::read_scenario(o.scenario);
+    reuse.emplace(o, study::uncertainty_plan(nominal), study::uq_outputs(nominal));
+    fmt::print("Reusing {}: {} assessments run again to check it\n", terminal_safe(o.reuse), reuse->rerun_count());
+  }
+  const study::UncertaintyJournal hooks{[&](std::size_t run) { return reuse ? reuse->recall(run) : kept.recall(run); },
+                                        [&](std::size_t run, const study::UqRun& v) {
+                                          if (reuse) reuse->compare(run, v);
+                                          kept.record(run, v);
+                                        }};
   study::UncertaintyResult r;
   {
     const report::StepCounter counter("assessment");
     r = study::run_uncertainty(o.scenario, o.threads, std::cref(counter), &hooks);
   }
+  if (reuse) reuse->verify(r);
   const auto j = report::uncertainty_json(r);
   report::write_atomically(out.staged("uq.csv"), report::uncertainty_csv(r));
   report::write_atomically(out.staged("uq.html"), report::uncertainty_html(j));
@@ -183,6 +278,14 @@ Runner add_uq_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "Output folder for uq.html, uq.json and uq.csv")->capture_default_str();
   cmd->add_option("--threads", o->threads, "Worker threads, 0 = all cores")->check(CLI::Range(0, 1024))->each([](const std::string& t) { warn_threads_beyond_cores(std::atoll(t.c_str())); });
   cmd->add_flag("--resume", o->resume, "Continue an interrupted study in the same folder: keep the assessments it finished");
+  cmd->add_option("--reuse", o->reuse,
+                  "A finished study's uq.csv (of these inputs): take its assessments instead of running them, but for --recheck of "
+                  "them, which are run again and must come out the same; refused otherwise")
+      ->excludes(cmd->get_option("--resume"));
+  cmd->add_option("--recheck", o->recheck, "With --reuse: how many of its assessments, chosen at random, are run again")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000))
+      ->needs(cmd->get_option("--reuse"));
   return [o] { return uq(*o); };
 }
 

@@ -22,6 +22,8 @@
 #include "report/result_files.hpp"
 #include "report/scene_view.hpp"
 #include "report/uncertainty_report.hpp"
+#include "report/drivers_report.hpp"
+#include "study/drivers.hpp"
 #include "study/uncertainty.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario.hpp"
@@ -51,6 +53,7 @@ std::string digest(const std::string& scenario_file, const std::vector<scenario:
   f.add(fmt::format("{} {} {} {}", o.replicates, o.seed ? std::to_string(*o.seed) : "-1", j232::version, j232::git_revision));
   if (o.trajectories > 0) f.add(fmt::format(" trajectories {}", o.trajectories));
   if (o.uncertainty) f.add(" uncertainty");
+  if (o.drivers) f.add(" drivers");
   if (o.for_comparison) f.add(" no stop rule");
   if (o.until_settled) f.add(" until settled");
   if (o.target_half_width) f.add(fmt::format(" half-width {:.17g}", *o.target_half_width));
@@ -163,6 +166,17 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
     write_atomically(folder.staged("uq.json"), json_text(uq) + "\n");
     outcome.result["uncertainty"] = uncertainty_summary_json(uq);
     outcome.summary_text += uncertainty_summary_text(outcome.result["uncertainty"]);
+  }
+  if (o.drivers && !o.for_comparison && sum.validity.valid) {
+    // What most moves the deciding criterion: each uncertain input at its range's ends, paired
+    // with the scenario as written (the scenario's seed and the study's replicates).
+    study::Drivers drivers;
+    {
+      const StepCounter counter("what moves the verdict: run");
+      drivers = study::deciding_drivers(scenario_file, sum.deciding, s.run.threads, std::cref(counter));
+    }
+    outcome.result["deciding_inputs"] = drivers_json(drivers, outcome.result["deciding_criterion"].get<std::string>());
+    outcome.summary_text += drivers_text(outcome.result["deciding_inputs"]);
   }
   const std::string html = compliance_report_html(s, a, sum, outcome.result, simulator.scene().soup());
   Fnv html_digest;

@@ -17,6 +17,7 @@ struct RunOverrides {
   int threads = -1;                   // < 0: the scenario's
   std::size_t trajectories = 0;       // sampled nail paths to keep (plus notable ones); 0: none
   bool uncertainty = false;           // also run the scenario's uncertainty study (run --uncertainty)
+  bool drivers = false;               // also find the inputs that most move the deciding criterion (run --drivers)
   bool for_comparison = false;        // keep what a comparison of designs needs; no stop rule (batch --compare)
   bool until_settled = false;         // run.until_settled = true
   std::optional<double> target_half_width;  // none: the scenario's run.target_half_width

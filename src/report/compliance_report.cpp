@@ -6,6 +6,7 @@
 
 #include "report/board_views.hpp"
 #include "report/html_page.hpp"
+#include "report/drivers_report.hpp"
 #include "report/uncertainty_report.hpp"
 #include "report/svg_chart.hpp"
 
@@ -336,6 +337,7 @@ std::string compliance_report_html(const scenario::Scenario& s, const assess::As
                    escape(s.title), escape(s.file));
   o += verdict_section(sum, r, s.feed.nails);
   o += criteria_section(sum, r);
+  o += drivers_html(r);
   if (r.contains("uncertainty")) o += uncertainty_summary_html(r);
   const MarkSample marks = sample_marks(a, 3000);
   o += "<section id=\"hit-map\">\n<h2>2. Where the marks are</h2>\n";

@@ -1,10 +1,14 @@
 #include "report/uncertainty_report.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <fstream>
 #include <fmt/format.h>
 
 #include "assess/statistics.hpp"
+#include "flight/nail_flight.hpp"
 #include "report/html_page.hpp"
+#include "scenario/input_error.hpp"
 #include "report/svg_chart.hpp"
 #include "report/text_safety.hpp"
 
@@ -132,17 +136,72 @@ std::string uncertainty_csv(const study::UncertaintyResult& r) {
     o += csv_text_cell(in.parameter);
   }
   for (const auto& out : r.output_info) o += "," + out.name;
-  o += "\n";
+  o += ",cut_off_share,cut_off_mostly_by\n";
   const std::size_t n = r.design.base;
+  // Every number as the shortest text that reads back to the same double: the file holds
+  // each assessment exactly, so a study can be rebuilt from it (`j232 uq --reuse`).
   for (std::size_t run = 0; run < r.outputs.size(); ++run) {
     const std::size_t block = run / n;
     const std::string b = block == 0 ? "A" : block == 1 ? "B" : fmt::format("AB{}", block - 1);
     o += fmt::format("{},{}", run + 1, b);
-    for (double v : r.values[run]) o += fmt::format(",{:.8g}", v);
-    for (double v : r.outputs[run]) o += fmt::format(",{:.8g}", v);
-    o += "\n";
+    for (double v : r.values[run]) o += fmt::format(",{}", v);
+    for (double v : r.outputs[run]) o += fmt::format(",{}", v);
+    const study::UqRun none;
+    const study::UqRun& ran = run < r.runs.size() ? r.runs[run] : none;
+    o += fmt::format(",{},{}\n", ran.cut_off_share, flight::cut_off_name(static_cast<flight::CutOff>(ran.cut_off_limit)));
   }
   return o;
+}
+
+UncertaintyTable read_uncertainty_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw scenario::InputError::file_problem(path, std::nullopt, "cannot be read (expected a finished study's uq.csv)");
+  const auto split_line = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t comma = line.find(',', start);
+      cells.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+      if (comma == std::string::npos) return cells;
+      start = comma + 1;
+    }
+  };
+  UncertaintyTable t;
+  t.file = path;
+  std::string line;
+  if (!std::getline(in, line)) throw scenario::InputError::file_problem(path, 1, "is empty (expected a finished study's uq.csv)");
+  const auto head = split_line(line);
+  if (head.size() < 5 || head[0] != "assessment" || head[1] != "block" || head[head.size() - 2] != "cut_off_share" ||
+      head.back() != "cut_off_mostly_by")
+    throw scenario::InputError(path, 1, "header", line.substr(0, 80),
+                               "expected a uq.csv of this version: assessment,block,<inputs>,<outputs>,cut_off_share,cut_off_mostly_by");
+  t.columns.assign(head.begin() + 2, head.end() - 2);
+  for (int number = 2; std::getline(in, line); ++number) {
+    const auto cells = split_line(line);
+    const auto refuse = [&](const std::string& column, const std::string& value, const std::string& expected) {
+      throw scenario::InputError(path, number, column, value, expected);
+    };
+    if (cells.size() != head.size()) refuse("row", line.substr(0, 80), fmt::format("{} cells, as the header has", head.size()));
+    if (cells[0] != std::to_string(t.cells.size() + 1)) refuse("assessment", cells[0], fmt::format("{}: the rows in order", t.cells.size() + 1));
+    std::vector<double> row;
+    for (std::size_t c = 2; c + 1 < cells.size(); ++c) {
+      char* end = nullptr;
+      const double v = std::strtod(cells[c].c_str(), &end);
+      if (cells[c].empty() || *end != '\0') refuse(head[c], cells[c], "a number");
+      row.push_back(v);
+    }
+    study::UqRun run;
+    run.cut_off_share = row.back();
+    row.pop_back();
+    run.cut_off_limit = -1;
+    for (int c = 0; c < flight::kCutOffReasons; ++c)
+      if (cells.back() == flight::cut_off_name(static_cast<flight::CutOff>(c))) run.cut_off_limit = c;
+    if (run.cut_off_limit < 0) refuse("cut_off_mostly_by", cells.back(), "the name of a run's limit (none, time_limit, max_bounces, ...)");
+    t.cells.push_back(std::move(row));
+    t.runs.push_back(run);
+    t.lines.push_back(number);
+  }
+  return t;
 }
 
 std::string uncertainty_html(const json& j) {

@@ -1,4 +1,5 @@
 #include "study/uncertainty.hpp"
+#include "scenario/ground_kinds.hpp"
 
 #include <fmt/format.h>
 
@@ -244,6 +245,19 @@ UncertainInput restitution_law_form() {
                     "friction and differ where the slip halts or reverses within an impact");
 }
 
+// What the test's mower stands on: the test's text is not to hand, so every kind of the
+// table is drawn. Each kind carries its own restitution, friction, roughness and
+// penetrability (docs/model.md §5.3a), so neither its restitution nor the angle law's cap is
+// drawn beside it (a drawn value would override every kind's own, and a cap below a hard
+// kind's restitution is refused).
+UncertainInput ground_kind_form() {
+  std::vector<std::string> kinds;
+  for (const auto& k : scenario::kGroundKinds) kinds.emplace_back(k.name);
+  return model_form("ground.kind", kinds,
+                    "set-up: what the test ground is (SAE J232's text on it not to hand); each kind with its own restitution, friction "
+                    "and penetrability (recalled tables and estimates)");
+}
+
 // A field's estimated inputs (docs/model.md §9): what is known of the field (how many
 // objects, how large, how deep in the turf), of the air under the deck and of the contacts,
 // each over a range about the scenario's own value.
@@ -365,13 +379,12 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
           "report 445-1: drop tests 0.9-0.96 at ~1 m/s, 0.45-0.6 at ~2.3 m/s; its Table 3.1 fits 0.53-0.65 at 11 m/s (j232 calibrate)"),
       estimated("bevel_angle", "20 deg", "45 deg", "estimate: mower blades are ground to about 30 deg; no figure for industrial cutters"),
       estimated("edge_friction", "0.2", "0.6", "handbook: steel on steel, kinetic 0.42-0.57; lower for an oily, worn edge"),
-      estimated("ground.restitution", "0.1", "0.25", "estimate: rockfall field data give a normal e of about 0.2"),
-      estimated("ground.max_restitution", "0.5", "0.95", "estimate: the angle law passes 1 at grazing impacts; a bounce off turf loses energy"),
       estimated("housing.friction", "0.3", "0.6", "handbook: steel on steel, kinetic 0.42-0.57"),
       estimated("feed.tilt_max", "0 deg", "10 deg", "estimate: SAE J232's feed tube geometry is not available"),
   };
   if (!s.housing.guards.empty())
     plan.inputs.push_back(estimated("housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25"));
+  plan.inputs.push_back(ground_kind_form());
   plan.inputs.push_back(contact_model_form());
   plan.inputs.push_back(restitution_law_form());
   return plan;

@@ -1,0 +1,99 @@
+#include "report/drivers_report.hpp"
+
+#include <fmt/format.h>
+
+#include "report/html_page.hpp"
+#include "report/svg_chart.hpp"
+#include "report/text_safety.hpp"
+
+namespace j232::report {
+
+using json = nlohmann::ordered_json;
+
+json drivers_json(const study::Drivers& d, const std::string& criterion) {
+  json ranked = json::array();
+  for (const auto& driver : d.ranked) {
+    json ends = json::array();
+    for (const auto& e : driver.ends)
+      ends.push_back({{"value", e.value},
+                      {"verdict", e.verdict},
+                      {"share", e.share},
+                      {"change", {{"mean", e.change.mean}, {"low", e.change.low}, {"high", e.change.high}}},
+                      {"p_pass_exact", e.p_pass_exact}});
+    ranked.push_back({{"input", driver.input}, {"basis", driver.basis}, {"largest_change", driver.largest_change}, {"ends", ends}});
+  }
+  return {{"criterion", criterion},
+          {"method",
+           "each input of the uncertainty set at each end of its range (each value of a discrete input), every other input as "
+           "the scenario has it, with the scenario's seed: common random numbers, each change against the scenario as written "
+           "paired replicate by replicate (95 % interval, normal approximation); ranked by the largest change of the deciding "
+           "criterion's mean share"},
+          {"inputs_from", d.default_inputs ? "j232's default set of estimated inputs" : "the scenario's [uncertainty] inputs"},
+          {"replicates", d.replicates},
+          {"seed", d.seed},
+          {"share_as_written", d.share},
+          {"p_pass_exact_as_written", d.p_pass_exact},
+          {"ranked", ranked}};
+}
+
+namespace {
+std::string end_words(const json& e) {
+  return fmt::format("{:+.2f} at {}", 100 * e["change"]["mean"].get<double>(), e["value"].get<std::string>());
+}
+}  // namespace
+
+std::string drivers_text(const json& d) {
+  std::string o = fmt::format("  What moves {} most (each input at its range's ends, {} paired replicates; change of its mean share, points):\n",
+                              d["criterion"].get<std::string>(), d["replicates"].get<std::uint64_t>());
+  for (std::size_t i = 0; i < d["ranked"].size() && i < kDriversShown; ++i) {
+    const auto& r = d["ranked"][i];
+    std::string ends;
+    for (const auto& e : r["ends"]) ends += (ends.empty() ? "" : ", ") + end_words(e);
+    o += fmt::format("    {}. {}: {}\n", i + 1, terminal_safe(r["input"].get<std::string>()), terminal_safe(ends));
+  }
+  return o;
+}
+
+std::string drivers_html(const json& r) {
+  if (!r.contains("deciding_inputs")) return "";
+  const json& d = r["deciding_inputs"];
+  std::string o = "<section id=\"drivers\">\n<h3>What moves the verdict</h3>\n";
+  o += fmt::format(
+      "<p>The deciding criterion, <strong>{}</strong>, with each uncertain input ({}) set to each end of its range and every other "
+      "input as written: {} replicates each with the scenario's seed, so each change is paired replicate by replicate with the "
+      "scenario as written (its share at these replicates: {} %; P(pass) from every nail {}). The three inputs that move it "
+      "most:</p>\n",
+      escape(d["criterion"].get<std::string>()), escape(d["inputs_from"].get<std::string>()), number("deciding_inputs.replicates", d["replicates"], "{}"),
+      number("deciding_inputs.share_as_written", d["share_as_written"], "{:.2f}", 100),
+      number("deciding_inputs.p_pass_exact_as_written", d["p_pass_exact_as_written"], "{:.3f}"));
+  o += "<table class=\"numbers\"><thead><tr><th>input</th><th>value</th><th>share</th><th>change, points (95 %, paired)</th><th>P(pass) from "
+       "every nail</th><th>its own verdict</th><th>what the range rests on</th></tr></thead><tbody>\n";
+  for (std::size_t i = 0; i < d["ranked"].size() && i < kDriversShown; ++i) {
+    const auto& in = d["ranked"][i];
+    const std::string key = fmt::format("deciding_inputs.ranked.{}", i);
+    for (std::size_t e = 0; e < in["ends"].size(); ++e) {
+      const auto& end = in["ends"][e];
+      const std::string k = fmt::format("{}.ends.{}", key, e);
+      o += "<tr>";
+      if (e == 0) o += fmt::format("<td rowspan=\"{}\">{}</td>", in["ends"].size(), escape(in["input"].get<std::string>()));
+      o += fmt::format("<td>{}</td><td>{} %</td><td>{} ({} to {})</td><td>{}</td><td>{}</td>", escape(end["value"].get<std::string>()),
+                       number(k + ".share", end["share"], "{:.2f}", 100), number(k + ".change.mean", end["change"]["mean"], "{:+.2f}", 100),
+                       number(k + ".change.low", end["change"]["low"], "{:+.2f}", 100), number(k + ".change.high", end["change"]["high"], "{:+.2f}", 100),
+                       number(k + ".p_pass_exact", end["p_pass_exact"], "{:.3f}"), escape(end["verdict"].get<std::string>()));
+      if (e == 0) o += fmt::format("<td rowspan=\"{}\">{}</td>", in["ends"].size(), escape(in["basis"].get<std::string>()));
+      o += "</tr>\n";
+    }
+  }
+  o += fmt::format(
+      "</tbody></table>\n<p>Every input, ranked, is in result.json (<code>deciding_inputs</code>). One input at a time: what the "
+      "inputs do together, and how much of the verdict's spread each carries, is <code>j232 uq</code>'s study (Sobol' indices). "
+      "These {} runs were asked for with <code>--drivers</code>.</p>\n</section>\n",
+      1 + [&] {
+        std::size_t n = 0;
+        for (const auto& in : d["ranked"]) n += in["ends"].size();
+        return n;
+      }());
+  return o;
+}
+
+}  // namespace j232::report
