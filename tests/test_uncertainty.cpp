@@ -73,6 +73,17 @@ basis = "test: drag is off, so this must not matter"
     CHECK(out[1] <= 1.0);
     CHECK(std::abs(out[1] - out[0]) < 4 * std::sqrt(0.25 / 12) + 0.02);
   }
+  // What chance alone would give each output's variance: binomial over the base draws (A
+  // and B), of the replicates for P(pass), of the nails fed for a share; none for P(pass)
+  // from every nail or the verdict.
+  REQUIRE(a.noise_variance.size() == a.output_info.size());
+  double pass_noise = 0, share_noise = 0;
+  for (std::size_t run = 0; run < 2 * a.design.base; ++run)
+    pass_noise += a.outputs[run][0] * (1 - a.outputs[run][0]) / 12, share_noise += a.outputs[run][5] * (1 - a.outputs[run][5]) / (12 * 150);
+  CHECK(a.noise_variance[0] == Approx(pass_noise / static_cast<double>(2 * a.design.base)));
+  CHECK(a.noise_variance[5] == Approx(share_noise / static_cast<double>(2 * a.design.base)));
+  CHECK(a.noise_variance[1] == -1.0);
+  CHECK(a.noise_variance[6] == -1.0);
   // The edge's bevel decides how this mower's nails leave: it carries the variance.
   REQUIRE(a.output_info[5].name == "punctures_outside");
   const auto& punct = a.indices[5];

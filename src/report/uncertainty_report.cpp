@@ -89,6 +89,10 @@ json uncertainty_json(const study::UncertaintyResult& r) {
     sensitivity[info.name] = {{"variance", idx.variance},
                                              {"indices", rows},
                                              {"largest_change_from_half_the_draws", r.half_indices ? json(moved) : json(nullptr)}};
+    // What Monte Carlo noise alone would give (none where not estimated), and its share of the variance.
+    const double noise = o < r.noise_variance.size() ? r.noise_variance[o] : -1.0;
+    sensitivity[info.name]["noise_variance"] = noise >= 0 ? json(noise) : json(nullptr);
+    sensitivity[info.name]["noise_share"] = noise >= 0 && idx.variance > 0 ? json(noise / idx.variance) : json(nullptr);
   }
   // The verdict is the last output: 1 where the draw passes (a field: acceptable beyond the deck).
   const double passing = outputs[r.output_info.back().name]["mean"].get<double>();
@@ -321,6 +325,13 @@ std::string uncertainty_html(const json& j) {
           row["flagged"].get<bool>() ? "&#9873; interval leaves [0, 1] by more than 0.05" : "");
     }
     o += "</tbody></table>\n";
+    if (!s["noise_share"].is_null() && s["noise_share"].get<double>() >= 0.25)
+      o += fmt::format(
+          "<p class=\"warning\">Mostly chance: Monte Carlo noise alone would give {} % of this output's variance over the draws "
+          "(binomial, as if each draw met new nails; common random numbers make it less). Its marks are rare, and a change of any "
+          "input sends the few nails that make them elsewhere: a total index near or above 1 here says that, not that the input "
+          "decides it. Read the inputs' effect on it from P(pass) from every nail, or run more replicates per draw.</p>\n",
+          number(fmt::format("sensitivity.{}.noise_share", name), s["noise_share"], "{:.0f}", 100));
     if (any_flagged)
       o += fmt::format(
           "<p>&#9873; An index lies between 0 and 1; an interval that leaves [0, 1] by more than 0.05 says that at N = {} base draws the estimate is "

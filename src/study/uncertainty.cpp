@@ -559,6 +559,22 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     return f;
   };
   for (std::size_t o = 0; o < outputs; ++o) r.indices.push_back(sobol_indices(r.design, column(o), 500, 1));
+  // Rare marks (a few in a draw's 7 500 nails) vary from draw to draw by chance as much as by
+  // the inputs: what the noise alone would give says how far their indices can be read.
+  r.noise_variance.assign(outputs, -1.0);
+  if (!r.field) {
+    const double replicates = static_cast<double>(r.plan.replicates), nails = static_cast<double>(nominal.feed.nails);
+    const std::size_t base_runs = std::min(r.outputs.size(), 2 * r.design.base);  // A and B, as the variance
+    for (std::size_t o = 0; o < outputs && base_runs > 0; ++o) {
+      const auto& output = r.output_info[o];
+      const bool share_of_nails = output.scale == UqOutput::Scale::Percent && nominal.criteria.denominator == scenario::CriteriaSpec::Denominator::NailsFed;
+      const double trials = output.name == "p_pass" ? replicates : share_of_nails ? replicates * nails : 0.0;
+      if (!(trials > 0)) continue;
+      double sum = 0;
+      for (std::size_t run = 0; run < base_runs; ++run) sum += r.outputs[run][o] * (1 - r.outputs[run][o]) / trials;
+      r.noise_variance[o] = sum / static_cast<double>(base_runs);
+    }
+  }
   if (r.design.base >= 4) {
     r.half_indices.emplace();
     for (std::size_t o = 0; o < outputs; ++o) r.half_indices->push_back(sobol_indices_prefix(r.design, column(o), r.design.base / 2, 500, 1));

@@ -73,6 +73,11 @@ struct UncertaintyResult {
   std::vector<SobolIndices> indices;         // per output
   // From the first half of the base draws: the check that N is enough (none below N = 4).
   std::optional<std::vector<SobolIndices>> half_indices;
+  // Per output: the variance Monte Carlo noise alone would give it over the base draws
+  // (binomial, as if each draw met new nails; common random numbers make it less): a share
+  // of the nails fed p(1-p)/(R n), the replicates' P(pass) p(1-p)/R; -1 where not estimated
+  // (P(pass) from every nail, a verdict, a field's figures, shares of the marks).
+  std::vector<double> noise_variance;
   std::vector<UqRun> runs;  // per run: outputs (as `outputs`) and cut-off share
   // A draw whose cut-off share neared the invalidity limit, naming the draw's inputs and
   // the limit that cut its nails off, one sentence each.
