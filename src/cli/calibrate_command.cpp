@@ -11,19 +11,41 @@
 #include "report/calibration_files.hpp"
 #include "scenario/input_error.hpp"
 #include "study/calibration.hpp"
+#include "study/board_calibration.hpp"
+#include "report/board_fit_files.hpp"
+#include "scenario/scenario_reader.hpp"
+#include "projectile/projectile.hpp"
 #include "report/result_files.hpp"
 
 namespace j232::cli {
 namespace {
 
 struct CalibrateOptions {
-  std::string cases, drops, law = "constant", out;
+  std::string cases, drops, board, scenario, law = "constant", out;
 };
 
 int calibrate(const CalibrateOptions& o) {
-  if (o.cases.empty() == o.drops.empty())
+  if (static_cast<int>(!o.cases.empty()) + static_cast<int>(!o.drops.empty()) + static_cast<int>(!o.board.empty()) != 1)
     throw scenario::InputError("", std::nullopt, "calibrate", "",
-                               "either a cases file (measured impacts) or --drops FILE (drop tests), not both or neither");
+                               "one of: a cases file (measured impacts), --drops FILE (drop tests of e) or --board FILE (nails onto the board)");
+  if (!o.board.empty()) {
+    // The nail from the scenario (the J232 test's 6d box nail unless it says otherwise).
+    const auto s = scenario::read_scenario(o.scenario);
+    const auto nail = projectile::Projectile::capsule(s.nail.length, s.nail.diameter, s.nail.mass);
+    const auto drops = study::read_board_drops(o.board);
+    const auto fit = study::fit_board(drops, nail, o.board);
+    fmt::print("{}", report::board_fit_text(fit));
+    fmt::print("  the scenario's board: k_p {:.1f} J/m, f_h {:.3f}, crush depth {:.1f} mm\n", s.board.puncture_energy_per_width,
+               s.board.hit_fraction, 1000 * s.board.crush_depth);
+    if (!o.out.empty()) {
+      report::OutputFolder out(o.out, {"board.toml", "calibrate-board.json"});
+      report::write_atomically(out.staged("board.toml"), report::board_fit_toml(fit));
+      report::write_atomically(out.staged("calibrate-board.json"), report::json_text(report::board_fit_json(fit, drops)) + "\n");
+      out.commit();
+      fmt::print("Wrote {0}/board.toml (the [board] values and their ranges for j232 uq) and {0}/calibrate-board.json\n", o.out);
+    }
+    return kOk;
+  }
   if (!o.drops.empty()) {
     const auto drops = study::read_drop_tests(o.drops);
     const auto r = study::restitution_from_drops(drops);
@@ -66,6 +88,11 @@ Runner add_calibrate_command(CLI::App& app) {
       ->check(CLI::IsMember({"constant", "power_law"}))
       ->capture_default_str();
   cmd->add_option("--drops", o->drops, "CSV of drop tests: columns drop_height, rebound_height; e = sqrt(rebound / drop height)");
+  auto* board = cmd->add_option("--board", o->board,
+                                "CSV of nails fired onto the board: columns speed, axis_angle (0 deg point first), result (none, hit, "
+                                "puncture), optionally spin; fits the board's puncture energy, hit fraction and crush depth");
+  cmd->add_option("--scenario", o->scenario, "With --board: the scenario whose nail was fired (its [nail] table)")->needs(board);
+  board->needs(cmd->get_option("--scenario"));
   cmd->add_option("--out", o->out, "Also write the results into this folder (calibrate.json/.csv and restitution.toml)");
   return [o] { return calibrate(*o); };
 }

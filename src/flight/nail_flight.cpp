@@ -1,4 +1,5 @@
 #include "flight/nail_flight.hpp"
+#include "flight/board_strike.hpp"
 
 #include <boost/random/normal_distribution.hpp>
 #include <algorithm>
@@ -516,18 +517,8 @@ Vec3 NailFlight::meet(const PlaneTouch& at, const Chord& chord) {
 // that the board is labelled with there.
 void NailFlight::reach_board(const scene::Hit& hit, const PlaneTouch& at, const Vec3& velocity) {
   const Vec3& n = hit.normal;
-  const Vec3 arm = at.point - at.centre;
-  const double approach = std::max(0.0, -n.dot(velocity + b.spin.cross(arm)));
-  const double at_point = 0.5 * effective_mass(nail, at.axis, arm, n) * approach * approach;
-  // A nail nearly flat has more of its shank within the crush depth than its end: the part
-  // pressing on the board shares what a plastic contact along the whole shank takes out (its
-  // normal translation and the turn that moves its ends along n), in proportion to its length.
-  const double cos_theta = std::abs(at.axis.dot(n));
-  const double pressing = cos_theta * length > set.board.crush_depth ? set.board.crush_depth / cos_theta : length;
-  const double centre_in = std::max(0.0, -n.dot(velocity)), turn = n.dot(b.spin.cross(at.axis));
-  const double along_shank = centre_in > 0 ? 0.5 * mass * centre_in * centre_in + 0.5 * nail.transverse_inertia() * turn * turn : 0.0;
-  const double energy = std::max(at_point, pressing / length * along_shank);
-  const double width = board::presented_width(length, diameter, at.axis.dot(n), set.board.crush_depth);
+  const BoardStrike strike = board_strike(nail, at.axis, at.point - at.centre, n, velocity, b.spin, set.board.crush_depth);
+  const double energy = strike.energy, width = strike.width;
   const board::Mark mark = board::classify(energy, width, set.board);
   if (r.board_energy < 0) r.board_energy = energy, r.board_energy_per_width = energy / width;
   if (mark != board::Mark::None) {

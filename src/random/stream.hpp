@@ -22,7 +22,7 @@ inline constexpr std::uint64_t splitmix64(std::uint64_t& state) {
 }
 
 // What a stream is used for; separate purposes never share numbers.
-enum class Purpose : std::uint64_t { Feed = 1, Estimator = 3, GuardPass = 4, Roughness = 5, FieldObject = 6, Recheck = 7, Test = 99 };
+enum class Purpose : std::uint64_t { Feed = 1, Estimator = 3, GuardPass = 4, Roughness = 5, FieldObject = 6, Recheck = 7, BoardFit = 8, Test = 99 };
 
 class Stream {
  public:

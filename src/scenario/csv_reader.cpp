@@ -88,4 +88,20 @@ CsvTable read_csv(const std::string& file) {
   return parse_csv(text.str(), file);
 }
 
+int require_column(const CsvTable& t, const std::string& name, const std::string& what) {
+  const int c = t.column(name);
+  if (c < 0) throw InputError::file_problem(t.file, t.header_line, fmt::format("no column \"{}\"; expected {}", name, what));
+  return c;
+}
+
+double quantity_cell(const CsvTable& t, const CsvRow& row, int column, units::Kind kind) {
+  const std::string& text = row.fields[static_cast<std::size_t>(column)];
+  try {
+    return units::parse(text, kind);
+  } catch (const units::UnitError& e) {
+    throw InputError(t.file, row.line, t.header[static_cast<std::size_t>(column)], text,
+                     fmt::format("expected {} ({})", units::describe(kind), e.what()));
+  }
+}
+
 }  // namespace j232::scenario

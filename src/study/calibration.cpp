@@ -22,21 +22,8 @@ namespace j232::study {
 namespace {
 using scenario::InputError;
 
-double parse_cell(const scenario::CsvTable& t, const scenario::CsvRow& row, int column, units::Kind kind) {
-  const std::string& text = row.fields[static_cast<std::size_t>(column)];
-  try {
-    return units::parse(text, kind);
-  } catch (const units::UnitError& e) {
-    throw InputError(t.file, row.line, t.header[static_cast<std::size_t>(column)], text,
-                     fmt::format("expected {} ({})", units::describe(kind), e.what()));
-  }
-}
-
-int require_column(const scenario::CsvTable& t, const std::string& name, const std::string& what) {
-  const int c = t.column(name);
-  if (c < 0) throw InputError::file_problem(t.file, t.header_line, fmt::format("no column \"{}\"; expected {}", name, what));
-  return c;
-}
+using scenario::require_column;
+constexpr auto parse_cell = scenario::quantity_cell;
 
 double t_quantile(int dof) { return boost::math::quantile(boost::math::students_t(static_cast<double>(dof)), 0.975); }
 
