@@ -41,7 +41,8 @@ TEST_CASE("board fit: point-first drops recover k_p from the hand threshold v = 
   CHECK(fit.puncture_energy_per_width.value >= kp_low * 0.99);
   CHECK(fit.puncture_energy_per_width.value <= kp_high * 1.01);
   CHECK(fit.hit_fraction.value == Approx(fh).epsilon(0.06));
-  CHECK(fit.scatter.value < 0.03);  // the data have none
+  CHECK(fit.scatter.value < 0.05);  // the data have none (the prior keeps it above 0)
+  CHECK(fit.separated);
   // Point first, the width and energy do not depend on the crush depth: it cannot be fitted.
   CHECK_FALSE(fit.crush_depth_determined);
 }

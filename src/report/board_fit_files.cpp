@@ -34,6 +34,9 @@ std::string board_fit_text(const study::BoardFit& f) {
   o += fmt::format("  scatter of the threshold       sigma {:.3f} of ln(E/w) (95 %: {:.3f} to {:.3f}): one spot's threshold within a "
                    "factor {:.2f} of the model's for two in three drops\n",
                    f.scatter.value, f.scatter.low, f.scatter.high, std::exp(f.scatter.value));
+  if (f.separated)
+    o += "  NOTE: a threshold separates these drops perfectly, so they cannot say how far the board scatters: sigma and the "
+         "intervals rest on the prior on sigma (median 0.1). Drops near the thresholds would pin them down.\n";
   o += "  (the simulation's board has no scatter: it takes the fitted thresholds; the intervals belong in j232 uq's ranges)\n";
   return o;
 }
@@ -80,8 +83,8 @@ json board_fit_json(const study::BoardFit& f, const std::vector<study::BoardDrop
           {"drops_file", f.drops_file},
           {"model",
            "ordered probit in ln(E/w): P(puncture) = Phi((ln(E/w) - ln k_p)/sigma), P(mark) = Phi((ln(E/w) - ln(f_h k_p))/sigma); E and "
-           "w as the flight computes them at the board; k_p, f_h, sigma by maximum likelihood at each crush depth of a 1-15 mm grid, "
-           "the depth by its profile likelihood"},
+           "w as the flight computes them at the board; k_p, f_h, sigma by maximum a posteriori (a weak prior on sigma) at each crush "
+           "depth of a 1-15 mm grid, the depth by its profile"},
           {"drops", f.drops},
           {"punctures", f.punctures},
           {"hits", f.hits},
@@ -90,6 +93,8 @@ json board_fit_json(const study::BoardFit& f, const std::vector<study::BoardDrop
           {"crush_depth_mm", estimate(f.crush_depth, 1000)},
           {"crush_depth_determined", f.crush_depth_determined},
           {"scatter_sigma", estimate(f.scatter)},
+          {"scatter_prior", "ln sigma ~ N(ln 0.1, 1), an estimate: it keeps perfectly separated drops from collapsing sigma"},
+          {"perfectly_separated", f.separated},
           {"log_likelihood", f.log_likelihood},
           {"bootstrap_draws", f.bootstrap_draws},
           {"per_drop", rows}};

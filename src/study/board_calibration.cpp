@@ -18,6 +18,7 @@ namespace {
 using scenario::InputError;
 using Vec3 = Eigen::Vector3d;
 using Params = std::array<double, 3>;  // ln k_p, ln(-ln f_h), ln sigma
+constexpr double kScatterPriorMedian = 0.1, kScatterPriorWidth = 1.0;
 
 // ln Phi(x), accurate in the far tail (erfc keeps its relative precision there).
 double log_phi(double x) { return std::log(std::max(0.5 * std::erfc(-x / std::sqrt(2.0)), 1e-300)); }
@@ -41,9 +42,19 @@ double log_likelihood(const std::vector<double>& y, const std::vector<board::Mar
   return sum;
 }
 
-// Nelder-Mead on -log-likelihood (3 parameters; the likelihood is smooth and unimodal in them).
+// A weak prior on the scatter, ln sigma ~ N(ln 0.1, 1) [est]: drops that a threshold
+// separates perfectly (few drops, or none near the thresholds) have no finite maximum of the
+// likelihood (sigma -> 0, the thresholds anywhere in the gaps), and the profile over the
+// crush depth then picks any depth that separates them. The prior keeps sigma finite; with
+// many drops it changes nothing (docs/model.md §6c).
+double log_prior(const Params& p) {
+  const double z = (p[2] - std::log(kScatterPriorMedian)) / kScatterPriorWidth;
+  return -0.5 * z * z;
+}
+
+// Nelder-Mead on -(log-likelihood + log prior) (3 parameters).
 Params maximise(const std::vector<double>& y, const std::vector<board::Mark>& marks, const std::vector<std::size_t>& use, Params start) {
-  const auto f = [&](const Params& p) { return -log_likelihood(y, marks, use, p); };
+  const auto f = [&](const Params& p) { return -(log_likelihood(y, marks, use, p) + log_prior(p)); };
   std::array<Params, 4> v{start, start, start, start};
   v[1][0] += 0.3, v[2][1] += 0.5, v[3][2] += 0.5;
   std::array<double, 4> fv{};
@@ -171,7 +182,7 @@ BoardFit fit_board(const std::vector<BoardDrop>& drops, const projectile::Projec
     const double depth = 0.001 + 0.0005 * k;
     const auto y = log_energy_per_width(drops, nail, depth);
     const Params p = maximise(y, marks, all, start_at(y));
-    depths.push_back(depth), best.push_back(p), profile.push_back(log_likelihood(y, marks, all, p));
+    depths.push_back(depth), best.push_back(p), profile.push_back(log_likelihood(y, marks, all, p) + log_prior(p));
   }
   const auto top = static_cast<std::size_t>(std::max_element(profile.begin(), profile.end()) - profile.begin());
   const double chi2_half = 0.5 * 3.841458820694124;  // chi-square, 1 degree of freedom, 95 %
@@ -184,6 +195,16 @@ BoardFit fit_board(const std::vector<BoardDrop>& drops, const projectile::Projec
   const Params p = best[top];
   const auto y = log_energy_per_width(drops, nail, depths[top]);
   const double sigma = std::exp(p[2]), hit_threshold = p[0] + std::log(hit_fraction_of(p));
+  // Perfectly separated: every mark above every drop without one, every puncture above every
+  // other drop (the scatter then rests on its prior).
+  double none_top = -1e300, mark_bottom = 1e300, other_top = -1e300, puncture_bottom = 1e300;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    if (marks[i] == board::Mark::None) none_top = std::max(none_top, y[i]);
+    else mark_bottom = std::min(mark_bottom, y[i]);
+    if (marks[i] == board::Mark::Puncture) puncture_bottom = std::min(puncture_bottom, y[i]);
+    else other_top = std::max(other_top, y[i]);
+  }
+  fit.separated = none_top < mark_bottom && other_top < puncture_bottom;
   for (double v : y) {
     fit.energy_per_width.push_back(std::exp(v));
     fit.p_mark.push_back(phi((v - hit_threshold) / sigma));

@@ -5,8 +5,9 @@
 // w the width pressing within the crush depth delta; §5.5) with a scatter: the board's
 // threshold at one spot is log-normal about the model's (flutes, liners, moisture), so
 //   P(puncture) = Phi((ln(E/w) - ln k_p) / sigma),  P(hit or puncture) = Phi((ln(E/w) - ln(f_h k_p)) / sigma)
-// (an ordered probit in ln(E/w)). k_p, f_h and sigma by maximum likelihood at each delta of
-// a grid, delta by the profile likelihood; 95 % intervals by bootstrap over the drops, and
+// (an ordered probit in ln(E/w)). k_p, f_h and sigma by maximum a posteriori (the likelihood
+// and a weak prior on sigma, which keeps perfectly separated drops from collapsing it) at
+// each delta of a grid, delta by the profile; 95 % intervals by bootstrap over the drops, and
 // delta's from the profile (likelihood ratio, chi-square 1). E and w are the flight's own
 // (flight::board_strike).
 #include <string>
@@ -41,6 +42,7 @@ struct BoardFit {
   Estimate crush_depth;      // m; the profile interval, clipped to the grid searched
   bool crush_depth_determined = false;  // false: the drops cannot tell the depths apart (the interval spans the grid)
   Estimate scatter;          // sigma, of ln(threshold)
+  bool separated = false;    // a threshold separates the drops perfectly: sigma rests on its prior
   double log_likelihood = 0;
   int bootstrap_draws = 0;
   // Per drop: E/w (J/m) at the fitted depth and the fitted probabilities of a hit or puncture.
