@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <algorithm>
 #include <map>
@@ -19,6 +20,7 @@
 #include "study/sensitivity.hpp"
 #include "study/uncertainty.hpp"
 #include "study/drivers.hpp"
+#include "study/parameters.hpp"
 #include "assess/runner.hpp"
 #include "assess/simulator.hpp"
 #include "assess/summary.hpp"
@@ -604,4 +606,27 @@ basis = "test"
   CHECK(crush[0].share == Approx(shallow).margin(1e-15));
   CHECK(crush[0].change.mean == Approx(shallow - as_written).margin(1e-12));
   CHECK((crush[0].change.low <= crush[0].change.mean && crush[0].change.mean <= crush[0].change.high));
+}
+
+TEST_CASE("uncertainty: every shipped J232 scenario's default set has ends the reader accepts (a flap deck draws no openness)", "[uncertainty][input]") {
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(J232_SOURCE_DIR) + "/scenarios")) {
+    if (entry.path().extension() != ".toml") continue;
+    const std::string file = entry.path().string();
+    const toml::table base = scenario::parse_toml_file(file);
+    const auto nominal = scenario::read_scenario(base, file);
+    const auto plan = study::uncertainty_plan(nominal);
+    for (const auto& in : plan.inputs) {
+      const auto values = in.values.empty() ? std::vector<std::string>{in.low, in.high} : in.values;
+      for (const auto& v : values) {
+        INFO(file << ": " << in.parameter << " = " << v);
+        const auto setting = study::make_setting(study::parameter_info(in.parameter), v, file, in.line, in.parameter);
+        toml::table doc = base;
+        study::apply_to_document(setting, doc, "test");
+        CHECK_NOTHROW([&] {
+          auto s = scenario::read_scenario(doc, file);
+          study::apply(setting, s);
+        }());
+      }
+    }
+  }
 }

@@ -258,6 +258,21 @@ UncertainInput ground_kind_form() {
                     "and penetrability (recalled tables and estimates)");
 }
 
+// How open the chain curtains are: one input for every guard when all are chains, else one
+// per chain guard (a flap is a solid plate: it has no openness to draw).
+std::vector<UncertainInput> guard_openness(const scenario::Scenario& s) {
+  const auto& guards = s.housing.guards;
+  const auto chains = static_cast<std::size_t>(std::count_if(guards.begin(), guards.end(), [](const auto& g) { return g.kind == scenario::GuardSpec::Kind::Chains; }));
+  const char* basis = "estimate: single row 0.3-0.5 open, double row 0.1-0.25";
+  if (chains == 0) return {};
+  if (chains == guards.size()) return {estimated("housing.guards.openness", "0.1", "0.4", basis)};
+  std::vector<UncertainInput> out;
+  for (std::size_t k = 0; k < guards.size(); ++k)
+    if (guards[k].kind == scenario::GuardSpec::Kind::Chains)
+      out.push_back(estimated(fmt::format("housing.guards[{}].openness", k + 1), "0.1", "0.4", basis));
+  return out;
+}
+
 // A field's estimated inputs (docs/model.md §9): what is known of the field (how many
 // objects, how large, how deep in the turf), of the air under the deck and of the contacts,
 // each over a range about the scenario's own value.
@@ -346,8 +361,7 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
   in.push_back(estimated("ground.rolling_resistance", "0.1", "0.6",
                          "estimate: a ball rolling on a golf green slows by 0.05-0.09 g and on a football pitch by about 0.07-0.2 g; "
                          "a verge mowed at 3-6 in, taller, more"));
-  if (!s.housing.guards.empty())
-    in.push_back(estimated("housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25"));
+  for (auto& guard : guard_openness(s)) in.push_back(std::move(guard));
   in.push_back(contact_model_form());
   in.push_back(restitution_law_form());
   return in;
@@ -382,8 +396,7 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
       estimated("housing.friction", "0.3", "0.6", "handbook: steel on steel, kinetic 0.42-0.57"),
       estimated("feed.tilt_max", "0 deg", "10 deg", "estimate: SAE J232's feed tube geometry is not available"),
   };
-  if (!s.housing.guards.empty())
-    plan.inputs.push_back(estimated("housing.guards.openness", "0.1", "0.4", "estimate: single row 0.3-0.5 open, double row 0.1-0.25"));
+  for (auto& guard : guard_openness(s)) plan.inputs.push_back(std::move(guard));
   plan.inputs.push_back(ground_kind_form());
   plan.inputs.push_back(contact_model_form());
   plan.inputs.push_back(restitution_law_form());
