@@ -47,8 +47,8 @@ void add_uncertainty_option(CLI::App& cmd, RunOverrides& o) {
 void add_drivers_option(CLI::App& cmd, RunOverrides& o) {
   cmd.add_flag("--drivers", o.drivers,
                "Also find the inputs that most move the deciding criterion: each uncertain input (the [uncertainty] set, or the "
-               "default estimated one) at its range's ends, paired runs of the study's replicates (about 25 runs of 50 "
-               "replicates), in the report and result.json");
+               "default estimated one) at its range's ends, paired runs of the study's replicates (27 runs of 50 "
+               "replicates for the default set), in the report and result.json");
 }
 
 void add_run_overrides(CLI::App& cmd, RunOverrides& o, const std::string& whose) {

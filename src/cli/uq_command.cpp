@@ -46,7 +46,7 @@ struct UqOptions {
 // time. The file must be of this study: the same inputs, outputs and draws.
 class Reuse {
  public:
-  Reuse(const UqOptions& o, const study::UncertaintyPlan& plan, const std::vector<study::UqOutput>& outputs) {
+  Reuse(const UqOptions& o, const scenario::Scenario& nominal, const study::UncertaintyPlan& plan, const std::vector<study::UqOutput>& outputs) {
     if (o.reuse.empty()) return;
     table_ = report::read_uncertainty_csv(o.reuse);
     auto& t = *table_;
@@ -64,12 +64,18 @@ class Reuse {
       throw scenario::InputError(o.reuse, static_cast<int>(t.cells.size()) + 1, "rows", std::to_string(t.cells.size()),
                                  fmt::format("{} assessments, as this study has ({} base draws x ({} inputs + 2))", runs, plan.base_draws,
                                              plan.inputs.size()));
-    for (std::size_t run = 0; run < t.cells.size(); ++run)
-      t.runs[run].outputs.assign(t.cells[run].begin() + static_cast<std::ptrdiff_t>(plan.inputs.size()), t.cells[run].end());
+    for (std::size_t run = 0; run < t.cells.size(); ++run) {
+      auto& out = t.runs[run].outputs;
+      out.assign(t.cells[run].begin() + static_cast<std::ptrdiff_t>(plan.inputs.size()), t.cells[run].end());
+      // A J232 draw's verdict is judged again against this scenario's required P(pass) (the
+      // file's was judged against its own): from P(pass) from every nail, as the study does.
+      if (!nominal.field.present && out.size() == outputs.size() && outputs.back().name == "passes" && outputs[1].name == "p_pass_exact")
+        out.back() = out[1] >= nominal.criteria.required_pass_probability ? 1.0 : 0.0;
+    }
     // Which to run again: a partial Fisher-Yates shuffle on a keyed stream of the seed.
     std::vector<std::size_t> order(runs);
     for (std::size_t i = 0; i < runs; ++i) order[i] = i;
-    random::Stream pick(seed_of(o.scenario), 0, 0, random::Purpose::Recheck);
+    random::Stream pick(nominal.run.seed, 0, 0, random::Purpose::Recheck);
     for (std::size_t i = 0; i < std::min(o.recheck, runs); ++i) {
       const std::size_t j = i + static_cast<std::size_t>(pick.uniform() * static_cast<double>(runs - i));
       std::swap(order[i], order[std::min(j, runs - 1)]);
@@ -111,7 +117,6 @@ class Reuse {
   }
 
  private:
-  static std::uint64_t seed_of(const std::string& file) { return scenario::read_scenario(file).run.seed; }
   std::optional<report::UncertaintyTable> table_;
   std::set<std::size_t> rerun_;
   std::vector<std::string> differing_;
@@ -208,7 +213,7 @@ int uq(const UqOptions& o) {
   std::optional<Reuse> reuse;
   if (!o.reuse.empty()) {
     const auto nominal = scenario::read_scenario(o.scenario);
-    reuse.emplace(o, study::uncertainty_plan(nominal), study::uq_outputs(nominal));
+    reuse.emplace(o, nominal, study::uncertainty_plan(nominal), study::uq_outputs(nominal));
     fmt::print("Reusing {}: {} assessments run again to check it\n", terminal_safe(o.reuse), reuse->rerun_count());
   }
   const study::UncertaintyJournal hooks{[&](std::size_t run) { return reuse ? reuse->recall(run) : kept.recall(run); },
@@ -222,7 +227,9 @@ int uq(const UqOptions& o) {
     r = study::run_uncertainty(o.scenario, o.threads, std::cref(counter), &hooks);
   }
   if (reuse) reuse->verify(r);
-  const auto j = report::uncertainty_json(r);
+  auto j = report::uncertainty_json(r);
+  if (reuse)  // (outside what the shipped reports' check compares)
+    j["provenance"] = {{"reused_from", o.reuse}, {"assessments_run_again", reuse->rerun_count()}};
   report::write_atomically(out.staged("uq.csv"), report::uncertainty_csv(r));
   report::write_atomically(out.staged("uq.html"), report::uncertainty_html(j));
   report::write_atomically(out.staged("uq.json"), report::json_text(j) + "\n");
@@ -284,7 +291,7 @@ Runner add_uq_command(CLI::App& app) {
       ->excludes(cmd->get_option("--resume"));
   cmd->add_option("--recheck", o->recheck, "With --reuse: how many of its assessments, chosen at random, are run again")
       ->capture_default_str()
-      ->check(CLI::Range(0, 1000000))
+      ->check(CLI::Range(1, 1000000))
       ->needs(cmd->get_option("--reuse"));
   return [o] { return uq(*o); };
 }

@@ -23,13 +23,17 @@ std::string depth_words(const study::BoardFit& f) {
 std::string board_fit_text(const study::BoardFit& f) {
   std::string o = fmt::format("Board fitted to {} drops ({}): {} punctures, {} hits, {} without a mark\n", f.drops,
                               terminal_safe(f.drops_file), f.punctures, f.hits, f.drops - f.punctures - f.hits);
-  o += fmt::format("  puncture energy per width k_p  {:.1f} J/m  (95 %: {:.1f} to {:.1f}, bootstrap of the drops)\n",
-                   f.puncture_energy_per_width.value, f.puncture_energy_per_width.low, f.puncture_energy_per_width.high);
-  if (f.hits > 0)
-    o += fmt::format("  hit fraction f_h               {:.3f}     (95 %: {:.3f} to {:.3f})\n", f.hit_fraction.value, f.hit_fraction.low,
-                     f.hit_fraction.high);
+  o += fmt::format("  puncture energy per width k_p  {:.1f} J/m  ({}, bootstrap of the drops, the depth refitted in each)\n",
+                   f.puncture_energy_per_width.value,
+                   f.puncture_energy_per_width.bounded
+                       ? fmt::format("95 %: {:.1f} to {:.1f}", f.puncture_energy_per_width.low, f.puncture_energy_per_width.high)
+                       : "no interval: too few drops on one side of the threshold for resampling to bracket it");
+  if (f.hit_fraction_determined)
+    o += fmt::format("  hit fraction f_h               {:.3f}     ({})\n", f.hit_fraction.value,
+                     f.hit_fraction.bounded ? fmt::format("95 %: {:.3f} to {:.3f}", f.hit_fraction.low, f.hit_fraction.high)
+                                            : "no interval: too few drops on one side of the hit threshold");
   else
-    o += "  hit fraction f_h               not determined: no drop left a hit (record hits apart from punctures)\n";
+    o += "  hit fraction f_h               not determined: it needs drops that left a hit and drops that left no mark\n";
   o += fmt::format("  crush depth delta              {}\n", depth_words(f));
   o += fmt::format("  scatter of the threshold       sigma {:.3f} of ln(E/w) (95 %: {:.3f} to {:.3f}): one spot's threshold within a "
                    "factor {:.2f} of the model's for two in three drops\n",
@@ -45,14 +49,16 @@ std::string board_fit_toml(const study::BoardFit& f) {
   std::string o = fmt::format("# The board fitted by `j232 calibrate --board` to {} drops ({}).\n", f.drops, f.drops_file);
   o += "[board]\n";
   o += fmt::format("puncture_energy_per_width = \"{:.4g} J/m\"\n", f.puncture_energy_per_width.value);
-  if (f.hits > 0) o += fmt::format("hit_fraction = {:.4g}\n", f.hit_fraction.value);
+  if (f.hit_fraction_determined) o += fmt::format("hit_fraction = {:.4g}\n", f.hit_fraction.value);
   if (f.crush_depth_determined) o += fmt::format("crush_depth = \"{:.3g} mm\"\n", 1000 * f.crush_depth.value);
-  o += "\n# Their 95 % intervals, for j232 uq (add to the scenario's [uncertainty] table).\n";
-  o += fmt::format(
+  o += "\n# Their 95 % intervals, for j232 uq (add to the scenario's [uncertainty] table). k_p and the crush depth are\n"
+       "# linked (a deeper crush presses a wider nail): drawn independently, their ranges overstate the spread.\n";
+  if (f.puncture_energy_per_width.bounded)
+    o += fmt::format(
       "[[uncertainty.inputs]]\nparameter = \"board.puncture_energy_per_width\"\nlow = \"{:.4g} J/m\"\nhigh = \"{:.4g} J/m\"\nbasis = \"j232 "
       "calibrate --board {}: 95 % bootstrap interval\"\n",
       f.puncture_energy_per_width.low, f.puncture_energy_per_width.high, f.drops_file);
-  if (f.hits > 0 && f.hit_fraction.high > f.hit_fraction.low)
+  if (f.hit_fraction_determined && f.hit_fraction.bounded && f.hit_fraction.high > f.hit_fraction.low)
     o += fmt::format(
         "\n[[uncertainty.inputs]]\nparameter = \"board.hit_fraction\"\nlow = {:.4g}\nhigh = {:.4g}\nbasis = \"j232 calibrate --board {}: 95 % "
         "bootstrap interval\"\n",
@@ -67,7 +73,7 @@ std::string board_fit_toml(const study::BoardFit& f) {
 
 json board_fit_json(const study::BoardFit& f, const std::vector<study::BoardDrop>& drops) {
   const auto estimate = [](const study::Estimate& e, double scale = 1.0) {
-    return json{{"value", e.value * scale}, {"low", e.low * scale}, {"high", e.high * scale}};
+    return json{{"value", e.value * scale}, {"low", e.bounded ? json(e.low * scale) : json(nullptr)}, {"high", e.bounded ? json(e.high * scale) : json(nullptr)}};
   };
   json rows = json::array();
   for (std::size_t i = 0; i < drops.size(); ++i)
@@ -89,13 +95,13 @@ json board_fit_json(const study::BoardFit& f, const std::vector<study::BoardDrop
           {"punctures", f.punctures},
           {"hits", f.hits},
           {"puncture_energy_per_width_J_m", estimate(f.puncture_energy_per_width)},
-          {"hit_fraction", f.hits > 0 ? estimate(f.hit_fraction) : json(nullptr)},
+          {"hit_fraction", f.hit_fraction_determined ? estimate(f.hit_fraction) : json(nullptr)},
           {"crush_depth_mm", estimate(f.crush_depth, 1000)},
           {"crush_depth_determined", f.crush_depth_determined},
           {"scatter_sigma", estimate(f.scatter)},
           {"scatter_prior", "ln sigma ~ N(ln 0.1, 1), an estimate: it keeps perfectly separated drops from collapsing sigma"},
           {"perfectly_separated", f.separated},
-          {"log_likelihood", f.log_likelihood},
+          {"log_posterior", f.log_posterior},
           {"bootstrap_draws", f.bootstrap_draws},
           {"per_drop", rows}};
 }

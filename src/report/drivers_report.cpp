@@ -45,6 +45,8 @@ std::string end_words(const json& e) {
 std::string drivers_text(const json& d) {
   std::string o = fmt::format("  What moves {} most (each input at its range's ends, {} paired replicates; change of its mean share, points):\n",
                               d["criterion"].get<std::string>(), d["replicates"].get<std::uint64_t>());
+  if (d["ranked"].empty() || d["ranked"][0]["largest_change"].get<double>() == 0.0)
+    return o + fmt::format("    none of the {} inputs moves it at either end of its range, at these replicates\n", d["ranked"].size());
   for (std::size_t i = 0; i < d["ranked"].size() && i < kDriversShown; ++i) {
     const auto& r = d["ranked"][i];
     std::string ends;
@@ -61,12 +63,15 @@ std::string drivers_html(const json& r) {
   o += fmt::format(
       "<p>The deciding criterion, <strong>{}</strong>, with each uncertain input ({}) set to each end of its range and every other "
       "input as written: {} replicates each with the scenario's seed, so each change is paired replicate by replicate with the "
-      "scenario as written (its share at these replicates: {} %; P(pass) from every nail {}). The three inputs that move it "
-      "most:</p>\n",
+      "scenario as written (its share at these replicates: {} %; P(pass) from every nail {}).</p>\n",
       escape(d["criterion"].get<std::string>()), escape(d["inputs_from"].get<std::string>()), number("deciding_inputs.replicates", d["replicates"], "{}"),
       number("deciding_inputs.share_as_written", d["share_as_written"], "{:.2f}", 100),
       number("deciding_inputs.p_pass_exact_as_written", d["p_pass_exact_as_written"], "{:.3f}"));
-  o += "<table class=\"numbers\"><thead><tr><th>input</th><th>value</th><th>share</th><th>change, points (95 %, paired)</th><th>P(pass) from "
+  if (d["ranked"].empty() || d["ranked"][0]["largest_change"].get<double>() == 0.0)
+    return o + fmt::format("<p><strong>None of the {} inputs moves it</strong> at either end of its range, at these replicates: the verdict "
+                           "does not rest on any one of them (result.json lists each end).</p>\n</section>\n",
+                           d["ranked"].size());
+  o += "<p>The three inputs that move it most:</p>\n<table class=\"numbers\"><thead><tr><th>input</th><th>value</th><th>share</th><th>change, points (95 %, paired)</th><th>P(pass) from "
        "every nail</th><th>its own verdict</th><th>what the range rests on</th></tr></thead><tbody>\n";
   for (std::size_t i = 0; i < d["ranked"].size() && i < kDriversShown; ++i) {
     const auto& in = d["ranked"][i];

@@ -28,7 +28,7 @@ double hit_fraction_of(const Params& p) { return std::exp(-std::exp(p[1])); }
 
 // The ordered probit's log-likelihood of the drops' marks at y = ln(E/w).
 double log_likelihood(const std::vector<double>& y, const std::vector<board::Mark>& marks, const std::vector<std::size_t>& use, const Params& p) {
-  const double sigma = std::exp(p[2]), puncture = p[0], hit = p[0] + std::log(hit_fraction_of(p));
+  const double sigma = std::exp(p[2]), puncture = p[0], hit = p[0] - std::exp(p[1]);  // ln f_h = -exp(c)
   if (!(sigma >= 0.005 && sigma <= 5)) return -std::numeric_limits<double>::infinity();
   double sum = 0;
   for (std::size_t i : use) {
@@ -36,7 +36,9 @@ double log_likelihood(const std::vector<double>& y, const std::vector<board::Mar
     switch (marks[i]) {
       case board::Mark::None: sum += log_phi(-zh); break;
       case board::Mark::Puncture: sum += log_phi(zp); break;
-      case board::Mark::Hit: sum += std::log(std::max(phi(zh) - phi(zp), 1e-300)); break;
+      case board::Mark::Hit:  // in the upper tail from the other side, where the difference keeps its digits
+        sum += std::log(std::max(zp > 0 ? phi(-zp) - phi(-zh) : phi(zh) - phi(zp), 1e-300));
+        break;
     }
   }
   return sum;
@@ -102,14 +104,14 @@ Params maximise(const std::vector<double>& y, const std::vector<board::Mark>& ma
 
 // ln(E/w) of each drop at crush depth `depth`: the nail square on to a board facing +z,
 // its lower end first (point first at angle 0, flat at 90 deg), tumbling in the plane of its
-// axis and the normal.
+// axis and the normal (a positive spin turns the touching end toward the board).
 std::vector<double> log_energy_per_width(const std::vector<BoardDrop>& drops, const projectile::Projectile& nail, double depth) {
   const Vec3 n = Vec3::UnitZ();
   std::vector<double> y;
   for (const auto& d : drops) {
     const Vec3 axis(std::sin(d.axis_angle), 0.0, std::cos(d.axis_angle));
     const Vec3 arm = -nail.half_segment() * axis - nail.radius() * n;  // the lower end's lowest point
-    const Vec3 spin = d.spin * Vec3::UnitY();
+    const Vec3 spin = -d.spin * Vec3::UnitY();  // positive: the touching end turns toward the board
     const auto strike = flight::board_strike(nail, axis, arm, n, Vec3(0, 0, -d.speed), spin, depth);
     y.push_back(std::log(std::max(strike.energy, 1e-300) / strike.width));
   }
@@ -185,16 +187,20 @@ BoardFit fit_board(const std::vector<BoardDrop>& drops, const projectile::Projec
     depths.push_back(depth), best.push_back(p), profile.push_back(log_likelihood(y, marks, all, p) + log_prior(p));
   }
   const auto top = static_cast<std::size_t>(std::max_element(profile.begin(), profile.end()) - profile.begin());
-  const double chi2_half = 0.5 * 3.841458820694124;  // chi-square, 1 degree of freedom, 95 %
+  const double cut = profile[top] - 0.5 * 3.841458820694124;  // chi-square, 1 degree of freedom, 95 %
   std::size_t lo = top, hi = top;
-  while (lo > 0 && profile[lo - 1] >= profile[top] - chi2_half) --lo;
-  while (hi + 1 < depths.size() && profile[hi + 1] >= profile[top] - chi2_half) ++hi;
-  fit.crush_depth = {depths[top], depths[lo], depths[hi]};
+  while (lo > 0 && profile[lo - 1] >= cut) --lo;
+  while (hi + 1 < depths.size() && profile[hi + 1] >= cut) ++hi;
+  // Where the profile crosses the cut, between grid depths (linear in between).
+  const auto crossing = [&](std::size_t in, std::size_t out) {
+    return depths[out] + (cut - profile[out]) / (profile[in] - profile[out]) * (depths[in] - depths[out]);
+  };
+  fit.crush_depth = {depths[top], lo > 0 ? crossing(lo, lo - 1) : depths[lo], hi + 1 < depths.size() ? crossing(hi, hi + 1) : depths[hi]};
   fit.crush_depth_determined = !(lo == 0 && hi + 1 == depths.size());
-  fit.log_likelihood = profile[top];
+  fit.log_posterior = profile[top];
   const Params p = best[top];
   const auto y = log_energy_per_width(drops, nail, depths[top]);
-  const double sigma = std::exp(p[2]), hit_threshold = p[0] + std::log(hit_fraction_of(p));
+  const double sigma = std::exp(p[2]), hit_threshold = p[0] - std::exp(p[1]);
   // Perfectly separated: every mark above every drop without one, every puncture above every
   // other drop (the scatter then rests on its prior).
   double none_top = -1e300, mark_bottom = 1e300, other_top = -1e300, puncture_bottom = 1e300;
@@ -211,18 +217,39 @@ BoardFit fit_board(const std::vector<BoardDrop>& drops, const projectile::Projec
     fit.p_puncture.push_back(phi((v - p[0]) / sigma));
   }
 
-  // Intervals: the drops resampled (at the fitted depth), each resample fitted afresh.
+  // Intervals: the drops resampled, each resample fitted afresh at every depth of the
+  // profile's interval (and a grid step beyond each end), keeping the best: k_p and the
+  // depth are linked (a deeper crush presses a wider nail), so the depth is refitted too.
+  const std::size_t first = lo > 0 ? lo - 1 : lo, last = hi + 1 < depths.size() ? hi + 1 : hi;
+  std::vector<std::vector<double>> y_at;
+  for (std::size_t k = first; k <= last; ++k) y_at.push_back(log_energy_per_width(drops, nail, depths[k]));
   fit.bootstrap_draws = 400;
   random::Stream stream(seed, 0, 0, random::Purpose::BoardFit);
   std::vector<double> kp, fh, sg;
+  int puncture_open = 0, hit_open = 0;  // resamples that do not bracket the threshold
   for (int b = 0; b < fit.bootstrap_draws; ++b) {
     std::vector<std::size_t> use(drops.size());
-    for (auto& i : use) i = std::min(drops.size() - 1, static_cast<std::size_t>(stream.uniform() * static_cast<double>(drops.size())));
-    const Params q = maximise(y, marks, use, p);
+    std::size_t unmarked = 0, punctured = 0;
+    for (auto& i : use) {
+      i = std::min(drops.size() - 1, static_cast<std::size_t>(stream.uniform() * static_cast<double>(drops.size())));
+      unmarked += marks[i] == board::Mark::None, punctured += marks[i] == board::Mark::Puncture;
+    }
+    puncture_open += punctured == 0 || punctured == use.size();
+    hit_open += unmarked == 0 || unmarked == use.size();
+    Params q = p;
+    double q_best = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < y_at.size(); ++k) {
+      const Params r = maximise(y_at[k], marks, use, best[first + k]);
+      const double value = log_likelihood(y_at[k], marks, use, r) + log_prior(r);
+      if (value > q_best) q_best = value, q = r;
+    }
     kp.push_back(std::exp(q[0])), fh.push_back(hit_fraction_of(q)), sg.push_back(std::exp(q[2]));
   }
-  fit.puncture_energy_per_width = {std::exp(p[0]), quantile(kp, 0.025), quantile(kp, 0.975)};
-  fit.hit_fraction = {hit_fraction_of(p), quantile(fh, 0.025), quantile(fh, 0.975)};
+  // More than 2.5 % of resamples leave a threshold unbracketed: its interval is open there.
+  const double open_limit = 0.025 * fit.bootstrap_draws;
+  fit.puncture_energy_per_width = {std::exp(p[0]), quantile(kp, 0.025), quantile(kp, 0.975), puncture_open <= open_limit};
+  fit.hit_fraction = {hit_fraction_of(p), quantile(fh, 0.025), quantile(fh, 0.975), hit_open <= open_limit};
+  fit.hit_fraction_determined = fit.hits > 0 && fit.hits + fit.punctures < fit.drops;
   fit.scatter = {sigma, quantile(sg, 0.025), quantile(sg, 0.975)};
   return fit;
 }

@@ -21,7 +21,7 @@ namespace j232::study {
 struct BoardDrop {
   double speed = 0;       // m/s, the nail's centre, square on to the board
   double axis_angle = 0;  // rad, between the nail's axis and the board's normal (0: point first)
-  double spin = 0;        // rad/s, tumbling in the plane of the axis and the normal
+  double spin = 0;        // rad/s, tumbling in the plane of the axis and the normal; positive turns the touching end toward the board
   board::Mark result = board::Mark::None;
   int line = 0;
 };
@@ -32,6 +32,7 @@ std::vector<BoardDrop> read_board_drops(const std::string& csv_file);
 
 struct Estimate {
   double value = 0, low = 0, high = 0;  // 95 %
+  bool bounded = true;  // false: too many resamples left the threshold unbracketed; the interval is open
 };
 
 struct BoardFit {
@@ -43,7 +44,8 @@ struct BoardFit {
   bool crush_depth_determined = false;  // false: the drops cannot tell the depths apart (the interval spans the grid)
   Estimate scatter;          // sigma, of ln(threshold)
   bool separated = false;    // a threshold separates the drops perfectly: sigma rests on its prior
-  double log_likelihood = 0;
+  bool hit_fraction_determined = false;  // some drops left a hit, and some no mark
+  double log_posterior = 0;  // at the fit (the likelihood and the prior on sigma)
   int bootstrap_draws = 0;
   // Per drop: E/w (J/m) at the fitted depth and the fitted probabilities of a hit or puncture.
   std::vector<double> energy_per_width, p_mark, p_puncture;

@@ -137,6 +137,7 @@ Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads,
     s.run.seed = seed;
     s.run.replicates = static_cast<long long>(replicates);
     s.run.target_half_width.reset();
+    s.run.until_settled = false;  // every design runs the same replicates, no stop rule
     if (on_design) on_design(d, s);
     DesignRecorder recorder(replicates);
     const assess::Simulator sim(s);

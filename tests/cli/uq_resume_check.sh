@@ -31,7 +31,11 @@ kill_part_way() {
 # A finished study reused (j232 uq --reuse): the same three files, some assessments run again.
 "$exe" uq "$scenario" --threads 2 --out "$work/reused" --reuse "$work/whole/uq.csv" --recheck 6 | grep -q "Reusing .*: 6 assessments run again" ||
   fail "--reuse did not say what it reran"
-for f in uq.json uq.csv uq.html; do cmp "$work/whole/$f" "$work/reused/$f" || fail "the reused study's $f differs"; done
+for f in uq.csv uq.html; do cmp "$work/whole/$f" "$work/reused/$f" || fail "the reused study's $f differs"; done
+python3 -c 'import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert b.pop("provenance") == {"reused_from": sys.argv[3], "assessments_run_again": 6}, "the reuse is not recorded"
+assert a == b, "the reused uq.json differs"' "$work/whole/uq.json" "$work/reused/uq.json" "$work/whole/uq.csv" 2>/dev/null || fail "the reused uq.json differs or does not record the reuse"
 # One output of one assessment changed in the last digit: found when every row is run again.
 awk -F, 'BEGIN { OFS = "," } NR == 3 { $(NF - 6) = $(NF - 6) + 1e-9 } { print }' "$work/whole/uq.csv" >"$work/tampered.csv"
 code=0
