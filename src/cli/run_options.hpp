@@ -22,7 +22,7 @@ void add_stop_rule_options(CLI::App& cmd, RunOverrides& overrides);
 void add_trajectories_option(CLI::App& cmd, RunOverrides& overrides);
 // --uncertainty (run).
 void add_uncertainty_option(CLI::App& cmd, RunOverrides& overrides);
-// --no-drivers: the report without the inputs that most move its deciding criterion.
+// --drivers: also the inputs that most move the deciding criterion, in the report.
 void add_drivers_option(CLI::App& cmd, RunOverrides& overrides);
 
 // --threads beyond this machine's cores: said on standard error (a run is no faster for it).
