@@ -41,6 +41,18 @@ std::string with_uncertainty(const std::string& name, const std::string& table) 
   std::ofstream(path) << text << table;
   return path;
 }
+// A study of one input (the edge's bevel) over two base draws, its outputs left to fill.
+study::UncertaintyResult one_input_study() {
+  study::UncertaintyResult r;
+  r.title = "test", r.scenario_file = "test.toml";
+  r.output_info = study::uq_outputs(scenario::Scenario{});
+  scenario::UncertainInput input;
+  input.parameter = "bevel_angle", input.low = "20 deg", input.high = "45 deg", input.basis = "test";
+  r.plan.inputs.push_back(input);
+  r.plan.base_draws = 2;
+  r.design = study::saltelli_design(1, 2);
+  return r;
+}
 }  // namespace
 
 TEST_CASE("uncertainty: the study is deterministic, and an ignored input gets no share", "[uncertainty][long]") {
@@ -270,14 +282,7 @@ void index_outputs(study::UncertaintyResult& r) {
 TEST_CASE("uncertainty: the page never calls an output the same at every draw when its table shows a spread", "[uncertainty][report]") {
   // One input, two base draws: A and B give every output the same value, one mixed draw
   // (AB_1) another. The base draws carry no variance, yet the output moves.
-  study::UncertaintyResult r;
-  r.title = "test", r.scenario_file = "test.toml";
-  r.output_info = study::uq_outputs(scenario::Scenario{});
-  scenario::UncertainInput input;
-  input.parameter = "bevel_angle", input.low = "20 deg", input.high = "45 deg", input.basis = "test";
-  r.plan.inputs.push_back(input);
-  r.plan.base_draws = 2;
-  r.design = study::saltelli_design(1, 2);
+  study::UncertaintyResult r = one_input_study();
   const auto runs = r.design.runs();
   REQUIRE(runs.size() == 6);
   for (std::size_t run = 0; run < runs.size(); ++run) {
@@ -509,14 +514,7 @@ TEST_CASE("uncertainty: the default set draws the model's form (contact model, r
 }
 
 TEST_CASE("uncertainty: uq.csv holds every assessment exactly, and reads back; a broken table is refused by line and column", "[uncertainty][report]") {
-  study::UncertaintyResult r;
-  r.title = "test", r.scenario_file = "test.toml";
-  r.output_info = study::uq_outputs(scenario::Scenario{});
-  scenario::UncertainInput input;
-  input.parameter = "bevel_angle", input.low = "20 deg", input.high = "45 deg", input.basis = "test";
-  r.plan.inputs.push_back(input);
-  r.plan.base_draws = 2;
-  r.design = study::saltelli_design(1, 2);
+  study::UncertaintyResult r = one_input_study();
   const auto runs = r.design.runs();
   for (std::size_t run = 0; run < runs.size(); ++run) {
     r.values.push_back({0.1 + 1.0 / 3 * static_cast<double>(run)});  // no short decimal
@@ -619,13 +617,7 @@ TEST_CASE("uncertainty: every shipped J232 scenario's default set has ends the r
       const auto values = in.values.empty() ? std::vector<std::string>{in.low, in.high} : in.values;
       for (const auto& v : values) {
         INFO(file << ": " << in.parameter << " = " << v);
-        const auto setting = study::make_setting(study::parameter_info(in.parameter), v, file, in.line, in.parameter);
-        toml::table doc = base;
-        study::apply_to_document(setting, doc, "test");
-        CHECK_NOTHROW([&] {
-          auto s = scenario::read_scenario(doc, file);
-          study::apply(setting, s);
-        }());
+        CHECK_NOTHROW(study::scenario_with(base, file, in, v, in.parameter));
       }
     }
   }

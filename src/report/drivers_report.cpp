@@ -89,15 +89,13 @@ std::string drivers_html(const json& r) {
       o += "</tr>\n";
     }
   }
+  std::size_t runs = 1;  // the scenario as written, and each end
+  for (const auto& in : d["ranked"]) runs += in["ends"].size();
   o += fmt::format(
       "</tbody></table>\n<p>Every input, ranked, is in result.json (<code>deciding_inputs</code>). One input at a time: what the "
       "inputs do together, and how much of the verdict's spread each carries, is <code>j232 uq</code>'s study (Sobol' indices). "
       "These {} runs were asked for with <code>--drivers</code>.</p>\n</section>\n",
-      1 + [&] {
-        std::size_t n = 0;
-        for (const auto& in : d["ranked"]) n += in["ends"].size();
-        return n;
-      }());
+      runs);
   return o;
 }
 

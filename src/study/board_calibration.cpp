@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "assess/statistics.hpp"
 #include "flight/board_strike.hpp"
 #include "random/stream.hpp"
 #include "scenario/csv_reader.hpp"
@@ -120,9 +121,7 @@ std::vector<double> log_energy_per_width(const std::vector<BoardDrop>& drops, co
 
 double quantile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
-  const double at = q * static_cast<double>(v.size() - 1);
-  const auto i = static_cast<std::size_t>(at);
-  return i + 1 < v.size() ? v[i] + (at - static_cast<double>(i)) * (v[i + 1] - v[i]) : v.back();
+  return assess::quantile_sorted(v, q);
 }
 }  // namespace
 

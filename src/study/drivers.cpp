@@ -5,10 +5,8 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
-#include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "scenario/toml_reader.hpp"
-#include "study/parameters.hpp"
 #include "study/uncertainty.hpp"
 
 namespace j232::study {
@@ -29,18 +27,8 @@ Drivers deciding_drivers(const std::string& file, int criterion, int threads, co
     const auto& in = plan.inputs[i];
     const std::vector<std::string> values = in.values.empty() ? std::vector<std::string>{in.low, in.high} : in.values;
     const std::string key = plan.defaults ? fmt::format("(default) {}", in.parameter) : fmt::format("uncertainty.inputs[{}]", i + 1);
-    const ParameterInfo info = parameter_info(in.parameter);
     for (const auto& v : values) {
-      const Setting setting = make_setting(info, v, file, in.line, key);
-      toml::table doc = base;
-      apply_to_document(setting, doc, in.line ? fmt::format("{}:{} ({})", file, *in.line, key) : fmt::format("{} ({})", file, key));
-      scenario::Scenario s = scenario::read_scenario(doc, file);
-      try {
-        apply(setting, s);
-      } catch (const std::invalid_argument& e) {
-        throw scenario::InputError(file, in.line, key, v, e.what());
-      }
-      designs.push_back(std::move(s));
+      designs.push_back(scenario_with(base, file, in, v, key));
       ends.emplace_back(i, v);
     }
   }

@@ -368,6 +368,20 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
 }
 }  // namespace
 
+scenario::Scenario scenario_with(const toml::table& base, const std::string& file, const UncertainInput& in, const std::string& text,
+                                 const std::string& where) {
+  const Setting setting = make_setting(parameter_info(in.parameter), text, file, in.line, where);
+  toml::table doc = base;
+  apply_to_document(setting, doc, drawn_by(file, in, where));
+  auto sc = scenario::read_scenario(doc, file);
+  try {
+    apply(setting, sc);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file, in.line, where, text, e.what());
+  }
+  return sc;
+}
+
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
   UncertaintyPlan plan;
   plan.base_draws = static_cast<std::size_t>(s.uncertainty.base_draws);
@@ -441,17 +455,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     if (const std::string why = cannot_vary(in.parameter, r.field); !why.empty())
       throw InputError(file, in.line, r.plan.defaults ? key : key + ".parameter", in.parameter, why);
     // A value the input may take must make a scenario the reader (and the parameter) accepts.
-    const auto check_value = [&](const std::string& text, const std::string& where) {
-      const Setting setting = make_setting(info.back(), text, file, in.line, where);
-      toml::table doc = base;
-      apply_to_document(setting, doc, drawn_by(file, in, where));
-      auto sc = scenario::read_scenario(doc, file);
-      try {
-        apply(setting, sc);
-      } catch (const std::invalid_argument& e) {
-        throw InputError(file, in.line, where, text, e.what());
-      }
-    };
+    const auto check_value = [&](const std::string& text, const std::string& where) { scenario_with(base, file, in, text, where); };
     if (!in.values.empty()) {
       // A discrete input: every value it may take must make a scenario the reader accepts.
       ends.emplace_back(Written{}, Written{});

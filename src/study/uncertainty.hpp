@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <toml++/toml.h>
+
 #include "assess/tally.hpp"
 #include "scenario/scenario.hpp"
 #include "study/sensitivity.hpp"
@@ -30,6 +32,11 @@ struct UncertaintyPlan {
   long long objects = 0;  // a field scenario's objects per assessment (0: not a field)
 };
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s);
+// The scenario (`base`, read from `file`) with input `in` set to `text` as a study sets it: a
+// file key written into the document before it is read, a named parameter onto the result.
+// Throws InputError naming `where` when the reader or the parameter refuses the value.
+scenario::Scenario scenario_with(const toml::table& base, const std::string& file, const scenario::UncertainInput& in,
+                                 const std::string& text, const std::string& where);
 // "restitution = 0.62, crush_depth = 1.2 mm": a draw's inputs (`values`, one per input of the
 // plan; a discrete input's index into its values), each number with the unit its range was
 // written in, as warnings and refusals name a draw.
