@@ -269,9 +269,21 @@ struct NailFlight {
   void stretch(const strike::Motion& m, double from, double until) {
     if (ctx.stretches && until >= from) ctx.stretches->push_back({m, from, until});
   }
-  // Kinetic (translational and rotational) and potential energy now.
-  double energy() const {
-    return 0.5 * mass * b.velocity.squaredNorm() + 0.5 * nail.transverse_inertia() * b.spin.squaredNorm() - mass * kGravity.z() * b.position.z();
+  // Kinetic (translational and rotational) and potential energy now, seen from a frame
+  // moving at `frame` (a bounce's: the surface struck; the turf moves under a field's mower).
+  double energy(const Vec3& frame = Vec3::Zero()) const {
+    return 0.5 * mass * (b.velocity - frame).squaredNorm() + 0.5 * nail.transverse_inertia() * b.spin.squaredNorm() -
+           mass * kGravity.z() * b.position.z();
+  }
+  // The velocity of a surface's material at a contact with normal n, in the mower's frame: the
+  // turf's in a field (it moves under the travelling mower), zero for the mower's own faces and
+  // in the J232 test. The scene's faces stand still in the mower's frame, so the turf moves
+  // along them as a belt does: only its part across n, never into the object. A bounce is
+  // resolved where that material is still: restitution on the approach to it, friction on the
+  // slip over it (as the slide and the soil's reaction are).
+  Vec3 surface_velocity(scene::Surface s, const Vec3& n) const {
+    if (s != scene::Surface::Ground) return Vec3::Zero();
+    return set.ground_velocity - set.ground_velocity.dot(n) * n;
   }
   void touch(Touch t) {
     r.trace.touch(t);
@@ -296,7 +308,9 @@ struct NailFlight {
   // ground and bounces as a point).
   bool respond(const scene::Hit& hit, const Vec3* arm = nullptr);
   bool respond_together(const FaceTouch& at);
-  void bounced(const scene::Hit& hit, double approach, const Vec3& point, double speed_in, double energy_in, int together);
+  // `frame`: the velocity of the surface struck (its energies are seen from there).
+  void bounced(const scene::Hit& hit, double approach, const Vec3& point, double speed_in, double energy_in, int together,
+               const Vec3& frame);
   void bounce_off(const Vec3& n, double e, double mu, const Vec3* arm, double surface_inverse_mass = 0.0);
   bool slide(const scene::Hit& hit);
   // A nail meeting soil point-first (touching at an end, its axis within 45 deg of the
@@ -306,6 +320,7 @@ struct NailFlight {
   // A sphere that rolls on the ground rather than skids (FlightContext::rolls).
   bool rolling() const { return ctx.rolls && nail.half_segment() == 0; }
   bool after_bounce(const scene::Hit& hit);
+  std::optional<scene::Hit> lying_on_ground();
   Fate fate() const;
 };
 
@@ -563,9 +578,12 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const SurfaceMaterial& material = set.materials.of(hit.surface, hit.guard);
   const Vec3 n = hit.normal;
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
-  const double energy_in = ctx.events ? energy() : 0.0;
-  // How the surface meets the nail: its touching point's velocity (the centre's when it slides).
-  const Vec3 v_in = arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity;
+  // The bounce is resolved in the frame of the surface (the turf moves under a field's mower).
+  const Vec3 frame = surface_velocity(hit.surface, n);
+  const bool moving = !frame.isZero(0.0);
+  const double energy_in = ctx.events ? energy(frame) : 0.0;
+  // How the surface meets the nail: its touching point's velocity over it (the centre's when it slides).
+  const Vec3 v_in = (arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity) - frame;
   const double approach = -v_in.dot(n);
   switch (material.response) {
     case SurfaceMaterial::Response::Board:
@@ -588,7 +606,12 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   }
   if (ctx.observer && hit.surface == scene::Surface::Ground)
     ctx.observer->met_ground(b.time, arm ? Vec3(b.position + *arm) : hit.point, b.velocity, in_deck);
-  if (material.penetrability > 0 && arm && sinks_in(material, n, *arm)) return false;
+  // From here the nail's velocity is taken over the surface (restored below).
+  if (moving) b.velocity -= frame;
+  if (material.penetrability > 0 && arm && sinks_in(material, n, *arm)) {
+    if (moving) b.velocity += frame;  // at rest in the soil, moving with it
+    return false;
+  }
   // The facet the nail meets: on a rough surface the local normal, tilted at random; one it
   // would meet from behind is no facet it can meet, and is drawn again.
   Vec3 facet = n;
@@ -621,14 +644,16 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
     const double out = b.velocity.dot(n);
     if (out < 0 && !arm) b.velocity -= 2 * out * n;
   }
-  bounced(hit, approach, arm ? Vec3(b.position + *arm) : hit.point, speed_in, energy_in, 1);
+  if (moving) b.velocity += frame;
+  bounced(hit, approach, arm ? Vec3(b.position + *arm) : hit.point, speed_in, energy_in, 1, frame);
   return true;
 }
 
 // What every bounce off the scene records, once the velocities are new: the surface touched,
 // whether a guard turned it back, the count (a bounce or a gentle contact), the wedge watch,
 // and the replay's event.
-void NailFlight::bounced(const scene::Hit& hit, double approach, const Vec3& point, double speed_in, double energy_in, int together) {
+void NailFlight::bounced(const scene::Hit& hit, double approach, const Vec3& point, double speed_in, double energy_in, int together,
+                         const Vec3& frame) {
   switch (hit.surface) {
     case scene::Surface::Housing: touch(Touch::Housing); break;
     case scene::Surface::Deflector: touch(Touch::Deflector); break;
@@ -647,7 +672,7 @@ void NailFlight::bounced(const scene::Hit& hit, double approach, const Vec3& poi
   if (together > 1) ++r.simultaneous_contacts;
   note_contact(b.time, hit.face);
   if (FlightEvent* e = log(FlightEvent::Kind::Bounce, point, hit.normal, speed_in))
-    e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard, e->energy_before = energy_in, e->energy_after = energy(),
+    e->surface = hit.surface, e->face = hit.face, e->guard = hit.guard, e->energy_before = energy_in, e->energy_after = energy(frame),
     e->gentle = gentle, e->together = together;
 }
 
@@ -669,6 +694,19 @@ bool NailFlight::respond_together(const FaceTouch& at) {
   };
   std::array<Point, FaceTouch::kMaxTouchPoints> pts;
   const int count = at.point_count;
+  // Every point a plain bounce, on surfaces moving alike (in a field the turf moves and the
+  // mower's faces do not): the points are then resolved in that surface's frame.
+  const auto velocity_at = [&](const TouchPoint& tp) { return surface_velocity(ctx.scene->soup().labels[tp.face], tp.normal); };
+  const Vec3 frame = velocity_at(at.points[0]);
+  for (int k = 0; k < count; ++k) {
+    const TouchPoint& tp = at.points[static_cast<std::size_t>(k)];
+    if (set.materials.of(ctx.scene->soup().labels[tp.face], ctx.scene->soup().guard_index[tp.face]).response !=
+        SurfaceMaterial::Response::Bounce)
+      return false;
+    if (velocity_at(tp) != frame) return false;
+  }
+  const bool moving = !frame.isZero(0.0);
+  if (moving) b.velocity -= frame;  // restored below, on every way out
   const Eigen::Matrix3d inv_i = strike::inverse_inertia(nail, b.axis);
   for (int k = 0; k < count; ++k) {
     const TouchPoint& tp = at.points[static_cast<std::size_t>(k)];
@@ -677,7 +715,6 @@ bool NailFlight::respond_together(const FaceTouch& at) {
     p.hit.surface = ctx.scene->soup().labels[tp.face];
     p.hit.guard = ctx.scene->soup().guard_index[tp.face];
     const SurfaceMaterial& material = set.materials.of(p.hit.surface, p.hit.guard);
-    if (material.response != SurfaceMaterial::Response::Bounce) return false;
     p.r = tp.arm, p.n = tp.normal, p.P = Vec3::Zero();
     const Vec3 u = b.velocity + b.spin.cross(p.r);
     p.approach = std::max(0.0, -u.dot(p.n));
@@ -733,12 +770,15 @@ bool NailFlight::respond_together(const FaceTouch& at) {
   Vec3 v, w;
   solve(true, v, w);
   if (!(energy_of(v, w) <= energy_in + 1e-12 * std::abs(energy_in))) solve(false, v, w);
-  if (!(energy_of(v, w) <= energy_in + 1e-12 * std::abs(energy_in)) || !v.allFinite() || !w.allFinite()) return false;
-  const double speed_in = ctx.events ? b.velocity.norm() : 0.0;
+  if (!(energy_of(v, w) <= energy_in + 1e-12 * std::abs(energy_in)) || !v.allFinite() || !w.allFinite()) {
+    if (moving) b.velocity += frame;
+    return false;
+  }
+  const double speed_in = ctx.events ? (b.velocity + frame).norm() : 0.0;
   double approach = 0;
   for (int k = 0; k < count; ++k) approach = std::max(approach, pts[static_cast<std::size_t>(k)].approach);
-  b.velocity = v, b.spin = w;
-  bounced(pts[0].hit, approach, b.position + pts[0].r, speed_in, energy_in, count);
+  b.velocity = moving ? Vec3(v + frame) : v, b.spin = w;
+  bounced(pts[0].hit, approach, b.position + pts[0].r, speed_in, energy_in, count, frame);
   return true;
 }
 
@@ -1159,19 +1199,52 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
 bool NailFlight::carried() {
   const Vec3& turf = set.ground_velocity;
   const double speed = turf.norm();
-  if (!(speed > 0) || !in_deck || !ctx.spindles || held_by_mower) return false;
-  strike::Motion m;
-  m.p0 = b.position, m.v0 = turf, m.a = Vec3::Zero(), m.t0 = b.time, m.axis0 = b.axis, m.spin = Vec3::Zero();
-  // Long enough to cross the whole deck (and no longer than the flight may last).
-  const double until = std::min(b.time + 2 * ctx.deck_radius / speed, start.time + set.time_limit);
-  const auto k = blade_contact(m, until);
-  if (!k || cut_off) return false;
-  const Vec3 from = b.position;
-  b.position = k->centre, b.velocity = turf, b.spin = Vec3::Zero(), b.axis = k->axis, b.time = k->time;
-  moved(from, b.position);
-  ended_at_rest = false;
-  restrike(*k);
-  return !cut_off;
+  for (;;) {
+    if (!(speed > 0) || !in_deck || !ctx.spindles || held_by_mower) return false;
+    strike::Motion m;
+    m.p0 = b.position, m.v0 = turf, m.a = Vec3::Zero(), m.t0 = b.time, m.axis0 = b.axis, m.spin = Vec3::Zero();
+    // Long enough to cross the whole deck (and no longer than the flight may last).
+    const double until = std::min(b.time + 2 * ctx.deck_radius / speed, start.time + set.time_limit);
+    const auto k = blade_contact(m, until);
+    if (!k || cut_off) return false;
+    const Vec3 from = b.position;
+    b.position = k->centre, b.velocity = turf, b.spin = Vec3::Zero(), b.axis = k->axis, b.time = k->time;
+    moved(from, b.position);
+    ended_at_rest = false;
+    restrike(*k);
+    if (cut_off) return false;
+    // Struck where it lay and not lifted (the knife's edge grazing it): the soil it lies on or
+    // in holds it up, so it slides on from where it is. (Left to fly, it would fall into the
+    // soil under gravity until its touch was found, a few micrometres deeper at each graze.)
+    const std::optional<scene::Hit> bed = lying_on_ground();
+    if (!bed || b.velocity.dot(bed->normal) > 0) return true;
+    if (slide(*bed)) return true;
+    if (!ended_at_rest || cut_off) return false;  // at rest again: carried on
+  }
+}
+
+// The ground face the nail lies on or in now (its clearance within the lying gap, or below),
+// the deepest if several: a hit on it, its normal up out of it.
+std::optional<scene::Hit> NailFlight::lying_on_ground() {
+  strike::Motion still;
+  still.p0 = b.position, still.t0 = b.time, still.axis0 = b.axis;
+  gather(still, b.time, b.time, false);
+  std::optional<scene::Hit> bed;
+  double deepest = kLyingGap + kFaceTolerance;
+  const Vec3 p0 = b.position - nail.half_segment() * b.axis, p1 = b.position + nail.half_segment() * b.axis;
+  for (std::size_t i = 0; i < candidate_count; ++i) {
+    const std::uint32_t f = candidates[i];
+    if (ctx.scene->soup().labels[f] != scene::Surface::Ground) continue;
+    const SegmentTriangle st = segment_triangle(p0, p1, ctx.scene->face_edges(f));
+    const double clearance = st.distance - nail.radius();
+    if (!(clearance <= deepest)) continue;
+    deepest = clearance;
+    Vec3 up = ctx.scene->face_normal(f);
+    if (up.dot(b.position - st.on_triangle) < 0) up = -up;
+    bed = scene::Hit{};
+    bed->point = st.on_triangle, bed->normal = up, bed->face = f, bed->surface = scene::Surface::Ground, bed->guard = 0;
+  }
+  return bed;
 }
 
 // The free stretch from where the nail is to the event that ends the chord, told to the
