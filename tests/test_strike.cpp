@@ -355,6 +355,52 @@ TEST_CASE("impulse (Stronge's energetic law) agrees with an independent fine int
   CHECK(poisson_errors[360] > 10 * errors[360]);  // the legacy law is measurably not this one
 }
 
+TEST_CASE("impulse (Stronge's energetic law): a ball's contacts in closed form, as the fine integration and the 5/7 rule give", "[strike][physics]") {
+  // A ball's contact couples no normal and tangential motion and is isotropic in the tangent
+  // plane: the law's closed form is used there. Against the independent integration, and the
+  // textbook rolling result: a solid ball without spin landing with its slip stopped leaves
+  // with 5/7 of its tangential speed; sliding throughout it loses mu (1 + e) |v_n|.
+  std::mt19937_64 rng(41);
+  double worst = 0;
+  int sticking = 0, sliding = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double d = test::uniform(rng, 0.004, 0.1), m = test::uniform(rng, 0.001, 2.0);
+    const projectile::Projectile ball = projectile::Projectile::sphere(d, m);
+    const Vec3 n = Vec3(test::uniform(rng, -1, 1), test::uniform(rng, -1, 1), test::uniform(rng, -1, 1)).normalized();
+    const Vec3 axis = Vec3(test::uniform(rng, -1, 1), test::uniform(rng, -1, 1), test::uniform(rng, -1, 1)).normalized();
+    RandomContact c;
+    c.n = n;
+    c.K = strike::nail_compliance(ball, strike::inverse_inertia(ball, axis), -0.5 * d * n);
+    const Vec3 slip = test::uniform(rng, 0, 30) * n.unitOrthogonal();
+    const double vn = -test::uniform(rng, 0.5, 30);
+    c.v_rel = vn * n + Eigen::AngleAxisd(test::uniform(rng, 0, 6.3), n) * slip;
+    c.e = test::uniform(rng, 0, 1), c.mu = test::uniform(rng, 0.05, 1.0);
+    const auto ours = strike::solve_impulse_energetic(c.K, c.v_rel, c.n, c.e, c.mu);
+    const Vec3 reference = reference_stronge(c, 100000);
+    worst = std::max(worst, (c.K * (ours.impulse - reference)).norm() / c.v_rel.norm());
+    // The textbook: the centre's tangential velocity after (no spin before: the contact
+    // point's velocity is the centre's).
+    const Vec3 v_t = c.v_rel - vn * n, centre_after = c.v_rel + ours.impulse / m;
+    const Vec3 t_after = centre_after - centre_after.dot(n) * n;
+    const double fall = c.mu * (1 + c.e) * -vn;
+    if (v_t.norm() * 2.0 / 7.0 <= fall) {  // stops slipping: rolls away at 5/7
+      ++sticking;
+      CHECK(ours.sticking);
+      CHECK((t_after - 5.0 / 7.0 * v_t).norm() <= 1e-9 * c.v_rel.norm());
+    } else {
+      ++sliding;
+      CHECK_FALSE(ours.sticking);
+      CHECK((t_after - (1 - fall / v_t.norm()) * v_t).norm() <= 1e-9 * c.v_rel.norm());
+    }
+    CHECK(centre_after.dot(n) == Approx(-c.e * vn).epsilon(1e-9));
+    CHECK(ours.energy_change <= 0);
+  }
+  INFO("closed form against the integration: worst " << worst << " of the approach; " << sticking << " sticking, " << sliding << " sliding");
+  CHECK(sticking > 30);
+  CHECK(sliding > 30);
+  CHECK(worst < 1e-3);
+}
+
 TEST_CASE("impulse (Stronge's energetic law): a slip passing close by zero creates no energy; a restart keeps its direction", "[strike][physics]") {
   // The independent review's hand case: isotropic K_tt with a small coupling to the normal,
   // the slip heading almost straight at zero (off by 1e-3 to 5e-3 rad), so it passes zero

@@ -89,6 +89,28 @@ ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const
 // restitution phase's normal work reaches e^2 times the compression's (Stronge's e*); within a
 // step f is held at its midpoint value, and a step turns the slip's direction by at most
 // kSlipTurn. Frictionless, or sticking throughout, this is Poisson's and Newton's impulse.
+// The same law where the normal and tangential motions do not couple (k_n = 0) and the
+// tangential compliance is isotropic (K_tt = c I): a ball, or a rod struck end-on along its
+// axis. The slip then keeps its direction and shrinks linearly, |u| - mu c p, while the
+// normal velocity grows as knn p: the normal impulse is Poisson's and Stronge's alike,
+// (1 + e) times the compression's, and the slip halts (and the contact sticks, friction
+// needing nothing to hold it) at p = |u| / (mu c) if that comes first. Exact, in closed form.
+ImpulseSolution decoupled_impulse(const Vec3& v_rel, const Vec3& n, double knn, double c, double e, double mu) {
+  ImpulseSolution out;
+  out.e = e;
+  const double vn = v_rel.dot(n);
+  const Vec3 slip = v_rel - vn * n;
+  const double p_total = (1 + e) * -vn / knn, speed = slip.norm();
+  Vec3 tangential = Vec3::Zero();
+  if (mu > 0 && speed > 0) {
+    const double p_halt = speed / (mu * c);
+    out.sticking = p_halt <= p_total;
+    tangential = -(out.sticking ? speed / c : mu * p_total) / speed * slip;
+  }
+  out.impulse = p_total * n + tangential;
+  return out;
+}
+
 ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, double e, double mu) {
   ImpulseSolution out;
   out.e = e;
@@ -100,6 +122,16 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
   const Eigen::Vector2d kn(t1.dot(Kn), t2.dot(Kn));
   Eigen::Matrix2d ktt;
   ktt << t1.dot(Kt1), t1.dot(Kt2), t2.dot(Kt1), t2.dot(Kt2);
+  // Uncoupled and isotropic to round-off (a ball's contacts): the closed form.
+  {
+    const double c = 0.5 * (ktt(0, 0) + ktt(1, 1)), tol = 1e-13 * (knn + c);
+    if (std::abs(kn.x()) <= tol && std::abs(kn.y()) <= tol && std::abs(ktt(0, 0) - ktt(1, 1)) <= tol && std::abs(ktt(0, 1)) <= tol &&
+        std::abs(ktt(1, 0)) <= tol && knn > 0 && c > 0) {
+      out = decoupled_impulse(v_rel, n, knn, c, e, mu);
+      out.energy_change = energy_change(K, v_rel, out.impulse);
+      return out;
+    }
+  }
   const double det = ktt(0, 0) * ktt(1, 1) - ktt(0, 1) * ktt(1, 0);
   Eigen::Matrix2d ktt_inv;
   ktt_inv << ktt(1, 1), -ktt(0, 1), -ktt(1, 0), ktt(0, 0);

@@ -52,6 +52,10 @@ const char* restitution_law_name(RestitutionLaw l);  // "energetic", "poisson"
 ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, const blade::Restitution& law, double mu,
                               RestitutionLaw form = RestitutionLaw::Energetic);
 ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, double e, double mu);
+// Stronge's law in closed form where the normal and tangential motions do not couple and the
+// tangential compliance is isotropic: K = knn n n^T + c (I - n n^T) (a ball's contact). What
+// solve_impulse_energetic uses there (to round-off); `energy_change` is left for the caller.
+ImpulseSolution decoupled_impulse(const Vec3& v_rel, const Vec3& n, double knn, double c, double e, double mu);
 // Where a slip starting from rest heads when friction cannot hold the contact (k_n, K_tt: the
 // tangential rows of K in a tangent basis; stick_rate = -K_tt^-1 k_n): the unit û along which
 // k_n - mu K_tt û points (the slip grows along û against friction -mu û).
