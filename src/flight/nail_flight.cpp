@@ -1213,9 +1213,13 @@ bool NailFlight::carried() {
     ended_at_rest = false;
     restrike(*k);
     if (cut_off) return false;
-    // Struck where it lay and not lifted (the knife's edge grazing it): the soil it lies on or
-    // in holds it up, so it slides on from where it is. (Left to fly, it would fall into the
-    // soil under gravity until its touch was found, a few micrometres deeper at each graze.)
+    // Nudged where it lay (a knife's edge grazing it, leaving it slower over the turf than a
+    // gentle contact and not lifted): the soil it lies on or in holds it up, so it slides on
+    // from where it is, as it would after the gentle touch it would otherwise fly to. (Left to
+    // fly, it fell into the soil under gravity until that touch was found, a few micrometres
+    // deeper at each graze.) A strike that sets it moving faster flies on, where the knives can
+    // meet it again.
+    if ((b.velocity - turf).norm() >= gentle_speed) return true;
     const std::optional<scene::Hit> bed = lying_on_ground();
     if (!bed || b.velocity.dot(bed->normal) > 0) return true;
     if (slide(*bed)) return true;
