@@ -524,6 +524,32 @@ TEST_CASE("field: the speed an object leaves with is its last blade strike's, in
   CHECK(again > 0);
 }
 
+TEST_CASE("field: the knives meet an object sliding under the deck, as they meet one in flight", "[field]") {
+  // A stone skidding along the turf under the deck, standing up into the blades' plane, is
+  // struck by the next knife that sweeps it (before, a slide was searched against the deck's
+  // faces only, and a skidding cobble passed under the knives untouched). Every strike that
+  // ends a slide comes while the stone still slides: after the slide began, and with the stone
+  // where the slide put it (on the turf).
+  const auto s = read(kMower + kStones);
+  const field::FieldSimulator sim(s);
+  int slides = 0, struck_sliding = 0;
+  for (std::uint64_t i = 0; i < 400; ++i) {
+    std::vector<flight::FlightEvent> events;
+    sim.simulate(i, nullptr, &events);
+    for (std::size_t k = 0; k + 1 < events.size(); ++k) {
+      if (events[k].kind != flight::FlightEvent::Kind::Slide) continue;
+      ++slides;
+      const auto& next = events[k + 1];
+      if (next.kind != flight::FlightEvent::Kind::Strike) continue;
+      ++struck_sliding;
+      CHECK(next.time >= events[k].time);
+      CHECK(next.centre.z() == Approx(events[k].centre.z()).margin(1e-9));  // still lying on the turf
+    }
+  }
+  INFO(slides << " slides, " << struck_sliding << " ended by a knife");
+  CHECK(struck_sliding > 0);
+}
+
 TEST_CASE("field: designs compared object by object, with common random numbers", "[field][compare][long]") {
   auto read_file = [](const char* name) { return scenario::read_scenario(std::string(J232_SOURCE_DIR) + "/scenarios/field/" + name); };
   auto without = read_file("batwing-highway-shoulder-no-chains.toml"), with = read_file("batwing-highway-shoulder.toml");

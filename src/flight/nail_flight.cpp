@@ -972,6 +972,25 @@ bool NailFlight::slide(const scene::Hit& hit) {
       cut(CutOff::SearchSteps);
       break;
     }
+    // The knives meet an object sliding under the deck as they meet one in flight (a stone
+    // standing up into the blades' plane): the part is searched against them up to its end.
+    if (in_deck && ctx.spindles) {
+      const auto k = blade_contact(m, wall ? wall->time : until);
+      if (cut_off) break;
+      if (k) {
+        const double t0 = b.time;
+        const Vec3 from = b.position;
+        stretch(m, t0, k->time);
+        b.spin += spin_rate * (k->time - t0);
+        if (rolling_now) b.spin = up.cross(Vec3(m.velocity(k->time) - turf)) / radius;
+        if (ctx.observer) ctx.observer->flew(t0, from, m.velocity(t0), k->time, k->centre, m.velocity(k->time));
+        moved(from, k->centre);
+        b.position = k->centre, b.velocity = m.velocity(k->time), b.axis = k->axis, b.time = k->time;
+        last_event = b.time;
+        restrike(*k);
+        return !cut_off;
+      }
+    }
     const double t0 = b.time;
     const Vec3 from = b.position;
     stretch(m, t0, wall ? wall->time : until);
