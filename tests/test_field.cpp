@@ -532,10 +532,18 @@ TEST_CASE("field: the knives meet an object sliding under the deck, as they meet
   // where the slide put it (on the turf).
   const auto s = read(kMower + kStones);
   const field::FieldSimulator sim(s);
-  int slides = 0, struck_sliding = 0;
+  int slides = 0, struck_sliding = 0, struck_again_at_rest = 0;
   for (std::uint64_t i = 0; i < 400; ++i) {
     std::vector<flight::FlightEvent> events;
     sim.simulate(i, nullptr, &events);
+    // A knife that nudged an object it could not move rides over it: it does not meet the
+    // object, come to rest at that instant, again at that same instant.
+    for (std::size_t k = 0, last = events.size(); k < events.size(); ++k) {
+      if (events[k].kind != flight::FlightEvent::Kind::Strike) continue;
+      if (last < k && events[last].time == events[k].time && events[last].spindle == events[k].spindle && events[last].edge == events[k].edge)
+        for (std::size_t j = last + 1; j < k; ++j) struck_again_at_rest += events[j].kind == flight::FlightEvent::Kind::Rest;
+      last = k;
+    }
     for (std::size_t k = 0; k + 1 < events.size(); ++k) {
       if (events[k].kind != flight::FlightEvent::Kind::Slide) continue;
       ++slides;
@@ -548,6 +556,7 @@ TEST_CASE("field: the knives meet an object sliding under the deck, as they meet
   }
   INFO(slides << " slides, " << struck_sliding << " ended by a knife");
   CHECK(struck_sliding > 0);
+  CHECK(struck_again_at_rest == 0);
 }
 
 TEST_CASE("field: designs compared object by object, with common random numbers", "[field][compare][long]") {

@@ -703,7 +703,8 @@ bool NailFlight::respond_together(const FaceTouch& at) {
     if (set.materials.of(ctx.scene->soup().labels[tp.face], ctx.scene->soup().guard_index[tp.face]).response !=
         SurfaceMaterial::Response::Bounce)
       return false;
-    if (velocity_at(tp) != frame) return false;
+    // (Alike to round-off: the touching points' normals on one face differ in their last bits.)
+    if ((velocity_at(tp) - frame).norm() > 1e-9 * set.ground_velocity.norm()) return false;
   }
   const bool moving = !frame.isZero(0.0);
   if (moving) b.velocity -= frame;  // restored below, on every way out
@@ -975,7 +976,9 @@ bool NailFlight::slide(const scene::Hit& hit) {
     // The knives meet an object sliding under the deck as they meet one in flight (a stone
     // standing up into the blades' plane): the part is searched against them up to its end.
     if (in_deck && ctx.spindles) {
-      const auto k = blade_contact(m, wall ? wall->time : until);
+      strike::Motion turning = m;
+      turning.spin = b.spin;  // (a rolling ball's: the strike's impulse uses it)
+      const auto k = blade_contact(turning, wall ? wall->time : until);
       if (cut_off) break;
       if (k) {
         const double t0 = b.time;
@@ -1053,7 +1056,9 @@ bool NailFlight::after_bounce(const scene::Hit& hit) {
     if (!slide(hit)) return false;
   }
   const bool within_friction_cone = up.z() * std::sqrt(1 + material.friction * material.friction) >= 1;
-  if (b.velocity.norm() < set.rest_speed && swing < set.rest_speed && up.z() > 0.5 && within_friction_cone) {
+  // (At rest over the surface: a field's turf moves under the mower.)
+  if ((b.velocity - surface_velocity(hit.surface, up)).norm() < set.rest_speed && swing < set.rest_speed && up.z() > 0.5 &&
+      within_friction_cone) {
     ended_at_rest = true;
     log(FlightEvent::Kind::Rest, b.position, up);
     return false;
@@ -1240,9 +1245,13 @@ bool NailFlight::carried() {
     // meet it again.
     if ((b.velocity - turf).norm() >= gentle_speed) return true;
     const std::optional<scene::Hit> bed = lying_on_ground();
-    if (!bed || b.velocity.dot(bed->normal) > 0) return true;
+    if (!bed || (b.velocity - surface_velocity(scene::Surface::Ground, bed->normal)).dot(bed->normal) > 0) return true;
     if (slide(*bed)) return true;
-    if (!ended_at_rest || cut_off) return false;  // at rest again: carried on
+    if (!ended_at_rest || cut_off) return false;
+    // At rest again. Come to rest at the instant it was nudged, the knife could not move it
+    // (the soil holds it): the knife rides over it, as over a stone pressed into the soil,
+    // rather than meeting it again at that instant for ever.
+    if (b.time == k->time) ride_over(k->spindle, k->time);
   }
 }
 

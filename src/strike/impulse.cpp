@@ -99,9 +99,11 @@ ImpulseSolution decoupled_impulse(const Vec3& v_rel, const Vec3& n, double knn, 
   ImpulseSolution out;
   out.e = e;
   const double vn = v_rel.dot(n);
+  if (!(vn < 0)) return out;  // (not approaching: no impulse)
   const Vec3 slip = v_rel - vn * n;
   const double p_total = (1 + e) * -vn / knn, speed = slip.norm();
   Vec3 tangential = Vec3::Zero();
+  out.sticking = mu > 0 && speed == 0;  // (no slip: friction holds it, needing nothing)
   if (mu > 0 && speed > 0) {
     const double p_halt = speed / (mu * c);
     out.sticking = p_halt <= p_total;
