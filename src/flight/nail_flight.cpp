@@ -251,6 +251,12 @@ struct NailFlight {
   Chord event_advance(double t_end);
   Chord chord_from(const Body& from, double dt, const DragOverStep& drag, const Vec3& accel) const;
   std::size_t gather(const strike::Motion& m, double from, double until, bool counted = true);
+  // The faces about the nail where it is now, at rest (not counted as a chord's query).
+  void gather_here() {
+    strike::Motion still;
+    still.p0 = b.position, still.t0 = b.time, still.axis0 = b.axis;
+    gather(still, b.time, b.time, false);
+  }
   FaceFilter filter();
   scene::Hit face_hit(const FaceTouch& at) const;
   NextEvent event_find(const Chord& c);
@@ -580,7 +586,7 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
   // The bounce is resolved in the frame of the surface (the turf moves under a field's mower).
   const Vec3 frame = surface_velocity(hit.surface, n);
-  const bool moving = !frame.isZero(0.0);
+  const bool moving = !frame.isZero(0.0);  // (shifted only then: adding a zero would turn -0.0 into 0.0)
   const double energy_in = ctx.events ? energy(frame) : 0.0;
   // How the surface meets the nail: its touching point's velocity over it (the centre's when it slides).
   const Vec3 v_in = (arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity) - frame;
@@ -795,9 +801,7 @@ void NailFlight::lie_down(const Vec3& up, const Vec3& on) {
   // a field's stone pressed into the soil) stays as low as it is.
   b.position += std::min(0.0, nail.radius() + kLyingGap - up.dot(b.position - on)) * up;
   for (int pass = 0; pass < 4; ++pass) {
-    strike::Motion still;
-    still.p0 = b.position, still.t0 = b.time, still.axis0 = b.axis;
-    gather(still, b.time, b.time, false);
+    gather_here();
     double worst = 0;
     Vec3 away = Vec3::Zero();
     for (std::size_t i = 0; i < candidate_count; ++i) {
@@ -975,30 +979,26 @@ bool NailFlight::slide(const scene::Hit& hit) {
     }
     // The knives meet an object sliding under the deck as they meet one in flight (a stone
     // standing up into the blades' plane): the part is searched against them up to its end.
+    std::optional<strike::Contact> knife;
     if (in_deck && ctx.spindles) {
       strike::Motion turning = m;
       turning.spin = b.spin;  // (a rolling ball's: the strike's impulse uses it)
-      const auto k = blade_contact(turning, wall ? wall->time : until);
+      knife = blade_contact(turning, wall ? wall->time : until);
       if (cut_off) break;
-      if (k) {
-        const double t0 = b.time;
-        const Vec3 from = b.position;
-        stretch(m, t0, k->time);
-        b.spin += spin_rate * (k->time - t0);
-        if (rolling_now) b.spin = up.cross(Vec3(m.velocity(k->time) - turf)) / radius;
-        if (ctx.observer) ctx.observer->flew(t0, from, m.velocity(t0), k->time, k->centre, m.velocity(k->time));
-        moved(from, k->centre);
-        b.position = k->centre, b.velocity = m.velocity(k->time), b.axis = k->axis, b.time = k->time;
-        last_event = b.time;
-        restrike(*k);
-        return !cut_off;
-      }
     }
-    const double t0 = b.time;
+    const double t0 = b.time, t1 = knife ? knife->time : wall ? wall->time : until;
     const Vec3 from = b.position;
-    stretch(m, t0, wall ? wall->time : until);
-    b.spin += spin_rate * ((wall ? wall->time : until) - t0);  // a slipping ball spun up by friction
-    if (rolling_now) b.spin = up.cross(Vec3(m.velocity(wall ? wall->time : until) - turf)) / radius;
+    stretch(m, t0, t1);
+    b.spin += spin_rate * (t1 - t0);  // a slipping ball spun up by friction
+    if (rolling_now) b.spin = up.cross(Vec3(m.velocity(t1) - turf)) / radius;
+    if (knife) {
+      if (ctx.observer) ctx.observer->flew(t0, from, m.velocity(t0), t1, knife->centre, m.velocity(t1));
+      moved(from, knife->centre);
+      b.position = knife->centre, b.velocity = m.velocity(t1), b.axis = knife->axis, b.time = t1;
+      last_event = b.time;
+      restrike(*knife);
+      return !cut_off;
+    }
     if (!wall) {
       const Vec3 to = m.centre(until);
       if (ctx.observer) ctx.observer->flew(t0, from, m.velocity(t0), until, to, m.velocity(until));
@@ -1258,9 +1258,7 @@ bool NailFlight::carried() {
 // The ground face the nail lies on or in now (its clearance within the lying gap, or below),
 // the deepest if several: a hit on it, its normal up out of it.
 std::optional<scene::Hit> NailFlight::lying_on_ground() {
-  strike::Motion still;
-  still.p0 = b.position, still.t0 = b.time, still.axis0 = b.axis;
-  gather(still, b.time, b.time, false);
+  gather_here();
   std::optional<scene::Hit> bed;
   double deepest = kLyingGap + kFaceTolerance;
   const Vec3 p0 = b.position - nail.half_segment() * b.axis, p1 = b.position + nail.half_segment() * b.axis;

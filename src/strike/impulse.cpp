@@ -80,15 +80,6 @@ ImpulseSolution solve_impulse(const Eigen::Matrix3d& K, const Vec3& v_rel, const
                                            : solve_impulse_poisson(K, v_rel, n, law, mu);
 }
 
-// Stronge's energetic restitution with Coulomb friction, integrated along the normal impulse
-// p (docs/model.md §5.1c). With P = p n + T f-integrated, the relative velocity moves as
-// dv/dp = K (n + T f), f the tangential impulse per unit normal impulse: -mu u/|u| while the
-// contact slips (u the tangential relative velocity), the sticking value -K_tt^-1 K_tn while
-// friction can hold it (|f| <= mu), else mu along that (the slip starting opposite). Steps
-// end exactly where compression ends (v_n = 0), where the slip halts (u = 0), and where the
-// restitution phase's normal work reaches e^2 times the compression's (Stronge's e*); within a
-// step f is held at its midpoint value, and a step turns the slip's direction by at most
-// kSlipTurn. Frictionless, or sticking throughout, this is Poisson's and Newton's impulse.
 // The same law where the normal and tangential motions do not couple (k_n = 0) and the
 // tangential compliance is isotropic (K_tt = c I): a ball, or a rod struck end-on along its
 // axis. The slip then keeps its direction and shrinks linearly, |u| - mu c p, while the
@@ -113,6 +104,16 @@ ImpulseSolution decoupled_impulse(const Vec3& v_rel, const Vec3& n, double knn, 
   return out;
 }
 
+// Stronge's energetic restitution with Coulomb friction, integrated along the normal impulse
+// p (docs/model.md §5.1c). With P = p n + T f-integrated, the relative velocity moves as
+// dv/dp = K (n + T f), f the tangential impulse per unit normal impulse: -mu u/|u| while the
+// contact slips (u the tangential relative velocity), the sticking value -K_tt^-1 K_tn while
+// friction can hold it (|f| <= mu), else mu along that (the slip starting opposite). Steps
+// end exactly where compression ends (v_n = 0), where the slip halts (u = 0), and where the
+// restitution phase's normal work reaches e^2 times the compression's (Stronge's e*); within a
+// step f is held at its midpoint value, and a step turns the slip's direction by at most
+// kSlipTurn. Frictionless, or sticking throughout, this is Poisson's and Newton's impulse.
+// Uncoupled and isotropic (a ball's contacts), it is decoupled_impulse's closed form.
 ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_rel, const Vec3& n, double e, double mu) {
   ImpulseSolution out;
   out.e = e;
