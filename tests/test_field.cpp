@@ -77,6 +77,10 @@ TEST_CASE("field: the [field] form, with its defaults", "[field][input]") {
 TEST_CASE("field: stones that roll go farther than stones that skid, over the same objects", "[field][ground]") {
   auto s = read(kMower + kStones);
   s.field.objects_simulated = 1500;
+  // On the mower's steel a stone that skids meets a face at its centre and one that rolls
+  // is spun up by friction: with frictionless steel the two fly alike until they are down.
+  s.housing.friction = 0;
+  for (auto& g : s.housing.guards) g.friction = 0;
   const field::FieldSimulator skid_sim(s);
   const auto skid_run = field::run_hazard(skid_sim, 2);
   const auto skid = field::summarise(skid_sim, skid_run);
@@ -84,11 +88,13 @@ TEST_CASE("field: stones that roll go farther than stones that skid, over the sa
   const field::FieldSimulator roll_sim(s);
   const auto roll_run = field::run_hazard(roll_sim, 2);
   const auto roll = field::summarise(roll_sim, roll_run);
-  // The same objects are struck the same way (the strike does not know how they end), and
-  // rolling adds distance once they are down: the objects whose farthest contact lies
-  // beyond 10 m grow (the farthest of all flies out of the tallied square either way).
+  // The same objects are struck the same way (the strike does not know how they end, nor
+  // does frictionless steel), and rolling adds distance once they are down: the objects
+  // whose farthest contact lies beyond 10 m grow.
   CHECK(roll.thrown_per_km == skid.thrown_per_km);
-  CHECK(roll.max_distance >= skid.max_distance);
+  // (Not each object: a ball landing with the backspin a knife gave it screws back once its
+  // slip closes, where a skidding stone, whose spin the turf takes, slides on. The farthest
+  // of all is one object and may be either.)
   const auto beyond = [](const field::HazardRun& r, double d) {
     std::uint64_t n = 0;
     const auto& far = r.kinds[0].farthest;

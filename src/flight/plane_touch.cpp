@@ -146,7 +146,7 @@ void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& a
   const Vec3 P = strike::solve_impulse(K, v_point, n, blade::Restitution::constant(std::clamp(e, 0.0, 1.0)), mu, law).impulse;
   velocity += P / nail.mass;
   spin += inv_i * arm.cross(P);
-  spin -= spin.dot(axis) * axis;  // the spin about the nail's own axis is left out (as after a blade contact)
+  spin = nail.without_axial_spin(spin, axis);  // (as after a blade contact)
 }
 
 double effective_mass(const projectile::Projectile& nail, const Vec3& axis, const Vec3& r, const Vec3& n) {

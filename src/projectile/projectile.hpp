@@ -25,6 +25,14 @@ struct Projectile {
     return mass * length * length / 12.0;
   }
   double axial_inertia() const { return half_segment() == 0 ? transverse_inertia() : mass * diameter * diameter / 8.0; }
+  // A rod's spin about its own axis (from friction at its surface) is left out after every
+  // contact: it holds under 1/200 of the energy of its tumbling, and flight follows the axis
+  // only. A sphere has no axis of its own: its whole spin is kept (a ball rolling along a
+  // wall spins about the wall's vertical, whatever way its nominal axis points).
+  template <class V>
+  V without_axial_spin(const V& spin, const V& axis) const {
+    return half_segment() == 0 ? spin : V(spin - spin.dot(axis) * axis);
+  }
 };
 
 }  // namespace j232::projectile
