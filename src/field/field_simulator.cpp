@@ -328,7 +328,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
     first.ridden_until = contact->time + flight::kRideOverTurn / spindle.omega();
   }
   body.axis = contact->axis;
-  body.spin = hit.spin_after - hit.spin_after.dot(body.axis) * body.axis;  // flight follows the axis (a sphere's: any)
+  body.spin = e.body.without_axial_spin(hit.spin_after, body.axis);  // (a sphere keeps its whole spin)
   body.time = contact->time;
   flight::Drag drag = drag_per_unit_[e.kind];
   drag.k_axial /= e.body.diameter, drag.k_normal /= e.body.diameter;

@@ -327,8 +327,8 @@ struct NailFlight {
   bool rolling() const { return ctx.rolls && nail.half_segment() == 0; }
   // A sphere that does not roll (an angular stone) skids along the mower's steel as it skids
   // on the turf: its flats keep friction from spinning it up, so a contact with a face of the
-  // mower acts at its centre (the lumped-mass bounce of rockfall codes), its spin left as it
-  // was. On the turf its bounces keep the rigid sphere's law and its sustained contact is
+  // mower acts at its centre (the lumped-mass bounce of rockfall codes) and leaves it without
+  // spin, as its slide on the turf does. On the turf its bounces keep the rigid sphere's law and its sustained contact is
   // the slide (docs/model.md §5.3). Without this, a stone thrown round a deck's skirt rolled
   // along it for seconds, losing almost nothing.
   bool skids_on(scene::Surface surface) const { return !ctx.rolls && nail.half_segment() == 0 && surface != scene::Surface::Ground; }
@@ -657,6 +657,10 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
     const double out = b.velocity.dot(n);
     if (out < 0 && !contact_arm) b.velocity -= 2 * out * n;
   }
+  // A skidding stone carries no spin off the steel (the lumped-mass bounce carries none; on
+  // the turf its slide takes it alike): the blade's spin is not kept through the deck to be
+  // released at the next turf bounce. No energy is created by dropping it.
+  if (skids_on(hit.surface)) b.spin = Vec3::Zero();
   if (moving) b.velocity += frame;
   bounced(hit, approach, arm ? Vec3(b.position + *arm) : hit.point, speed_in, energy_in, 1, frame);
   return true;
@@ -792,6 +796,8 @@ bool NailFlight::respond_together(const FaceTouch& at) {
   double approach = 0;
   for (int k = 0; k < count; ++k) approach = std::max(approach, pts[static_cast<std::size_t>(k)].approach);
   b.velocity = moving ? Vec3(v + frame) : v, b.spin = w;
+  for (int k = 0; k < count; ++k)
+    if (skids_on(pts[static_cast<std::size_t>(k)].hit.surface)) b.spin = Vec3::Zero();  // (as in respond())
   bounced(pts[0].hit, approach, b.position + pts[0].r, speed_in, energy_in, count, frame);
   return true;
 }
