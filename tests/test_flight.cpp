@@ -868,9 +868,10 @@ TEST_CASE("flight: a stone that does not roll skids round a deck's skirt, slowed
   // Held to a curved wall, a sliding body's speed falls as v = v0 exp(-mu theta) with the
   // angle it has turned through (the wall's push m v dtheta per turn, friction mu of it:
   // dv = -mu v dtheta; a hand calculation, whatever the restitution, while the contact slips).
-  // An angular stone skids so (its flats keep friction from spinning it up). A ball that
-  // rolls slips only until it rolls (5/7 of its speed) and then keeps it: the trapped
-  // cobble that rode a chained deck's skirt for seconds before this law.
+  // An angular stone skids so: each micro-impact is the rigid sphere's, and its flats take
+  // the spin friction gave it. A ball that rolls slips only until it rolls (5/7 of its
+  // speed) and then keeps it: the trapped cobble that rode a chained deck's skirt for
+  // seconds before this law.
   const double mu = 0.4, v0 = 50;
   // It leaves the steel without the spin a blade gave it (300 rad/s here), as its slide on
   // the turf takes it.
@@ -883,6 +884,36 @@ TEST_CASE("flight: a stone that does not roll skids round a deck's skirt, slowed
   CHECK(skid.back()[0] > 1.2);
   CHECK(worst < 0.01);
   CHECK(spin == 0);
+  // One oblique bounce keeps the rigid sphere's law (the stone fired from the ring's centre
+  // at 45 deg to its wall): friction halts the slip, so the centre keeps 5/7 of its velocity
+  // along the wall and e of its approach (hand calculation from the event's normal).
+  {
+    const double radius = 0.75, diameter = 0.05, mass = 2650 * units::pi / 6 * diameter * diameter * diameter, e = 0.3;
+    static const scene::Scene ring = skirt_ring(radius, 720);
+    scenario::Scenario s;
+    s.housing.friction = mu;
+    s.housing.restitution = blade::Restitution::constant(e);
+    flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+    std::vector<flight::FlightEvent> events;
+    flight::FlightContext ctx{&ring, &settings, 1e6, 0.0, 0.0};
+    ctx.events = &events;
+    flight::Body b;
+    b.position = {0, 0, 0.15};
+    b.velocity = Vec3(1, 1, 0).normalized() * 30.0;
+    random::EventDraws rng(1, 0, 0);
+    flight::fly(b, projectile::Projectile::sphere(diameter, mass), {}, ctx, {}, {}, rng);
+    const flight::FlightEvent* first = nullptr;
+    for (const auto& ev : events)
+      if (ev.kind == flight::FlightEvent::Kind::Bounce && !first) first = &ev;
+    REQUIRE(first != nullptr);
+    const Vec3 v_in = b.velocity + Vec3(0, 0, -g * first->time), n = first->normal;
+    const Vec3 vt = v_in - v_in.dot(n) * n;
+    REQUIRE(mu * (1 + e) * -v_in.dot(n) > 2.0 / 7.0 * vt.norm());  // the slip halts
+    const Vec3 hand = 5.0 / 7.0 * vt - e * v_in.dot(n) * n;
+    INFO("after the bounce " << first->velocity.transpose() << ", hand " << hand.transpose());
+    CHECK((first->velocity - hand).norm() < 1e-6 * v_in.norm());
+    CHECK(first->spin.norm() == 0);
+  }
   const auto roll = round_the_skirt(true, mu);
   REQUIRE(!roll.empty());
   INFO("rolling: " << roll.size() << " contacts over " << roll.back()[0] << " rad, speed " << roll.back()[1] << " m/s");

@@ -325,12 +325,13 @@ struct NailFlight {
   bool sinks_in(const SurfaceMaterial& material, const Vec3& n, const Vec3& arm);
   // A sphere that rolls on the ground rather than skids (FlightContext::rolls).
   bool rolling() const { return ctx.rolls && nail.half_segment() == 0; }
-  // A sphere that does not roll (an angular stone) skids along the mower's steel as it skids
-  // on the turf: its flats keep friction from spinning it up, so a contact with a face of the
-  // mower acts at its centre (the lumped-mass bounce of rockfall codes) and leaves it without
-  // spin, as its slide on the turf does. On the turf its bounces keep the rigid sphere's law and its sustained contact is
-  // the slide (docs/model.md §5.3). Without this, a stone thrown round a deck's skirt rolled
-  // along it for seconds, losing almost nothing.
+  // A sphere that does not roll (an angular stone) does not roll along the mower's steel
+  // either: its flats stop it. Each contact with a face of the mower is the rigid sphere's
+  // (friction may spin it up, as far as the slip halting), and it leaves without that spin,
+  // as its slide on the turf takes it. So a single bounce keeps the sphere's law, and a
+  // sustained contact (a stone thrown round a deck's skirt, met as micro-impacts) skids,
+  // friction taking mu of the skirt's push: before, such a stone rolled along the skirt for
+  // seconds, losing almost nothing (docs/model.md §5.3). On the turf the slide does this.
   bool skids_on(scene::Surface surface) const { return !ctx.rolls && nail.half_segment() == 0 && surface != scene::Surface::Ground; }
   bool after_bounce(const scene::Hit& hit);
   std::optional<scene::Hit> lying_on_ground();
@@ -593,10 +594,8 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const Vec3 frame = surface_velocity(hit.surface, n);
   const bool moving = !frame.isZero(0.0);  // (shifted only then: adding a zero would turn -0.0 into 0.0)
   const double energy_in = ctx.events ? energy(frame) : 0.0;
-  // How the surface meets the nail: its touching point's velocity over it (the centre's when
-  // it slides, or skids: a stone that does not roll meets it at its centre).
-  const Vec3* contact_arm = skids_on(hit.surface) ? nullptr : arm;
-  const Vec3 v_in = (contact_arm ? Vec3(b.velocity + b.spin.cross(*contact_arm)) : b.velocity) - frame;
+  // How the surface meets the nail: its touching point's velocity over it (the centre's when it slides).
+  const Vec3 v_in = (arm ? Vec3(b.velocity + b.spin.cross(*arm)) : b.velocity) - frame;
   const double approach = -v_in.dot(n);
   switch (material.response) {
     case SurfaceMaterial::Response::Board:
@@ -650,17 +649,14 @@ bool NailFlight::respond(const scene::Hit& hit, const Vec3* arm) {
   const bool pushing = flap && struck_flap == hit.guard && b.time - struck_flap_time <= 1e-9;
   const double give = flap && !pushing ? 1.0 / material.flap_mass_at(contact_height) : 0.0;
   if (flap) struck_flap = hit.guard, struck_flap_time = b.time;
-  bounce_off(facet, material.restitution(std::max(-v_in.dot(n), 1e-9), angle), material.friction, contact_arm, give);
+  bounce_off(facet, material.restitution(std::max(-v_in.dot(n), 1e-9), angle), material.friction, arm, give);
   // A rough facet cannot send a point-like bounce into the surface. (A tumbling rod's centre
   // may still move into it after a rigid rebound at one end: its next touch is searched.)
   if (material.roughness > 0) {
     const double out = b.velocity.dot(n);
-    if (out < 0 && !contact_arm) b.velocity -= 2 * out * n;
+    if (out < 0 && !arm) b.velocity -= 2 * out * n;
   }
-  // A skidding stone carries no spin off the steel (the lumped-mass bounce carries none; on
-  // the turf its slide takes it alike): the blade's spin is not kept through the deck to be
-  // released at the next turf bounce. No energy is created by dropping it.
-  if (skids_on(hit.surface)) b.spin = Vec3::Zero();
+  if (skids_on(hit.surface)) b.spin = Vec3::Zero();  // (no energy is created by dropping it)
   if (moving) b.velocity += frame;
   bounced(hit, approach, arm ? Vec3(b.position + *arm) : hit.point, speed_in, energy_in, 1, frame);
   return true;
@@ -733,7 +729,7 @@ bool NailFlight::respond_together(const FaceTouch& at) {
     p.hit.surface = ctx.scene->soup().labels[tp.face];
     p.hit.guard = ctx.scene->soup().guard_index[tp.face];
     const SurfaceMaterial& material = set.materials.of(p.hit.surface, p.hit.guard);
-    p.r = skids_on(p.hit.surface) ? Vec3(Vec3::Zero()) : tp.arm, p.n = tp.normal, p.P = Vec3::Zero();
+    p.r = tp.arm, p.n = tp.normal, p.P = Vec3::Zero();
     const Vec3 u = b.velocity + b.spin.cross(p.r);
     p.approach = std::max(0.0, -u.dot(p.n));
     const double speed = u.norm();

@@ -43,7 +43,7 @@ double effective_mass(const projectile::Projectile& nail, const Vec3& axis, cons
 // strike/impulse.hpp, so that the bounce changes the spin as well as the velocity
 // (docs/model.md §5.3). The surface is immovable, or (a flap swinging on its hinge) moves
 // along n only, as a mass 1 / surface_inverse_mass at the contact, at rest before it. The
-// spin about the nail's own axis is left out, as after a blade contact. Nothing happens
+// spin about a rod's own axis is left out, as after a blade contact. Nothing happens
 // when that point is not approaching.
 void rebound(const projectile::Projectile& nail, const Vec3& axis, const Vec3& arm, const Vec3& n, double e, double mu, Vec3& velocity,
              Vec3& spin, double surface_inverse_mass = 0.0, scenario::RestitutionLaw law = scenario::RestitutionLaw::Energetic);

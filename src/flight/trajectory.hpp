@@ -17,7 +17,7 @@ using Vec3 = Eigen::Vector3d;
 struct Body {
   Vec3 position = Vec3::Zero();  // centre, m
   Vec3 velocity = Vec3::Zero();  // m/s
-  Vec3 spin = Vec3::Zero();      // rad/s, perpendicular to the axis (a slender rod)
+  Vec3 spin = Vec3::Zero();      // rad/s, perpendicular to a rod's axis (a sphere's: any way)
   Vec3 axis = Vec3::UnitZ();     // unit, tip -> head, at `time`
   double time = 0;
 };

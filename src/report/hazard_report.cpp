@@ -125,9 +125,15 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
                                                         roll, s.ground.rolling_resistance)),
                  roll.empty() ? "scenario (an angular stone skids: field.objects.rolls false, the default for stones)"
                               : "scenario (ground.rolling_resistance: an estimate, a golf green's 0.05-0.09 g the low end; docs/model.md §9)"});
+    if (!skid.empty())
+      a.push_back({fmt::format("An angular stone ({}) skids along the mower's steel as on the turf: a contact with the skirt, plate or "
+                               "a guard acts at its centre (restitution and friction on its centre's velocity) and leaves it without "
+                               "spin; a round one rolls along it with no rolling resistance",
+                               skid),
+                   "model form (the lumped-mass bounce of rockfall codes; j232 uq draws each stone kind's rolls); docs/model.md §5.3"});
   }
   a.push_back({"Flight in the mower's frame (deck, guards, turf as in the J232 model); positions and energies tallied in the ground's "
-               "frame at each object's strike (the mower's travel added); the turf under a bounce taken as still",
+               "frame at each object's strike (the mower's travel added); a bounce on the turf resolved in the turf's frame",
                "docs/model.md §9"});
   a.push_back({fmt::format("A person is struck hazardously by an object of at least {:g} J; presented area {:g} m2; probability of "
                            "being struck 1 - exp(-q A) for q hazardous impacts per m2 of ground; acceptable: one per {:g} m2",
