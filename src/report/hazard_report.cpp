@@ -126,11 +126,11 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
                  roll.empty() ? "scenario (an angular stone skids: field.objects.rolls false, the default for stones)"
                               : "scenario (ground.rolling_resistance: an estimate, a golf green's 0.05-0.09 g the low end; docs/model.md §9)"});
     if (!skid.empty())
-      a.push_back({fmt::format("An angular stone ({}) skids along the mower's steel as on the turf: a contact with the skirt, plate or "
-                               "a guard acts at its centre (restitution and friction on its centre's velocity) and leaves it without "
-                               "spin; a round one rolls along it with no rolling resistance",
+      a.push_back({fmt::format("An angular stone ({}) does not roll along the mower's steel: each contact with the skirt, plate or a "
+                               "guard is the rigid sphere's and leaves it without spin (its flats stop it rolling), so a sustained "
+                               "contact skids; a round one rolls along it with no rolling resistance",
                                skid),
-                   "model form (the lumped-mass bounce of rockfall codes; j232 uq draws each stone kind's rolls); docs/model.md §5.3"});
+                   "model form (j232 uq draws each stone kind's rolls); docs/model.md §5.3"});
   }
   a.push_back({"Flight in the mower's frame (deck, guards, turf as in the J232 model); positions and energies tallied in the ground's "
                "frame at each object's strike (the mower's travel added); a bounce on the turf resolved in the turf's frame",

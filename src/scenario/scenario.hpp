@@ -329,8 +329,8 @@ struct FieldObjectSpec {
   double drag_coefficient = 0.6;           // on its cross-section (a smooth sphere: 0.47)
   // On the ground it rolls (a ball; a rounded stone) rather than skids (an angular stone, the
   // default for stones): slipping at the turf's friction until it rolls, then slowed by its
-  // rolling resistance (GroundSpec::rolling_resistance). One that skids also skids along the
-  // mower's steel: a contact there acts at its centre and leaves it without spin.
+  // rolling resistance (GroundSpec::rolling_resistance). One that skids does not roll along the
+  // mower's steel either: it leaves each contact there without spin.
   bool rolls = false;
 };
 

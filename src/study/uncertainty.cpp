@@ -334,7 +334,7 @@ std::vector<UncertainInput> field_defaults(const scenario::Scenario& s) {
                               "handbook: a smooth sphere 0.47; angular stones up to about 0.8 (estimate; and the scenario's value)"));
     if (o.kind == scenario::FieldObjectSpec::Kind::Stone)
       kinds.push_back(model_form(at + "rolls", {"false", "true"},
-                                 fmt::format("model form: angular {} skid on the ground and along the mower's steel, rounded ones roll; "
+                                 fmt::format("model form: angular {} skid on the ground and do not roll along the mower's steel, rounded ones roll; "
                                              "how round a field's stones are is not surveyed",
                                              o.name)));
   }
