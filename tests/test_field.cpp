@@ -77,8 +77,9 @@ TEST_CASE("field: the [field] form, with its defaults", "[field][input]") {
 TEST_CASE("field: stones that roll go farther than stones that skid, over the same objects", "[field][ground]") {
   auto s = read(kMower + kStones);
   s.field.objects_simulated = 1500;
-  // On the mower's steel a stone that skids meets a face at its centre and one that rolls
-  // is spun up by friction: with frictionless steel the two fly alike until they are down.
+  // On the mower's steel friction spins a stone up, and one that skids leaves without that
+  // spin: with frictionless steel none is given, and the two fly alike until they are down
+  // (but for the knife's spin, which a skidding stone leaves on the steel).
   s.housing.friction = 0;
   for (auto& g : s.housing.guards) g.friction = 0;
   const field::FieldSimulator skid_sim(s);
