@@ -14,6 +14,7 @@
 #include "scene/mesh_io.hpp"
 #include "scene/operator_zone.hpp"
 #include "scene/scene.hpp"
+#include "units/arc.hpp"
 #include "units/quantity.hpp"
 
 using namespace j232;
@@ -237,10 +238,34 @@ TEST_CASE("operator zone: derived from the reach envelope of a seated operator",
   // ...one behind the mower, or low at the side facing away, is not.
   CHECK_FALSE(zone.contains(Vec3(-1.2, 0.0, 0.3)));
   CHECK_FALSE(zone.contains(Vec3(0.0, 1.2, 0.05)));
-  CHECK(scene::within_arc(0.1, -0.5, 0.5));
-  CHECK(scene::within_arc(3.1, 3.0, -3.0));  // wraps through pi
-  CHECK_FALSE(scene::within_arc(0.0, 3.0, -3.0));
-  CHECK(scene::within_arc(1.0, 0.0, 2 * units::pi));
+}
+
+// One set of arc rules for openings, guards, the board's pieces, the exit's opening and a
+// sector zone (units/arc.hpp): counter-clockwise from the start, the start included and the
+// end not, a whole turn when the end is 360 deg past the start.
+TEST_CASE("arcs: one rule for every stage, the start in and the end out", "[scene][zone][arc]") {
+  CHECK(units::in_arc(0.1, -0.5, 0.5));
+  CHECK(units::in_arc(3.1, 3.0, -3.0));  // wraps through pi
+  CHECK(units::in_arc(-3.1, 3.0, -3.0));
+  CHECK_FALSE(units::in_arc(0.0, 3.0, -3.0));
+  CHECK(units::in_arc(1.0, 0.0, 2 * units::pi));  // the whole turn
+  CHECK(units::in_arc(-0.5, -0.5, 0.5));          // the start is in
+  CHECK_FALSE(units::in_arc(0.5, -0.5, 0.5));     // the end is out: arcs that meet share no azimuth
+  CHECK(units::in_arc(0.5, 0.5, 1.0));
+  CHECK(units::in_arc(0.5 + 2 * units::pi, -0.5, 1.0));  // azimuths a turn apart are one
+  CHECK(units::arc_span(1.0, 1.0 - 0.5) == Approx(2 * units::pi - 0.5));
+  CHECK(units::arcs_overlap(0.0, 1.0, 0.5, 2.0));
+  CHECK_FALSE(units::arcs_overlap(0.0, 1.0, 1.0, 2.0));  // meeting at an end only
+  // A sector zone judges by the same rule (it had its own, with the end included).
+  scenario::OperatorZoneSpec spec;
+  spec.kind = scenario::OperatorZoneSpec::Kind::Sector;
+  spec.azimuth_from = 0.0, spec.azimuth_to = units::pi / 2, spec.bottom = 0.0, spec.top = 1.0;
+  const scene::OperatorZone sector(spec, 0.076);
+  CHECK(sector.contains(Vec3(1.0, 0.0, 0.5)));  // at the start
+  CHECK(sector.contains(Vec3(1.0, 1.0, 0.5)));
+  CHECK_FALSE(sector.contains(Vec3(0.0, 1.0, 0.5)));  // at the end
+  CHECK_FALSE(sector.contains(Vec3(-1.0, 0.1, 0.5)));
+  CHECK_FALSE(sector.contains(Vec3(1.0, 1.0, 1.5)));  // above it
 }
 
 TEST_CASE("mesh: PLY headers that CGAL's reader cannot take are refused before it reads them", "[scene][mesh]") {

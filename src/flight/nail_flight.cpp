@@ -12,6 +12,7 @@
 #include "flight/penetration.hpp"
 #include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"
+#include "units/arc.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::flight {
@@ -93,12 +94,6 @@ const char* event_name(FlightEvent::Kind k) {
 }
 
 namespace {
-
-bool in_arc(double a, double from, double to) {
-  double span = units::wrap_angle(to - from);
-  if (span == 0) span = units::two_pi;  // from == to: the whole turn
-  return units::wrap_angle(a - from) < span;
-}
 
 constexpr int kSustainedContacts = 64;   // contacts in one pass before a field's object counts as pushed along
 // Contacts (strikes or bounces) each within kWedgeGap of the one before and each with another
@@ -388,7 +383,7 @@ void NailFlight::leave_deck(const Vec3& from, const Vec3& to) {
   }
   const auto& openings = set.openings;
   for (std::size_t i = 0; i < openings.size(); ++i)
-    if (c.z() < openings[i].top && in_arc(trace.exit_azimuth, openings[i].azimuth_from, openings[i].azimuth_to)) {
+    if (c.z() < openings[i].top && units::in_arc(trace.exit_azimuth, openings[i].azimuth_from, openings[i].azimuth_to)) {
       trace.exit = Exit::Opening;
       trace.exit_index = static_cast<std::uint16_t>(i);
       return;

@@ -208,7 +208,7 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
       bool covered = false;
       for (const auto& b : h.openings) {
         // a's end inside b, a nanoradian clear of b's end (its start included: arcs that meet).
-        double off = std::fmod(std::fmod(a.azimuth_to - b.azimuth_from, units::two_pi) + units::two_pi, units::two_pi);
+        double off = units::arc_offset(a.azimuth_to, b.azimuth_from);
         if (off > units::two_pi - 1e-9) off = 0;
         covered = covered || off < units::arc_span(b.azimuth_from, b.azimuth_to) - 1e-9;
       }

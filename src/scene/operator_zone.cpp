@@ -2,14 +2,9 @@
 
 #include <cmath>
 
-#include "units/quantity.hpp"
+#include "units/arc.hpp"
 
 namespace j232::scene {
-
-bool within_arc(double a, double from, double to) {
-  if (std::abs(to - from) >= units::two_pi - 1e-12) return true;  // a full turn
-  return units::wrap_angle(a - from) <= units::wrap_angle(to - from);
-}
 
 OperatorZone::OperatorZone(const scenario::OperatorZoneSpec& spec, double blade_height) : spec_(spec), blade_centre_(0, 0, blade_height) {
   if (spec.kind == scenario::OperatorZoneSpec::Kind::Derived) {
@@ -25,7 +20,7 @@ bool OperatorZone::contains(const Vec3& p) const { return contains(p, blade_cent
 
 bool OperatorZone::contains(const Vec3& p, const Vec3& eye) const {
   if (spec_.kind == scenario::OperatorZoneSpec::Kind::Sector)
-    return within_arc(std::atan2(p.y(), p.x()), spec_.azimuth_from, spec_.azimuth_to) && p.z() >= spec_.bottom && p.z() <= spec_.top;
+    return units::in_arc(std::atan2(p.y(), p.x()), spec_.azimuth_from, spec_.azimuth_to) && p.z() >= spec_.bottom && p.z() <= spec_.top;
   // A nail crossing the board at p on a straight line from the blade: does that line,
   // continued beyond the board, enter the envelope?
   const Vec3 d = (p - eye).normalized();

@@ -30,7 +30,4 @@ class OperatorZone {
   std::vector<Sphere> spheres_;
 };
 
-// True when azimuth a lies on the counter-clockwise arc from -> to.
-bool within_arc(double a, double from, double to);
-
 }  // namespace j232::scene

@@ -14,8 +14,12 @@ inline double arc_span(double from, double to) {
   return span;
 }
 
-// Whether azimuth a lies in the arc, its start included and its end not.
-inline bool in_arc(double a, double from, double to) { return std::fmod(std::fmod(a - from, two_pi) + two_pi, two_pi) < arc_span(from, to); }
+// How far azimuth a lies past the arc's start, in [0, 2 pi].
+inline double arc_offset(double a, double from) { return std::fmod(std::fmod(a - from, two_pi) + two_pi, two_pi); }
+
+// Whether azimuth a lies in the arc, its start included and its end not (so that arcs that
+// meet share no azimuth).
+inline bool in_arc(double a, double from, double to) { return arc_offset(a, from) < arc_span(from, to); }
 
 // Whether two arcs share more than an end: one's start lies in the other.
 inline bool arcs_overlap(double from_a, double to_a, double from_b, double to_b) {
