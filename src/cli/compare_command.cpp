@@ -1,4 +1,5 @@
 // `j232 compare`: several designs judged against one another with common random numbers.
+#include <algorithm>
 #include <fmt/format.h>
 #include <memory>
 
@@ -101,8 +102,11 @@ int compare(const CompareOptions& o) {
   for (const auto& d : designs) fields += d.field.present ? 1 : 0;
   if (fields == designs.size()) return compare_fields(o, designs);
   if (fields > 0)
-    throw scenario::InputError(designs[fields == 1 && designs.front().field.present ? 0 : 0].file, std::nullopt, "field", "",
-                               "compare either J232 test scenarios or field scenarios ([field]), not both");
+    // Named: the first design of the other kind than the first one's.
+    throw scenario::InputError(std::find_if(designs.begin(), designs.end(),
+                                            [&](const auto& d) { return d.field.present != designs.front().field.present; })
+                                   ->file,
+                               std::nullopt, "field", "", "compare either J232 test scenarios or field scenarios ([field]), not both");
   if (us)
     throw scenario::InputError(designs.front().file, std::nullopt, "--units", o.units,
                                "si: J232 test designs are compared by shares of nails, which have no units (--units us is for field scenarios)");

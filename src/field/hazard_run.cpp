@@ -1,6 +1,7 @@
 #include "field/hazard_run.hpp"
 
 #include "assess/cluster.hpp"
+#include "assess/summary.hpp"
 
 #include <algorithm>
 #include <array>
@@ -187,15 +188,17 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
   if (s.objects == 0 || s.thrown == 0) {
     s.valid = false;
     s.invalid_reason = "no object was thrown: the blades reached none of the field's objects, so there is no hazard to assess";
-  } else if (s.cut_off_share > 0.01) {
+  } else if (s.cut_off_share > assess::kMaxCutOffShare) {
+    // (The J232 test's limits, with every object simulated as the denominator: each one lies
+    // where a blade can reach it, as each nail of the test is fed to the blade.)
     s.valid = false;
-    s.invalid_reason = fmt::format("{:.2f} % of the objects were cut off still moving by the run's limits (more than 1 %): {}",
-                                   100 * s.cut_off_share, s.cut_off_limits);
+    s.invalid_reason = fmt::format("{:.2f} % of the objects were cut off still moving by the run's limits (more than {:g} %): {}",
+                                   100 * s.cut_off_share, 100 * assess::kMaxCutOffShare, s.cut_off_limits);
   }
   s.warnings = sim.scenario().notes;
-  if (s.valid && s.cut_off_share >= 0.0025)
-    s.warnings.push_back(fmt::format("{:.2f} % of the objects were cut off still moving (a run withholds its answer from 1 %): {}",
-                                     100 * s.cut_off_share, s.cut_off_limits));
+  if (s.valid && s.cut_off_share >= assess::kWarnCutOffShare)
+    s.warnings.push_back(fmt::format("{:.2f} % of the objects were cut off still moving (a run withholds its answer from {:g} %): {}",
+                                     100 * s.cut_off_share, 100 * assess::kMaxCutOffShare, s.cut_off_limits));
   s.thrown_per_km = 1000 * thrown;
   s.landed_outside_deck_share = thrown > 0 ? landed / thrown : 0.0;
   // Throw statistics over the kinds, each weighted as the field holds it.
