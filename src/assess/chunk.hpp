@@ -8,10 +8,9 @@
 
 namespace j232::assess {
 
-struct ChunkResult : NailHistograms {
+struct ChunkResult : NailRecords {
   std::vector<ReplicateTally> tallies;
   std::vector<MarkRow> marks;
-  std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
 
   void clear() { *this = ChunkResult(); }
 };

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
@@ -66,13 +67,13 @@ void ExitTable::merge(const ExitTable& o) {
   for (std::size_t i = 0; i < marks_by_first_touch.size(); ++i) marks_by_first_touch[i] += o.marks_by_first_touch[i];
 }
 
-void NailHistograms::merge(const NailHistograms& c) {
-  exits.merge(c.exits);
-  outcomes.merge(c.outcomes);
-  std::vector<const Histogram*> theirs;
-  each_histogram(c, [&](const Histogram& h) { theirs.push_back(&h); });
-  std::size_t i = 0;
-  each_histogram(*this, [&](Histogram& h) { h.merge(*theirs[i++]); });
+void NailRecords::merge(const NailRecords& c) {
+  zip(*this, c, [](auto& mine, const auto& theirs) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(mine)>, std::uint64_t>)
+      mine += theirs;
+    else
+      mine.merge(theirs);
+  });
 }
 
 namespace {
@@ -151,12 +152,7 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
       into.mark_sample_closed = true;
     }
   }
-  into.NailHistograms::merge(c);
-  into.nails += c.nails;
-  into.struck += c.struck;
-  into.queries += c.queries;
-  into.unlocated_marks += c.unlocated_marks;
-  into.non_finite += c.non_finite;
+  into.NailRecords::merge(c);
 }
 
 }  // namespace

@@ -64,9 +64,10 @@ struct ShareDistribution {
   double quantile(double p) const;
 };
 
-// The per-nail distributions a run records: fixed bins, so merging chunks is exact and
+// What a run records of every nail, whatever its replicate: fixed-bin distributions, the
+// exit table, the outcomes by feed station and counts, so merging chunks is exact and
 // order-free. A chunk's and the whole run's are the same set.
-struct NailHistograms {
+struct NailRecords {
   Histogram exit_speed{0.5, 1200};           // m/s as the nail leaves the blade, 0.5 m/s bins to 600 m/s (beyond any blade)
   Histogram launch_elevation{1, 180, -90};   // deg, its elevation then, 1 deg bins from -90 to 90
   Histogram contacts_per_pass{1, 33};        // blade contacts in each pass: bin k holds k contacts (32: 32 or more)
@@ -79,17 +80,36 @@ struct NailHistograms {
   Histogram cut_off_by{1, flight::kCutOffReasons};  // cut-off nails by the limit that cut them off: bin k holds flight::CutOff(k)
   ExitTable exits;
   StationOutcomes outcomes;  // every nail fed: its counted marks by category, by feed station (the exact P(pass))
+  std::uint64_t nails = 0, struck = 0;
+  std::uint64_t queries = 0;          // the scene's queries (a chord's broad phase, a mark's label)
+  std::uint64_t unlocated_marks = 0;  // marks whose point on the board was not found
+  std::uint64_t non_finite = 0;       // nails whose state stopped being a number
 
-  // Every histogram, for whatever must treat them all alike (merging, packing for MPI):
-  // one list, so none can be left out of one of them.
-  template <class Self, class Visit>
-  static void each_histogram(Self& self, Visit&& visit) {
-    for (auto* h : {&self.exit_speed, &self.launch_elevation, &self.contacts_per_pass, &self.most_contacts_in_pass, &self.mark_energy,
-                    &self.board_energy,
-                    &self.board_energy_per_width, &self.contact_radius, &self.strikes, &self.cut_off_by})
-      visit(*h);
+  // Every record of two in step, once: merge, pack and unpack (MPI) go through it, so none
+  // of them can miss a record another has; a new record is added here and in the struct
+  // alone. `f(a, b)` is called with each record of `a` and the same record of `b`: a
+  // Histogram, the ExitTable, the StationOutcomes or a count.
+  template <class A, class B, class F>
+  static void zip(A& a, B& b, F&& f) {
+    f(a.exit_speed, b.exit_speed);
+    f(a.launch_elevation, b.launch_elevation);
+    f(a.contacts_per_pass, b.contacts_per_pass);
+    f(a.most_contacts_in_pass, b.most_contacts_in_pass);
+    f(a.mark_energy, b.mark_energy);
+    f(a.board_energy, b.board_energy);
+    f(a.board_energy_per_width, b.board_energy_per_width);
+    f(a.contact_radius, b.contact_radius);
+    f(a.strikes, b.strikes);
+    f(a.cut_off_by, b.cut_off_by);
+    f(a.exits, b.exits);
+    f(a.outcomes, b.outcomes);
+    f(a.nails, b.nails);
+    f(a.struck, b.struck);
+    f(a.queries, b.queries);
+    f(a.unlocated_marks, b.unlocated_marks);
+    f(a.non_finite, b.non_finite);
   }
-  void merge(const NailHistograms& other);
+  void merge(const NailRecords& other);
 };
 
 // The marks of the first replicates, for pictures: whole replicates (a fair sample, as
@@ -105,7 +125,7 @@ struct Trajectory {
   std::vector<flight::Vec3> points;
 };
 
-struct Assessment : NailHistograms {
+struct Assessment : NailRecords {
   std::uint64_t replicates = 0, passed = 0;
   std::array<std::uint64_t, kCategories> criterion_passed{};
   std::array<ShareDistribution, kCategories> shares;
@@ -117,7 +137,6 @@ struct Assessment : NailHistograms {
   std::uint64_t mark_sample_replicates = 0;  // replicates 0 .. this-1 are in the sample
   bool mark_sample_closed = false;           // a replicate did not fit: no later one is added
 
-  std::uint64_t nails = 0, struck = 0, queries = 0, unlocated_marks = 0, non_finite = 0;
   double wall_seconds = 0;
   int threads = 0;
   // With a stop rule (run.target_half_width, run.until_settled): how many times the

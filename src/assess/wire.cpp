@@ -82,19 +82,30 @@ void get(Reader& r, Histogram& h) {
   h.bin_width = r.value<double>(), h.origin = r.value<double>(), r.list(h.counts), h.total = r.value<std::uint64_t>(),
   h.sum = r.value<double>();
 }
-void put(Writer& w, const NailHistograms& n) {
-  NailHistograms::each_histogram(n, [&](const Histogram& h) { put(w, h); });
-  w.map(n.exits.nails), w.map(n.exits.marks), w.value(n.exits.marks_by_strikes), w.value(n.exits.marks_by_first_touch);
-  w.value<std::uint64_t>(n.outcomes.by_station.size());
-  for (const auto& station : n.outcomes.by_station) w.map(station);
+void put(Writer& w, const ExitTable& e) {
+  w.map(e.nails), w.map(e.marks), w.value(e.marks_by_strikes), w.value(e.marks_by_first_touch);
 }
-void get(Reader& r, NailHistograms& n) {
-  NailHistograms::each_histogram(n, [&](Histogram& h) { get(r, h); });
-  r.map(n.exits.nails), r.map(n.exits.marks);
-  n.exits.marks_by_strikes = r.value<decltype(n.exits.marks_by_strikes)>();
-  n.exits.marks_by_first_touch = r.value<decltype(n.exits.marks_by_first_touch)>();
-  n.outcomes.by_station.resize(r.value<std::uint64_t>());
-  for (auto& station : n.outcomes.by_station) r.map(station);
+void get(Reader& r, ExitTable& e) {
+  r.map(e.nails), r.map(e.marks);
+  e.marks_by_strikes = r.value<decltype(e.marks_by_strikes)>();
+  e.marks_by_first_touch = r.value<decltype(e.marks_by_first_touch)>();
+}
+void put(Writer& w, const StationOutcomes& o) {
+  w.value<std::uint64_t>(o.by_station.size());
+  for (const auto& station : o.by_station) w.map(station);
+}
+void get(Reader& r, StationOutcomes& o) {
+  o.by_station.resize(r.value<std::uint64_t>());
+  for (auto& station : o.by_station) r.map(station);
+}
+void put(Writer& w, std::uint64_t count) { w.value(count); }
+void get(Reader& r, std::uint64_t& count) { count = r.value<std::uint64_t>(); }
+// Every record of a nail (NailRecords::zip: the list merge uses too).
+void put(Writer& w, const NailRecords& n) {
+  NailRecords::zip(n, n, [&](const auto& record, const auto&) { put(w, record); });
+}
+void get(Reader& r, NailRecords& n) {
+  NailRecords::zip(n, n, [&](auto& record, auto&) { get(r, record); });
 }
 }  // namespace
 
@@ -105,7 +116,6 @@ std::string pack_chunks(const std::vector<ChunkResult>& chunks, std::size_t coun
     const ChunkResult& c = chunks[i];
     put(w, c);
     w.list(c.tallies, c.tallies.size()), w.list(c.marks, c.marks.size());
-    for (auto v : {c.nails, c.struck, c.queries, c.unlocated_marks, c.non_finite}) w.value(v);
   }
   return w.take();
 }
@@ -116,7 +126,6 @@ std::vector<ChunkResult> unpack_chunks(const std::string& bytes) {
   for (ChunkResult& c : chunks) {
     get(r, c);
     r.list(c.tallies), r.list(c.marks);
-    for (auto* v : {&c.nails, &c.struck, &c.queries, &c.unlocated_marks, &c.non_finite}) *v = r.value<std::uint64_t>();
   }
   if (!r.done()) throw std::runtime_error("a message between ranks was longer than its contents");
   return chunks;
@@ -129,7 +138,6 @@ std::string pack_assessment(const Assessment& a) {
   for (const auto& s : a.shares) w.map(s.counts), w.value(s.total), w.value(s.sum);
   w.value(a.marks), w.value(a.uncounted_marks), w.value(a.fates);
   w.list(a.mark_sample, a.mark_sample.size()), w.value(a.mark_sample_replicates), w.value(a.mark_sample_closed);
-  for (auto v : {a.nails, a.struck, a.queries, a.unlocated_marks, a.non_finite}) w.value(v);
   return w.take();
 }
 
@@ -143,7 +151,6 @@ void unpack_assessment(const std::string& bytes, Assessment& a) {
   a.fates = r.value<decltype(a.fates)>();
   r.list(a.mark_sample);
   a.mark_sample_replicates = r.value<std::uint64_t>(), a.mark_sample_closed = r.value<bool>();
-  for (auto* v : {&a.nails, &a.struck, &a.queries, &a.unlocated_marks, &a.non_finite}) *v = r.value<std::uint64_t>();
   if (!r.done()) throw std::runtime_error("a message between ranks was longer than its contents");
 }
 
