@@ -3,6 +3,7 @@
 #include "assess/chunk.hpp"
 #include "assess/cluster.hpp"
 #include "assess/summary.hpp"
+#include "invariant/check.hpp"
 
 #include "units/quantity.hpp"
 
@@ -152,6 +153,7 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
       into.mark_sample_closed = true;
     }
   }
+  J232_CHECK(next_mark == c.marks.size());  // every mark of the chunk is in one of its replicates, in order
   into.NailRecords::merge(c);
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "invariant/check.hpp"
+
 namespace j232::assess {
 
 Interval wilson(std::uint64_t k, std::uint64_t n, double z) {
@@ -54,6 +56,7 @@ void Histogram::add(double v) {
 }
 
 void Histogram::merge(const Histogram& o) {
+  J232_CHECK(o.counts.size() == counts.size() && o.bin_width == bin_width && o.origin == origin);  // the same bins
   for (std::size_t i = 0; i < counts.size(); ++i) counts[i] += o.counts[i];
   total += o.total;
   sum += o.sum;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "invariant/check.hpp"
 #include "units/quantity.hpp"
 
 namespace j232::field {
@@ -109,7 +110,10 @@ struct Reader {
 };
 }  // namespace
 
-void HazardTally::merge(const HazardTally& o) { zip(*this, o, Adder{}); }
+void HazardTally::merge(const HazardTally& o) {
+  J232_CHECK(o.directions.size() == directions.size() && o.vertical.size() == vertical.size() && o.planes.size() == planes.size());  // one layout
+  zip(*this, o, Adder{});
+}
 
 std::string HazardTally::pack() const {
   std::string out;

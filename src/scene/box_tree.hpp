@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "invariant/check.hpp"
 #include "scene/soup.hpp"
 
 namespace j232::scene {
@@ -38,6 +39,7 @@ class BoxTree {
           for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
             if (faces[order_[i]].meets(lo, hi)) visit(order_[i]);
         } else {
+          J232_CHECK(top < kMaxDepth);  // the build stops at that depth
           stack[top++] = n.first;  // the right child, after the left one (the next node)
           node = node + 1;
           continue;
