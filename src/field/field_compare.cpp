@@ -25,6 +25,44 @@ struct ChunkSums {
   std::vector<std::uint64_t> differing;
 };
 
+// A figure the comparison estimates per km for each design: what it counts of a thrown
+// object (a plane's, of the first design's plane `plane`), its name, and the energy its event
+// needs (the heaviest weight among the kinds that can have that energy bounds a run that
+// saw none of them).
+struct Figure {
+  enum class Kind { Thrown, LandedOutside, HazardousImpacts, PlaneCrossings, PlaneHazards } kind = Kind::Thrown;
+  std::size_t plane = 0;
+  std::string name;
+  double threshold = 0;  // J
+};
+
+std::vector<Figure> figures_of(const scenario::FieldSpec& fs) {
+  std::vector<Figure> out = {{Figure::Kind::Thrown, 0, "objects thrown", 0.0},
+                             {Figure::Kind::LandedOutside, 0, "objects first coming down outside the deck", 0.0},
+                             {Figure::Kind::HazardousImpacts, 0, fmt::format("hazardous ground impacts (at least {:g} J)", fs.person_energy),
+                              fs.person_energy}};
+  for (std::size_t p = 0; p < fs.planes.size(); ++p) {
+    const auto& plane = fs.planes[p];
+    const double energy = plane.receptor == scenario::FieldPlaneSpec::Receptor::Person ? fs.person_energy : fs.vehicle_energy;
+    out.push_back({Figure::Kind::PlaneCrossings, p, fmt::format("plane '{}': crossings", plane.name), 0.0});
+    out.push_back({Figure::Kind::PlaneHazards, p, fmt::format("plane '{}': hazardous crossings", plane.name), energy});
+  }
+  return out;
+}
+
+// The figure's count for one thrown object (`plane_of`: the design's index of each of the
+// first design's planes).
+std::uint64_t count_of(const Figure& f, const ObjectWatch& watch, const std::vector<std::size_t>& plane_of) {
+  switch (f.kind) {
+    case Figure::Kind::Thrown: return 1;
+    case Figure::Kind::LandedOutside: return watch.landed_outside() ? 1 : 0;
+    case Figure::Kind::HazardousImpacts: return static_cast<std::uint64_t>(watch.hazardous_impacts());
+    case Figure::Kind::PlaneCrossings: return watch.plane_crossings()[plane_of[f.plane]];
+    case Figure::Kind::PlaneHazards: return watch.plane_hazards()[plane_of[f.plane]];
+  }
+  return 0;
+}
+
 // A thread's watches, one per design and kind, each filling its tally (merged into each
 // design's whole run after: its hazard distances and P(struck)); the watch also keeps the
 // object's own counts for the paired differences. Design d's kind k at first[d] + k.
@@ -56,7 +94,8 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
                                    fmt::format("the first design's plane '{}' is missing: compared designs need the same planes (by name)", p.name));
       plane_of[d].push_back(static_cast<std::size_t>(it - planes.begin()));
     }
-  const std::size_t figures = 3 + 2 * first_planes.size(), nd = designs.size();
+  const std::vector<Figure> figure = figures_of(designs.front().field);
+  const std::size_t figures = figure.size(), nd = designs.size();
   const auto n = static_cast<std::uint64_t>(designs.front().field.objects_simulated);
   const std::uint64_t chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
   // Each design's weight per object of each kind (per metre travelled).
@@ -93,13 +132,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
             const bool thrown = counted_thrown(o.fate);
             const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->kinds())];
             std::uint64_t* f = &raw[d * figures];
-            f[0] = thrown ? 1 : 0;
-            f[1] = thrown && watch.landed_outside() ? 1 : 0;
-            f[2] = thrown ? static_cast<std::uint64_t>(watch.hazardous_impacts()) : 0;
-            for (std::size_t p = 0; p < first_planes.size(); ++p) {
-              f[3 + 2 * p] = thrown ? watch.plane_crossings()[plane_of[d][p]] : 0;
-              f[4 + 2 * p] = thrown ? watch.plane_hazards()[plane_of[d][p]] : 0;
-            }
+            for (std::size_t j = 0; j < figures; ++j) f[j] = thrown ? count_of(figure[j], watch, plane_of[d]) : 0;
             for (std::size_t j = 0; j < figures; ++j) {
               const double v = 1000 * wk * static_cast<double>(f[j]);
               y[d * figures + j] = v;
@@ -125,9 +158,6 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     for (std::size_t i = 0; i < c.sum.size(); ++i) total.sum[i] += c.sum[i], total.squares[i] += c.squares[i];
     for (std::size_t i = 0; i < c.diff.size(); ++i) total.diff[i] += c.diff[i], total.diff_squares[i] += c.diff_squares[i], total.differing[i] += c.differing[i];
   }
-  std::vector<std::string> names = {"objects thrown", "objects first coming down outside the deck",
-                                    fmt::format("hazardous ground impacts (at least {:g} J)", designs.front().field.person_energy)};
-  for (const auto& p : first_planes) names.push_back(fmt::format("plane '{}': crossings", p.name)), names.push_back(fmt::format("plane '{}': hazardous crossings", p.name));
   FieldComparison out;
   out.objects = n, out.seed = designs.front().run.seed;
   for (std::size_t d = 0; d < nd; ++d) {
@@ -141,14 +171,9 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
         if (sims[d]->energy_bound(k) >= threshold) h = std::max(h, 1000 * weight[d][k]);
       return h;
     };
-    const auto& fs = designs.front().field;
-    for (std::size_t j = 0; j < figures; ++j) {
-      double threshold = 0;
-      if (j == 2) threshold = fs.person_energy;
-      if (j >= 3 && (j - 3) % 2 == 1)
-        threshold = first_planes[(j - 3) / 2].receptor == scenario::FieldPlaneSpec::Receptor::Person ? fs.person_energy : fs.vehicle_energy;
-      fd.figures.push_back({names[j], quasi_poisson(total.sum[d * figures + j], total.squares[d * figures + j], heaviest(threshold))});
-    }
+    for (std::size_t j = 0; j < figures; ++j)
+      fd.figures.push_back(
+          {figure[j].name, quasi_poisson(total.sum[d * figures + j], total.squares[d * figures + j], heaviest(figure[j].threshold))});
     if (d > 0)
       for (std::size_t j = 0; j < figures; ++j) {
         const double mean = total.diff[(d - 1) * figures + j];
@@ -158,7 +183,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
         const double missed = -std::log(0.025) * 1000 * std::max(*std::max_element(weight[0].begin(), weight[0].end()),
                                                                    *std::max_element(weight[d].begin(), weight[d].end()));
         const double half = total.differing[(d - 1) * figures + j] == 0 ? missed : 1.959963984540054 * std::sqrt(variance);
-        fd.differences.push_back({names[j], {mean, mean - half, mean + half}, total.differing[(d - 1) * figures + j]});
+        fd.differences.push_back({figure[j].name, {mean, mean - half, mean + half}, total.differing[(d - 1) * figures + j]});
       }
     // The design's whole run (whole counts: merged in any order, the same sums), summarised
     // as j232 hazard summarises one: its hazard distances, P(struck), planes.
