@@ -3,14 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <fmt/format.h>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/enumerable_thread_specific.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include "assess/cluster.hpp"
 #include "scenario/input_error.hpp"
 
 namespace j232::field {
@@ -23,7 +28,50 @@ struct ChunkSums {
   std::vector<double> sum, squares;                 // [design * figures + figure]
   std::vector<double> diff, diff_squares;           // [(design - 1) * figures + figure]
   std::vector<std::uint64_t> differing;
+
+  // Every vector, for packing and unpacking alike (an MPI rank's chunks, sent to rank 0).
+  template <class Self, class F>
+  static void each(Self& self, F&& f) {
+    f(self.sum), f(self.squares), f(self.diff), f(self.diff_squares), f(self.differing);
+  }
 };
+
+// A rank's chunks as bytes (each chunk's index, then its vectors), and back into `sums` at
+// their indices. Every rank runs the same executable: values go as their representation.
+template <class T>
+void append(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+template <class T>
+T take(const std::string& in, std::size_t& at) {
+  if (at + sizeof(T) > in.size()) throw std::runtime_error("a message between ranks ended early");
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof(T));
+  at += sizeof(T);
+  return v;
+}
+std::string pack_chunks(const std::vector<ChunkSums>& sums, std::uint64_t rank, std::uint64_t ranks) {
+  std::string out;
+  for (std::uint64_t c = rank; c < sums.size(); c += ranks) {
+    append(out, c);
+    ChunkSums::each(sums[c], [&](const auto& v) {
+      append(out, static_cast<std::uint64_t>(v.size()));
+      for (const auto& x : v) append(out, x);
+    });
+  }
+  return out;
+}
+void unpack_chunks(const std::string& in, std::vector<ChunkSums>& sums) {
+  std::size_t at = 0;
+  while (at < in.size()) {
+    const auto c = take<std::uint64_t>(in, at);
+    if (c >= sums.size()) throw std::runtime_error("a message between ranks names a chunk beyond the run");
+    ChunkSums::each(sums[c], [&](auto& v) {
+      v.resize(take<std::uint64_t>(in, at));
+      for (auto& x : v) x = take<std::decay_t<decltype(x)>>(in, at);
+    });
+  }
+}
 
 // A figure the comparison estimates per km for each design: what it counts of a thrown
 // object (a plane's, of the first design's plane `plane`), its name, and the energy its event
@@ -97,6 +145,8 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   const std::vector<Figure> figure = figures_of(designs.front().field);
   const std::size_t figures = figure.size(), nd = designs.size();
   const auto n = static_cast<std::uint64_t>(designs.front().field.objects_simulated);
+  // Under MPI each rank takes every ranks-th chunk (as j232 hazard does); rank 0 adds the rest.
+  const auto ranks = static_cast<std::uint64_t>(assess::cluster::size()), rank = static_cast<std::uint64_t>(assess::cluster::rank());
   const std::uint64_t chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
   // Each design's weight per object of each kind (per metre travelled).
   std::vector<std::vector<double>> weight;
@@ -120,6 +170,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
       std::vector<double> y(nd * figures);
       std::vector<std::uint64_t> raw(nd * figures);
       for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
+        if (c % ranks != rank) continue;  // another MPI rank's
         ChunkSums& out = sums[c];
         out.sum.assign(nd * figures, 0.0), out.squares.assign(nd * figures, 0.0);
         out.diff.assign((nd - 1) * figures, 0.0), out.diff_squares.assign((nd - 1) * figures, 0.0), out.differing.assign((nd - 1) * figures, 0);
@@ -150,7 +201,30 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
       }
     });
   });
-  // The chunks' sums in their order: the same totals on any number of threads.
+  // Under MPI, rank 0 gathers the other ranks' chunks (into their places) and tallies.
+  std::vector<HazardTally> remote;
+  for (std::size_t d = 0; d < nd; ++d)
+    for (std::size_t k = 0; k < sims[d]->kinds(); ++k) remote.emplace_back(HazardLayout::of(designs[d].field));
+  if (ranks > 1) {
+    if (rank != 0) {
+      assess::cluster::send(0, pack_chunks(sums, rank, ranks));
+      for (std::size_t t = 0; t < remote.size(); ++t) {
+        HazardTally mine(remote[t].layout);
+        for (const auto& w : local) mine.merge(w->tallies[t]);
+        assess::cluster::send(0, mine.pack());
+      }
+    } else {
+      for (int from = 1; from < static_cast<int>(ranks); ++from) {
+        unpack_chunks(assess::cluster::receive(from), sums);
+        for (auto& tally : remote) {
+          HazardTally theirs(tally.layout);
+          theirs.unpack(assess::cluster::receive(from));
+          tally.merge(theirs);
+        }
+      }
+    }
+  }
+  // The chunks' sums in their order: the same totals on any number of threads or ranks.
   ChunkSums total;
   total.sum.assign(nd * figures, 0.0), total.squares.assign(nd * figures, 0.0);
   total.diff.assign((nd - 1) * figures, 0.0), total.diff_squares.assign((nd - 1) * figures, 0.0), total.differing.assign((nd - 1) * figures, 0);
@@ -189,8 +263,10 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     // as j232 hazard summarises one: its hazard distances, P(struck), planes.
     HazardRun run;
     for (std::size_t k = 0; k < sims[d]->kinds(); ++k) run.kinds.emplace_back(HazardLayout::of(designs[d].field));
-    for (const auto& w : local)
-      for (std::size_t k = 0; k < sims[d]->kinds(); ++k) run.kinds[k].merge(w->tallies[first[d] + k]);
+    for (std::size_t k = 0; k < sims[d]->kinds(); ++k) {
+      for (const auto& w : local) run.kinds[k].merge(w->tallies[first[d] + k]);
+      run.kinds[k].merge(remote[first[d] + k]);
+    }
     fd.hazard = summarise(*sims[d], run);
     fd.range = designs[d].field.range;
     fd.acceptable_probability = -std::expm1(-designs[d].field.presented_area / designs[d].field.acceptable_area);

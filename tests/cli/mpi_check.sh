@@ -57,9 +57,22 @@ done
 "$exe" uq "$work/uq-lawn.toml" --out "$work/uq-lawn-plain" >/dev/null
 mpi 2 "$exe" uq "$work/uq-lawn.toml" --out "$work/uq-lawn-2" >/dev/null 2>&1 || fail "a field's uq on 2 ranks failed"
 same_json "$work/uq-lawn-plain/uq.json" "$work/uq-lawn-2/uq.json"
+# Two fields compared object by object: every rank its share of the objects, rank 0 the sums
+# in chunk order and every design's tallies.
+sed 's/^objects_simulated = .*/objects_simulated = 6000/' "$lawn" >"$work/lawn-a.toml"
+sed 's/^ground_speed = .*/ground_speed = "6 km\/h"/' "$work/lawn-a.toml" >"$work/lawn-b.toml"
+"$exe" compare "$work/lawn-a.toml" "$work/lawn-b.toml" --out "$work/compare-fields-plain" >/dev/null
+for n in 2 3; do
+  mpi "$n" "$exe" compare "$work/lawn-a.toml" "$work/lawn-b.toml" --out "$work/compare-fields-$n" >/dev/null 2>&1 ||
+    fail "compare of fields on $n ranks failed"
+  same_json "$work/compare-fields-plain/compare.json" "$work/compare-fields-$n/compare.json"
+  cmp "$work/compare-fields-plain/compare.csv" "$work/compare-fields-$n/compare.csv" || fail "compare.csv of fields on $n ranks differs"
+done
 # No stray files from the other ranks in the output folders.
 listing="$(ls -A "$work/run-3" | grep -v '^scene.html$' | sort | tr '\n' ' ')"  # scene.html: when built with three.js
 [ "$listing" = ".j232.lock marks.csv report.html result.json " ] || fail "unexpected files in run-3: $(ls -A "$work/run-3")"
+listing="$(ls -A "$work/compare-fields-3" | sort | tr '\n' ' ')"
+[ "$listing" = ".j232.lock compare.csv compare.html compare.json " ] || fail "unexpected files in compare-fields-3: $(ls -A "$work/compare-fields-3")"
 
 # A failure on rank 0 ends the job with its message, exit code 2, no result and no hang.
 touch "$work/not-a-folder"
