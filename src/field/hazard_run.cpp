@@ -150,17 +150,13 @@ void hazard_distance(double cell, double acceptable, DirectionCurve& c) {
 
 }  // namespace
 
-HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
-  const scenario::FieldSpec& f = sim.scenario().field;
-  const HazardLayout& l = run.kinds.front().layout;
-  const std::vector<double> w = weights_per_object(sim, run);
+namespace {
+
+// What the run counted (objects, thrown, cut off, landed outside the deck) and whether it
+// may claim a hazard: no object thrown, or more than kMaxCutOffShare cut off by the run's
+// limits, and it may not (named, so the user knows which setting to raise).
+void count_and_judge(const FieldSimulator& sim, const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
   const std::size_t kinds = run.kinds.size();
-  HazardSummary s;
-  s.cut_width = sim.cut_to() - sim.cut_from();
-  s.objects_per_metre = sim.objects_per_metre();
-  s.objects_per_km = 1000 * s.objects_per_metre;
-  for (std::size_t k = 0; k < kinds; ++k) s.reaching_per_km += 1000 * sim.objects_per_metre(k) * sim.reach_share(k);
-  s.acceptable_density = 1.0 / f.acceptable_area;
   s.objects = run.objects();
   double thrown = 0, landed = 0;
   for (std::size_t k = 0; k < kinds; ++k) {
@@ -201,38 +197,49 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
                                      100 * s.cut_off_share, 100 * assess::kMaxCutOffShare, s.cut_off_limits));
   s.thrown_per_km = 1000 * thrown;
   s.landed_outside_deck_share = thrown > 0 ? landed / thrown : 0.0;
-  // Throw statistics over the kinds, each weighted as the field holds it.
-  {
-    // A speed histogram's (0.5 m/s bins) mean and 95th percentile over the kinds.
-    const auto mean_and_q95 = [&](std::array<std::uint64_t, 400> HazardTally::*histogram, double& mean, double& q95) {
-      double n = 0, sum = 0;
-      std::vector<double> speed((run.kinds.front().*histogram).size());
-      for (std::size_t k = 0; k < kinds; ++k)
-        for (std::size_t i = 0; i < speed.size(); ++i) {
-          const double c = w[k] * static_cast<double>((run.kinds[k].*histogram)[i]);
-          speed[i] += c, n += c, sum += c * (static_cast<double>(i) + 0.5) * 0.5;
-        }
-      mean = n > 0 ? sum / n : 0.0;
-      double seen = 0;
-      for (std::size_t i = 0; i < speed.size(); ++i) {
-        seen += speed[i];
-        if (n > 0 && seen >= 0.95 * n) {
-          q95 = (static_cast<double>(i) + 1) * 0.5;
-          break;
-        }
-      }
-    };
-    mean_and_q95(&HazardTally::exit_speed, s.exit_speed_mean, s.exit_speed_q95);
-    mean_and_q95(&HazardTally::last_strike_speed, s.last_strike_speed_mean, s.last_strike_speed_q95);
-    double elevation = 0, en = 0;
-    for (std::size_t k = 0; k < kinds; ++k)
-      for (std::size_t i = 0; i < run.kinds[k].launch_elevation.size(); ++i) {
-        const double c = w[k] * static_cast<double>(run.kinds[k].launch_elevation[i]);
-        en += c, elevation += c * (static_cast<double>(i) + 0.5 - 90.0);
-      }
-    s.launch_elevation_mean = en > 0 ? elevation / en : 0.0;
-  }
+}
 
+// Throw statistics over the kinds, each weighted as the field holds it: the speed off the
+// first and the last strike (mean, 95th percentile) and the launch's elevation.
+void throw_statistics(const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
+  const std::size_t kinds = run.kinds.size();
+  // A speed histogram's (0.5 m/s bins) mean and 95th percentile over the kinds.
+  const auto mean_and_q95 = [&](std::array<std::uint64_t, 400> HazardTally::*histogram, double& mean, double& q95) {
+    double n = 0, sum = 0;
+    std::vector<double> speed((run.kinds.front().*histogram).size());
+    for (std::size_t k = 0; k < kinds; ++k)
+      for (std::size_t i = 0; i < speed.size(); ++i) {
+        const double c = w[k] * static_cast<double>((run.kinds[k].*histogram)[i]);
+        speed[i] += c, n += c, sum += c * (static_cast<double>(i) + 0.5) * 0.5;
+      }
+    mean = n > 0 ? sum / n : 0.0;
+    double seen = 0;
+    for (std::size_t i = 0; i < speed.size(); ++i) {
+      seen += speed[i];
+      if (n > 0 && seen >= 0.95 * n) {
+        q95 = (static_cast<double>(i) + 1) * 0.5;
+        break;
+      }
+    }
+  };
+  mean_and_q95(&HazardTally::exit_speed, s.exit_speed_mean, s.exit_speed_q95);
+  mean_and_q95(&HazardTally::last_strike_speed, s.last_strike_speed_mean, s.last_strike_speed_q95);
+  double elevation = 0, en = 0;
+  for (std::size_t k = 0; k < kinds; ++k)
+    for (std::size_t i = 0; i < run.kinds[k].launch_elevation.size(); ++i) {
+      const double c = w[k] * static_cast<double>(run.kinds[k].launch_elevation[i]);
+      en += c, elevation += c * (static_cast<double>(i) + 0.5 - 90.0);
+    }
+  s.launch_elevation_mean = en > 0 ? elevation / en : 0.0;
+}
+
+// Each direction's curve from the deck's edge outward (the density of hazardous impacts,
+// beside the path the crossings of the vertical plane too, the exposure and P(struck)), and
+// its hazard distance at the acceptable density and at each setback factor of it.
+void direction_curves(const FieldSimulator& sim, const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
+  const scenario::FieldSpec& f = sim.scenario().field;
+  const HazardLayout& l = run.kinds.front().layout;
+  const std::size_t kinds = run.kinds.size();
   static const char* names[] = {"left", "right", "front", "rear"};
   static const char* meanings[] = {
       "a person standing this far to the left of the mower's centre line while it mows past (one pass): the larger of the "
@@ -280,6 +287,14 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
     hazard_distance(l.cell, s.acceptable_density, c);
     s.directions.push_back(std::move(c));
   }
+}
+
+// Each plane's crossings per km by height, its hazardous crossings per km, and beside the
+// path, per m2 of it, with P(struck) per pass and per season for a person there.
+void plane_results(const FieldSimulator& sim, const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
+  const scenario::FieldSpec& f = sim.scenario().field;
+  const std::size_t kinds = run.kinds.size();
+  std::vector<Stratum> strata(kinds);
   for (std::size_t p = 0; p < f.planes.size(); ++p) {
     PlaneResult r;
     r.plane = f.planes[p];
@@ -315,6 +330,23 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
     }
     s.planes.push_back(std::move(r));
   }
+}
+
+}  // namespace
+
+HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
+  const scenario::FieldSpec& f = sim.scenario().field;
+  const std::vector<double> w = weights_per_object(sim, run);
+  HazardSummary s;
+  s.cut_width = sim.cut_to() - sim.cut_from();
+  s.objects_per_metre = sim.objects_per_metre();
+  s.objects_per_km = 1000 * s.objects_per_metre;
+  for (std::size_t k = 0; k < run.kinds.size(); ++k) s.reaching_per_km += 1000 * sim.objects_per_metre(k) * sim.reach_share(k);
+  s.acceptable_density = 1.0 / f.acceptable_area;
+  count_and_judge(sim, run, w, s);
+  throw_statistics(run, w, s);
+  direction_curves(sim, run, w, s);
+  plane_results(sim, run, w, s);
   return s;
 }
 
