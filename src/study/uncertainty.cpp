@@ -417,49 +417,31 @@ UncertaintyPlan uncertainty_plan(const scenario::Scenario& s) {
   return plan;
 }
 
-UncertaintyResult run_uncertainty(const std::string& file, int threads, const std::function<void(std::size_t, std::size_t)>& on_run,
-                                  const UncertaintyJournal* journal) {
-  const toml::table base = scenario::parse_toml_file(file);
-  const scenario::Scenario nominal = scenario::read_scenario(base, file);
-  UncertaintyResult r;
-  r.plan = uncertainty_plan(nominal);
-  r.scenario_file = file;
-  r.title = nominal.title;
-  r.seed = nominal.run.seed;
-  r.required = nominal.criteria.required_pass_probability;
-  r.field = nominal.field.present;
-  r.acceptable_area = nominal.field.acceptable_area;
-  r.output_info = uq_outputs(nominal);
-  // The inputs are ranked by a smooth output: P(pass) from every nail; in a field, the
-  // hazardous flux at the first plane a person stands at (else the first plane's, else the
-  // objects thrown).
-  r.smooth_output = 1;
-  if (r.field) {
-    const auto& planes = nominal.field.planes;
-    const auto person = std::find_if(planes.begin(), planes.end(), [](const auto& p) { return p.receptor == scenario::FieldPlaneSpec::Receptor::Person; });
-    const auto plane = person != planes.end() ? person - planes.begin() : planes.empty() ? -1 : 0;
-    const std::string name = fmt::format("plane{}_hazardous_per_km", plane + 1);
-    r.smooth_output = 0;
-    for (std::size_t o = 0; o < r.output_info.size(); ++o)
-      if (plane >= 0 && r.output_info[o].name == name) r.smooth_output = o;
-  }
-  const std::size_t k = r.plan.inputs.size();
-  // Each input's two ends, checked before anything runs.
+namespace {
+
+// Each input's two ends (or its values) and its distribution, checked before anything runs:
+// every value it may take must make a scenario the reader and the parameter accept.
+struct InputSpreads {
   std::vector<ParameterInfo> info;
-  std::vector<std::pair<Written, Written>> ends;
+  std::vector<std::pair<Written, Written>> ends;  // a range's (a discrete input's: empty)
   std::vector<InputDistribution> spread;
+};
+
+InputSpreads read_spreads(const toml::table& base, const std::string& file, const UncertaintyResult& r) {
+  const std::size_t k = r.plan.inputs.size();
+  InputSpreads spreads;
   for (std::size_t i = 0; i < k; ++i) {
     const UncertainInput& in = r.plan.inputs[i];
     const std::string key = r.plan.defaults ? fmt::format("(default) {}", in.parameter) : fmt::format("uncertainty.inputs[{}]", i + 1);
-    info.push_back(parameter_info(in.parameter));
+    spreads.info.push_back(parameter_info(in.parameter));
     if (const std::string why = cannot_vary(in.parameter, r.field); !why.empty())
       throw InputError(file, in.line, r.plan.defaults ? key : key + ".parameter", in.parameter, why);
     // A value the input may take must make a scenario the reader (and the parameter) accepts.
     const auto check_value = [&](const std::string& text, const std::string& where) { scenario_with(base, file, in, text, where); };
     if (!in.values.empty()) {
       // A discrete input: every value it may take must make a scenario the reader accepts.
-      ends.emplace_back(Written{}, Written{});
-      spread.push_back({});
+      spreads.ends.emplace_back(Written{}, Written{});
+      spreads.spread.push_back({});
       for (const std::string& text : in.values) check_value(text, key + ".values");
       continue;
     }
@@ -467,7 +449,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     if (lo.unit != hi.unit)
       throw InputError(file, in.line, key + ".high", in.high, fmt::format("expected the same unit as low (\"{}\")", lo.unit));
     if (!(hi.number > lo.number)) throw InputError(file, in.line, key + ".high", in.high, "expected a value above low");
-    ends.emplace_back(lo, hi);
+    spreads.ends.emplace_back(lo, hi);
     InputDistribution d{InputDistribution::Kind::Uniform, lo.number, hi.number, 0.5 * (lo.number + hi.number),
                         0.25 * (hi.number - lo.number)};
     if (in.distribution == "triangular") d.kind = InputDistribution::Kind::Triangular;
@@ -490,12 +472,36 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
                          fmt::format("expected a standard deviation above zero, in low's unit (\"{}\")", lo.unit));
       d.sd = sd.number;
     }
-    spread.push_back(d);
+    spreads.spread.push_back(d);
     // Both ends must make a scenario the reader accepts.
     for (const Written& w : {lo, hi})
       check_value(w.unit.empty() ? fmt::format("{:.17g}", w.number) : fmt::format("{:.17g} {}", w.number, w.unit), key);
   }
-  r.design = saltelli_design(k, r.plan.base_draws);
+  return spreads;
+}
+
+// The output the inputs are ranked by: a smooth one (P(pass) from every nail; in a field, the
+// hazardous flux at the first plane a person stands at, else the first plane's, else the
+// objects thrown).
+std::size_t smooth_output(const UncertaintyResult& r, const scenario::Scenario& nominal) {
+  std::size_t chosen = 1;
+  if (r.field) {
+    const auto& planes = nominal.field.planes;
+    const auto person = std::find_if(planes.begin(), planes.end(), [](const auto& p) { return p.receptor == scenario::FieldPlaneSpec::Receptor::Person; });
+    const auto plane = person != planes.end() ? person - planes.begin() : planes.empty() ? -1 : 0;
+    const std::string name = fmt::format("plane{}_hazardous_per_km", plane + 1);
+    chosen = 0;
+    for (std::size_t o = 0; o < r.output_info.size(); ++o)
+      if (plane >= 0 && r.output_info[o].name == name) chosen = o;
+  }
+  return chosen;
+}
+
+// Every draw of the Saltelli design: the scenario with the drawn inputs written in, read and
+// assessed (or recalled from the journal of an interrupted study), its outputs recorded.
+void run_draws(const toml::table& base, const std::string& file, const InputSpreads& spreads, int threads,
+               const std::function<void(std::size_t, std::size_t)>& on_run, const UncertaintyJournal* journal, UncertaintyResult& r) {
+  const std::size_t k = r.plan.inputs.size();
   const auto runs = r.design.runs();
   for (std::size_t run = 0; run < runs.size(); ++run) {
     if (on_run) on_run(run, runs.size());
@@ -506,12 +512,12 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
       const auto& choices = r.plan.inputs[i].values;
       // A discrete input takes value floor(u n) of its n (recorded as that index); a range,
       // its distribution's quantile at u.
-      const double v = choices.empty() ? spread[i].quantile(runs[run][i])
+      const double v = choices.empty() ? spreads.spread[i].quantile(runs[run][i])
                                        : std::min(static_cast<double>(choices.size() - 1), std::floor(runs[run][i] * static_cast<double>(choices.size())));
       const std::string text = !choices.empty()              ? choices[static_cast<std::size_t>(v)]
-                               : ends[i].first.unit.empty() ? fmt::format("{:.17g}", v)
-                                                            : fmt::format("{:.17g} {}", v, ends[i].first.unit);
-      settings.push_back(make_setting(info[i], text, file, r.plan.inputs[i].line, r.plan.inputs[i].parameter));
+                               : spreads.ends[i].first.unit.empty() ? fmt::format("{:.17g}", v)
+                                                            : fmt::format("{:.17g} {}", v, spreads.ends[i].first.unit);
+      settings.push_back(make_setting(spreads.info[i], text, file, r.plan.inputs[i].line, r.plan.inputs[i].parameter));
       values.push_back(v);
       apply_to_document(settings.back(), doc,
                         drawn_by(file, r.plan.inputs[i], r.plan.defaults ? fmt::format("(default) {}", r.plan.inputs[i].parameter)
@@ -550,6 +556,10 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
     r.outputs.push_back(out.outputs);
     if (journal && journal->record) journal->record(run, out);
   }
+}
+
+// Draws near the cut-off limit, and hazard distances at the tallied range's edge, named.
+void warn_about_draws(const scenario::Scenario& nominal, UncertaintyResult& r) {
   for (std::size_t run = 0; run < r.runs.size(); ++run)
     if (r.runs[run].cut_off_share >= assess::kWarnCutOffShare) {
       const std::string inputs = draw_inputs(r.plan, r.values[run]);
@@ -569,6 +579,11 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
                                            "there or beyond, and the figure {:g} m understates it",
                                            run + 1, draw_inputs(r.plan, r.values[run]), r.output_info[o].words, nominal.field.range,
                                            r.outputs[run][o]));
+}
+
+// Each output's Sobol' indices (and from the first half of the draws, to show how settled
+// they are), and for a J232 test the variance chance alone would give its shares.
+void estimate_indices(const scenario::Scenario& nominal, UncertaintyResult& r) {
   const std::size_t outputs = r.output_info.size();
   const auto column = [&](std::size_t o) {
     std::vector<double> f;
@@ -595,7 +610,29 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
   if (r.design.base >= 4) {
     r.half_indices.emplace();
     for (std::size_t o = 0; o < outputs; ++o) r.half_indices->push_back(sobol_indices_prefix(r.design, column(o), r.design.base / 2, 500, 1));
-  }
+  }}
+
+}  // namespace
+
+UncertaintyResult run_uncertainty(const std::string& file, int threads, const std::function<void(std::size_t, std::size_t)>& on_run,
+                                  const UncertaintyJournal* journal) {
+  const toml::table base = scenario::parse_toml_file(file);
+  const scenario::Scenario nominal = scenario::read_scenario(base, file);
+  UncertaintyResult r;
+  r.plan = uncertainty_plan(nominal);
+  r.scenario_file = file;
+  r.title = nominal.title;
+  r.seed = nominal.run.seed;
+  r.required = nominal.criteria.required_pass_probability;
+  r.field = nominal.field.present;
+  r.acceptable_area = nominal.field.acceptable_area;
+  r.output_info = uq_outputs(nominal);
+  r.smooth_output = smooth_output(r, nominal);
+  const InputSpreads spreads = read_spreads(base, file, r);
+  r.design = saltelli_design(r.plan.inputs.size(), r.plan.base_draws);
+  run_draws(base, file, spreads, threads, on_run, journal, r);
+  warn_about_draws(nominal, r);
+  estimate_indices(nominal, r);
   return r;
 }
 
