@@ -254,6 +254,14 @@ TEST_CASE("arcs: one rule for every stage, the start in and the end out", "[scen
   CHECK(units::in_arc(0.5, 0.5, 1.0));
   CHECK(units::in_arc(0.5 + 2 * units::pi, -0.5, 1.0));  // azimuths a turn apart are one
   CHECK(units::arc_span(1.0, 1.0 - 0.5) == Approx(2 * units::pi - 0.5));
+  // A whole turn written as 360 deg past the start, whatever the rounding of the radians
+  // (420 deg - 60 deg is 2 pi + 9e-16: a remainder alone made it an arc of nothing).
+  for (const double from_deg : {0.0, 20.0, 60.0, 135.0, -90.0}) {
+    const double from = from_deg * units::pi / 180, to = (from_deg + 360) * units::pi / 180;
+    CHECK(units::arc_span(from, to) == 2 * units::pi);
+    CHECK(units::arc_span(to, from) == 2 * units::pi);
+    for (double a = -3.0; a < 3.2; a += 0.5) CHECK(units::in_arc(a, from, to));
+  }
   CHECK(units::arcs_overlap(0.0, 1.0, 0.5, 2.0));
   CHECK_FALSE(units::arcs_overlap(0.0, 1.0, 1.0, 2.0));  // meeting at an end only
   // A sector zone judges by the same rule (it had its own, with the end included).
@@ -266,6 +274,10 @@ TEST_CASE("arcs: one rule for every stage, the start in and the end out", "[scen
   CHECK_FALSE(sector.contains(Vec3(0.0, 1.0, 0.5)));  // at the end
   CHECK_FALSE(sector.contains(Vec3(-1.0, 0.1, 0.5)));
   CHECK_FALSE(sector.contains(Vec3(1.0, 1.0, 1.5)));  // above it
+  spec.azimuth_from = 60 * units::pi / 180, spec.azimuth_to = 420 * units::pi / 180;  // the whole turn
+  const scene::OperatorZone all_round(spec, 0.076);
+  CHECK(all_round.contains(Vec3(1.0, 0.0, 0.5)));
+  CHECK(all_round.contains(Vec3(-1.0, -0.2, 0.5)));
 }
 
 TEST_CASE("mesh: PLY headers that CGAL's reader cannot take are refused before it reads them", "[scene][mesh]") {

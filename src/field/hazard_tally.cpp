@@ -111,7 +111,9 @@ struct Reader {
 }  // namespace
 
 void HazardTally::merge(const HazardTally& o) {
-  J232_CHECK(o.directions.size() == directions.size() && o.vertical.size() == vertical.size() && o.planes.size() == planes.size());  // one layout
+  // One layout: the same cells and planes (zip walks this tally's sizes through both).
+  J232_CHECK(o.layout.half_cells == layout.half_cells && o.landings.size() == landings.size() && o.directions[0].size() == directions[0].size() &&
+             o.vertical[0].size() == vertical[0].size() && o.planes.size() == planes.size());
   zip(*this, o, Adder{});
 }
 

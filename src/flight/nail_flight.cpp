@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "board/board.hpp"
 #include "invariant/check.hpp"
@@ -242,8 +243,12 @@ struct NailFlight {
   };
   const double t_end = start.time + set.time_limit;  // the flight's time limit
   int steps = 0;                                      // events so far (kMaxFlightSteps)
+  // The last event was a blade strike, at this instant (event_find looks there first).
+  bool struck_now = false;
+  // Every spindle's contact search is the fast one (strike::SearchMethod::Advancement).
+  const bool fast_blade_search =
+      ctx.spindles && std::none_of(ctx.spindles->begin(), ctx.spindles->end(), [](const strike::Spindle& sp) { return sp.reference_search; });
   bool event_check();
-  void pushed_on(const strike::Contact& k);
   bool carried();
   void observe(const Chord& c, const NextEvent& e) const;
   Chord event_advance();
@@ -1176,6 +1181,22 @@ NailFlight::Chord NailFlight::event_advance() {
 // nothing.
 NailFlight::NextEvent NailFlight::event_find(const Chord& c) {
   NextEvent e;
+  // Just struck: the knife, driven round, is back on its path at once (its recoil is not
+  // kept), so a heavy object still approaching it is caught again at this same instant, each
+  // impulse smaller, until it moves with the knife's point there (a cobble: about 14
+  // impulses). A touch at this instant is the earliest event whatever the faces do, and the
+  // blade search over this instant alone finds exactly the touch the whole chord's would (the
+  // same probes at this instant; a knife not touching here is found by neither): the face
+  // search is not needed for it. (The reference search, which bisects back from its first
+  // probe, is left to the whole chord.)
+  if (std::exchange(struck_now, false) && fast_blade_search) {
+    e.contact = blade_contact(c.motion, b.time);
+    if (cut_off) return e;
+    if (e.contact) {
+      e.kind = NextEvent::Kind::Blade;
+      return e;
+    }
+  }
   const double chord_end = b.time + c.dt;
   FaceSearchStats stats;
   e.touch = first_face_touch(*ctx.scene, candidates.data(), candidate_count, c.motion, nail, b.time, chord_end, filter(), stats);
@@ -1185,26 +1206,6 @@ NailFlight::NextEvent NailFlight::event_find(const Chord& c) {
   if (cut_off) return e;
   e.kind = e.contact ? NextEvent::Kind::Blade : e.touch ? NextEvent::Kind::Surface : NextEvent::Kind::ChordEnd;
   return e;
-}
-
-// Still approaching the knife at the point just struck: the knife, driven round, is back on
-// its path at once (its recoil is not kept), so a heavy object is caught again at the same
-// instant, each impulse smaller, until it moves with the knife's point there (a cobble: 14
-// impulses, the approach falling from 10 m/s to below a micrometre a second). The next
-// search would find the same touch at this instant (the zero-time repeat of
-// strike::first_contact, approaching faster than 1e-6 m/s); each impulse of the series is
-// taken here instead, counted as the search's would be, without a chord, a face search and
-// a blade search for each.
-void NailFlight::pushed_on(const strike::Contact& k) {
-  const strike::Spindle& sp = (*ctx.spindles)[k.spindle];
-  const Vec3 arm = k.point - k.centre;
-  for (;;) {
-    if (cut_off || (k.spindle == ridden_spindle && k.time < ridden_until)) return;
-    const Vec3 v_rel = b.velocity + b.spin.cross(arm) - sp.velocity_at(k.point);
-    if (!(-v_rel.dot(k.normal) > 1e-6)) return;
-    if (!event_check()) return;
-    restrike(k);
-  }
 }
 
 // What the event does to the nail. Returns false when the flight has ended.
@@ -1224,7 +1225,7 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
       b.time = e.contact->time;
       moved(from, b.position);
       restrike(*e.contact);
-      pushed_on(*e.contact);
+      struck_now = true;
       return !cut_off;
     }
     case NextEvent::Kind::Surface: break;

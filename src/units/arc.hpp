@@ -7,8 +7,12 @@
 
 namespace j232::units {
 
-// The arc's extent in (0, 2 pi]: from == to is the whole turn.
+// The arc's extent in (0, 2 pi]: from == to is the whole turn, and so is an end a whole turn
+// from the start to rounding (the reader takes "360 deg past azimuth_from" as the whole turn,
+// and 420 deg - 60 deg comes out 2 pi + 9e-16 in radians, which the remainder alone would
+// make an arc of nothing).
 inline double arc_span(double from, double to) {
+  if (std::abs(to - from) >= two_pi * (1 - 1e-12)) return two_pi;
   double span = std::fmod(to - from, two_pi);
   if (span <= 0) span += two_pi;
   return span;
