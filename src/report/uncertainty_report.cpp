@@ -208,12 +208,13 @@ UncertaintyTable read_uncertainty_csv(const std::string& path) {
   return t;
 }
 
-std::string uncertainty_html(const json& j) {
-  std::string o = page_head("j232 uncertainty study: " + j["title"].get<std::string>());
-  o += fmt::format("<h1>How much the verdict rests on uncertain inputs</h1>\n<p>{} ({})</p>\n", escape(j["title"].get<std::string>()),
-                   escape(j["scenario"].get<std::string>()));
+namespace {
+
+// The robust verdict: how many of the draws pass (a J232 test) or keep the ground beyond the
+// deck acceptable (a field).
+std::string robust_verdict_html(const json& j, bool field) {
+  std::string o;
   const double passing = j["share_of_draws_passing"].get<double>();
-  const bool field = j["kind"] == "field";
   const char* verdict_class = passing == 1.0 ? "pass" : passing == 0.0 ? "fail" : "invalid";
   if (field)
     o += fmt::format(
@@ -227,7 +228,12 @@ std::string uncertainty_html(const json& j) {
         "{} % of {} assessments drawn over the inputs' ranges.</p>\n",
         verdict_class, escape(j["robust_verdict"].get<std::string>()), number("required_pass_probability", j["required_pass_probability"], "{:g}"),
         number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
-  // Warnings after the verdict, before the inputs: how many, the first few, the rest folded.
+  return o;
+}
+
+// The study's warnings: how many, the first few, the rest folded.
+std::string warnings_html(const json& j) {
+  std::string o;
   if (j.contains("warnings") && !j["warnings"].empty()) {
     const auto& w = j["warnings"];
     constexpr std::size_t kShown = 3;
@@ -242,6 +248,12 @@ std::string uncertainty_html(const json& j) {
     }
     o += "</section>\n";
   }
+  return o;
+}
+
+// The design (assessments, draws, seed) and the table of inputs with their ranges and bases.
+std::string inputs_html(const json& j, bool field) {
+  std::string o;
   o += fmt::format(
       "<p>{} assessments of {} each (Saltelli scheme, {} base draws{}; common random numbers, seed {}). "
       "Inputs{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th><th>distribution</th>"
@@ -263,7 +275,14 @@ std::string uncertainty_html(const json& j) {
                      escape(inputs[i]["parameter"].get<std::string>()), escape(inputs[i]["low"].get<std::string>()),
                      escape(inputs[i]["high"].get<std::string>()), escape(inputs[i]["distribution"].get<std::string>()),
                      escape(inputs[i]["basis"].get<std::string>()));
-  o += "</tbody></table>\n<h2>The outputs over the inputs' uncertainty</h2>\n<table class=\"numbers\"><thead><tr><th>output</th>"
+  o += "</tbody></table>\n";
+  return o;
+}
+
+// Each output's mean, quantiles and range over the draws.
+std::string outputs_html(const json& j, bool field) {
+  std::string o;
+  o += "<h2>The outputs over the inputs' uncertainty</h2>\n<table class=\"numbers\"><thead><tr><th>output</th>"
        "<th>mean</th><th>5 %</th><th>median</th><th>95 %</th><th>min</th><th>max</th></tr></thead><tbody>\n";
   const auto& listed = j["output_list"];
   for (std::size_t k = 0; k + 1 < listed.size(); ++k) {  // the verdict's share of draws is above
@@ -278,86 +297,107 @@ std::string uncertainty_html(const json& j) {
       o += fmt::format("<td>{}{}</td>", number(fmt::format("outputs.{}.{}", name, q), x[q], f, scale), escape(unit));
     o += "</tr>\n";
   }
-  o += "</tbody></table>\n<h2>Which input drives what: Sobol' indices</h2>\n<p>First order: the share of the output's variance "
+  o += "</tbody></table>\n";
+  return o;
+}
+
+// One output's Sobol' indices: the table, what the noise and the intervals allow, the
+// convergence from half the draws, and the chart.
+std::string sobol_html(const json& j, const json& output) {
+  std::string o;
+  const std::string name = output["name"], words = escape(output["words"].get<std::string>());
+  const auto& s = j["sensitivity"][name];
+  if (s["variance"].get<double>() <= 0) {
+    // The variance is over the base draws (A and B); the table's range is over every draw.
+    const auto& x = j["outputs"][name];
+    if (x["min"].get<double>() == x["max"].get<double>())
+      o += fmt::format("<p>{}: the same at every draw (no variance to attribute).</p>\n", words);
+    else
+      o += fmt::format(
+          "<p>{}: the same at every base draw (A and B), so there is no variance to attribute, though it moves at "
+          "some of the mixed draws (from {} to {} over all of them): more base draws are needed to apportion it.</p>\n",
+          words, x["min"].get<double>(), x["max"].get<double>());
+    return o;
+  }
+  Chart chart(fmt::format("Sobol' indices: {}", output["words"].get<std::string>()), "input (numbered as in the table above)", "index", 640, 300);
+  std::vector<double> x1, y1, l1, h1, x2, y2, l2, h2;
+  const bool half = !s["largest_change_from_half_the_draws"].is_null();
+  bool any_flagged = false;
+  for (const auto& row : s["indices"]) any_flagged = any_flagged || row["flagged"].get<bool>();
+  o += fmt::format(
+      "<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>{}<th></th>"
+      "</tr></thead><tbody>\n",
+      words, half ? fmt::format("<th>first / total at N = {}</th>", j["base_draws"].get<std::size_t>() / 2) : "");
+  for (std::size_t i = 0; i < s["indices"].size(); ++i) {
+    const auto& row = s["indices"][i];
+    const std::string key = fmt::format("sensitivity.{}.indices.{}", name, i);
+    x1.push_back(static_cast<double>(i + 1) - 0.12), y1.push_back(row["first_order"]["estimate"]),
+        l1.push_back(row["first_order"]["low"]), h1.push_back(row["first_order"]["high"]);
+    x2.push_back(static_cast<double>(i + 1) + 0.12), y2.push_back(row["total"]["estimate"]), l2.push_back(row["total"]["low"]),
+        h2.push_back(row["total"]["high"]);
+    o += fmt::format(
+        "<tr><td>{} {}</td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} to {}</td>{}<td>{}</td></tr>\n", i + 1,
+        escape(row["input"].get<std::string>()), number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
+        number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
+        number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}"),
+        number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"), number(key + ".total.low", row["total"]["low"], "{:.3f}"),
+        number(key + ".total.high", row["total"]["high"], "{:.3f}"),
+        half ? fmt::format("<td>{} / {}</td>", number(key + ".at_half_the_draws.first_order", row["at_half_the_draws"]["first_order"], "{:.3f}"),
+                           number(key + ".at_half_the_draws.total", row["at_half_the_draws"]["total"], "{:.3f}"))
+             : "",
+        row["flagged"].get<bool>() ? "&#9873; interval leaves [0, 1] by more than 0.05" : "");
+  }
+  o += "</tbody></table>\n";
+  if (!s["noise_share"].is_null() && s["noise_share"].get<double>() >= 0.25)
+    o += fmt::format(
+        "<p class=\"warning\">Mostly chance: Monte Carlo noise alone would give {} % of this output's variance over the draws "
+        "(binomial, as if each draw met new nails; common random numbers make it less). Its marks are rare, and a change of any "
+        "input sends the few nails that make them elsewhere: a total index near or above 1 here says that, not that the input "
+        "decides it. Read the inputs' effect on it from P(pass) from every nail, or run more replicates per draw.</p>\n",
+        number(fmt::format("sensitivity.{}.noise_share", name), s["noise_share"], "{:.0f}", 100));
+  if (any_flagged)
+    o += fmt::format(
+        "<p>&#9873; An index lies between 0 and 1; an interval that leaves [0, 1] by more than 0.05 says that at N = {} base draws the estimate is "
+        "as much the estimator's noise as the input's effect: read it as no more precise than its interval, or run more base "
+        "draws ([uncertainty] base_draws).</p>\n",
+        j["base_draws"].get<std::size_t>());
+  if (half)
+    o += fmt::format("<p>Convergence: from N = {} to N = {} base draws the indices moved by at most {}{}.</p>\n",
+                     j["base_draws"].get<std::size_t>() / 2, number("base_draws", j["base_draws"], "{}"),
+                     number(fmt::format("sensitivity.{}.largest_change_from_half_the_draws", name), s["largest_change_from_half_the_draws"], "{:.3f}"),
+                     s["largest_change_from_half_the_draws"].get<double>() > 0.05 ? " (more than 0.05: more base draws would still move them)"
+                                                                                 : "");
+  std::vector<double> ticks;
+  for (std::size_t i = 0; i < s["indices"].size(); ++i) ticks.push_back(static_cast<double>(i + 1));
+  chart.x_range(0.5, static_cast<double>(ticks.size()) + 0.5);
+  chart.x_ticks(ticks);
+  double lo = 0, hi = 1;
+  for (double v : l1) lo = std::min(lo, v);
+  for (double v : h2) hi = std::max(hi, v);
+  chart.y_range(lo, hi);
+  chart.error_bars(x1, l1, h1, palette(0));
+  chart.points(x1, y1, palette(0), "first order", 4);
+  chart.error_bars(x2, l2, h2, palette(1));
+  chart.points(x2, y2, palette(1), "total", 4);
+  o += "<figure>" + chart.svg() + "</figure>\n";
+  return o;
+}
+
+}  // namespace
+
+std::string uncertainty_html(const json& j) {
+  std::string o = page_head("j232 uncertainty study: " + j["title"].get<std::string>());
+  o += fmt::format("<h1>How much the verdict rests on uncertain inputs</h1>\n<p>{} ({})</p>\n", escape(j["title"].get<std::string>()),
+                   escape(j["scenario"].get<std::string>()));
+  const bool field = j["kind"] == "field";
+  o += robust_verdict_html(j, field);
+  o += warnings_html(j);  // after the verdict, before the inputs
+  o += inputs_html(j, field);
+  o += outputs_html(j, field);
+  o += "<h2>Which input drives what: Sobol' indices</h2>\n<p>First order: the share of the output's variance "
        "an input causes alone; total: alone and with all its interactions. An input with both near 0 does not matter over its "
        "range. Bars: 95 % bootstrap intervals.</p>\n";
-  for (const auto& output : listed) {
-    const std::string name = output["name"], words = escape(output["words"].get<std::string>());
-    const auto& s = j["sensitivity"][name];
-    if (s["variance"].get<double>() <= 0) {
-      // The variance is over the base draws (A and B); the table's range is over every draw.
-      const auto& x = j["outputs"][name];
-      if (x["min"].get<double>() == x["max"].get<double>())
-        o += fmt::format("<p>{}: the same at every draw (no variance to attribute).</p>\n", words);
-      else
-        o += fmt::format(
-            "<p>{}: the same at every base draw (A and B), so there is no variance to attribute, though it moves at "
-            "some of the mixed draws (from {} to {} over all of them): more base draws are needed to apportion it.</p>\n",
-            words, x["min"].get<double>(), x["max"].get<double>());
-      continue;
-    }
-    Chart chart(fmt::format("Sobol' indices: {}", output["words"].get<std::string>()), "input (numbered as in the table above)", "index", 640, 300);
-    std::vector<double> x1, y1, l1, h1, x2, y2, l2, h2;
-    const bool half = !s["largest_change_from_half_the_draws"].is_null();
-    bool any_flagged = false;
-    for (const auto& row : s["indices"]) any_flagged = any_flagged || row["flagged"].get<bool>();
-    o += fmt::format(
-        "<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>{}<th></th>"
-        "</tr></thead><tbody>\n",
-        words, half ? fmt::format("<th>first / total at N = {}</th>", j["base_draws"].get<std::size_t>() / 2) : "");
-    for (std::size_t i = 0; i < s["indices"].size(); ++i) {
-      const auto& row = s["indices"][i];
-      const std::string key = fmt::format("sensitivity.{}.indices.{}", name, i);
-      x1.push_back(static_cast<double>(i + 1) - 0.12), y1.push_back(row["first_order"]["estimate"]),
-          l1.push_back(row["first_order"]["low"]), h1.push_back(row["first_order"]["high"]);
-      x2.push_back(static_cast<double>(i + 1) + 0.12), y2.push_back(row["total"]["estimate"]), l2.push_back(row["total"]["low"]),
-          h2.push_back(row["total"]["high"]);
-      o += fmt::format(
-          "<tr><td>{} {}</td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} to {}</td>{}<td>{}</td></tr>\n", i + 1,
-          escape(row["input"].get<std::string>()), number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
-          number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
-          number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}"),
-          number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"), number(key + ".total.low", row["total"]["low"], "{:.3f}"),
-          number(key + ".total.high", row["total"]["high"], "{:.3f}"),
-          half ? fmt::format("<td>{} / {}</td>", number(key + ".at_half_the_draws.first_order", row["at_half_the_draws"]["first_order"], "{:.3f}"),
-                             number(key + ".at_half_the_draws.total", row["at_half_the_draws"]["total"], "{:.3f}"))
-               : "",
-          row["flagged"].get<bool>() ? "&#9873; interval leaves [0, 1] by more than 0.05" : "");
-    }
-    o += "</tbody></table>\n";
-    if (!s["noise_share"].is_null() && s["noise_share"].get<double>() >= 0.25)
-      o += fmt::format(
-          "<p class=\"warning\">Mostly chance: Monte Carlo noise alone would give {} % of this output's variance over the draws "
-          "(binomial, as if each draw met new nails; common random numbers make it less). Its marks are rare, and a change of any "
-          "input sends the few nails that make them elsewhere: a total index near or above 1 here says that, not that the input "
-          "decides it. Read the inputs' effect on it from P(pass) from every nail, or run more replicates per draw.</p>\n",
-          number(fmt::format("sensitivity.{}.noise_share", name), s["noise_share"], "{:.0f}", 100));
-    if (any_flagged)
-      o += fmt::format(
-          "<p>&#9873; An index lies between 0 and 1; an interval that leaves [0, 1] by more than 0.05 says that at N = {} base draws the estimate is "
-          "as much the estimator's noise as the input's effect: read it as no more precise than its interval, or run more base "
-          "draws ([uncertainty] base_draws).</p>\n",
-          j["base_draws"].get<std::size_t>());
-    if (half)
-      o += fmt::format("<p>Convergence: from N = {} to N = {} base draws the indices moved by at most {}{}.</p>\n",
-                       j["base_draws"].get<std::size_t>() / 2, number("base_draws", j["base_draws"], "{}"),
-                       number(fmt::format("sensitivity.{}.largest_change_from_half_the_draws", name), s["largest_change_from_half_the_draws"], "{:.3f}"),
-                       s["largest_change_from_half_the_draws"].get<double>() > 0.05 ? " (more than 0.05: more base draws would still move them)"
-                                                                                   : "");
-    std::vector<double> ticks;
-    for (std::size_t i = 0; i < s["indices"].size(); ++i) ticks.push_back(static_cast<double>(i + 1));
-    chart.x_range(0.5, static_cast<double>(ticks.size()) + 0.5);
-    chart.x_ticks(ticks);
-    double lo = 0, hi = 1;
-    for (double v : l1) lo = std::min(lo, v);
-    for (double v : h2) hi = std::max(hi, v);
-    chart.y_range(lo, hi);
-    chart.error_bars(x1, l1, h1, palette(0));
-    chart.points(x1, y1, palette(0), "first order", 4);
-    chart.error_bars(x2, l2, h2, palette(1));
-    chart.points(x2, y2, palette(1), "total", 4);
-    o += "<figure>" + chart.svg() + "</figure>\n";
-  }
+  for (const auto& output : j["output_list"]) o += sobol_html(j, output);
   o += page_foot();
   return o;
 }
