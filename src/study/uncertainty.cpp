@@ -610,7 +610,8 @@ void estimate_indices(const scenario::Scenario& nominal, UncertaintyResult& r) {
   if (r.design.base >= 4) {
     r.half_indices.emplace();
     for (std::size_t o = 0; o < outputs; ++o) r.half_indices->push_back(sobol_indices_prefix(r.design, column(o), r.design.base / 2, 500, 1));
-  }}
+  }
+}
 
 }  // namespace
 
