@@ -3,18 +3,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <deque>
 #include <fmt/format.h>
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/enumerable_thread_specific.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include "assess/bytes.hpp"
 #include "assess/cluster.hpp"
 #include "scenario/input_error.hpp"
 
@@ -37,39 +36,21 @@ struct ChunkSums {
 };
 
 // A rank's chunks as bytes (each chunk's index, then its vectors), and back into `sums` at
-// their indices. Every rank runs the same executable: values go as their representation.
-template <class T>
-void append(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-template <class T>
-T take(const std::string& in, std::size_t& at) {
-  if (at + sizeof(T) > in.size()) throw std::runtime_error("a message between ranks ended early");
-  T v;
-  std::memcpy(&v, in.data() + at, sizeof(T));
-  at += sizeof(T);
-  return v;
-}
+// their indices.
 std::string pack_chunks(const std::vector<ChunkSums>& sums, std::uint64_t rank, std::uint64_t ranks) {
-  std::string out;
+  assess::ByteWriter w;
   for (std::uint64_t c = rank; c < sums.size(); c += ranks) {
-    append(out, c);
-    ChunkSums::each(sums[c], [&](const auto& v) {
-      append(out, static_cast<std::uint64_t>(v.size()));
-      for (const auto& x : v) append(out, x);
-    });
+    w.value(c);
+    ChunkSums::each(sums[c], [&](const auto& v) { w.list(v, v.size()); });
   }
-  return out;
+  return w.take();
 }
-void unpack_chunks(const std::string& in, std::vector<ChunkSums>& sums) {
-  std::size_t at = 0;
-  while (at < in.size()) {
-    const auto c = take<std::uint64_t>(in, at);
+void unpack_chunks(const std::string& bytes, std::vector<ChunkSums>& sums) {
+  assess::ByteReader r(bytes);
+  while (!r.done()) {
+    const auto c = r.value<std::uint64_t>();
     if (c >= sums.size()) throw std::runtime_error("a message between ranks names a chunk beyond the run");
-    ChunkSums::each(sums[c], [&](auto& v) {
-      v.resize(take<std::uint64_t>(in, at));
-      for (auto& x : v) x = take<std::decay_t<decltype(x)>>(in, at);
-    });
+    ChunkSums::each(sums[c], [&](auto& v) { r.list(v); });
   }
 }
 

@@ -241,17 +241,15 @@ struct NailFlight {
     std::optional<strike::Contact> contact;
     std::optional<FaceTouch> touch;  // the capsule's first touch of a face of the scene
   };
-  const double t_end = start.time + set.time_limit;  // the flight's time limit
-  int steps = 0;                                      // events so far (kMaxFlightSteps)
   // The last event was a blade strike, at this instant (event_find looks there first).
   bool struck_now = false;
   // Every spindle's contact search is the fast one (strike::SearchMethod::Advancement).
   const bool fast_blade_search =
       ctx.spindles && std::none_of(ctx.spindles->begin(), ctx.spindles->end(), [](const strike::Spindle& sp) { return sp.reference_search; });
-  bool event_check();
+  bool event_check(double t_end, int& steps);
   bool carried();
   void observe(const Chord& c, const NextEvent& e) const;
-  Chord event_advance();
+  Chord event_advance(double t_end);
   Chord chord_from(const Body& from, double dt, const DragOverStep& drag, const Vec3& accel) const;
   std::size_t gather(const strike::Motion& m, double from, double until, bool counted = true);
   // The faces about the nail where it is now, at rest (not counted as a chord's query).
@@ -1099,7 +1097,7 @@ Fate NailFlight::fate() const {
 
 // Whether the flight goes on: its state is finite, within the run's limits, and still in
 // the test's space. Sets what ended it.
-bool NailFlight::event_check() {
+bool NailFlight::event_check(double t_end, int& steps) {
   if (cut_off) return false;  // (a limit met within the last event: a wedge)
   if (!b.position.allFinite() || !b.velocity.allFinite() || !std::isfinite(b.time)) {
     r.non_finite = true;
@@ -1158,7 +1156,7 @@ FaceFilter NailFlight::filter() {
 // the chord's length, its step and a step to a touch on it; where it would end; the motion
 // the contact searches follow along it; and the faces it may meet (a chord that sweeps more
 // faces than the search keeps is halved).
-NailFlight::Chord NailFlight::event_advance() {
+NailFlight::Chord NailFlight::event_advance(double t_end) {
   const DragOverStep step_drag(drag, b);
   const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
   double dt = std::min(chord_step(b, accel, set.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
@@ -1325,9 +1323,11 @@ FlightResult NailFlight::run() {
   r.trace.last_strike_speed = start.velocity.norm();
   r.trace.last_strike_velocity = start.velocity;
   r.launch_velocity = start.velocity;
+  const double t_end = start.time + set.time_limit;
+  int steps = 0;
   if (ctx.path) ctx.path->push_back(b.position);
-  while (event_check()) {
-    const Chord c = event_advance();
+  while (event_check(t_end, steps)) {
+    const Chord c = event_advance(t_end);
     if (cut_off) break;
     if (!(c.len > 1e-12)) {
       b = c.next;
