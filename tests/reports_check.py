@@ -1,17 +1,25 @@
 #!/usr/bin/env python3
-"""reports_check.py SHIPPED REGENERATED: the shipped reports/ folder equals a fresh
-regeneration (scripts/make-reports REGENERATED), provenance aside:
+"""reports_check.py [--regenerated-only] SHIPPED REGENERATED: the shipped reports/ folder
+equals a fresh regeneration (scripts/make-reports REGENERATED), provenance aside:
   - every result.json and summary.json equal, ignoring "provenance";
   - every report.html and summary.html equal outside the provenance section;
   - every sweep CSV and SVG byte-identical;
   - no file missing on either side (marks.csv and scene.html are not shipped: large raw
-    data, and a page that is mostly a copy of three.js)."""
+    data, and a page that is mostly a copy of three.js).
+With --regenerated-only (scripts/make-reports --check-quick), only the shipped folders (and
+top-level files) that the regeneration has are compared, each of them in full."""
 import json
 import os
 import re
 import sys
 
-shipped, fresh = sys.argv[1], sys.argv[2]
+args = sys.argv[1:]
+regenerated_only = bool(args) and args[0] == "--regenerated-only"
+if regenerated_only:
+    args = args[1:]
+if len(args) != 2:
+    sys.exit("usage: reports_check.py [--regenerated-only] SHIPPED REGENERATED")
+shipped, fresh = args
 problems = []
 
 
@@ -26,6 +34,9 @@ def files(root):
 
 
 a, b = files(shipped), files(fresh)
+if regenerated_only:
+    top = {f.split(os.sep)[0] for f in b}
+    a = {f for f in a if f.split(os.sep)[0] in top}
 for f in sorted(a ^ b):
     problems.append(f"{f}: only in {'the shipped reports' if f in a else 'the regeneration'}")
 

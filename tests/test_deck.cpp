@@ -238,7 +238,7 @@ openness = 0
   CHECK(5 * a < 3 * b);  // the opening's share gone; what leaves under the skirt behind stays
   // What a mesh deck has no use for is refused, naming the mesh.
   CHECK_THROWS_WITH(read_with("[[housing.guards]]\nazimuth_from = \"0 deg\"\nazimuth_to = \"90 deg\"\n"),
-                    Contains("housing.guards[1].azimuth_from") && Contains("meshes/deck.obj") && Contains("along"));
+                    Contains("housing.guards[1].azimuth.from") && Contains("meshes/deck.obj") && Contains("along"));
   CHECK_THROWS_WITH(read_with("[[housing.guards]]\nalong = [[\"0 m\", \"1 m\"], [\"1 m\", \"1 m\"]]\n"),
                     Contains("housing.guards[1].along") && Contains("`top`"));
   CHECK_THROWS_WITH(read_with("[housing]\nskirt_bottom = \"2 in\"\n"), Contains("housing.skirt_bottom") && Contains("meshes/deck.obj"));
@@ -320,16 +320,16 @@ TEST_CASE("deck: an opening is cut exactly at its azimuths, and its width as cut
   REQUIRE(s.housing.openings.size() == 1);
   for (const double width_deg : {40.0, 23.0, 31.7}) {  // none a whole number of 0.1 m pieces
     auto& o = s.housing.openings[0];
-    o.azimuth_from = -90 * units::degree - 0.5 * width_deg * units::degree;
-    o.azimuth_to = -90 * units::degree + 0.5 * width_deg * units::degree;
+    o.azimuth.from = -90 * units::degree - 0.5 * width_deg * units::degree;
+    o.azimuth.to = -90 * units::degree + 0.5 * width_deg * units::degree;
     // The pieces inside the opening begin and end on its azimuths' rays.
     double from_gap = HUGE_VAL, to_gap = HUGE_VAL, inside = 0;
     for (const auto& piece : scene::skirt_pieces(s)) {
-      from_gap = std::min({from_gap, std::abs(std::remainder(std::atan2(piece.a.y(), piece.a.x()) - o.azimuth_from, units::two_pi)),
-                           std::abs(std::remainder(std::atan2(piece.b.y(), piece.b.x()) - o.azimuth_from, units::two_pi))});
-      to_gap = std::min({to_gap, std::abs(std::remainder(std::atan2(piece.a.y(), piece.a.x()) - o.azimuth_to, units::two_pi)),
-                         std::abs(std::remainder(std::atan2(piece.b.y(), piece.b.x()) - o.azimuth_to, units::two_pi))});
-      const double rel = std::remainder(piece.azimuth - o.azimuth_from, units::two_pi);
+      from_gap = std::min({from_gap, std::abs(std::remainder(std::atan2(piece.a.y(), piece.a.x()) - o.azimuth.from, units::two_pi)),
+                           std::abs(std::remainder(std::atan2(piece.b.y(), piece.b.x()) - o.azimuth.from, units::two_pi))});
+      to_gap = std::min({to_gap, std::abs(std::remainder(std::atan2(piece.a.y(), piece.a.x()) - o.azimuth.to, units::two_pi)),
+                         std::abs(std::remainder(std::atan2(piece.b.y(), piece.b.x()) - o.azimuth.to, units::two_pi))});
+      const double rel = std::remainder(piece.azimuth - o.azimuth.from, units::two_pi);
       if (rel > 0 && rel < width_deg * units::degree) inside += (piece.b - piece.a).norm();
     }
     CHECK(from_gap < 1e-12);
@@ -340,7 +340,7 @@ TEST_CASE("deck: an opening is cut exactly at its azimuths, and its width as cut
     bool started = false;
     const auto pieces = scene::skirt_pieces(s);
     for (int i = 0; i <= 20000; ++i) {
-      const double a = o.azimuth_from + (o.azimuth_to - o.azimuth_from) * i / 20000.0;
+      const double a = o.azimuth.from + (o.azimuth.to - o.azimuth.from) * i / 20000.0;
       // The outline's point on the ray at a: the farthest crossing of the ray with any piece.
       const Eigen::Vector2d d(std::cos(a), std::sin(a));
       double reach = 0;
@@ -494,8 +494,8 @@ TEST_CASE("deck: no nail passes through the skirt: every way out within its heig
       if (t.first_exit == flight::Exit::Inside) continue;
       ++left;
       if (t.exit != flight::Exit::Opening) continue;
-      const double rel = std::fmod(std::fmod(t.exit_azimuth - o.azimuth_from, units::two_pi) + units::two_pi, units::two_pi);
-      const bool through = rel > std::fmod(o.azimuth_to - o.azimuth_from + units::two_pi, units::two_pi) + 1e-9;
+      const double rel = std::fmod(std::fmod(t.exit_azimuth - o.azimuth.from, units::two_pi) + units::two_pi, units::two_pi);
+      const bool through = rel > std::fmod(o.azimuth.to - o.azimuth.from + units::two_pi, units::two_pi) + 1e-9;
       if (through) UNSCOPED_INFO("replicate " << r << " nail " << n << " left at azimuth " << t.exit_azimuth << ", height " << t.exit_height);
       through_skirt += through;
     }

@@ -173,8 +173,8 @@ TEST_CASE("scene: the operator-zone share converges to the sector's fraction of 
   // whose operator zone spans 80 deg: the zone's share of the marks is 80/360.
   auto s = basic();
   s.zone.kind = scenario::OperatorZoneSpec::Kind::Sector;
-  s.zone.azimuth_from = -0.5;
-  s.zone.azimuth_to = -0.5 + 80 * units::pi / 180;
+  s.zone.azimuth.from = -0.5;
+  s.zone.azimuth.to = -0.5 + 80 * units::pi / 180;
   s.zone.bottom = 0;
   s.zone.top = 2;
   scene::Soup soup = scene::build_scene_soup(s), ring;
@@ -264,17 +264,27 @@ TEST_CASE("arcs: one rule for every stage, the start in and the end out", "[scen
   }
   CHECK(units::arcs_overlap(0.0, 1.0, 0.5, 2.0));
   CHECK_FALSE(units::arcs_overlap(0.0, 1.0, 1.0, 2.0));  // meeting at an end only
+  // The Arc the scenario's parts carry answers by the same rules.
+  const units::Arc wrap{3.0, -3.0}, meets{1.0, 2.0};
+  CHECK(wrap.contains(3.1));
+  CHECK_FALSE(wrap.contains(0.0));
+  CHECK(wrap.span() == Approx(2 * units::pi - 6.0));
+  CHECK(wrap.middle() == Approx(units::pi));
+  CHECK(wrap.offset(-3.1) == Approx(2 * units::pi - 6.1));
+  CHECK(units::Arc{0.0, 1.0}.overlaps(units::Arc{0.5, 2.0}));
+  CHECK_FALSE(units::Arc{0.0, 1.0}.overlaps(meets));
+  CHECK(units::Arc{0.0, 0.0}.span() == 2 * units::pi);  // from == to: the whole turn
   // A sector zone judges by the same rule (it had its own, with the end included).
   scenario::OperatorZoneSpec spec;
   spec.kind = scenario::OperatorZoneSpec::Kind::Sector;
-  spec.azimuth_from = 0.0, spec.azimuth_to = units::pi / 2, spec.bottom = 0.0, spec.top = 1.0;
+  spec.azimuth.from = 0.0, spec.azimuth.to = units::pi / 2, spec.bottom = 0.0, spec.top = 1.0;
   const scene::OperatorZone sector(spec, 0.076);
   CHECK(sector.contains(Vec3(1.0, 0.0, 0.5)));  // at the start
   CHECK(sector.contains(Vec3(1.0, 1.0, 0.5)));
   CHECK_FALSE(sector.contains(Vec3(0.0, 1.0, 0.5)));  // at the end
   CHECK_FALSE(sector.contains(Vec3(-1.0, 0.1, 0.5)));
   CHECK_FALSE(sector.contains(Vec3(1.0, 1.0, 1.5)));  // above it
-  spec.azimuth_from = 60 * units::pi / 180, spec.azimuth_to = 420 * units::pi / 180;  // the whole turn
+  spec.azimuth.from = 60 * units::pi / 180, spec.azimuth.to = 420 * units::pi / 180;  // the whole turn
   const scene::OperatorZone all_round(spec, 0.076);
   CHECK(all_round.contains(Vec3(1.0, 0.0, 0.5)));
   CHECK(all_round.contains(Vec3(-1.0, -0.2, 0.5)));

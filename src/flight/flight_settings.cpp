@@ -15,7 +15,7 @@ FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<sc
       board(s.board),
       materials(s, guards),
       rolling_resistance(s.ground.rolling_resistance) {
-  for (const auto& o : s.housing.openings) openings.push_back({o.azimuth_from, o.azimuth_to, o.top});
+  for (const auto& o : s.housing.openings) openings.push_back({o.azimuth, o.top});
 }
 
 }  // namespace j232::flight

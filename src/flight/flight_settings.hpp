@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
+#include "units/arc.hpp"
 #include "flight/surface_material.hpp"
 #include "scenario/scenario.hpp"
 
@@ -24,7 +25,8 @@ struct FlightSettings {
   scenario::BoardSpec board;
   // The generated deck's discharge openings, for naming the way out.
   struct Opening {
-    double azimuth_from = 0, azimuth_to = 0, top = 0;
+    units::Arc azimuth;
+    double top = 0;
   };
   std::vector<Opening> openings;
   SurfaceMaterials materials;

@@ -386,7 +386,7 @@ void NailFlight::leave_deck(const Vec3& from, const Vec3& to) {
   }
   const auto& openings = set.openings;
   for (std::size_t i = 0; i < openings.size(); ++i)
-    if (c.z() < openings[i].top && units::in_arc(trace.exit_azimuth, openings[i].azimuth_from, openings[i].azimuth_to)) {
+    if (c.z() < openings[i].top && openings[i].azimuth.contains(trace.exit_azimuth)) {
       trace.exit = Exit::Opening;
       trace.exit_index = static_cast<std::uint16_t>(i);
       return;
@@ -400,7 +400,7 @@ void NailFlight::leave_deck(const Vec3& from, const Vec3& to) {
   trace.exit = Exit::DeckEdge;
   double nearest = HUGE_VAL;
   for (std::size_t i = 0; i < openings.size(); ++i)
-    for (double edge : {openings[i].azimuth_from, openings[i].azimuth_to}) {
+    for (double edge : {openings[i].azimuth.from, openings[i].azimuth.to}) {
       const double d = std::abs(std::remainder(trace.exit_azimuth - edge, units::two_pi));
       if (d < nearest) nearest = d, trace.exit = Exit::Opening, trace.exit_index = static_cast<std::uint16_t>(i);
     }

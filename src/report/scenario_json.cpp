@@ -67,7 +67,7 @@ json spindle_json(const scenario::SpindleSpec& sp) {
 json guard_json(const scenario::GuardSpec& g) {
   json j = {{"name", g.name}};
   if (g.along.empty())
-    j.update({{"azimuth_from_deg", g.azimuth_from / units::degree}, {"azimuth_to_deg", g.azimuth_to / units::degree}});
+    j.update({{"azimuth_from_deg", g.azimuth.from / units::degree}, {"azimuth_to_deg", g.azimuth.to / units::degree}});
   else
     j.update({{"along_m", g.along}, {"top_m", g.top}});
   j.update({{"kind", g.kind == scenario::GuardSpec::Kind::Flap ? "flap" : "chains"}, {"bottom_m", g.bottom}});
@@ -83,7 +83,7 @@ json deflector_json(const scenario::DeflectorSpec& d) {
   json j = {{"name", d.name}};
   if (d.along.empty())
     j.update(
-        {{"azimuth_from_deg", d.azimuth_from / units::degree}, {"azimuth_to_deg", d.azimuth_to / units::degree}, {"radius_m", d.radius}});
+        {{"azimuth_from_deg", d.azimuth.from / units::degree}, {"azimuth_to_deg", d.azimuth.to / units::degree}, {"radius_m", d.radius}});
   else
     j.update({{"along_m", d.along}});
   j.update({{"bottom_m", d.bottom}, {"top_m", d.top}});
@@ -101,8 +101,8 @@ json uncertainty_json(const scenario::UncertaintySpec& u) {
 
 json opening_json(const scenario::OpeningSpec& o) {
   json j = {{"name", o.name},
-            {"azimuth_from_deg", o.azimuth_from / units::degree},
-            {"azimuth_to_deg", o.azimuth_to / units::degree},
+            {"azimuth_from_deg", o.azimuth.from / units::degree},
+            {"azimuth_to_deg", o.azimuth.to / units::degree},
             {"top_m", o.top}};
   if (o.chute_length > 0) j.update({{"chute_length_m", o.chute_length}, {"chute_end_top_m", o.chute_end_top}});
   return j;
@@ -111,8 +111,8 @@ json opening_json(const scenario::OpeningSpec& o) {
 json zone_json(const scenario::OperatorZoneSpec& z) {
   if (z.kind == scenario::OperatorZoneSpec::Kind::Sector)
     return {{"kind", "sector"},
-            {"azimuth_from_deg", z.azimuth_from / units::degree},
-            {"azimuth_to_deg", z.azimuth_to / units::degree},
+            {"azimuth_from_deg", z.azimuth.from / units::degree},
+            {"azimuth_to_deg", z.azimuth.to / units::degree},
             {"bottom_m", z.bottom},
             {"top_m", z.top}};
   return {{"kind", "derived"},
@@ -320,7 +320,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     for (std::size_t i = 0; i < s.housing.openings.size(); ++i) {
       const auto& o = s.housing.openings[i];
       deck += fmt::format("; opening '{}' {:g} to {:g} deg up to {:.0f} mm, {:.0f} mm wide as cut along the outline", o.name,
-                          o.azimuth_from / units::degree, o.azimuth_to / units::degree, o.top * 1e3, widths[i] * 1e3);
+                          o.azimuth.from / units::degree, o.azimuth.to / units::degree, o.top * 1e3, widths[i] * 1e3);
     }
     a.push_back({deck, "scenario"});
   }
@@ -347,8 +347,8 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     a.push_back({fmt::format("Guard '{}' ({}): {:.0f} to {:.0f} mm above ground; {} pass between its links with probability "
                              "{:g}, keeping {:g} of their speed; restitution {:g}, friction {:g}",
                              g.name,
-                             g.along.empty() ? fmt::format("below the skirt from {:g} to {:g} deg", g.azimuth_from / units::degree,
-                                                           g.azimuth_to / units::degree)
+                             g.along.empty() ? fmt::format("below the skirt from {:g} to {:g} deg", g.azimuth.from / units::degree,
+                                                           g.azimuth.to / units::degree)
                                              : fmt::format("along a {}-point polyline", g.along.size()),
                              g.bottom * 1e3, (g.along.empty() ? s.housing.skirt_bottom : g.top) * 1e3, s.field.present ? "objects" : "nails",
                              g.openness, g.pass_speed_factor,

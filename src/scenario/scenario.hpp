@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "units/arc.hpp"
 #include "blade/blade.hpp"
 #include "blade/restitution.hpp"
 
@@ -84,7 +85,7 @@ using PlanPath = std::vector<std::array<double, 2>>;
 
 struct OpeningSpec {  // a discharge opening: the skirt is cut away between two azimuths
   std::string name = "discharge";
-  double azimuth_from = 0.0, azimuth_to = 0.0;  // about the origin, counter-clockwise from -> to
+  units::Arc azimuth;  // about the origin, counter-clockwise from -> to
   double top = 0.0;                             // the opening's upper edge above ground, m (default: the deck)
   // An optional chute: a hood of steel plate from the opening's edges straight outward
   // (along the opening's middle azimuth) for chute_length, its roof sloping from the
@@ -105,7 +106,7 @@ struct GuardSpec {  // a chain curtain, or a belting flap
   // Where it hangs: below the skirt along the deck's outline between two azimuths (rad,
   // counter-clockwise from -> to), or, when `along` is given, along that polyline from
   // `top` down to `bottom` (a curtain on its own bracket; any deck, meshes included).
-  double azimuth_from = 0.0, azimuth_to = 0.0;
+  units::Arc azimuth;
   PlanPath along;
   double top = 0.0;                // upper edge along a polyline, m
   double bottom = 0.010;           // lower edge above ground, m
@@ -118,7 +119,7 @@ struct GuardSpec {  // a chain curtain, or a belting flap
 struct DeflectorSpec {  // a solid vertical panel inside or outside the skirt
   std::string name = "deflector";
   // On an arc about the origin (radius, azimuths), or along a polyline when `along` is given.
-  double azimuth_from = 0.0, azimuth_to = 0.0;
+  units::Arc azimuth;
   double radius = 0.0;
   PlanPath along;
   double bottom = 0.0, top = 0.0;
@@ -194,7 +195,8 @@ struct TargetSpec {
 struct OperatorZoneSpec {
   enum class Kind { Sector, Derived } kind = Kind::Derived;
   // Sector: an azimuth range and height range of the target board.
-  double azimuth_from = 0.0, azimuth_to = 0.0, bottom = 0.0, top = 0.0;
+  units::Arc azimuth;
+  double bottom = 0.0, top = 0.0;
   // Derived (docs/model.md §5.4): seated operator; seat index point position.
   double seat_x = 2.0, seat_y = 0.0, seat_z = 0.90;
   double shoulder_height = 0.646;  // above the seat

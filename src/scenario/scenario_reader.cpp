@@ -74,7 +74,9 @@ constexpr Range kPlanCoordinate = Range::between(-50, 50);
 // An arc of azimuths, counter-clockwise from azimuth_from to azimuth_to. The same azimuth
 // twice would read as the whole turn (units/arc.hpp): that must be written as such (to 360 deg
 // past from), never fall out of a typing slip.
-void read_arc(const TableReader& t, double& from, double& to) {
+void read_arc(const TableReader& t, units::Arc& arc) {
+  double& from = arc.from;
+  double& to = arc.to;
   from = t.quantity("azimuth_from", Kind::Angle, kAnyAzimuth);
   to = t.quantity("azimuth_to", Kind::Angle, kAnyAzimuth);
   if (to == from)
@@ -102,7 +104,7 @@ void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry, std::vec
       g.along = t.points("along", Kind::Length, kPlanCoordinate, 2, 64);
       g.top = t.quantity_or("top", Kind::Length, 0.0, Range::positive_up_to(2));  // 0: the deck's top (resolved later)
     } else {
-      read_arc(t, g.azimuth_from, g.azimuth_to);
+      read_arc(t, g.azimuth);
     }
     g.bottom = t.quantity_or("bottom", Kind::Length, g.bottom, Range::between(0, 1));
   }
@@ -183,7 +185,7 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
   for (const auto& o : t.array_of_tables("openings")) {
     OpeningSpec op;
     op.name = o.string_or("name", op.name, {});
-    read_arc(o, op.azimuth_from, op.azimuth_to);
+    read_arc(o, op.azimuth);
     op.top = o.quantity_or("top", Kind::Length, h.skirt_bottom + h.skirt_depth, Range::between(0, 2));
     // (Within a micrometre: the same height written in two units is no opening.)
     if (op.top <= h.skirt_bottom + 1e-6)
@@ -208,9 +210,9 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
       bool covered = false;
       for (const auto& b : h.openings) {
         // a's end inside b, a nanoradian clear of b's end (its start included: arcs that meet).
-        double off = units::arc_offset(a.azimuth_to, b.azimuth_from);
+        double off = b.azimuth.offset(a.azimuth.to);
         if (off > units::two_pi - 1e-9) off = 0;
-        covered = covered || off < units::arc_span(b.azimuth_from, b.azimuth_to) - 1e-9;
+        covered = covered || off < b.azimuth.span() - 1e-9;
       }
       whole_turn = whole_turn && covered;
     }
@@ -230,7 +232,7 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
     if (!guard.along.empty() || guard.bottom < h.skirt_bottom) continue;
     bool hangs = false;
     for (const auto& op : h.openings)
-      hangs = hangs || (units::arcs_overlap(guard.azimuth_from, guard.azimuth_to, op.azimuth_from, op.azimuth_to) && guard.bottom < op.top);
+      hangs = hangs || (guard.azimuth.overlaps(op.azimuth) && guard.bottom < op.top);
     if (!hangs)
       throw guard_tables[i].error(
           "bottom", fmt::format("expected the curtain's lower edge below the skirt bottom ({} m), or below the top of an opening "
@@ -244,7 +246,7 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
       refuse_with(d, {"azimuth_from", "azimuth_to", "radius"}, "along");
       def.along = d.points("along", Kind::Length, kPlanCoordinate, 2, 64);
     } else {
-      read_arc(d, def.azimuth_from, def.azimuth_to);
+      read_arc(d, def.azimuth);
       def.radius = d.quantity("radius", Kind::Length, Range::positive_up_to(10));
     }
     def.bottom = d.quantity("bottom", Kind::Length, Range::between(0, 5));
@@ -310,7 +312,7 @@ void read_zone(const TableReader& t, OperatorZoneSpec& z) {
   const std::string kind = t.string_or("kind", "derived", {"derived", "sector"});
   if (kind == "sector") {
     z.kind = OperatorZoneSpec::Kind::Sector;
-    read_arc(t, z.azimuth_from, z.azimuth_to);
+    read_arc(t, z.azimuth);
     z.bottom = t.quantity_or("bottom", Kind::Length, 0.0, Range::between(0, 10));
     z.top = t.quantity("top", Kind::Length, Range::positive_up_to(10));
     if (z.top <= z.bottom) throw t.error("top", "expected the top above the bottom");
@@ -721,13 +723,13 @@ TableReader blade_table_of(const TableReader& root, std::size_t k) {
 // What each value allows alone is checked where it is read; here, what values must be
 // together for a mower that can exist (a blade under its deck plate and above the turf,
 // openings and guards below the plate, a board that can carry a counted mark).
-// Plan distance from (x, y) to an arc of radius r about the origin, counter-clockwise from
-// `from` to `to`: to the circle where the point's azimuth lies in the arc, else to its ends.
-double distance_to_arc(double x, double y, double r, double from, double to) {
+// Plan distance from (x, y) to an arc of radius r about the origin: to the circle where the
+// point's azimuth lies in the arc, else to its ends.
+double distance_to_arc(double x, double y, double r, const units::Arc& arc) {
   const double d = std::hypot(x, y);
-  if (d > 0 && units::in_arc(std::atan2(y, x), from, to)) return std::abs(d - r);
+  if (d > 0 && arc.contains(std::atan2(y, x))) return std::abs(d - r);
   const auto end = [&](double a) { return std::hypot(x - r * std::cos(a), y - r * std::sin(a)); };
-  return std::min(end(from), end(to));
+  return std::min(end(arc.from), end(arc.to));
 }
 
 // Plan distance from (x, y) to a polyline.
@@ -756,10 +758,10 @@ bool inside_deck(const Scenario& s, double x, double y) {
 template <class Visit>
 void deflector_points(const DeflectorSpec& d, Visit&& visit) {
   if (d.along.empty()) {
-    const double span = units::arc_span(d.azimuth_from, d.azimuth_to);
+    const double span = d.azimuth.span();
     const int n = std::max(2, static_cast<int>(std::ceil(span * d.radius / 0.01)) + 1);
     for (int k = 0; k < n; ++k) {
-      const double a = d.azimuth_from + span * k / (n - 1);
+      const double a = d.azimuth.from + span * k / (n - 1);
       visit(d.radius * std::cos(a), d.radius * std::sin(a));
     }
     return;
@@ -882,7 +884,7 @@ void check_consistency(const TableReader& root, Scenario& s) {
       const DeflectorSpec& d = s.housing.deflectors[i];
       for (std::size_t k = 0; k < s.spindles.size(); ++k) {
         const SpindleSpec& sp = s.spindles[k];
-        const double off = d.along.empty() ? distance_to_arc(sp.x, sp.y, d.radius, d.azimuth_from, d.azimuth_to) : distance_to_path(sp.x, sp.y, d.along);
+        const double off = d.along.empty() ? distance_to_arc(sp.x, sp.y, d.radius, d.azimuth) : distance_to_path(sp.x, sp.y, d.along);
         if (off < sp.blade.tip_radius() && crosses_band(sp, d.bottom, d.top))
           throw deflectors[i].error(d.along.empty() ? "radius" : "along",
                                     fmt::format("puts the panel through {}'s swept disc ({:.3g} m from its axis, within its {:.3g} m tip "
@@ -1071,7 +1073,7 @@ std::optional<double> Scenario::front_gap() const {
   if (!meshes.empty()) return std::nullopt;
   double gap = housing.skirt_bottom;
   for (const auto& op : housing.openings)
-    if (units::in_arc(0.0, op.azimuth_from, op.azimuth_to)) gap = std::max(gap, op.top);
+    if (op.azimuth.contains(0.0)) gap = std::max(gap, op.top);
   return gap;
 }
 double Scenario::lifted_up_to(const FieldObjectSpec& o, double drag_coefficient, double u) const {

@@ -14,9 +14,6 @@
 
 namespace j232::scene {
 
-using units::arc_span;
-using units::in_arc;
-
 namespace {
 
 // A vertical cylindrical patch from azimuth `from` counter-clockwise over `span`,
@@ -81,7 +78,7 @@ std::optional<double> ray_crossing(const Eigen::Vector2d& p, const Eigen::Vector
 void add_target_ring(Soup& soup, const scenario::Scenario& s, const OperatorZone& zone) {
   std::vector<double> extra_az, extra_z;
   if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Sector) {
-    extra_az = {s.zone.azimuth_from, s.zone.azimuth_to};
+    extra_az = {s.zone.azimuth.from, s.zone.azimuth.to};
     extra_z = {s.zone.bottom, s.zone.top};
   }
   const auto hz = height_breaks(s.target.bottom, s.target.top, 0.05, extra_z);
@@ -221,8 +218,8 @@ void add_free_parts(Soup& soup, const scenario::HousingSpec& h, std::uint16_t fi
       add_path_wall(soup, d.along, d.bottom, d.top, Surface::Deflector);
       continue;
     }
-    const double span = arc_span(d.azimuth_from, d.azimuth_to);
-    add_wall(soup, d.radius, arc_breaks(d.azimuth_from, span, units::two_pi / 96), {d.bottom, d.top},
+    const double span = d.azimuth.span();
+    add_wall(soup, d.radius, arc_breaks(d.azimuth.from, span, units::two_pi / 96), {d.bottom, d.top},
              [](const Vec3&) { return Surface::Deflector; });
   }
   for (std::size_t g = 0; g < h.guards.size(); ++g)
@@ -237,10 +234,10 @@ void add_free_parts(Soup& soup, const scenario::HousingSpec& h, std::uint16_t fi
 void add_chute(Soup& soup, const scenario::OpeningSpec& o, double skirt_bottom,
                const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& pieces) {
   if (o.chute_length <= 0 || pieces.empty()) return;
-  const double mid = o.azimuth_from + 0.5 * arc_span(o.azimuth_from, o.azimuth_to);
+  const double mid = o.azimuth.middle();
   const Eigen::Vector2d out = o.chute_length * Eigen::Vector2d(std::cos(mid), std::sin(mid));
   auto rel = [&](const Eigen::Vector2d& p) {
-    return std::fmod(std::atan2(p.y(), p.x()) - o.azimuth_from + 2 * units::two_pi, units::two_pi);
+    return std::fmod(std::atan2(p.y(), p.x()) - o.azimuth.from + 2 * units::two_pi, units::two_pi);
   };
   Eigen::Vector2d first = pieces.front().first, last = pieces.front().second;
   for (const auto& [a, b] : pieces) {
@@ -275,9 +272,9 @@ std::vector<SkirtPiece> skirt_pieces(const scenario::Scenario& s) {
   const auto outline = deck_outline(s);
   // Every azimuth a piece must end at: each opening's and each guard's (given by azimuths).
   std::vector<double> cuts;
-  for (const auto& o : h.openings) cuts.insert(cuts.end(), {o.azimuth_from, o.azimuth_to});
+  for (const auto& o : h.openings) cuts.insert(cuts.end(), {o.azimuth.from, o.azimuth.to});
   for (const auto& g : h.guards)
-    if (g.along.empty()) cuts.insert(cuts.end(), {g.azimuth_from, g.azimuth_to});
+    if (g.along.empty()) cuts.insert(cuts.end(), {g.azimuth.from, g.azimuth.to});
   std::vector<SkirtPiece> out;
   for (std::size_t i = 0; i < outline.size(); ++i) {
     const auto& p = outline[i];
@@ -308,10 +305,10 @@ FlapGeometry flap_geometry(const scenario::Scenario& s, const scenario::GuardSpe
   }
   f.hinge = s.housing.skirt_bottom;  // below the skirt it hangs from the skirt's foot
   for (const auto& piece : skirt_pieces(s)) {
-    if (!in_arc(piece.azimuth, g.azimuth_from, g.azimuth_to)) continue;
+    if (!g.azimuth.contains(piece.azimuth)) continue;
     double top = s.housing.skirt_bottom;
     for (const auto& o : s.housing.openings)
-      if (in_arc(piece.azimuth, o.azimuth_from, o.azimuth_to)) top = std::max(top, o.top);
+      if (o.azimuth.contains(piece.azimuth)) top = std::max(top, o.top);
     if (top <= g.bottom) continue;  // it hangs nowhere here
     f.hinge = std::max(f.hinge, top);
     f.width += (piece.b - piece.a).norm();
@@ -326,7 +323,7 @@ std::vector<double> opening_widths(const scenario::Scenario& s) {
   if (s.spindles.size() == 1 && s.spindles.front().x == 0.0 && s.spindles.front().y == 0.0 && s.housing.openings.empty()) return widths;
   for (const auto& piece : skirt_pieces(s))
     for (std::size_t o = 0; o < s.housing.openings.size(); ++o)
-      if (in_arc(piece.azimuth, s.housing.openings[o].azimuth_from, s.housing.openings[o].azimuth_to)) widths[o] += (piece.b - piece.a).norm();
+      if (s.housing.openings[o].azimuth.contains(piece.azimuth)) widths[o] += (piece.b - piece.a).norm();
   return widths;
 }
 
@@ -362,13 +359,13 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
       };
       double skirt_from = h.skirt_bottom;
       for (std::size_t o = 0; o < h.openings.size(); ++o)
-        if (in_arc(azimuth, h.openings[o].azimuth_from, h.openings[o].azimuth_to)) {
+        if (h.openings[o].azimuth.contains(azimuth)) {
           skirt_from = std::max(skirt_from, h.openings[o].top);
           opening_pieces[o].emplace_back(a, b);
         }
       quad(skirt_from, deck_top, Surface::Housing, 0);
       for (std::size_t g = 0; g < h.guards.size(); ++g)
-        if (h.guards[g].along.empty() && in_arc(azimuth, h.guards[g].azimuth_from, h.guards[g].azimuth_to))
+        if (h.guards[g].along.empty() && h.guards[g].azimuth.contains(azimuth))
           quad(h.guards[g].bottom, skirt_from, Surface::Guard, static_cast<std::uint16_t>(first_guard + g));
     }
   }
@@ -387,9 +384,9 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
   for (std::size_t g = 0; g < h.guards.size(); ++g) {
     const auto& guard = h.guards[g];
     if (!guard.along.empty()) continue;  // hung along its own path (add_free_parts)
-    const double span = arc_span(guard.azimuth_from, guard.azimuth_to);
+    const double span = guard.azimuth.span();
     add_wall(
-        soup, h.deck_radius, arc_breaks(guard.azimuth_from, span, units::two_pi / 96), {guard.bottom, h.skirt_bottom},
+        soup, h.deck_radius, arc_breaks(guard.azimuth.from, span, units::two_pi / 96), {guard.bottom, h.skirt_bottom},
         [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
   }
 }

@@ -20,7 +20,7 @@ bool OperatorZone::contains(const Vec3& p) const { return contains(p, blade_cent
 
 bool OperatorZone::contains(const Vec3& p, const Vec3& eye) const {
   if (spec_.kind == scenario::OperatorZoneSpec::Kind::Sector)
-    return units::in_arc(std::atan2(p.y(), p.x()), spec_.azimuth_from, spec_.azimuth_to) && p.z() >= spec_.bottom && p.z() <= spec_.top;
+    return spec_.azimuth.contains(std::atan2(p.y(), p.x())) && p.z() >= spec_.bottom && p.z() <= spec_.top;
   // A nail crossing the board at p on a straight line from the blade: does that line,
   // continued beyond the board, enter the envelope?
   const Vec3 d = (p - eye).normalized();

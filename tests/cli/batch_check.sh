@@ -5,9 +5,10 @@
 set -u
 exe=$1 out=$2
 shift 2
+n=${J232_CHECK_REPLICATES:-40}  # fewer under the sanitizers (tests/cli/CMakeLists.txt)
 rm -rf "$out"
 fail() { echo "batch_check: $*" >&2; exit 1; }
-"$exe" batch "$@" --replicates 40 --out "$out" > "$out.log" 2>&1
+"$exe" batch "$@" --replicates "$n" --out "$out" > "$out.log" 2>&1
 code=$?
 cat "$out.log"
 [ $code -eq 2 ] || fail "expected exit 2 (one scenario refused), got $code"
@@ -21,9 +22,9 @@ good=$(grep -c ',passes,\|,fails,' "$out/summary.csv")
 first=$(ls "$out" | grep -v summary | head -1)
 before=$(stat -c %Y.%s "$out/$first/result.json")
 sleep 1
-"$exe" batch "$@" --replicates 40 --out "$out" --resume > "$out.log2" 2>&1
+"$exe" batch "$@" --replicates "$n" --out "$out" --resume > "$out.log2" 2>&1
 grep -q 'current results kept' "$out.log2" || fail "--resume reran everything"
 [ "$(stat -c %Y.%s "$out/$first/result.json")" = "$before" ] || fail "--resume rewrote $first/result.json"
-"$exe" batch "$@" --replicates 41 --out "$out" --resume > "$out.log3" 2>&1
+"$exe" batch "$@" --replicates $((n + 1)) --out "$out" --resume > "$out.log3" 2>&1
 grep -q 'current results kept' "$out.log3" && fail "--resume kept results made with other inputs"
 echo "batch_check: ok"
