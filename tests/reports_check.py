@@ -1,24 +1,25 @@
 #!/usr/bin/env python3
-"""reports_check.py [--regenerated-only] SHIPPED REGENERATED: the shipped reports/ folder
+"""reports_check.py [--except NAME,...] SHIPPED REGENERATED: the shipped reports/ folder
 equals a fresh regeneration (scripts/make-reports REGENERATED), provenance aside:
   - every result.json and summary.json equal, ignoring "provenance";
   - every report.html and summary.html equal outside the provenance section;
   - every sweep CSV and SVG byte-identical;
   - no file missing on either side (marks.csv and scene.html are not shipped: large raw
     data, and a page that is mostly a copy of three.js).
-With --regenerated-only (scripts/make-reports --check-quick), only the shipped folders (and
-top-level files) that the regeneration has are compared, each of them in full."""
+With --except (scripts/make-reports --check-quick), the shipped folders and top-level files
+so named are left out, and must not have been regenerated; every other must be there."""
 import json
 import os
 import re
 import sys
 
 args = sys.argv[1:]
-regenerated_only = bool(args) and args[0] == "--regenerated-only"
-if regenerated_only:
-    args = args[1:]
+skipped = set()
+if len(args) >= 2 and args[0] == "--except":
+    skipped = set(args[1].split(","))
+    args = args[2:]
 if len(args) != 2:
-    sys.exit("usage: reports_check.py [--regenerated-only] SHIPPED REGENERATED")
+    sys.exit("usage: reports_check.py [--except NAME,...] SHIPPED REGENERATED")
 shipped, fresh = args
 problems = []
 
@@ -34,9 +35,10 @@ def files(root):
 
 
 a, b = files(shipped), files(fresh)
-if regenerated_only:
-    top = {f.split(os.sep)[0] for f in b}
-    a = {f for f in a if f.split(os.sep)[0] in top}
+if skipped:
+    a = {f for f in a if f.split(os.sep)[0] not in skipped}
+    if not a:
+        problems.append("nothing left to compare: --except names every shipped file")
 for f in sorted(a ^ b):
     problems.append(f"{f}: only in {'the shipped reports' if f in a else 'the regeneration'}")
 
@@ -65,4 +67,5 @@ if problems:
     for p in problems:
         print("  " + p, file=sys.stderr)
     sys.exit(1)
-print(f"reports_check: ok: {len(a)} files equal (provenance aside)")
+left_out = f", {len(skipped)} folders and files left out" if skipped else ""
+print(f"reports_check: ok: {len(a)} files equal (provenance aside){left_out}")

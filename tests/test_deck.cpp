@@ -238,7 +238,7 @@ openness = 0
   CHECK(5 * a < 3 * b);  // the opening's share gone; what leaves under the skirt behind stays
   // What a mesh deck has no use for is refused, naming the mesh.
   CHECK_THROWS_WITH(read_with("[[housing.guards]]\nazimuth_from = \"0 deg\"\nazimuth_to = \"90 deg\"\n"),
-                    Contains("housing.guards[1].azimuth.from") && Contains("meshes/deck.obj") && Contains("along"));
+                    Contains("housing.guards[1].azimuth_from") && Contains("meshes/deck.obj") && Contains("along"));
   CHECK_THROWS_WITH(read_with("[[housing.guards]]\nalong = [[\"0 m\", \"1 m\"], [\"1 m\", \"1 m\"]]\n"),
                     Contains("housing.guards[1].along") && Contains("`top`"));
   CHECK_THROWS_WITH(read_with("[housing]\nskirt_bottom = \"2 in\"\n"), Contains("housing.skirt_bottom") && Contains("meshes/deck.obj"));

@@ -30,8 +30,8 @@ inline bool arcs_overlap(double from_a, double to_a, double from_b, double to_b)
   return in_arc(from_a, from_b, to_b) || in_arc(from_b, from_a, to_a);
 }
 
-// An azimuth range as the scenario gives it (openings, guards, deflectors, the board's
-// ring, a sector operator zone): the one type every stage reads, with the rules above.
+// An azimuth range as the scenario gives it (openings, guards, deflectors, a sector
+// operator zone): the one type every stage reads, with the rules above.
 struct Arc {
   double from = 0.0, to = 0.0;  // rad, counter-clockwise from -> to; from == to: the whole turn
 
