@@ -71,6 +71,7 @@ class ByteReader {
     }
   }
   bool done() const { return at_ == bytes_.size(); }
+  std::size_t position() const { return at_; }  // bytes read so far
 
  private:
   const std::string& bytes_;

@@ -18,7 +18,7 @@ struct ChunkResult : NailRecords {
 // Bytes for the ranks of one job (the same program on the same machine kind): the chunks
 // of a wave, and a merged assessment (its results, not its provenance or paths).
 std::string pack_chunks(const std::vector<ChunkResult>& chunks, std::size_t count);
-std::vector<ChunkResult> unpack_chunks(const std::string& bytes);
+void unpack_chunks(const std::string& bytes, std::vector<ChunkResult>& slots, std::size_t count);  // into slots [0, count)
 std::string pack_assessment(const Assessment& a);
 void unpack_assessment(const std::string& bytes, Assessment& a);
 

@@ -1,6 +1,7 @@
 #include "assess/runner.hpp"
 
 #include "assess/chunk.hpp"
+#include "assess/chunk_runner.hpp"
 #include "assess/cluster.hpp"
 #include "assess/summary.hpp"
 #include "invariant/check.hpp"
@@ -10,11 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <type_traits>
-#include <oneapi/tbb/global_control.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 namespace j232::assess {
 
@@ -161,44 +158,28 @@ void merge(Assessment& into, const ChunkResult& c, const scenario::CriteriaSpec&
 
 void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t count, Assessment& into, Progress* progress,
                     const MarkSink& sink, const ReplicateSink& replicate_sink) {
-  const std::uint64_t chunks = (count + kChunk - 1) / kChunk;
-  const auto ranks = static_cast<std::uint64_t>(cluster::size());
-  const auto rank = static_cast<std::uint64_t>(cluster::rank());
-  // Waves of chunks; in an MPI job wave w is run by rank w mod N and merged by rank 0 in
-  // wave order. Chunks are merged in index order whatever the waves, so their size (smaller
-  // in a job, so every rank gets some) changes nothing in the result.
-  const std::uint64_t wave_size = ranks == 1 ? kWave : std::clamp<std::uint64_t>((chunks + 2 * ranks - 1) / (2 * ranks), 1, kWave);
-  std::vector<ChunkResult> wave(static_cast<std::size_t>(std::min(chunks, wave_size)));
   const auto& criteria = sim.scenario().criteria;
-  for (std::uint64_t w = 0, w0 = 0; w0 < chunks; ++w, w0 += wave_size) {
-    const std::uint64_t in_wave = std::min(wave_size, chunks - w0);
-    const std::uint64_t owner = w % ranks;
-    if (owner == rank) {
-      tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, in_wave, 1), [&](const tbb::blocked_range<std::uint64_t>& range) {
-        for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
-          const std::uint64_t start = first + (w0 + c) * kChunk;
-          const std::uint64_t n = std::min(kChunk, first + count - start);
-          wave[c].clear();
-          run_chunk(sim, start, n, wave[c]);
-          if (progress) progress->done += static_cast<long long>(n);
-        }
-      });
-      if (rank == 0)
-        for (std::uint64_t c = 0; c < in_wave; ++c) merge(into, wave[c], criteria, sink, replicate_sink);  // deterministic
-      else
-        cluster::send(0, pack_chunks(wave, static_cast<std::size_t>(in_wave)));
-    } else if (rank == 0) {
-      for (const ChunkResult& c : unpack_chunks(cluster::receive(static_cast<int>(owner)))) {
-        merge(into, c, criteria, sink, replicate_sink);
-        if (progress) progress->done += static_cast<long long>(c.tallies.size());
-      }
-    }
-  }
-  if (ranks > 1) {
+  std::vector<ChunkResult> slots;
+  ChunkWork work;
+  work.chunks = (count + kChunk - 1) / kChunk;
+  work.most_slots = kWave;
+  const auto start = [&](std::uint64_t chunk) { return first + chunk * kChunk; };
+  work.items = [&](std::uint64_t chunk) { return std::min(kChunk, first + count - start(chunk)); };
+  work.run = [&](std::uint64_t chunk, std::size_t slot) {
+    slots[slot].clear();
+    run_chunk(sim, start(chunk), work.items(chunk), slots[slot]);
+  };
+  work.merge = [&](std::uint64_t, std::size_t slot) { merge(into, slots[slot], criteria, sink, replicate_sink); };
+  work.pack = [&](std::size_t n) { return pack_chunks(slots, n); };
+  work.unpack = [&](const std::string& bytes, std::size_t n) { unpack_chunks(bytes, slots, n); };
+  work.progress = progress;
+  slots.resize(static_cast<std::size_t>(wave_size(work)));
+  run_chunks(work);
+  if (cluster::size() > 1) {
     // Every rank continues from the merged result (the same path through whatever follows).
-    std::string merged = rank == 0 ? pack_assessment(into) : std::string();
+    std::string merged = cluster::rank() == 0 ? pack_assessment(into) : std::string();
     cluster::broadcast_from_writer(merged);
-    if (rank != 0) unpack_assessment(merged, into);
+    if (cluster::rank() != 0) unpack_assessment(merged, into);
   }
   for (const auto& [key, n] : into.exits.nails)
     if (!into.exit_names.count(key)) into.exit_names[key] = sim.exit_name(exit_of(key), exit_index(key));
@@ -210,22 +191,13 @@ void run_replicates(const Simulator& sim, std::uint64_t first, std::uint64_t cou
 Assessment run_assessment(const Simulator& sim, int threads, Progress* progress, const MarkSink& sink,
                           const ReplicateSink& replicate_sink) {
   const auto& run = sim.scenario().run;
-  const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
-  const int used = threads > 0 ? threads : available;
-  // The run's own arena of `used` threads, not a process-wide limit: a program embedding
-  // the library (the Python module, a GUI) keeps its other TBB work as it was. Only more
-  // threads than cores, asked for explicitly, needs the process-wide ceiling raised.
-  tbb::task_arena arena(used);
-  std::optional<tbb::global_control> oversubscribe;
-  if (used > available) oversubscribe.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(used));
   Assessment a;
-  a.threads = used;
   const auto start = std::chrono::steady_clock::now();
   const auto first_batch = static_cast<std::uint64_t>(run.replicates);
   const bool stop_rule = run.target_half_width || run.until_settled;
   const auto most = static_cast<std::uint64_t>(std::max(run.max_replicates, run.replicates));
   if (progress) progress->total = static_cast<long long>(first_batch);
-  arena.execute([&] {
+  a.threads = on_threads(threads, [&] {
     run_replicates(sim, 0, first_batch, a, progress, sink, replicate_sink);
     if (!stop_rule) return;
     // Looks at the verdict's estimate (the interval the report will show: the same draws)

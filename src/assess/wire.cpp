@@ -54,15 +54,16 @@ std::string pack_chunks(const std::vector<ChunkResult>& chunks, std::size_t coun
   return w.take();
 }
 
-std::vector<ChunkResult> unpack_chunks(const std::string& bytes) {
+void unpack_chunks(const std::string& bytes, std::vector<ChunkResult>& slots, std::size_t count) {
   ByteReader r(bytes);
-  std::vector<ChunkResult> chunks(r.value<std::uint64_t>());
-  for (ChunkResult& c : chunks) {
+  if (r.value<std::uint64_t>() != count || slots.size() < count) throw std::runtime_error("a message between ranks holds another number of chunks than its wave");
+  for (std::size_t i = 0; i < count; ++i) {
+    ChunkResult& c = slots[i];
+    c.clear();
     get(r, c);
     r.list(c.tallies), r.list(c.marks);
   }
   if (!r.done()) throw std::runtime_error("a message between ranks was longer than its contents");
-  return chunks;
 }
 
 std::string pack_assessment(const Assessment& a) {

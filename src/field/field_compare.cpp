@@ -8,13 +8,9 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <oneapi/tbb/blocked_range.h>
-#include <oneapi/tbb/enumerable_thread_specific.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
 
 #include "assess/bytes.hpp"
-#include "assess/cluster.hpp"
+#include "assess/chunk_runner.hpp"
 #include "scenario/input_error.hpp"
 
 namespace j232::field {
@@ -34,25 +30,6 @@ struct ChunkSums {
     f(self.sum), f(self.squares), f(self.diff), f(self.diff_squares), f(self.differing);
   }
 };
-
-// A rank's chunks as bytes (each chunk's index, then its vectors), and back into `sums` at
-// their indices.
-std::string pack_chunks(const std::vector<ChunkSums>& sums, std::uint64_t rank, std::uint64_t ranks) {
-  assess::ByteWriter w;
-  for (std::uint64_t c = rank; c < sums.size(); c += ranks) {
-    w.value(c);
-    ChunkSums::each(sums[c], [&](const auto& v) { w.list(v, v.size()); });
-  }
-  return w.take();
-}
-void unpack_chunks(const std::string& bytes, std::vector<ChunkSums>& sums) {
-  assess::ByteReader r(bytes);
-  while (!r.done()) {
-    const auto c = r.value<std::uint64_t>();
-    if (c >= sums.size()) throw std::runtime_error("a message between ranks names a chunk beyond the run");
-    ChunkSums::each(sums[c], [&](auto& v) { r.list(v); });
-  }
-}
 
 // A figure the comparison estimates per km for each design: what it counts of a thrown
 // object (a plane's, of the first design's plane `plane`), its name, and the energy its event
@@ -92,12 +69,12 @@ std::uint64_t count_of(const Figure& f, const ObjectWatch& watch, const std::vec
   return 0;
 }
 
-// A thread's watches, one per design and kind, each filling its tally (merged into each
-// design's whole run after: its hazard distances and P(struck)); the watch also keeps the
-// object's own counts for the paired differences. Design d's kind k at first[d] + k.
-struct Watches {
-  std::deque<HazardTally> tallies;
-  std::deque<ObjectWatch> watches;
+// What one chunk fills: its sums (in the chunk's object order) and each design's tallies,
+// kind by kind (design d's kind k at first[d] + k), each with its watch, which also keeps
+// the object's own counts for the paired differences.
+struct ChunkSlot {
+  ChunkSums sums;
+  WatchedTallies watched;
 };
 
 }  // namespace
@@ -126,93 +103,87 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   const std::vector<Figure> figure = figures_of(designs.front().field);
   const std::size_t figures = figure.size(), nd = designs.size();
   const auto n = static_cast<std::uint64_t>(designs.front().field.objects_simulated);
-  // Under MPI each rank takes every ranks-th chunk (as j232 hazard does); rank 0 adds the rest.
-  const auto ranks = static_cast<std::uint64_t>(assess::cluster::size()), rank = static_cast<std::uint64_t>(assess::cluster::rank());
-  const std::uint64_t chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
   // Each design's weight per object of each kind (per metre travelled).
   std::vector<std::vector<double>> weight;
   for (const auto& sim : sims) weight.push_back(weights_per_object(*sim, n));
-  std::vector<ChunkSums> sums(chunks);
   if (progress) progress->total = static_cast<long long>(n), progress->done = 0;
   std::vector<std::size_t> first(nd, 0);
   for (std::size_t d = 1; d < nd; ++d) first[d] = first[d - 1] + sims[d - 1]->kinds();
-  tbb::enumerable_thread_specific<std::unique_ptr<Watches>> local([&] {
-    auto w = std::make_unique<Watches>();
-    for (std::size_t d = 0; d < nd; ++d)
-      for (std::size_t k = 0; k < sims[d]->kinds(); ++k)
-        w->tallies.emplace_back(HazardLayout::of(designs[d].field)), w->watches.emplace_back(w->tallies.back());
-    return w;
-  });
-  const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
-  tbb::task_arena arena(threads > 0 ? threads : available);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, chunks, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
-      Watches& w = *local.local();
-      std::vector<double> y(nd * figures);
-      std::vector<std::uint64_t> raw(nd * figures);
-      for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
-        if (c % ranks != rank) continue;  // another MPI rank's
-        ChunkSums& out = sums[c];
-        out.sum.assign(nd * figures, 0.0), out.squares.assign(nd * figures, 0.0);
-        out.diff.assign((nd - 1) * figures, 0.0), out.diff_squares.assign((nd - 1) * figures, 0.0), out.differing.assign((nd - 1) * figures, 0);
-        const std::uint64_t last = std::min(n, (c + 1) * kObjectsPerChunk);
-        for (std::uint64_t i = c * kObjectsPerChunk; i < last; ++i) {
-          for (std::size_t d = 0; d < nd; ++d) {
-            ObjectWatch& watch = w.watches[first[d] + static_cast<std::size_t>(i % sims[d]->kinds())];
-            const ObjectOutcome o = sims[d]->simulate(i, &watch);
-            watch.finish(o);
-            const bool thrown = counted_thrown(o.fate);
-            const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->kinds())];
-            std::uint64_t* f = &raw[d * figures];
-            for (std::size_t j = 0; j < figures; ++j) f[j] = thrown ? count_of(figure[j], watch, plane_of[d]) : 0;
-            for (std::size_t j = 0; j < figures; ++j) {
-              const double v = 1000 * wk * static_cast<double>(f[j]);
-              y[d * figures + j] = v;
-              out.sum[d * figures + j] += v, out.squares[d * figures + j] += v * v;
-            }
-          }
-          for (std::size_t d = 1; d < nd; ++d)
-            for (std::size_t j = 0; j < figures; ++j) {
-              const double delta = y[d * figures + j] - y[j];
-              out.diff[(d - 1) * figures + j] += delta, out.diff_squares[(d - 1) * figures + j] += delta * delta;
-              out.differing[(d - 1) * figures + j] += raw[d * figures + j] != raw[j] ? 1 : 0;
-            }
-        }
-        if (progress) progress->done += static_cast<long long>(last - c * kObjectsPerChunk);
-      }
-    });
-  });
-  // Under MPI, rank 0 gathers the other ranks' chunks (into their places) and tallies.
-  std::vector<HazardTally> remote;
+  // Every design's whole run (whole counts), and the chunks' sums added in chunk order: the
+  // same totals on any number of threads or ranks (assess/chunk_runner.hpp).
+  std::vector<HazardRun> runs(nd);
   for (std::size_t d = 0; d < nd; ++d)
-    for (std::size_t k = 0; k < sims[d]->kinds(); ++k) remote.emplace_back(HazardLayout::of(designs[d].field));
-  if (ranks > 1) {
-    if (rank != 0) {
-      assess::cluster::send(0, pack_chunks(sums, rank, ranks));
-      for (std::size_t t = 0; t < remote.size(); ++t) {
-        HazardTally mine(remote[t].layout);
-        for (const auto& w : local) mine.merge(w->tallies[t]);
-        assess::cluster::send(0, mine.pack());
-      }
-    } else {
-      for (int from = 1; from < static_cast<int>(ranks); ++from) {
-        unpack_chunks(assess::cluster::receive(from), sums);
-        for (auto& tally : remote) {
-          HazardTally theirs(tally.layout);
-          theirs.unpack(assess::cluster::receive(from));
-          tally.merge(theirs);
-        }
-      }
-    }
-  }
-  // The chunks' sums in their order: the same totals on any number of threads or ranks.
+    for (std::size_t k = 0; k < sims[d]->kinds(); ++k) runs[d].kinds.emplace_back(HazardLayout::of(designs[d].field));
   ChunkSums total;
   total.sum.assign(nd * figures, 0.0), total.squares.assign(nd * figures, 0.0);
   total.diff.assign((nd - 1) * figures, 0.0), total.diff_squares.assign((nd - 1) * figures, 0.0), total.differing.assign((nd - 1) * figures, 0);
-  for (const auto& c : sums) {
-    for (std::size_t i = 0; i < c.sum.size(); ++i) total.sum[i] += c.sum[i], total.squares[i] += c.squares[i];
-    for (std::size_t i = 0; i < c.diff.size(); ++i) total.diff[i] += c.diff[i], total.diff_squares[i] += c.diff_squares[i], total.differing[i] += c.differing[i];
-  }
+  std::deque<ChunkSlot> slots;
+  assess::ChunkWork work;
+  work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
+  work.most_slots = kSlotsPerWave;
+  work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * kObjectsPerChunk) - chunk * kObjectsPerChunk; };
+  work.run = [&](std::uint64_t c, std::size_t slot) {
+    ChunkSlot& at = slots[slot];
+    at.watched.clear();
+    ChunkSums& out = at.sums;
+    out.sum.assign(nd * figures, 0.0), out.squares.assign(nd * figures, 0.0);
+    out.diff.assign((nd - 1) * figures, 0.0), out.diff_squares.assign((nd - 1) * figures, 0.0), out.differing.assign((nd - 1) * figures, 0);
+    std::vector<double> y(nd * figures);
+    std::vector<std::uint64_t> raw(nd * figures);
+    const std::uint64_t last = std::min(n, (c + 1) * kObjectsPerChunk);
+    for (std::uint64_t i = c * kObjectsPerChunk; i < last; ++i) {
+      for (std::size_t d = 0; d < nd; ++d) {
+        ObjectWatch& watch = at.watched.watches[first[d] + static_cast<std::size_t>(i % sims[d]->kinds())];
+        const ObjectOutcome o = sims[d]->simulate(i, &watch);
+        watch.finish(o);
+        const bool thrown = counted_thrown(o.fate);
+        const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->kinds())];
+        std::uint64_t* f = &raw[d * figures];
+        for (std::size_t j = 0; j < figures; ++j) f[j] = thrown ? count_of(figure[j], watch, plane_of[d]) : 0;
+        for (std::size_t j = 0; j < figures; ++j) {
+          const double v = 1000 * wk * static_cast<double>(f[j]);
+          y[d * figures + j] = v;
+          out.sum[d * figures + j] += v, out.squares[d * figures + j] += v * v;
+        }
+      }
+      for (std::size_t d = 1; d < nd; ++d)
+        for (std::size_t j = 0; j < figures; ++j) {
+          const double delta = y[d * figures + j] - y[j];
+          out.diff[(d - 1) * figures + j] += delta, out.diff_squares[(d - 1) * figures + j] += delta * delta;
+          out.differing[(d - 1) * figures + j] += raw[d * figures + j] != raw[j] ? 1 : 0;
+        }
+    }
+  };
+  work.merge = [&](std::uint64_t, std::size_t slot) {
+    const ChunkSlot& c = slots[slot];
+    for (std::size_t i = 0; i < c.sums.sum.size(); ++i) total.sum[i] += c.sums.sum[i], total.squares[i] += c.sums.squares[i];
+    for (std::size_t i = 0; i < c.sums.diff.size(); ++i)
+      total.diff[i] += c.sums.diff[i], total.diff_squares[i] += c.sums.diff_squares[i], total.differing[i] += c.sums.differing[i];
+    for (std::size_t d = 0; d < nd; ++d)
+      for (std::size_t k = 0; k < sims[d]->kinds(); ++k) runs[d].kinds[k].merge(c.watched.tallies[first[d] + k]);
+  };
+  work.pack = [&](std::size_t count) {
+    assess::ByteWriter w;
+    for (std::size_t i = 0; i < count; ++i) ChunkSums::each(slots[i].sums, [&](const auto& v) { w.list(v, v.size()); });
+    std::string bytes = w.take();
+    for (std::size_t i = 0; i < count; ++i)
+      for (const auto& t : slots[i].watched.tallies) t.pack_at(bytes);
+    return bytes;
+  };
+  work.unpack = [&](const std::string& bytes, std::size_t count) {
+    assess::ByteReader r(bytes);
+    for (std::size_t i = 0; i < count; ++i) ChunkSums::each(slots[i].sums, [&](auto& v) { r.list(v); });
+    std::size_t at = r.position();
+    for (std::size_t i = 0; i < count; ++i)
+      for (auto& t : slots[i].watched.tallies) t.unpack_at(bytes, at);
+    if (at != bytes.size()) throw std::runtime_error("a message between ranks was longer than its contents");
+  };
+  work.progress = progress;
+  slots.resize(static_cast<std::size_t>(assess::wave_size(work)));
+  for (auto& slot : slots)
+    for (std::size_t d = 0; d < nd; ++d)
+      for (std::size_t k = 0; k < sims[d]->kinds(); ++k) slot.watched.add(HazardLayout::of(designs[d].field));
+  assess::on_threads(threads, [&] { assess::run_chunks(work); });
   FieldComparison out;
   out.objects = n, out.seed = designs.front().run.seed;
   for (std::size_t d = 0; d < nd; ++d) {
@@ -240,15 +211,9 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
         const double half = total.differing[(d - 1) * figures + j] == 0 ? missed : 1.959963984540054 * std::sqrt(variance);
         fd.differences.push_back({figure[j].name, {mean, mean - half, mean + half}, total.differing[(d - 1) * figures + j]});
       }
-    // The design's whole run (whole counts: merged in any order, the same sums), summarised
-    // as j232 hazard summarises one: its hazard distances, P(struck), planes.
-    HazardRun run;
-    for (std::size_t k = 0; k < sims[d]->kinds(); ++k) run.kinds.emplace_back(HazardLayout::of(designs[d].field));
-    for (std::size_t k = 0; k < sims[d]->kinds(); ++k) {
-      for (const auto& w : local) run.kinds[k].merge(w->tallies[first[d] + k]);
-      run.kinds[k].merge(remote[first[d] + k]);
-    }
-    fd.hazard = summarise(*sims[d], run);
+    // The design's whole run, summarised as j232 hazard summarises one: its hazard
+    // distances, P(struck), planes.
+    fd.hazard = summarise(*sims[d], runs[d]);
     fd.range = designs[d].field.range;
     fd.acceptable_probability = -std::expm1(-designs[d].field.presented_area / designs[d].field.acceptable_area);
     out.designs.push_back(std::move(fd));

@@ -1,5 +1,6 @@
 #include "field/hazard_run.hpp"
 
+#include "assess/chunk_runner.hpp"
 #include "assess/cluster.hpp"
 #include "assess/summary.hpp"
 
@@ -10,26 +11,9 @@
 #include <cmath>
 #include <deque>
 #include <fmt/format.h>
-#include <memory>
-#include <oneapi/tbb/blocked_range.h>
-#include <oneapi/tbb/enumerable_thread_specific.h>
-#include <oneapi/tbb/global_control.h>
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
-#include <optional>
+#include <stdexcept>
 
 namespace j232::field {
-
-namespace {
-// A thread's tallies (one per kind) and the watches that fill them.
-struct Worker {
-  std::deque<HazardTally> tallies;
-  std::deque<ObjectWatch> watches;
-  Worker(const HazardLayout& l, std::size_t kinds) {
-    for (std::size_t k = 0; k < kinds; ++k) tallies.emplace_back(l), watches.emplace_back(tallies.back());
-  }
-};
-}  // namespace
 
 std::uint64_t HazardRun::objects() const {
   std::uint64_t n = 0;
@@ -37,53 +21,67 @@ std::uint64_t HazardRun::objects() const {
   return n;
 }
 
+std::string pack_slots(const std::deque<WatchedTallies>& slots, std::size_t n) {
+  std::string out;
+  for (std::size_t s = 0; s < n; ++s)
+    for (const auto& t : slots[s].tallies) t.pack_at(out);
+  return out;
+}
+
+void unpack_slots(const std::string& bytes, std::deque<WatchedTallies>& slots, std::size_t n) {
+  std::size_t at = 0;
+  for (std::size_t s = 0; s < n; ++s)
+    for (auto& t : slots[s].tallies) t.unpack_at(bytes, at);
+  if (at != bytes.size()) throw std::runtime_error("hazard tallies: bytes of another layout from another rank");
+}
+
 HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress) {
   const HazardLayout layout = HazardLayout::of(sim.scenario().field);
   const auto n = static_cast<std::uint64_t>(sim.scenario().field.objects_simulated);
   const std::size_t kinds = sim.kinds();
-  const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
-  const int used = threads > 0 ? threads : available;
-  tbb::task_arena arena(used);
-  std::optional<tbb::global_control> oversubscribe;
-  if (used > available) oversubscribe.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(used));
-  // Under MPI each rank takes every ranks-th chunk; rank 0 adds the others' tallies.
-  const auto ranks = static_cast<std::uint64_t>(assess::cluster::size()), rank = static_cast<std::uint64_t>(assess::cluster::rank());
-  if (progress) progress->total = static_cast<long long>(n);
-  const auto start = std::chrono::steady_clock::now();
-  tbb::enumerable_thread_specific<std::unique_ptr<Worker>> workers([&] { return std::make_unique<Worker>(layout, kinds); });
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, (n + kObjectsPerChunk - 1) / kObjectsPerChunk, 1), [&](const tbb::blocked_range<std::uint64_t>& r) {
-      Worker& w = *workers.local();
-      for (std::uint64_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-        if (chunk % ranks != rank) continue;  // another MPI rank's
-        const std::uint64_t last = std::min(n, (chunk + 1) * kObjectsPerChunk);
-        for (std::uint64_t i = chunk * kObjectsPerChunk; i < last; ++i) {
-          ObjectWatch& watch = w.watches[static_cast<std::size_t>(i % kinds)];
-          watch.finish(sim.simulate(i, &watch));
-        }
-        if (progress) progress->done += static_cast<long long>(last - chunk * kObjectsPerChunk);
-      }
-    });
-  });
-  // Whole counts: merged in any order, the same sums.
   HazardRun run;
   for (std::size_t k = 0; k < kinds; ++k) run.kinds.emplace_back(layout);
-  for (const auto& w : workers)
-    for (std::size_t k = 0; k < kinds; ++k) run.kinds[k].merge(w->tallies[k]);
-  if (ranks > 1) {
-    if (rank != 0) {
-      for (std::size_t k = 0; k < kinds; ++k) assess::cluster::send(0, run.kinds[k].pack());
-    } else {
-      for (int from = 1; from < static_cast<int>(ranks); ++from)
-        for (std::size_t k = 0; k < kinds; ++k) {
-          HazardTally theirs(layout);
-          theirs.unpack(assess::cluster::receive(from));
-          run.kinds[k].merge(theirs);
-        }
+  if (progress) progress->total = static_cast<long long>(n);
+  const auto start = std::chrono::steady_clock::now();
+  // One runner for every pipeline (assess/chunk_runner.hpp): chunks of objects, each into a
+  // slot's tallies, merged in chunk order (whole counts: any order would give the same sums).
+  std::deque<WatchedTallies> slots;
+  assess::ChunkWork work;
+  work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
+  work.most_slots = kSlotsPerWave;
+  work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * kObjectsPerChunk) - chunk * kObjectsPerChunk; };
+  work.run = [&](std::uint64_t chunk, std::size_t slot) {
+    WatchedTallies& w = slots[slot];
+    w.clear();
+    const std::uint64_t last = std::min(n, (chunk + 1) * kObjectsPerChunk);
+    for (std::uint64_t i = chunk * kObjectsPerChunk; i < last; ++i) {
+      ObjectWatch& watch = w.watches[static_cast<std::size_t>(i % kinds)];
+      watch.finish(sim.simulate(i, &watch));
+    }
+  };
+  work.merge = [&](std::uint64_t, std::size_t slot) {
+    for (std::size_t k = 0; k < kinds; ++k) run.kinds[k].merge(slots[slot].tallies[k]);
+  };
+  work.pack = [&](std::size_t count) { return pack_slots(slots, count); };
+  work.unpack = [&](const std::string& bytes, std::size_t count) { unpack_slots(bytes, slots, count); };
+  work.progress = progress;
+  slots.resize(static_cast<std::size_t>(assess::wave_size(work)));
+  for (auto& slot : slots)
+    for (std::size_t k = 0; k < kinds; ++k) slot.add(layout);
+  run.threads = assess::on_threads(threads, [&] { assess::run_chunks(work); });
+  if (assess::cluster::size() > 1) {
+    // Every rank goes on from the whole run, as after a J232 assessment's.
+    std::string whole;
+    if (assess::cluster::is_writer())
+      for (const auto& t : run.kinds) t.pack_at(whole);
+    assess::cluster::broadcast_from_writer(whole);
+    if (!assess::cluster::is_writer()) {
+      std::size_t at = 0;
+      for (auto& t : run.kinds) t.unpack_at(whole, at);
+      if (at != whole.size()) throw std::runtime_error("hazard tallies: bytes of another layout from rank 0");
     }
   }
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.threads = used;
   return run;
 }
 

@@ -4,6 +4,7 @@
 // impacts against distance in each direction with their intervals, the probability of a
 // person being struck, the hazard distances, and each plane's hazardous flux.
 #include <atomic>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,8 @@ struct HazardRun {
 };
 
 // Simulates scenario.field.objects_simulated objects (0..N-1) on `threads` threads (0: all
-// cores), shared out among the ranks of an MPI job (rank 0 holds the whole tally; the
-// others, their share). Bit-identical for any thread and rank count.
+// cores), shared out among the ranks of an MPI job (every rank ends with the whole tally).
+// Bit-identical for any thread and rank count.
 HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress = nullptr);
 
 // A rate per metre travelled from the strata's per-object counts: the sum over kinds of
@@ -110,5 +111,12 @@ std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRu
 // objects / kinds of them, one more for the first objects mod kinds kinds.
 std::vector<double> weights_per_object(const FieldSimulator& sim, std::uint64_t objects);
 inline constexpr std::uint64_t kObjectsPerChunk = 256;  // objects per task of a parallel run
+// Chunks in flight at once on a rank: each holds a tally per kind (the ground's grid, some
+// 0.7 MB at the default range), so fewer than a J232 run's chunks, and still enough that
+// the chunks' uneven times even out over both cores.
+inline constexpr std::uint64_t kSlotsPerWave = 32;
+// A wave's first n slots' tallies as bytes (an MPI rank's, sent to rank 0) and back.
+std::string pack_slots(const std::deque<WatchedTallies>& slots, std::size_t n);
+void unpack_slots(const std::string& bytes, std::deque<WatchedTallies>& slots, std::size_t n);
 
 }  // namespace j232::field

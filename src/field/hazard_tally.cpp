@@ -78,6 +78,16 @@ struct Adder {
     for (std::size_t i = 0; i < a.size(); ++i) (*this)(a[i], b[i]);
   }
 };
+// Sets every count to zero (the farthest distance too: its merge's identity).
+struct Zeroer {
+  void operator()(std::uint64_t& a, std::uint64_t&) const { a = 0; }
+  void operator()(double& a, double&) const { a = 0; }
+  void operator()(CountSum& a, CountSum&) const { a = {}; }
+  template <class T>
+  void operator()(T& a, T&) const {
+    for (auto& x : a) (*this)(x, x);
+  }
+};
 // Appends each count's bytes, or reads them back in the same order.
 struct Writer {
   std::string& out;
@@ -117,17 +127,23 @@ void HazardTally::merge(const HazardTally& o) {
   zip(*this, o, Adder{});
 }
 
+void HazardTally::clear() { zip(*this, *this, Zeroer{}); }
+
 std::string HazardTally::pack() const {
   std::string out;
-  zip(*this, *this, Writer{out});
+  pack_at(out);
   return out;
 }
 
 void HazardTally::unpack(const std::string& bytes) {
   std::size_t at = 0;
-  zip(*this, *this, Reader{bytes, at});
+  unpack_at(bytes, at);
   if (at != bytes.size()) throw std::runtime_error("hazard tally: bytes of another layout from another rank");
 }
+
+void HazardTally::pack_at(std::string& out) const { zip(*this, *this, Writer{out}); }
+
+void HazardTally::unpack_at(const std::string& bytes, std::size_t& at) { zip(*this, *this, Reader{bytes, at}); }
 
 void ObjectWatch::thrown(double mass, double strike_time) {
   watching_ = true;

@@ -11,6 +11,7 @@
 // bit-identical on any number of threads.
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -91,10 +92,14 @@ class HazardTally {
 
   void add(const ObjectOutcome& o);
   void merge(const HazardTally& o);
-  // The whole tally as bytes and back (an MPI rank's share, sent to rank 0); `unpack` into
-  // a tally of the same layout.
+  void clear();  // every count back to zero, the layout kept
+  // The whole tally as bytes and back (a chunk or an MPI rank's share, sent to rank 0);
+  // `unpack` into a tally of the same layout. The `_at` forms append to a message of
+  // several, and read from `at` on (moving it past the tally).
   std::string pack() const;
   void unpack(const std::string& bytes);
+  void pack_at(std::string& out) const;
+  void unpack_at(const std::string& bytes, std::size_t& at);
 
   // Every count of two tallies in step, once: merge, pack and unpack go through it, so none
   // of them can miss a count another has. `f(a, b)` is called with each count of `a` and the
@@ -161,6 +166,17 @@ class ObjectWatch final : public FieldSimulator::Watch, public flight::FlightObs
   int side_crossing_count_ = 0;
   std::vector<std::uint64_t> plane_hazards_, plane_crossings_;  // this object's, per plane
   int hazardous_total_ = 0;
+};
+
+// What one chunk of a parallel run fills (field::run_hazard, field::compare_fields): a tally
+// per kind of object (per design and kind in a comparison), each with its watch.
+struct WatchedTallies {
+  std::deque<HazardTally> tallies;  // a deque: each watch keeps its tally's address
+  std::deque<ObjectWatch> watches;
+  void add(const HazardLayout& layout) { tallies.emplace_back(layout), watches.emplace_back(tallies.back()); }
+  void clear() {
+    for (auto& t : tallies) t.clear();
+  }
 };
 
 }  // namespace j232::field
