@@ -15,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "assess/tally.hpp"
+#include "pipeline/pipeline.hpp"
 #include "scenario/scenario.hpp"
 #include "study/sensitivity.hpp"
 
@@ -43,11 +44,7 @@ scenario::Scenario scenario_with(const toml::table& base, const std::string& fil
 std::string draw_inputs(const UncertaintyPlan& plan, const std::vector<double>& values);
 
 // An output judged at each draw: its uq.json key, its name on the page and how it is shown.
-struct UqOutput {
-  std::string name, words;
-  enum class Scale { Probability, Percent, Number } scale = Scale::Number;  // Percent: a share shown in %
-  std::string unit;  // after a Number: " m", " per km"
-};
+using UqOutput = pipeline::Output;
 
 // A J232 test's outputs: P(pass) (the share of passing replicates, and from every nail:
 // smooth, so its Sobol' indices mean something), the four mean shares, and whether it passes.
@@ -57,13 +54,8 @@ struct UqOutput {
 std::vector<UqOutput> uq_outputs(const scenario::Scenario& s);
 
 // One assessment of the study: its outputs, and the share of its struck nails (thrown
-// objects) that the run's limits cut off with the commonest of those limits
-// (flight::CutOff), for its warnings.
-struct UqRun {
-  std::vector<double> outputs;
-  double cut_off_share = 0;
-  int cut_off_limit = 0;
-};
+// objects) that the run's limits cut off with the commonest of those limits.
+using UqRun = pipeline::DrawOutputs;
 
 struct UncertaintyResult {
   UncertaintyPlan plan;

@@ -1,0 +1,90 @@
+#pragma once
+// The two pipelines the studies run (docs/architecture.md): the J232 test (replicates of
+// the whole test, judged against its pass criteria) and the field (objects met along a
+// pass, judged by the hazard around the mower). A study asks its scenario's Pipeline for
+// what differs between them (the outputs judged at a draw, the estimated inputs, one
+// assessment, what its warnings say) and never asks which one it has; `pipeline_of` is
+// the one place that looks.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "flight/nail_flight.hpp"  // kCutOffReasons
+#include "scenario/scenario.hpp"
+
+namespace j232::pipeline {
+
+// An output judged at each draw of a study: its uq.json key, its name on the page and how
+// it is shown.
+struct Output {
+  std::string name, words;
+  enum class Scale { Probability, Percent, Number } scale = Scale::Number;  // Percent: a share shown in %
+  std::string unit;  // after a Number: " m", " per km"
+};
+
+// One assessment at a draw: its outputs (as Pipeline::outputs), and the share of its struck
+// nails (thrown objects) that the run's limits cut off with the commonest of those limits
+// (flight::CutOff), for its warnings.
+struct DrawOutputs {
+  std::vector<double> outputs;
+  double cut_off_share = 0;
+  int cut_off_limit = 0;
+};
+
+// How large each assessment of a study is: replicates of the J232 test, objects of a field.
+struct DrawSize {
+  long long replicates = 50;
+  long long objects = 0;
+};
+
+class Pipeline {
+ public:
+  virtual ~Pipeline() = default;
+  enum class Kind { J232, Field };
+  virtual Kind kind() const = 0;
+  // What one assessment is, in a sentence naming an invalid draw ("the simulated test"), and
+  // what its cut-off share is a share of ("struck nails").
+  virtual const char* assessment_words() const = 0;
+  virtual const char* cut_off_words() const = 0;
+
+  // The outputs judged at each draw (the verdict, 1 or 0, last) and the smooth one whose
+  // Sobol' indices rank the inputs.
+  virtual std::vector<Output> outputs(const scenario::Scenario& s) const = 0;
+  virtual std::size_t smooth_output(const scenario::Scenario& s, const std::vector<Output>& outputs) const = 0;
+  // j232's estimated inputs with their ranges and bases (docs/model.md §8, or §9 for a field).
+  virtual std::vector<scenario::UncertainInput> estimated_inputs(const scenario::Scenario& s) const = 0;
+  // Why this pipeline's study cannot draw `key` (empty: as far as it knows, it can).
+  virtual std::string cannot_vary(const std::string& key) const = 0;
+  // The size of each assessment of the scenario's study ([uncertainty]).
+  virtual DrawSize draw_size(const scenario::Scenario& s) const = 0;
+  // One assessment of `draw` (the scenario with the drawn inputs) at `size`, with common
+  // random numbers (the nominal scenario's seed, the same replicates or objects at every
+  // draw). Sets `invalid` to the reason when the assessment may not be used. In an MPI job
+  // every rank returns the same outputs.
+  virtual DrawOutputs assess(scenario::Scenario& draw, const scenario::Scenario& nominal, const DrawSize& size, int threads,
+                             std::string& invalid) const = 0;
+  // Warnings about a draw's outputs beyond the cut-off share (`name`: how to name the draw).
+  virtual void warn(const scenario::Scenario& nominal, const std::vector<Output>& info, const std::vector<double>& outputs,
+                    const std::string& name, std::vector<std::string>& warnings) const = 0;
+  // Per output, the variance Monte Carlo noise alone would give it over the first
+  // `base_runs` draws of `runs` (as if each draw met new nails: common random numbers make
+  // it less); -1 where not estimated.
+  virtual std::vector<double> noise_variance(const scenario::Scenario& nominal, const DrawSize& size, const std::vector<Output>& info,
+                                             const std::vector<std::vector<double>>& runs, std::size_t base_runs) const = 0;
+};
+
+// The scenario's pipeline: the field when it has a [field], else the J232 test.
+const Pipeline& pipeline_of(const scenario::Scenario& s);
+
+// An estimated input over [low, high] with its basis (a study's default inputs).
+scenario::UncertainInput estimated(std::string parameter, std::string low, std::string high, std::string basis,
+                                   std::string distribution = "uniform");
+// A choice of the model's own form, drawn with the inputs: a verdict that rests on one form
+// is not shown to rest on it until the other is drawn too.
+scenario::UncertainInput model_form(std::string parameter, std::vector<std::string> values, std::string basis);
+// The limit that cut off the most of `by` (0, none, when none was cut off).
+int commonest_cut_off(const std::array<std::uint64_t, flight::kCutOffReasons>& by);
+
+}  // namespace j232::pipeline
