@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "field/hazard_run.hpp"
 #include "pipeline/estimated_inputs.hpp"
 #include "pipeline/pipeline.hpp"
+#include "scenario/input_error.hpp"
 
 namespace j232::pipeline {
 
@@ -106,6 +110,19 @@ std::vector<scenario::UncertainInput> field_defaults(const scenario::Scenario& s
   return in;
 }
 
+// A plane's name as a CSV column's stem: lower case, a run of anything else one '_'.
+std::string column_stem(const std::string& name) {
+  std::string o;
+  for (char c : name) {
+    const bool word = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+    const bool upper = c >= 'A' && c <= 'Z';
+    if (word || upper) o += upper ? static_cast<char>(c - 'A' + 'a') : c;
+    else if (!o.empty() && o.back() != '_') o += '_';
+  }
+  while (!o.empty() && o.back() == '_') o.pop_back();
+  return o.empty() ? "plane" : o;
+}
+
 class Field final : public Pipeline {
  public:
   Kind kind() const override { return Kind::Field; }
@@ -199,6 +216,63 @@ class Field final : public Pipeline {
                                        "there or beyond, and the figure {:g} m understates it",
                                        name, info[o].words, nominal.field.range, outputs[o]));
   }
+  std::vector<std::string> sweep_columns() const override {
+    return {"objects", "reaching_per_km", "thrown_per_km", "last_strike_speed_m_s", "cut_off_percent"};  // then per direction and plane
+  }
+  std::optional<Refusal> refuse_sweep_size(const DrawSize& size) const override {
+    if (size.replicates > 0)
+      return Refusal{"run.replicates", std::to_string(size.replicates), "a field scenario's sweep takes run.objects (objects per point), not replicates"};
+    return std::nullopt;
+  }
+  // One hazard run. Its columns (the planes' and the directions' names) are the first
+  // point's; every point must have the same planes.
+  std::vector<double> sweep_point(scenario::Scenario& sc, const DrawSize& size, bool first, int threads, SweepColumns& t,
+                                  std::string& invalid) const override {
+    if (size.objects > 0) sc.field.objects_simulated = size.objects;
+    if (!sc.field.present) throw std::invalid_argument("the base is a field scenario at its other points; here it has no [field]");
+    std::optional<field::FieldSimulator> made;
+    try {
+      made.emplace(sc);
+    } catch (const scenario::InputError& e) {  // what the point's settings made of the field (no size can reach a blade, say)
+      invalid = e.what();
+      return {};
+    }
+    const field::FieldSimulator& sim = *made;
+    const field::HazardRun run = field::run_hazard(sim, threads);
+    const field::HazardSummary sum = field::summarise(sim, run);
+    // A run with too many objects cut off by its limits has no hazard to plot.
+    if (!sum.valid) {
+      invalid = "the hazard run is invalid here: " + sum.invalid_reason;
+      return {};
+    }
+    std::vector<std::string> planes, directions;
+    for (const auto& pl : sum.planes) planes.push_back(pl.plane.name);
+    for (const auto& d : sum.directions) directions.push_back(d.direction);
+    if (first && t.planes.empty() && t.directions.empty()) {  // the first point assessed names the columns
+      t.planes = planes, t.directions = directions;
+      for (const auto& d : directions)
+        for (const char* c : {"hazard_distance_m", "hazard_distance_upper_m", "beyond_range", "upper_beyond_range"})
+          t.columns.push_back(fmt::format("{}_{}", d, c));
+      std::vector<std::string> stems;  // unique: two planes of one name get _2, _3...
+      for (const auto& name : planes) {
+        std::string stem = column_stem(name);
+        for (int k = 2; std::find(stems.begin(), stems.end(), stem) != stems.end(); ++k) stem = fmt::format("{}_{}", column_stem(name), k);
+        stems.push_back(stem);
+      }
+      for (const auto& stem : stems)
+        for (const char* c : {"hazardous_per_km", "hazardous_per_km_low", "hazardous_per_km_high"})
+          t.columns.push_back(fmt::format("plane_{}_{}", stem, c));
+    } else if (planes != t.planes || directions != t.directions) {
+      throw std::invalid_argument("the planes differ from the sweep's first point: every point must tally the same planes");
+    }
+    std::vector<double> v{static_cast<double>(sum.objects), sum.reaching_per_km, sum.thrown_per_km, sum.last_strike_speed_mean,
+                          100 * sum.cut_off_share};
+    for (const auto& d : sum.directions)
+      v.insert(v.end(), {d.hazard_distance, d.hazard_distance_upper, d.beyond_range ? 1.0 : 0.0, d.upper_beyond_range ? 1.0 : 0.0});
+    for (const auto& pl : sum.planes) v.insert(v.end(), {pl.hazardous_per_km.value, pl.hazardous_per_km.low, pl.hazardous_per_km.high});
+    return v;
+  }
+
   std::vector<double> noise_variance(const scenario::Scenario&, const DrawSize&, const std::vector<Output>& info,
                                      const std::vector<std::vector<double>>&, std::size_t) const override {
     return std::vector<double>(info.size(), -1.0);  // weighted counts of rare events: not estimated

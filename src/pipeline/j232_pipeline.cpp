@@ -1,6 +1,7 @@
 // The J232 test as a study's pipeline: replicates of the whole test at each draw, judged by
 // P(pass), the four mean shares and the verdict (docs/model.md §6b).
 #include <algorithm>
+#include <string>
 
 #include "assess/runner.hpp"
 #include "assess/summary.hpp"
@@ -82,6 +83,59 @@ class J232Test final : public Pipeline {
   }
   void warn(const scenario::Scenario&, const std::vector<Output>&, const std::vector<double>&, const std::string&,
             std::vector<std::string>&) const override {}
+
+  std::vector<std::string> sweep_columns() const override {
+    return {"replicates",
+            "p_pass",
+            "p_pass_low",
+            "p_pass_high",
+            "share_hits_zone",
+            "share_punctures_zone",
+            "share_hits_outside",
+            "share_punctures_outside",
+            "marks_per_nail",
+            "q05_hits_zone",
+            "q95_hits_zone",
+            "limit_hits_zone",
+            "q05_punctures_zone",
+            "q95_punctures_zone",
+            "limit_punctures_zone",
+            "q05_hits_outside",
+            "q95_hits_outside",
+            "limit_hits_outside",
+            "q05_punctures_outside",
+            "q95_punctures_outside",
+            "limit_punctures_outside"};
+  }
+  std::optional<Refusal> refuse_sweep_size(const DrawSize& size) const override {
+    if (size.objects > 0)
+      return Refusal{"run.objects", std::to_string(size.objects), "objects per point are for a field scenario's sweep; a J232 scenario takes run.replicates"};
+    return std::nullopt;
+  }
+  std::vector<double> sweep_point(scenario::Scenario& sc, const DrawSize& size, bool, int threads, SweepColumns& t,
+                                  std::string& invalid) const override {
+    if (size.replicates > 0) sc.run.replicates = size.replicates;
+    const assess::Simulator sim(sc);
+    const assess::Assessment a = assess::run_assessment(sim, threads);
+    const assess::Summary sum = assess::summarise(a, sc);
+    // A point where the test did not really happen has no P(pass) to plot.
+    if (!sum.validity.valid) {
+      invalid = "the simulated test is invalid here: " + sum.validity.reasons.front();
+      return {};
+    }
+    t.required_pass_probability = sum.required;
+    std::vector<double> v{static_cast<double>(sum.replicates),
+                          sum.pass.estimate,
+                          sum.pass.low,
+                          sum.pass.high,
+                          sum.criteria[0].mean_share,
+                          sum.criteria[1].mean_share,
+                          sum.criteria[2].mean_share,
+                          sum.criteria[3].mean_share,
+                          sum.marks_per_nail};
+    for (const auto& c : sum.criteria) v.insert(v.end(), {c.q05, c.q95, c.limit});
+    return v;
+  }
 
   // Binomial: a share of the nails fed p(1-p)/(R n), the replicates' P(pass) p(1-p)/R (not
   // P(pass) from every nail, the verdict, or shares of the marks).

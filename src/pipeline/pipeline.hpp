@@ -8,11 +8,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "flight/nail_flight.hpp"  // kCutOffReasons
 #include "scenario/scenario.hpp"
+#include <toml++/toml.h>
 
 namespace j232::pipeline {
 
@@ -37,6 +39,18 @@ struct DrawOutputs {
 struct DrawSize {
   long long replicates = 50;
   long long objects = 0;
+};
+
+// A sweep's columns as a pipeline fills them (study::SweepTable keeps them): the first point
+// assessed may add its own (a field's directions and planes).
+struct SweepColumns {
+  std::vector<std::string> columns;
+  std::vector<std::string> planes, directions;  // a field's, as its first point assessed named them
+  double required_pass_probability = 0;         // a J232 test's
+};
+// A setting a sweep file may not give this pipeline: its key, its value and why.
+struct Refusal {
+  std::string key, value, why;
 };
 
 class Pipeline {
@@ -68,6 +82,16 @@ class Pipeline {
   // Warnings about a draw's outputs beyond the cut-off share (`name`: how to name the draw).
   virtual void warn(const scenario::Scenario& nominal, const std::vector<Output>& info, const std::vector<double>& outputs,
                     const std::string& name, std::vector<std::string>& warnings) const = 0;
+  // A sweep over this pipeline: the columns every point has; the size of each point's run
+  // (`size`: 0 for the scenario's own), refusing the one this pipeline does not take; one
+  // point's values for the columns, or `invalid` set to why the point has none (the reader
+  // refused what its settings make, or its run is invalid: the sweep records it and goes on).
+  // Throws std::invalid_argument for a point that breaks the sweep (a field's planes that
+  // differ from its first point's). `first`: no point has been assessed yet.
+  virtual std::vector<std::string> sweep_columns() const = 0;
+  virtual std::optional<Refusal> refuse_sweep_size(const DrawSize& size) const = 0;
+  virtual std::vector<double> sweep_point(scenario::Scenario& sc, const DrawSize& size, bool first, int threads, SweepColumns& t,
+                                          std::string& invalid) const = 0;
   // Per output, the variance Monte Carlo noise alone would give it over the first
   // `base_runs` draws of `runs` (as if each draw met new nails: common random numbers make
   // it less); -1 where not estimated.
@@ -75,8 +99,11 @@ class Pipeline {
                                              const std::vector<std::vector<double>>& runs, std::size_t base_runs) const = 0;
 };
 
-// The scenario's pipeline: the field when it has a [field], else the J232 test.
+// The scenario's pipeline: the field when it has a [field], else the J232 test; of a
+// scenario file not yet read (a sweep's base, read again at each point), the same by its
+// tables.
 const Pipeline& pipeline_of(const scenario::Scenario& s);
+const Pipeline& pipeline_of(const toml::table& scenario_file);
 
 // An estimated input over [low, high] with its basis (a study's default inputs).
 scenario::UncertainInput estimated(std::string parameter, std::string low, std::string high, std::string basis,

@@ -6,10 +6,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "assess/runner.hpp"
-#include "assess/summary.hpp"
 #include "blade/blade_model.hpp"
-#include "field/hazard_run.hpp"
+#include "pipeline/pipeline.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "scenario/toml_reader.hpp"
@@ -123,88 +121,25 @@ std::vector<double> impact_point(const SweepSpec& spec, const Point& p, const to
           (v1 - v0) / tip_speed};
 }
 
-std::vector<double> assessment_point(const SweepSpec& spec, const Point& p, const toml::table& base, int threads, double& required) {
+// A J232 or field scenario's point: one run of the base's pipeline (pipeline/pipeline.hpp),
+// which fills the table's columns.
+std::vector<double> pipeline_point(const SweepSpec& spec, const Point& p, const toml::table& base, const pipeline::Pipeline& pipeline,
+                                   int threads, SweepTable& t) {
   auto sc =
       prepare<scenario::Scenario>(spec, p, base, [](const toml::table& d, const std::string& f) { return scenario::read_scenario(d, f); });
-  if (spec.replicates > 0) sc.run.replicates = spec.replicates;
   if (spec.seed) sc.run.seed = *spec.seed;
-  const assess::Simulator sim(sc);
-  const assess::Assessment a = assess::run_assessment(sim, threads);
-  const assess::Summary sum = assess::summarise(a, sc);
-  // A point where the test did not really happen has no P(pass) to plot.
-  if (!sum.validity.valid) throw InvalidPoint(point_error(spec, p, "the simulated test is invalid here: " + sum.validity.reasons.front()));
-  required = sum.required;
-  std::vector<double> v{static_cast<double>(sum.replicates),
-                        sum.pass.estimate,
-                        sum.pass.low,
-                        sum.pass.high,
-                        sum.criteria[0].mean_share,
-                        sum.criteria[1].mean_share,
-                        sum.criteria[2].mean_share,
-                        sum.criteria[3].mean_share,
-                        sum.marks_per_nail};
-  for (const auto& c : sum.criteria) v.insert(v.end(), {c.q05, c.q95, c.limit});
-  return v;
-}
-
-// A plane's name as a CSV column's stem: lower case, a run of anything else one '_'.
-std::string column_stem(const std::string& name) {
-  std::string o;
-  for (char c : name) {
-    const bool word = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
-    const bool upper = c >= 'A' && c <= 'Z';
-    if (word || upper) o += upper ? static_cast<char>(c - 'A' + 'a') : c;
-    else if (!o.empty() && o.back() != '_') o += '_';
-  }
-  while (!o.empty() && o.back() == '_') o.pop_back();
-  return o.empty() ? "plane" : o;
-}
-
-// A field scenario's point: one hazard run. Its columns (the planes' and the directions'
-// names) are the first point's; every point must have the same planes.
-std::vector<double> hazard_point(const SweepSpec& spec, const Point& p, const toml::table& base, int threads, SweepTable& t) {
-  auto sc =
-      prepare<scenario::Scenario>(spec, p, base, [](const toml::table& d, const std::string& f) { return scenario::read_scenario(d, f); });
-  if (spec.objects > 0) sc.field.objects_simulated = spec.objects;
-  if (spec.seed) sc.run.seed = *spec.seed;
-  if (!sc.field.present) throw point_error(spec, p, "the base is a field scenario at its other points; here it has no [field]");
-  std::optional<field::FieldSimulator> made;
-  try {
-    made.emplace(sc);
-  } catch (const InputError& e) {  // what the point's settings made of the field (no size can reach a blade, say)
-    throw InvalidPoint(point_error(spec, p, e.what()));
-  }
-  const field::FieldSimulator& sim = *made;
-  const field::HazardRun run = field::run_hazard(sim, threads);
-  const field::HazardSummary sum = field::summarise(sim, run);
-  // A run with too many objects cut off by its limits has no hazard to plot.
-  if (!sum.valid) throw InvalidPoint(point_error(spec, p, "the hazard run is invalid here: " + sum.invalid_reason));
-  std::vector<std::string> planes, directions;
-  for (const auto& pl : sum.planes) planes.push_back(pl.plane.name);
-  for (const auto& d : sum.directions) directions.push_back(d.direction);
   const bool first = std::none_of(t.rows.begin(), t.rows.end(), [](const SweepTable::Row& r) { return r.invalid.empty(); });
-  if (first && t.planes.empty() && t.directions.empty()) {  // the first point assessed names the columns
-    t.planes = planes, t.directions = directions;
-    for (const auto& d : directions)
-      for (const char* c : {"hazard_distance_m", "hazard_distance_upper_m", "beyond_range", "upper_beyond_range"})
-        t.columns.push_back(fmt::format("{}_{}", d, c));
-    std::vector<std::string> stems;  // unique: two planes of one name get _2, _3...
-    for (const auto& name : planes) {
-      std::string stem = column_stem(name);
-      for (int k = 2; std::find(stems.begin(), stems.end(), stem) != stems.end(); ++k) stem = fmt::format("{}_{}", column_stem(name), k);
-      stems.push_back(stem);
-    }
-    for (const auto& stem : stems)
-      for (const char* c : {"hazardous_per_km", "hazardous_per_km_low", "hazardous_per_km_high"})
-        t.columns.push_back(fmt::format("plane_{}_{}", stem, c));
-  } else if (planes != t.planes || directions != t.directions) {
-    throw point_error(spec, p, "the planes differ from the sweep's first point: every point must tally the same planes");
+  pipeline::SweepColumns columns{std::move(t.columns), std::move(t.planes), std::move(t.directions), t.required_pass_probability};
+  std::string invalid;
+  std::vector<double> v;
+  try {
+    v = pipeline.sweep_point(sc, {spec.replicates, spec.objects}, first, threads, columns, invalid);
+  } catch (const std::invalid_argument& e) {
+    throw point_error(spec, p, e.what());
   }
-  std::vector<double> v{static_cast<double>(sum.objects), sum.reaching_per_km, sum.thrown_per_km, sum.last_strike_speed_mean,
-                        100 * sum.cut_off_share};
-  for (const auto& d : sum.directions)
-    v.insert(v.end(), {d.hazard_distance, d.hazard_distance_upper, d.beyond_range ? 1.0 : 0.0, d.upper_beyond_range ? 1.0 : 0.0});
-  for (const auto& pl : sum.planes) v.insert(v.end(), {pl.hazardous_per_km.value, pl.hazardous_per_km.low, pl.hazardous_per_km.high});
+  t.columns = std::move(columns.columns), t.planes = std::move(columns.planes), t.directions = std::move(columns.directions);
+  t.required_pass_probability = columns.required_pass_probability;
+  if (!invalid.empty()) throw InvalidPoint(point_error(spec, p, invalid));
   return v;
 }
 
@@ -222,41 +157,17 @@ const char* points_name(SweepTable::Kind kind) {
 SweepTable run_sweep(const SweepSpec& spec, int threads, SweepProgress* progress) {
   const toml::table base = scenario::parse_toml_file(spec.base);
   SweepTable t;
-  t.kind = base.contains("contact") ? SweepTable::Kind::Impact : base.contains("field") ? SweepTable::Kind::Hazard : SweepTable::Kind::Assessment;
-  if (t.kind != SweepTable::Kind::Hazard && spec.objects > 0)
-    throw InputError(spec.source, std::nullopt, "run.objects", std::to_string(spec.objects),
-                     "objects per point are for a field scenario's sweep; a J232 scenario takes run.replicates");
-  if (t.kind == SweepTable::Kind::Hazard && spec.replicates > 0)
-    throw InputError(spec.source, std::nullopt, "run.replicates", std::to_string(spec.replicates),
-                     "a field scenario's sweep takes run.objects (objects per point), not replicates");
-  if (t.kind == SweepTable::Kind::Hazard)
-    t.columns = {"objects", "reaching_per_km", "thrown_per_km", "last_strike_speed_m_s", "cut_off_percent"};  // then per direction and plane
-  else if (t.kind == SweepTable::Kind::Assessment)
-    t.columns = {"replicates",
-                 "p_pass",
-                 "p_pass_low",
-                 "p_pass_high",
-                 "share_hits_zone",
-                 "share_punctures_zone",
-                 "share_hits_outside",
-                 "share_punctures_outside",
-                 "marks_per_nail",
-                 "q05_hits_zone",
-                 "q95_hits_zone",
-                 "limit_hits_zone",
-                 "q05_punctures_zone",
-                 "q95_punctures_zone",
-                 "limit_punctures_zone",
-                 "q05_hits_outside",
-                 "q95_hits_outside",
-                 "limit_hits_outside",
-                 "q05_punctures_outside",
-                 "q95_punctures_outside",
-                 "limit_punctures_outside"};
-  else
+  const bool impact = base.contains("contact");
+  const pipeline::Pipeline& pipeline = pipeline::pipeline_of(base);
+  t.kind = impact ? SweepTable::Kind::Impact : pipeline.kind() == pipeline::Pipeline::Kind::Field ? SweepTable::Kind::Hazard : SweepTable::Kind::Assessment;
+  if (impact)
     t.columns = {"object_mass_kg",          "blade_mass_kg",          "blade_speed_rpm",           "contact_radius_m", "restitution",
                  "object_speed_before_m_s", "object_speed_after_m_s", "object_speed_after_ft_min", "tip_speed_m_s",    "mass_ratio",
                  "dimensionless_velocity"};
+  else
+    t.columns = pipeline.sweep_columns();
+  if (const auto refused = pipeline.refuse_sweep_size({spec.replicates, spec.objects}))
+    throw InputError(spec.source, std::nullopt, refused->key, refused->value, refused->why);
   const std::vector<Point> all = points(spec, t.series_labels);
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Point& p = all[i];
@@ -265,8 +176,8 @@ SweepTable run_sweep(const SweepSpec& spec, int threads, SweepProgress* progress
     try {
       switch (t.kind) {
         case SweepTable::Kind::Impact: row.values = impact_point(spec, p, base); break;
-        case SweepTable::Kind::Assessment: row.values = assessment_point(spec, p, base, threads, t.required_pass_probability); break;
-        case SweepTable::Kind::Hazard: row.values = hazard_point(spec, p, base, threads, t); break;
+        case SweepTable::Kind::Assessment:
+        case SweepTable::Kind::Hazard: row.values = pipeline_point(spec, p, base, pipeline, threads, t); break;
       }
     } catch (const InvalidPoint& e) {
       if (t.kind == SweepTable::Kind::Impact) throw e.reader ? *e.reader : e.error;  // an impact is computed, not simulated: the spec is at fault
