@@ -216,6 +216,18 @@ class Field final : public Pipeline {
                                        "there or beyond, and the figure {:g} m understates it",
                                        name, info[o].words, nominal.field.range, outputs[o]));
   }
+  std::string refuse_parameter(const std::string& name, const scenario::Scenario& s) const override {
+    const auto& objects = s.field.objects;
+    if (name == "restitution" && std::all_of(objects.begin(), objects.end(), [](const auto& o) { return o.restitution.has_value(); }))
+      return "restitution: every object of this field has its own restitution on the blade (field.objects[N].restitution)";
+    if (name == "contact_radius") return "contact_radius: a field scenario has no feed; its objects lie across the cut";
+    if (name == "object_mass") return "object_mass: a field's objects take their mass from their size and density (field.objects[N].median_size)";
+    if (name == "object_speed") return "object_speed: a field's objects lie still until struck; vary field.ground_speed instead";
+    if (name == "edge_friction") return "edge_friction: a field's objects have their own friction on the blade (field.objects[N].friction)";
+    return "";
+  }
+  std::string refuse_drivers() const override { return "a field has no deciding criterion: its drivers are j232 uq's"; }
+
   std::vector<std::string> sweep_columns() const override {
     return {"objects", "reaching_per_km", "thrown_per_km", "last_strike_speed_m_s", "cut_off_percent"};  // then per direction and plane
   }

@@ -84,6 +84,17 @@ class J232Test final : public Pipeline {
   void warn(const scenario::Scenario&, const std::vector<Output>&, const std::vector<double>&, const std::string&,
             std::vector<std::string>&) const override {}
 
+  std::string refuse_parameter(const std::string& name, const scenario::Scenario&) const override {
+    if (name == "object_speed") return "object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead";
+    // The J232 rig is set from the blades' plane when the file is read (the board's top, the
+    // counted height's checks); moved after, the board would be left behind.
+    if (name == "cut_height")
+      return "cut_height: a J232 scenario's board is set from the blades' plane as the file is read; sweep the blades' height key ([blade] "
+             "height) and the housing's keys instead";
+    return "";
+  }
+  std::string refuse_drivers() const override { return ""; }
+
   std::vector<std::string> sweep_columns() const override {
     return {"replicates",
             "p_pass",

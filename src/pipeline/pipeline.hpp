@@ -82,6 +82,11 @@ class Pipeline {
   // Warnings about a draw's outputs beyond the cut-off share (`name`: how to name the draw).
   virtual void warn(const scenario::Scenario& nominal, const std::vector<Output>& info, const std::vector<double>& outputs,
                     const std::string& name, std::vector<std::string>& warnings) const = 0;
+  // Why a named parameter of a study (a sweep's axis, an uncertain input: "restitution",
+  // "cut_height") cannot be set on this pipeline's scenario `s` (empty: it can).
+  virtual std::string refuse_parameter(const std::string& name, const scenario::Scenario& s) const = 0;
+  // Why `j232 drivers` cannot rank this pipeline's inputs by a deciding criterion (empty: it can).
+  virtual std::string refuse_drivers() const = 0;
   // A sweep over this pipeline: the columns every point has; the size of each point's run
   // (`size`: 0 for the scenario's own), refusing the one this pipeline does not take; one
   // point's values for the columns, or `invalid` set to why the point has none (the reader

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "pipeline/pipeline.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "scenario/toml_reader.hpp"
 #include "study/uncertainty.hpp"
@@ -14,7 +15,7 @@ namespace j232::study {
 Drivers deciding_drivers(const std::string& file, int criterion, int threads, const std::function<void(std::size_t, std::size_t)>& on_run) {
   const toml::table base = scenario::parse_toml_file(file);
   scenario::Scenario nominal = scenario::read_scenario(base, file);
-  if (nominal.field.present) throw std::invalid_argument("a field has no deciding criterion: its drivers are j232 uq's");
+  if (const std::string why = pipeline::pipeline_of(nominal).refuse_drivers(); !why.empty()) throw std::invalid_argument(why);
   const UncertaintyPlan plan = uncertainty_plan(nominal);
   nominal.run.replicates = plan.replicates;
   nominal.run.until_settled = false;

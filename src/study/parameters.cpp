@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "pipeline/pipeline.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/toml_override.hpp"
 
@@ -159,6 +160,9 @@ void apply(const Setting& s, scenario::ImpactCase& c) {
 
 // Blade parameters apply to every spindle's blade (a deck of several is swept as one).
 void apply(const Setting& s, scenario::Scenario& sc) {
+  // What the parameter cannot mean for this scenario's pipeline (a field's objects have no feed radius).
+  if (s.info.parameter != Parameter::FileKey)
+    if (const std::string why = pipeline::pipeline_of(sc).refuse_parameter(s.info.name, sc); !why.empty()) throw std::invalid_argument(why);
   switch (s.info.parameter) {
     case Parameter::BladeSpeed:
       for (auto& sp : sc.spindles) sp.blade.omega = s.si;
@@ -167,29 +171,22 @@ void apply(const Setting& s, scenario::Scenario& sc) {
       for (auto& sp : sc.spindles) scale_blade_mass(sp.blade, s.si);
       break;
     case Parameter::Restitution:
-      if (sc.field.present && std::all_of(sc.field.objects.begin(), sc.field.objects.end(), [](const auto& o) { return o.restitution.has_value(); }))
-        throw std::invalid_argument("restitution: every object of this field has its own restitution on the blade (field.objects[N].restitution)");
       sc.restitution = blade::Restitution::constant(s.si);
       break;
     case Parameter::ContactRadius:
-      if (sc.field.present) throw std::invalid_argument("contact_radius: a field scenario has no feed; its objects lie across the cut");
       for (auto& f : sc.feed.stations) f.radius = s.si;
       break;
     case Parameter::PivotPosition:
       for (auto& sp : sc.spindles) set_pivot_position(sp.blade, s.si);
       break;
     case Parameter::ObjectMass:
-      if (sc.field.present) throw std::invalid_argument("object_mass: a field's objects take their mass from their size and density (field.objects[N].median_size)");
       sc.nail.mass = s.si;
       break;
-    case Parameter::ObjectSpeed:
-      throw std::invalid_argument(sc.field.present ? "object_speed: a field's objects lie still until struck; vary field.ground_speed instead"
-                                                   : "object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead");
+    case Parameter::ObjectSpeed: throw std::invalid_argument("object_speed: no scenario throws its objects at the blade at a set speed");  // (each pipeline says why above)
     case Parameter::BevelAngle:
       for (auto& sp : sc.spindles) sp.geometry.edge.bevel_angle = s.si;
       break;
     case Parameter::EdgeFriction:
-      if (sc.field.present) throw std::invalid_argument("edge_friction: a field's objects have their own friction on the blade (field.objects[N].friction)");
       for (auto& sp : sc.spindles) sp.geometry.edge.friction = s.si;
       break;
     case Parameter::SailHeight:
@@ -201,11 +198,7 @@ void apply(const Setting& s, scenario::Scenario& sc) {
 }
 
 void set_cut_height(scenario::Scenario& sc, double height) {
-  // The J232 rig is set from the blades' plane when the file is read (the board's top, the
-  // counted height's checks); moved after, the board would be left behind.
-  if (!sc.field.present)
-    throw std::invalid_argument("cut_height: a J232 scenario's board is set from the blades' plane as the file is read; sweep the blades' "
-                                "height key ([blade] height) and the housing's keys instead");
+  if (const std::string why = pipeline::pipeline_of(sc).refuse_parameter("cut_height", sc); !why.empty()) throw std::invalid_argument(why);
   if (!sc.meshes.empty())
     throw std::invalid_argument("cut_height: a deck from meshes cannot be moved; sweep the blades' height key and the meshes' files instead");
   double lowest = HUGE_VAL;
