@@ -9,6 +9,8 @@
 #include <thread>
 #include <vector>
 
+#include <oneapi/tbb/task_arena.h>
+
 #include "assess/chunk_runner.hpp"
 
 using namespace j232;
@@ -40,8 +42,12 @@ std::vector<std::uint64_t> merged_order(std::uint64_t chunks, std::uint64_t most
   const std::size_t slots = static_cast<std::size_t>(assess::wave_size(work));
   slot_chunk.assign(slots, ~std::uint64_t{0});
   busy = std::vector<std::atomic<int>>(slots);
-  const int used = assess::on_threads(threads, [&] { assess::run_chunks(work); });
-  CHECK(used == threads);
+  int arena = 0;
+  assess::on_threads(threads, [&] {
+    arena = tbb::this_task_arena::max_concurrency();
+    assess::run_chunks(work);
+  });
+  CHECK(arena == threads);  // the run's own arena, of the threads asked for
   return order;
 }
 }  // namespace

@@ -57,9 +57,11 @@ void run_chunks(const ChunkWork& work) {
   }
 }
 
+int thread_count(int threads) { return threads > 0 ? threads : static_cast<int>(tbb::this_task_arena::max_concurrency()); }
+
 int on_threads(int threads, const std::function<void()>& f) {
   const int available = static_cast<int>(tbb::this_task_arena::max_concurrency());
-  const int used = threads > 0 ? threads : available;
+  const int used = thread_count(threads);
   J232_CHECK(used > 0);
   tbb::task_arena arena(used);
   std::optional<tbb::global_control> oversubscribe;

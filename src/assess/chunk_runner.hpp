@@ -45,5 +45,7 @@ void run_chunks(const ChunkWork& work);
 // threads than cores, asked for explicitly, raises the process-wide ceiling. Returns the
 // number of threads used.
 int on_threads(int threads, const std::function<void()>& f);
+// The threads on_threads(threads, ...) runs on.
+int thread_count(int threads);
 
 }  // namespace j232::assess

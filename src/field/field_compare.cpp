@@ -120,7 +120,10 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   std::deque<ChunkSlot> slots;
   assess::ChunkWork work;
   work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
-  work.most_slots = kSlotsPerWave;
+  std::size_t bytes_per_slot = 0;
+  for (const auto& r : runs)
+    for (const auto& t : r.kinds) bytes_per_slot += t.bytes();
+  work.most_slots = slots_per_wave(bytes_per_slot, assess::thread_count(threads));
   work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * kObjectsPerChunk) - chunk * kObjectsPerChunk; };
   work.run = [&](std::uint64_t c, std::size_t slot) {
     ChunkSlot& at = slots[slot];

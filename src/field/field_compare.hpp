@@ -41,7 +41,8 @@ struct FieldComparison {
 
 // Every design a field scenario; planes matched by name (each design must have the first's).
 // Runs the first design's field.objects_simulated objects in each. Deterministic for any
-// thread count.
+// thread and MPI rank count; in an MPI job only rank 0's comparison holds the run (the
+// others' is empty: only rank 0 reports).
 FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, int threads, assess::Progress* progress = nullptr);
 
 }  // namespace j232::field

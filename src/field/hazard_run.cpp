@@ -35,6 +35,13 @@ void unpack_slots(const std::string& bytes, std::deque<WatchedTallies>& slots, s
   if (at != bytes.size()) throw std::runtime_error("hazard tallies: bytes of another layout from another rank");
 }
 
+std::uint64_t slots_per_wave(std::size_t bytes_per_slot, int threads) {
+  constexpr std::size_t kBudget = std::size_t{512} << 20;
+  const auto per_thread = static_cast<std::uint64_t>(std::max(threads, 1));
+  const std::uint64_t fit = kBudget / std::max<std::size_t>(bytes_per_slot, 1);
+  return std::clamp<std::uint64_t>(fit, per_thread, 8 * per_thread);
+}
+
 HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress) {
   const HazardLayout layout = HazardLayout::of(sim.scenario().field);
   const auto n = static_cast<std::uint64_t>(sim.scenario().field.objects_simulated);
@@ -48,7 +55,7 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   std::deque<WatchedTallies> slots;
   assess::ChunkWork work;
   work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
-  work.most_slots = kSlotsPerWave;
+  work.most_slots = slots_per_wave(kinds * run.kinds.front().bytes(), assess::thread_count(threads));
   work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * kObjectsPerChunk) - chunk * kObjectsPerChunk; };
   work.run = [&](std::uint64_t chunk, std::size_t slot) {
     WatchedTallies& w = slots[slot];

@@ -111,10 +111,12 @@ std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRu
 // objects / kinds of them, one more for the first objects mod kinds kinds.
 std::vector<double> weights_per_object(const FieldSimulator& sim, std::uint64_t objects);
 inline constexpr std::uint64_t kObjectsPerChunk = 256;  // objects per task of a parallel run
-// Chunks in flight at once on a rank: each holds a tally per kind (the ground's grid, some
-// 0.7 MB at the default range), so fewer than a J232 run's chunks, and still enough that
-// the chunks' uneven times even out over both cores.
-inline constexpr std::uint64_t kSlotsPerWave = 32;
+// Chunks in flight at once on a rank, each holding `bytes_per_slot` (a tally per kind and
+// design: the ground's grid, some 0.7 MB at the default range and cell, up to 64 MB at the
+// finest): eight per thread, so that the chunks' uneven times even out, fewer when they would
+// hold more than 512 MB together, but never fewer than one per thread (the memory a run on
+// per-thread tallies would need anyway).
+std::uint64_t slots_per_wave(std::size_t bytes_per_slot, int threads);
 // A wave's first n slots' tallies as bytes (an MPI rank's, sent to rank 0) and back.
 std::string pack_slots(const std::deque<WatchedTallies>& slots, std::size_t n);
 void unpack_slots(const std::string& bytes, std::deque<WatchedTallies>& slots, std::size_t n);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 #include "invariant/check.hpp"
 #include "units/quantity.hpp"
@@ -128,6 +129,16 @@ void HazardTally::merge(const HazardTally& o) {
 }
 
 void HazardTally::clear() { zip(*this, *this, Zeroer{}); }
+
+std::size_t HazardTally::bytes() const {
+  std::size_t n = sizeof(*this);
+  zip(*this, *this, [&](const auto& a, const auto&) {
+    using T = std::decay_t<decltype(a)>;
+    if constexpr (std::is_same_v<T, std::vector<std::uint64_t>> || std::is_same_v<T, std::vector<CountSum>>)
+      n += a.size() * sizeof(typename T::value_type);
+  });
+  return n;
+}
 
 std::string HazardTally::pack() const {
   std::string out;

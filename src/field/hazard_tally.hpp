@@ -93,6 +93,7 @@ class HazardTally {
   void add(const ObjectOutcome& o);
   void merge(const HazardTally& o);
   void clear();  // every count back to zero, the layout kept
+  std::size_t bytes() const;  // what its counts take (its grids, mostly)
   // The whole tally as bytes and back (a chunk or an MPI rank's share, sent to rank 0);
   // `unpack` into a tally of the same layout. The `_at` forms append to a message of
   // several, and read from `at` on (moving it past the tally).

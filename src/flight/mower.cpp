@@ -16,7 +16,7 @@ Mower::Mower(const scenario::Scenario& s, scene::Engine engine) {
   settings_ = FlightSettings(s, guards_);
   context_.scene = scene_.get();
   context_.settings = &settings_;
-  context_.deck_radius = scene::mesh_roles(s).housing ? s.reach() + 0.05 : s.housing.deck_radius;
+  context_.deck_radius = scene::mesh_roles(s).housing ? s.reach() + 0.05 : s.deck_radius();
   context_.counted_height = s.counted_height();
   context_.escape_radius = scene::escape_radius(s, scene_->soup());
   context_.board_near = scene::board_near_radius(scene_->soup());

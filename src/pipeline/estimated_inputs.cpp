@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <fmt/format.h>
 
-#include "pipeline/pipeline.hpp"
 #include "scenario/ground_kinds.hpp"
 
 namespace j232::pipeline {

@@ -168,9 +168,6 @@ class Field final : public Pipeline {
 
   std::vector<scenario::UncertainInput> estimated_inputs(const scenario::Scenario& s) const override { return field_defaults(s); }
   std::string cannot_vary(const std::string& key) const override {
-    if (key == "field.objects_simulated") return "each assessment simulates [uncertainty] objects; set that instead";
-    if (key.rfind("field.planes", 0) == 0 && !(key.size() >= 9 && key.compare(key.size() - 9, 9, ".distance") == 0))
-      return "a plane's side, receptor and name decide which figures the study judges; only its distance can be drawn";
     if (key == "air.cd_normal" || key == "air.cd_axial") return "a field's objects are spheres: their drag is field.objects[N].drag_coefficient";
     return "";
   }
@@ -241,7 +238,7 @@ class Field final : public Pipeline {
   std::vector<double> sweep_point(scenario::Scenario& sc, const DrawSize& size, bool first, int threads, SweepColumns& t,
                                   std::string& invalid) const override {
     if (size.objects > 0) sc.field.objects_simulated = size.objects;
-    if (!sc.field.present) throw std::invalid_argument("the base is a field scenario at its other points; here it has no [field]");
+    if (!sc.field.present) throw BrokenSweep("the base is a field scenario at its other points; here it has no [field]");
     std::optional<field::FieldSimulator> made;
     try {
       made.emplace(sc);
@@ -275,7 +272,7 @@ class Field final : public Pipeline {
         for (const char* c : {"hazardous_per_km", "hazardous_per_km_low", "hazardous_per_km_high"})
           t.columns.push_back(fmt::format("plane_{}_{}", stem, c));
     } else if (planes != t.planes || directions != t.directions) {
-      throw std::invalid_argument("the planes differ from the sweep's first point: every point must tally the same planes");
+      throw BrokenSweep("the planes differ from the sweep's first point: every point must tally the same planes");
     }
     std::vector<double> v{static_cast<double>(sum.objects), sum.reaching_per_km, sum.thrown_per_km, sum.last_strike_speed_mean,
                           100 * sum.cut_off_share};

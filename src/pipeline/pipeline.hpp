@@ -3,16 +3,16 @@
 // the whole test, judged against its pass criteria) and the field (objects met along a
 // pass, judged by the hazard around the mower). A study asks its scenario's Pipeline for
 // what differs between them (the outputs judged at a draw, the estimated inputs, one
-// assessment, what its warnings say) and never asks which one it has; `pipeline_of` is
-// the one place that looks.
-#include <array>
+// assessment, what its warnings say, a sweep's columns and points) instead of which one it
+// has; `pipeline_of` is the one place that looks, and `kind()` only names it for the
+// reports (uq.json's "kind", a sweep table's).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "flight/nail_flight.hpp"  // kCutOffReasons
 #include "scenario/scenario.hpp"
 #include <toml++/toml.h>
 
@@ -47,6 +47,11 @@ struct SweepColumns {
   std::vector<std::string> columns;
   std::vector<std::string> planes, directions;  // a field's, as its first point assessed named them
   double required_pass_probability = 0;         // a J232 test's
+};
+// A sweep point that breaks the whole sweep (a field's planes that differ from its first
+// point's): the sweep stops with it, naming the point.
+struct BrokenSweep : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
 };
 // A setting a sweep file may not give this pipeline: its key, its value and why.
 struct Refusal {
@@ -91,8 +96,8 @@ class Pipeline {
   // (`size`: 0 for the scenario's own), refusing the one this pipeline does not take; one
   // point's values for the columns, or `invalid` set to why the point has none (the reader
   // refused what its settings make, or its run is invalid: the sweep records it and goes on).
-  // Throws std::invalid_argument for a point that breaks the sweep (a field's planes that
-  // differ from its first point's). `first`: no point has been assessed yet.
+  // Throws BrokenSweep for a point that breaks the sweep (a field's planes that differ from
+  // its first point's). `first`: no point has been assessed yet.
   virtual std::vector<std::string> sweep_columns() const = 0;
   virtual std::optional<Refusal> refuse_sweep_size(const DrawSize& size) const = 0;
   virtual std::vector<double> sweep_point(scenario::Scenario& sc, const DrawSize& size, bool first, int threads, SweepColumns& t,
@@ -109,14 +114,5 @@ class Pipeline {
 // tables.
 const Pipeline& pipeline_of(const scenario::Scenario& s);
 const Pipeline& pipeline_of(const toml::table& scenario_file);
-
-// An estimated input over [low, high] with its basis (a study's default inputs).
-scenario::UncertainInput estimated(std::string parameter, std::string low, std::string high, std::string basis,
-                                   std::string distribution = "uniform");
-// A choice of the model's own form, drawn with the inputs: a verdict that rests on one form
-// is not shown to rest on it until the other is drawn too.
-scenario::UncertainInput model_form(std::string parameter, std::vector<std::string> values, std::string basis);
-// The limit that cut off the most of `by` (0, none, when none was cut off).
-int commonest_cut_off(const std::array<std::uint64_t, flight::kCutOffReasons>& by);
 
 }  // namespace j232::pipeline

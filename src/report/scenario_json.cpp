@@ -140,7 +140,8 @@ json feed_json(const scenario::FeedSpec& f) {
 
 // A housing mesh replaces the generated deck, its skirt and openings: only what still
 // applies is echoed.
-json housing_json(const scenario::HousingSpec& h, bool from_mesh, const std::vector<double>& opening_widths) {
+json housing_json(const scenario::Scenario& s, bool from_mesh, const std::vector<double>& opening_widths) {
+  const scenario::HousingSpec& h = s.housing;
   json guards = json::array(), deflectors = json::array(), openings = json::array();
   for (const auto& g : h.guards) guards.push_back(guard_json(g));
   for (const auto& d : h.deflectors) deflectors.push_back(deflector_json(d));
@@ -155,7 +156,7 @@ json housing_json(const scenario::HousingSpec& h, bool from_mesh, const std::vec
             {"guards", guards},
             {"deflectors", deflectors}};
   return {{"generated", true},
-          {"deck_radius_m", h.deck_radius},
+          {"deck_radius_m", s.deck_radius()},
           {"margin_m", h.margin},
           {"openings", openings},
           {"skirt_bottom_m", h.skirt_bottom},
@@ -231,7 +232,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"length_tolerance_m", s.nail.length_tolerance},
         {"mass_tolerance_kg", s.nail.mass_tolerance}}},
       {"feed", feed_json(s.feed)},
-      {"housing", housing_json(s.housing, roles.housing, scene::opening_widths(s))},
+      {"housing", housing_json(s, roles.housing, scene::opening_widths(s))},
       {"ground",
        {{"restitution", s.ground.restitution},
         {"angle_exponent", s.ground.angle_exponent},

@@ -126,7 +126,7 @@ struct DeflectorSpec {  // a solid vertical panel inside or outside the skirt
 };
 
 struct HousingSpec {
-  double deck_radius = 0.0;                                                  // default (0 here): the blades' reach + margin
+  std::optional<double> deck_radius;                                         // as written; none: the blades' reach + margin (Scenario::deck_radius)
   double skirt_bottom = 0.038;                                               // above ground (skid shoes 1.5 in below the blade)
   double skirt_depth = 0.175;                                                // skirt bottom to deck plate
   blade::Restitution restitution = blade::Restitution::default_power_law();  // steel on steel
@@ -420,6 +420,9 @@ struct Scenario {
   // skirt's, or a front opening's; none for a mesh deck, whose front is not known), and the
   // largest object of a kind the updraft `u` lifts (its drag, 1/2 rho u^2 C_d A, above its
   // weight: sizes up to 3 rho C_d u^2 / (4 rho_s g)).
+  // A round deck's radius (one spindle): housing.deck_radius as written, else the blades'
+  // reach + housing.margin.
+  double deck_radius() const { return housing.deck_radius.value_or(reach() + housing.margin); }
   double lowest_blade_face() const;
   std::optional<double> front_gap() const;
   double lifted_up_to(const FieldObjectSpec& o, double drag_coefficient, double u) const;

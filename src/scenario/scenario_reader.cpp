@@ -670,7 +670,7 @@ void read_field(const TableReader& t, const Scenario& s, bool root_has_restituti
   if (root_has_restitution && !blade_restitution_used)
     throw t.error("objects", "every object has its own restitution on the blade, so the scenario's [restitution] (the nail's, or a "
                              "steel ball's) is unused: remove it, or leave an object's restitution to it");
-  const double deck = s.housing.deck_radius;
+  const double deck = s.deck_radius();
   for (const auto& p : t.array_of_tables("planes", 16)) {
     FieldPlaneSpec plane;
     const std::string side = p.string_or("side", "", {"left", "right", "front", "rear"});
@@ -748,7 +748,7 @@ double distance_to_path(double x, double y, const PlanPath& path) {
 // the margin of some spindle's tip circle (the outline of several follows their tip circles;
 // between two circles the hull reaches a little further, so this may say "outside" there).
 bool inside_deck(const Scenario& s, double x, double y) {
-  if (s.spindles.size() == 1) return std::hypot(x, y) <= s.housing.deck_radius + 1e-6;
+  if (s.spindles.size() == 1) return std::hypot(x, y) <= s.deck_radius() + 1e-6;
   for (const auto& sp : s.spindles)
     if (std::hypot(x - sp.x, y - sp.y) <= sp.blade.tip_radius() + s.housing.margin + 1e-6) return true;
   return false;
@@ -965,7 +965,7 @@ void check_consistency(const TableReader& root, Scenario& s) {
     {
       const bool several = s.spindles.size() > 1;
       const double board = several ? s.target.distance : s.reach() + s.target.distance;
-      const double deck = several ? s.housing.margin : s.housing.deck_radius;
+      const double deck = several ? s.housing.margin : s.deck_radius();
       if (!(board > deck)) {
         const std::string what =
             several ? fmt::format("puts the board {:.3g} m outside the tip circles, within the deck's {:.3g} m margin (housing.margin): the "
@@ -973,7 +973,7 @@ void check_consistency(const TableReader& root, Scenario& s) {
                                   s.target.distance, s.housing.margin)
                     : fmt::format("puts the board {:.3g} m from the deck's centre, within its {:.3g} m radius (housing.deck_radius): the "
                                   "board would stand inside the deck; expected a board beyond the deck's edge",
-                                  board, s.housing.deck_radius);
+                                  board, s.deck_radius());
         if (target && target->has("distance")) throw target->error("distance", what);
         if (housing && housing->has(several ? "margin" : "deck_radius")) throw housing->error(several ? "margin" : "deck_radius", what);
         throw root.error("target", what);
@@ -1111,14 +1111,13 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
       s.feed.stations.push_back({k, std::max(0.0, s.spindles[k].blade.tip_radius() - 0.0508), 0.0});
 
   if (auto h = root.table("housing")) read_housing(*h, s.housing, s.spindles.size() > 1, s.notes);
-  if (s.housing.deck_radius == 0.0) s.housing.deck_radius = reach + s.housing.margin;
-  if (s.housing.deck_radius <= reach)
+  if (s.deck_radius() <= reach)
     throw root.table("housing")->error("deck_radius", fmt::format("expected a deck wider than the blade's tip circle ({:.4g} m)", reach));
 
   if (auto g = root.table("ground")) read_ground(*g, s.ground, root.has("field"));
 
   s.target.top = s.blade_plane() + 0.610;
-  if (auto t = root.table("target")) read_target(*t, s.target, reach, s.housing.deck_radius);
+  if (auto t = root.table("target")) read_target(*t, s.target, reach, s.deck_radius());
 
   const auto base = std::filesystem::path(file).parent_path();
   for (const auto& m : root.array_of_tables("meshes", 32)) s.meshes.push_back(read_mesh_file(m, base, s.notes));

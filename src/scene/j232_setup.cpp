@@ -190,7 +190,7 @@ std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
   for (const auto& sp : s.spindles)
     for (int i = 0; i < 96; ++i) {
       const double a = units::two_pi * i / 96,
-                   r = s.spindles.size() == 1 ? s.housing.deck_radius : sp.blade.tip_radius() + s.housing.margin;
+                   r = s.spindles.size() == 1 ? s.deck_radius() : sp.blade.tip_radius() + s.housing.margin;
       points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
     }
   return convex_hull(std::move(points));
@@ -377,16 +377,16 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
   const auto& h = s.housing;
   const auto& sp = s.spindles.front();
   if (s.spindles.size() > 1 || sp.x != 0.0 || sp.y != 0.0 || !h.openings.empty()) return add_outline_housing(soup, s, first_guard);
-  const double deck_top = h.skirt_bottom + h.skirt_depth;
-  add_disc(soup, h.deck_radius, deck_top, 96, Surface::Housing);
-  add_wall(soup, h.deck_radius, arc_breaks(0.0, units::two_pi, units::two_pi / 96), {h.skirt_bottom, deck_top},
+  const double deck_top = h.skirt_bottom + h.skirt_depth, deck_radius = s.deck_radius();
+  add_disc(soup, deck_radius, deck_top, 96, Surface::Housing);
+  add_wall(soup, deck_radius, arc_breaks(0.0, units::two_pi, units::two_pi / 96), {h.skirt_bottom, deck_top},
            [](const Vec3&) { return Surface::Housing; });
   for (std::size_t g = 0; g < h.guards.size(); ++g) {
     const auto& guard = h.guards[g];
     if (!guard.along.empty()) continue;  // hung along its own path (add_free_parts)
     const double span = guard.azimuth.span();
     add_wall(
-        soup, h.deck_radius, arc_breaks(guard.azimuth.from, span, units::two_pi / 96), {guard.bottom, h.skirt_bottom},
+        soup, deck_radius, arc_breaks(guard.azimuth.from, span, units::two_pi / 96), {guard.bottom, h.skirt_bottom},
         [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
   }
 }

@@ -134,7 +134,7 @@ std::vector<double> pipeline_point(const SweepSpec& spec, const Point& p, const 
   std::vector<double> v;
   try {
     v = pipeline.sweep_point(sc, {spec.replicates, spec.objects}, first, threads, columns, invalid);
-  } catch (const std::invalid_argument& e) {
+  } catch (const pipeline::BrokenSweep& e) {
     throw point_error(spec, p, e.what());
   }
   t.columns = std::move(columns.columns), t.planes = std::move(columns.planes), t.directions = std::move(columns.directions);

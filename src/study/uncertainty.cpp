@@ -51,6 +51,9 @@ std::string cannot_vary(const std::string& key, const pipeline::Pipeline& pipeli
     return "every draw runs with the scenario's seed (common random numbers, so that draws differ by their inputs, not by noise); "
            "a seed drawn would undo that";
   if (key == "run.replicates") return "each assessment runs [uncertainty] replicates; set that instead";
+  if (key == "field.objects_simulated") return "each assessment simulates [uncertainty] objects; set that instead";
+  if (key.rfind("field.planes", 0) == 0 && !(key.size() >= 9 && key.compare(key.size() - 9, 9, ".distance") == 0))
+    return "a plane's side, receptor and name decide which figures the study judges; only its distance can be drawn";
   return pipeline.cannot_vary(key);
 }
 

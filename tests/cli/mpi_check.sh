@@ -42,7 +42,8 @@ for n in 2 3; do
 done
 mpi 2 "$exe" uq "$work/uq-small.toml" --out "$work/uq-2" >/dev/null 2>&1 || fail "uq on 2 ranks failed"
 same_json "$work/uq-plain/uq.json" "$work/uq-2/uq.json"
-# The field hazard: every rank its share of the objects, rank 0 the whole tally.
+# The field hazard: the ranks share out the waves of chunks; rank 0 merges them and hands
+# every rank the whole tally.
 lawn=$src/scenarios/field/deck-72in-lawn-stones.toml
 "$exe" hazard "$lawn" --objects 6000 --out "$work/hazard-plain" >/dev/null
 for n in 2 3; do
@@ -52,13 +53,13 @@ for n in 2 3; do
   python3 -c "import json,sys; sys.exit(0 if json.load(open('$work/hazard-$n/hazard.json'))['provenance']['ranks'] == $n else 1)" ||
     fail "hazard provenance does not say $n ranks"
 done
-# A field's uncertainty study: rank 0 sums each draw's objects and hands every rank its outputs.
+# A field's uncertainty study: every rank ends each draw's hazard run with the whole tally.
 { cat "$lawn"; printf '\n[uncertainty]\nbase_draws = 2\nobjects = 1500\n'; } >"$work/uq-lawn.toml"
 "$exe" uq "$work/uq-lawn.toml" --out "$work/uq-lawn-plain" >/dev/null
 mpi 2 "$exe" uq "$work/uq-lawn.toml" --out "$work/uq-lawn-2" >/dev/null 2>&1 || fail "a field's uq on 2 ranks failed"
 same_json "$work/uq-lawn-plain/uq.json" "$work/uq-lawn-2/uq.json"
-# Two fields compared object by object: every rank its share of the objects, rank 0 the sums
-# in chunk order and every design's tallies.
+# Two fields compared object by object: the ranks share out the waves of chunks, rank 0 adds
+# their sums in chunk order and every design's tallies.
 sed 's/^objects_simulated = .*/objects_simulated = 6000/' "$lawn" >"$work/lawn-a.toml"
 sed 's/^ground_speed = .*/ground_speed = "6 km\/h"/' "$work/lawn-a.toml" >"$work/lawn-b.toml"
 "$exe" compare "$work/lawn-a.toml" "$work/lawn-b.toml" --out "$work/compare-fields-plain" >/dev/null
