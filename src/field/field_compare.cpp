@@ -24,6 +24,11 @@ struct ChunkSums {
   std::vector<double> diff, diff_squares;           // [(design - 1) * figures + figure]
   std::vector<std::uint64_t> differing;
 
+  // Every sum zero, for `designs` designs of `figures` figures each.
+  void zero(std::size_t designs, std::size_t figures) {
+    sum.assign(designs * figures, 0.0), squares.assign(designs * figures, 0.0);
+    diff.assign((designs - 1) * figures, 0.0), diff_squares.assign((designs - 1) * figures, 0.0), differing.assign((designs - 1) * figures, 0);
+  }
   // Every vector, for packing and unpacking alike (an MPI rank's chunks, sent to rank 0).
   template <class Self, class F>
   static void each(Self& self, F&& f) {
@@ -115,8 +120,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   for (std::size_t d = 0; d < nd; ++d)
     for (std::size_t k = 0; k < sims[d]->kinds(); ++k) runs[d].kinds.emplace_back(HazardLayout::of(designs[d].field));
   ChunkSums total;
-  total.sum.assign(nd * figures, 0.0), total.squares.assign(nd * figures, 0.0);
-  total.diff.assign((nd - 1) * figures, 0.0), total.diff_squares.assign((nd - 1) * figures, 0.0), total.differing.assign((nd - 1) * figures, 0);
+  total.zero(nd, figures);
   std::deque<ChunkSlot> slots;
   assess::ChunkWork work;
   work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
@@ -129,8 +133,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     ChunkSlot& at = slots[slot];
     at.watched.clear();
     ChunkSums& out = at.sums;
-    out.sum.assign(nd * figures, 0.0), out.squares.assign(nd * figures, 0.0);
-    out.diff.assign((nd - 1) * figures, 0.0), out.diff_squares.assign((nd - 1) * figures, 0.0), out.differing.assign((nd - 1) * figures, 0);
+    out.zero(nd, figures);
     std::vector<double> y(nd * figures);
     std::vector<std::uint64_t> raw(nd * figures);
     const std::uint64_t last = std::min(n, (c + 1) * kObjectsPerChunk);
@@ -169,16 +172,14 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     assess::ByteWriter w;
     for (std::size_t i = 0; i < count; ++i) ChunkSums::each(slots[i].sums, [&](const auto& v) { w.list(v, v.size()); });
     std::string bytes = w.take();
-    for (std::size_t i = 0; i < count; ++i)
-      for (const auto& t : slots[i].watched.tallies) t.pack_at(bytes);
+    for (std::size_t i = 0; i < count; ++i) slots[i].watched.pack_at(bytes);
     return bytes;
   };
   work.unpack = [&](const std::string& bytes, std::size_t count) {
     assess::ByteReader r(bytes);
     for (std::size_t i = 0; i < count; ++i) ChunkSums::each(slots[i].sums, [&](auto& v) { r.list(v); });
     std::size_t at = r.position();
-    for (std::size_t i = 0; i < count; ++i)
-      for (auto& t : slots[i].watched.tallies) t.unpack_at(bytes, at);
+    for (std::size_t i = 0; i < count; ++i) slots[i].watched.unpack_at(bytes, at);
     if (at != bytes.size()) throw std::runtime_error("a message between ranks was longer than its contents");
   };
   work.progress = progress;

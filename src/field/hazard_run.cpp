@@ -21,20 +21,6 @@ std::uint64_t HazardRun::objects() const {
   return n;
 }
 
-std::string pack_slots(const std::deque<WatchedTallies>& slots, std::size_t n) {
-  std::string out;
-  for (std::size_t s = 0; s < n; ++s)
-    for (const auto& t : slots[s].tallies) t.pack_at(out);
-  return out;
-}
-
-void unpack_slots(const std::string& bytes, std::deque<WatchedTallies>& slots, std::size_t n) {
-  std::size_t at = 0;
-  for (std::size_t s = 0; s < n; ++s)
-    for (auto& t : slots[s].tallies) t.unpack_at(bytes, at);
-  if (at != bytes.size()) throw std::runtime_error("hazard tallies: bytes of another layout from another rank");
-}
-
 std::uint64_t slots_per_wave(std::size_t bytes_per_slot, int threads) {
   constexpr std::size_t kBudget = std::size_t{512} << 20;
   const auto per_thread = static_cast<std::uint64_t>(std::max(threads, 1));
@@ -69,8 +55,16 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   work.merge = [&](std::uint64_t, std::size_t slot) {
     for (std::size_t k = 0; k < kinds; ++k) run.kinds[k].merge(slots[slot].tallies[k]);
   };
-  work.pack = [&](std::size_t count) { return pack_slots(slots, count); };
-  work.unpack = [&](const std::string& bytes, std::size_t count) { unpack_slots(bytes, slots, count); };
+  work.pack = [&](std::size_t count) {
+    std::string bytes;
+    for (std::size_t i = 0; i < count; ++i) slots[i].pack_at(bytes);
+    return bytes;
+  };
+  work.unpack = [&](const std::string& bytes, std::size_t count) {
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < count; ++i) slots[i].unpack_at(bytes, at);
+    if (at != bytes.size()) throw std::runtime_error("hazard tallies: bytes of another layout from another rank");
+  };
   work.progress = progress;
   slots.resize(static_cast<std::size_t>(assess::wave_size(work)));
   for (auto& slot : slots)

@@ -117,8 +117,5 @@ inline constexpr std::uint64_t kObjectsPerChunk = 256;  // objects per task of a
 // hold more than 512 MB together, but never fewer than one per thread (the memory a run on
 // per-thread tallies would need anyway).
 std::uint64_t slots_per_wave(std::size_t bytes_per_slot, int threads);
-// A wave's first n slots' tallies as bytes (an MPI rank's, sent to rank 0) and back.
-std::string pack_slots(const std::deque<WatchedTallies>& slots, std::size_t n);
-void unpack_slots(const std::string& bytes, std::deque<WatchedTallies>& slots, std::size_t n);
 
 }  // namespace j232::field

@@ -146,12 +146,6 @@ std::string HazardTally::pack() const {
   return out;
 }
 
-void HazardTally::unpack(const std::string& bytes) {
-  std::size_t at = 0;
-  unpack_at(bytes, at);
-  if (at != bytes.size()) throw std::runtime_error("hazard tally: bytes of another layout from another rank");
-}
-
 void HazardTally::pack_at(std::string& out) const { zip(*this, *this, Writer{out}); }
 
 void HazardTally::unpack_at(const std::string& bytes, std::size_t& at) { zip(*this, *this, Reader{bytes, at}); }

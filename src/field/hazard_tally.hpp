@@ -94,11 +94,9 @@ class HazardTally {
   void merge(const HazardTally& o);
   void clear();  // every count back to zero, the layout kept
   std::size_t bytes() const;  // what its counts take (its grids, mostly)
-  // The whole tally as bytes and back (a chunk or an MPI rank's share, sent to rank 0);
-  // `unpack` into a tally of the same layout. The `_at` forms append to a message of
-  // several, and read from `at` on (moving it past the tally).
+  // The whole tally as bytes (a chunk's, sent to rank 0), appended to a message of several,
+  // and read back from `at` on (moving it past the tally) into a tally of the same layout.
   std::string pack() const;
-  void unpack(const std::string& bytes);
   void pack_at(std::string& out) const;
   void unpack_at(const std::string& bytes, std::size_t& at);
 
@@ -177,6 +175,13 @@ struct WatchedTallies {
   void add(const HazardLayout& layout) { tallies.emplace_back(layout), watches.emplace_back(tallies.back()); }
   void clear() {
     for (auto& t : tallies) t.clear();
+  }
+  // Every tally's counts appended to a message, and read back from `at` on.
+  void pack_at(std::string& out) const {
+    for (const auto& t : tallies) t.pack_at(out);
+  }
+  void unpack_at(const std::string& bytes, std::size_t& at) {
+    for (auto& t : tallies) t.unpack_at(bytes, at);
   }
 };
 

@@ -236,7 +236,7 @@ void run_draws(const toml::table& base, const std::string& file, const scenario:
     }
     scenario::Scenario& sc = *read;
     std::string invalid;
-    UqRun out = pipeline.assess(sc, nominal, {r.plan.replicates, r.plan.objects}, threads, invalid);
+    UqRun out = pipeline.assess(sc, nominal, r.plan.size(), threads, invalid);
     if (!invalid.empty())
       throw InputError(file, std::nullopt, "uncertainty", draw, fmt::format("{} is invalid at this draw: {}", pipeline.assessment_words(), invalid));
     if (out.outputs.size() != r.output_info.size())  // (cannot_vary keeps the planes' kinds and sides fixed)
@@ -280,7 +280,7 @@ void estimate_indices(const scenario::Scenario& nominal, const pipeline::Pipelin
   // Rare marks (a few in a draw's 7 500 nails) vary from draw to draw by chance as much as by
   // the inputs: what the noise alone would give says how far their indices can be read.
   const std::size_t base_runs = std::min(r.outputs.size(), 2 * r.design.base);  // A and B, as the variance
-  r.noise_variance = pipeline.noise_variance(nominal, {r.plan.replicates, r.plan.objects}, r.output_info, r.outputs, base_runs);
+  r.noise_variance = pipeline.noise_variance(nominal, r.plan.size(), r.output_info, r.outputs, base_runs);
   if (r.design.base >= 4) {
     r.half_indices.emplace();
     for (std::size_t o = 0; o < outputs; ++o) r.half_indices->push_back(sobol_indices_prefix(r.design, column(o), r.design.base / 2, 500, 1));

@@ -31,6 +31,7 @@ struct UncertaintyPlan {
   std::size_t base_draws = 256;
   long long replicates = 50;
   long long objects = 0;  // a field scenario's objects per assessment (0: not a field)
+  pipeline::DrawSize size() const { return {replicates, objects}; }
 };
 UncertaintyPlan uncertainty_plan(const scenario::Scenario& s);
 // The scenario (`base`, read from `file`) with input `in` set to `text` as a study sets it: a
