@@ -6,6 +6,8 @@
 #include "scenario/scenario_reader.hpp"
 #include "assess/statistics.hpp"
 #include "random/stream.hpp"
+#include "assess/bytes.hpp"
+#include "assess/paired_sums.hpp"
 #include "study/compare.hpp"
 #include "report/version_comparison.hpp"
 #include "scenario/input_error.hpp"
@@ -205,4 +207,96 @@ TEST_CASE("compare with an earlier result: itself moves nothing; a changed model
     CHECK_THROWS_AS(report::read_result_file(std::string(J232_SOURCE_DIR) + "/scenarios/highway-pivoted.toml"), scenario::InputError);
     CHECK_THROWS_AS(report::read_result_file("/nonexistent/result.json"), scenario::InputError);
   }
+}
+
+TEST_CASE("compare: the paired sums give a comparison's figures as worked directly from its replicates' rows", "[compare][statistics]") {
+  // Three designs, 23 replicates of made-up rows: shares on a grid of 1/150 (as a replicate's
+  // are) and pass indicators that agree and disagree in every way.
+  random::Stream rng(7, 0, 0, random::Purpose::Test);
+  std::vector<study::DesignRecord> designs(3);
+  for (auto& d : designs) d.per_replicate.resize(23);
+  for (std::size_t r = 0; r < 23; ++r)
+    for (std::size_t d = 0; d < 3; ++d) {
+      auto& row = designs[d].per_replicate[r];
+      for (std::size_t k = 0; k < row.size() - 1; ++k)
+        row[k] = (d == 1 && r % 3 == 0) ? designs[0].per_replicate[r][k] : std::floor(rng.uniform() * 9) / 150;
+      row.back() = d == 1 && r % 4 != 0 ? designs[0].per_replicate[r].back() : (rng.uniform() < 0.6 ? 1.0 : 0.0);
+    }
+  const auto c = study::compare_records(designs, 7);
+  REQUIRE(c.versus_first.size() == 2);
+  for (std::size_t d = 1; d < 3; ++d) {
+    const auto& v = c.versus_first[d - 1];
+    std::uint64_t differing = 0, both = 0, only_first = 0, only_other = 0, neither = 0;
+    for (std::size_t r = 0; r < 23; ++r) {
+      const auto& a = designs[0].per_replicate[r];
+      const auto& b = designs[d].per_replicate[r];
+      differing += a != b ? 1 : 0;
+      const bool x = a.back() > 0.5, y = b.back() > 0.5;
+      (x && y ? both : x ? only_first : y ? only_other : neither) += 1;
+    }
+    CHECK(v.replicates_differing == differing);
+    const auto nc = assess::newcombe_paired(both, only_first, only_other, neither);
+    CHECK(v.pass.mean == nc.estimate);
+    CHECK(v.pass.low == nc.low);
+    CHECK(v.pass.high == nc.high);
+    for (std::size_t k = 0; k < assess::kCategories; ++k) {
+      // The mean difference and its normal interval (sample variance, n - 1).
+      double sum = 0, squares = 0;
+      for (std::size_t r = 0; r < 23; ++r) {
+        const double delta = designs[d].per_replicate[r][k] - designs[0].per_replicate[r][k];
+        sum += delta, squares += delta * delta;
+      }
+      const double mean = sum / 23, half = 1.959963984540054 * std::sqrt((squares - sum * sum / 23) / 22 / 23);
+      CHECK(v.shares[k].mean == Approx(mean).margin(1e-15));
+      CHECK(v.shares[k].low == Approx(std::max(-1.0, mean - half)).margin(1e-12));
+      CHECK(v.shares[k].high == Approx(std::min(1.0, mean + half)).margin(1e-12));
+    }
+  }
+}
+
+TEST_CASE("compare: paired sums merged chunk by chunk, or sent between ranks, equal the sums added unit by unit", "[compare][statistics]") {
+  // Integer-valued figures: every sum exact, so any grouping gives the same bits.
+  const std::size_t designs = 3, figures = 4;
+  random::Stream rng(11, 0, 0, random::Purpose::Test);
+  std::vector<std::vector<double>> units(40, std::vector<double>(designs * figures));
+  for (auto& y : units)
+    for (auto& v : y) v = std::floor(rng.uniform() * 3);
+  assess::PairedSums whole(designs, figures), merged(designs, figures);
+  for (const auto& y : units) whole.add(y.data());
+  for (std::size_t start = 0; start < units.size(); start += 7) {
+    assess::PairedSums chunk(designs, figures);
+    for (std::size_t i = start; i < std::min(units.size(), start + 7); ++i) chunk.add(units[i].data());
+    assess::ByteWriter w;
+    chunk.pack(w);
+    const std::string bytes = w.take();
+    assess::PairedSums received(designs, figures);
+    assess::ByteReader r(bytes);
+    received.unpack(r);
+    CHECK(r.done());
+    merged.merge(received);
+  }
+  CHECK(merged.units == 40);
+  CHECK(merged.sum == whole.sum);
+  CHECK(merged.squares == whole.squares);
+  CHECK(merged.diff == whole.diff);
+  CHECK(merged.diff_squares == whole.diff_squares);
+  CHECK(merged.differing == whole.differing);
+  CHECK(merged.units_differing == whole.units_differing);
+  // Counted directly: the units where design 2's figure 1 differs from the first's, and where any does.
+  std::uint64_t one = 0, any = 0;
+  for (const auto& y : units) {
+    one += y[2 * figures + 1] != y[1] ? 1 : 0;
+    bool a = false;
+    for (std::size_t j = 0; j < figures; ++j) a = a || y[2 * figures + j] != y[j];
+    any += a ? 1 : 0;
+  }
+  CHECK(whole.differing[whole.versus_first(2, 1)] == one);
+  CHECK(whole.units_differing[1] == any);
+  // A message of another shape is refused, not read as garbage.
+  assess::ByteWriter w;
+  whole.pack(w);
+  const std::string bytes = w.take();
+  assess::PairedSums other(2, figures);
+  assess::ByteReader r(bytes);
+  CHECK_THROWS(other.unpack(r));
 }

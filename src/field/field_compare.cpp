@@ -11,30 +11,13 @@
 
 #include "assess/bytes.hpp"
 #include "assess/chunk_runner.hpp"
+#include "assess/cluster.hpp"
+#include "assess/paired_sums.hpp"
 #include "scenario/input_error.hpp"
 
 namespace j232::field {
 
 namespace {
-
-// Per chunk of objects, in the chunk's order: each design's figures' sums and squares, and
-// each later design's differences from the first (sums, squares, objects differing).
-struct ChunkSums {
-  std::vector<double> sum, squares;                 // [design * figures + figure]
-  std::vector<double> diff, diff_squares;           // [(design - 1) * figures + figure]
-  std::vector<std::uint64_t> differing;
-
-  // Every sum zero, for `designs` designs of `figures` figures each.
-  void zero(std::size_t designs, std::size_t figures) {
-    sum.assign(designs * figures, 0.0), squares.assign(designs * figures, 0.0);
-    diff.assign((designs - 1) * figures, 0.0), diff_squares.assign((designs - 1) * figures, 0.0), differing.assign((designs - 1) * figures, 0);
-  }
-  // Every vector, for packing and unpacking alike (an MPI rank's chunks, sent to rank 0).
-  template <class Self, class F>
-  static void each(Self& self, F&& f) {
-    f(self.sum), f(self.squares), f(self.diff), f(self.diff_squares), f(self.differing);
-  }
-};
 
 // A figure the comparison estimates per km for each design: what it counts of a thrown
 // object (a plane's, of the first design's plane `plane`), its name, and the energy its event
@@ -78,7 +61,7 @@ std::uint64_t count_of(const Figure& f, const ObjectWatch& watch, const std::vec
 // kind by kind (design d's kind k at first[d] + k), each with its watch, which also keeps
 // the object's own counts for the paired differences.
 struct ChunkSlot {
-  ChunkSums sums;
+  assess::PairedSums sums;  // in the chunk's object order
   WatchedTallies watched;
 };
 
@@ -119,8 +102,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   std::vector<HazardRun> runs(nd);
   for (std::size_t d = 0; d < nd; ++d)
     for (std::size_t k = 0; k < sims[d]->kinds(); ++k) runs[d].kinds.emplace_back(HazardLayout::of(designs[d].field));
-  ChunkSums total;
-  total.zero(nd, figures);
+  assess::PairedSums total(nd, figures);
   std::deque<ChunkSlot> slots;
   assess::ChunkWork work;
   work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
@@ -132,8 +114,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   work.run = [&](std::uint64_t c, std::size_t slot) {
     ChunkSlot& at = slots[slot];
     at.watched.clear();
-    ChunkSums& out = at.sums;
-    out.zero(nd, figures);
+    at.sums.zero(nd, figures);
     std::vector<double> y(nd * figures);
     std::vector<std::uint64_t> raw(nd * figures);
     const std::uint64_t last = std::min(n, (c + 1) * kObjectsPerChunk);
@@ -144,50 +125,44 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
         watch.finish(o);
         const bool thrown = counted_thrown(o.fate);
         const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->kinds())];
-        std::uint64_t* f = &raw[d * figures];
-        for (std::size_t j = 0; j < figures; ++j) f[j] = thrown ? count_of(figure[j], watch, plane_of[d]) : 0;
         for (std::size_t j = 0; j < figures; ++j) {
-          const double v = 1000 * wk * static_cast<double>(f[j]);
-          y[d * figures + j] = v;
-          out.sum[d * figures + j] += v, out.squares[d * figures + j] += v * v;
+          raw[d * figures + j] = thrown ? count_of(figure[j], watch, plane_of[d]) : 0;
+          y[d * figures + j] = 1000 * wk * static_cast<double>(raw[d * figures + j]);
         }
       }
-      for (std::size_t d = 1; d < nd; ++d)
-        for (std::size_t j = 0; j < figures; ++j) {
-          const double delta = y[d * figures + j] - y[j];
-          out.diff[(d - 1) * figures + j] += delta, out.diff_squares[(d - 1) * figures + j] += delta * delta;
-          out.differing[(d - 1) * figures + j] += raw[d * figures + j] != raw[j] ? 1 : 0;
-        }
+      // (An object differs where its own counts do: its values carry each design's weight.)
+      at.sums.add(y.data(), [&](std::size_t d, std::size_t j) { return raw[d * figures + j] != raw[j]; });
     }
   };
   work.merge = [&](std::uint64_t, std::size_t slot) {
     const ChunkSlot& c = slots[slot];
-    for (std::size_t i = 0; i < c.sums.sum.size(); ++i) total.sum[i] += c.sums.sum[i], total.squares[i] += c.sums.squares[i];
-    for (std::size_t i = 0; i < c.sums.diff.size(); ++i)
-      total.diff[i] += c.sums.diff[i], total.diff_squares[i] += c.sums.diff_squares[i], total.differing[i] += c.sums.differing[i];
+    total.merge(c.sums);
     for (std::size_t d = 0; d < nd; ++d)
       for (std::size_t k = 0; k < sims[d]->kinds(); ++k) runs[d].kinds[k].merge(c.watched.tallies[first[d] + k]);
   };
   work.pack = [&](std::size_t count) {
     assess::ByteWriter w;
-    for (std::size_t i = 0; i < count; ++i) ChunkSums::each(slots[i].sums, [&](const auto& v) { w.list(v, v.size()); });
+    for (std::size_t i = 0; i < count; ++i) slots[i].sums.pack(w);
     std::string bytes = w.take();
     for (std::size_t i = 0; i < count; ++i) slots[i].watched.pack_at(bytes);
     return bytes;
   };
   work.unpack = [&](const std::string& bytes, std::size_t count) {
     assess::ByteReader r(bytes);
-    for (std::size_t i = 0; i < count; ++i) ChunkSums::each(slots[i].sums, [&](auto& v) { r.list(v); });
+    for (std::size_t i = 0; i < count; ++i) slots[i].sums.unpack(r);
     std::size_t at = r.position();
     for (std::size_t i = 0; i < count; ++i) slots[i].watched.unpack_at(bytes, at);
     if (at != bytes.size()) throw std::runtime_error("a message between ranks was longer than its contents");
   };
   work.progress = progress;
   slots.resize(static_cast<std::size_t>(assess::wave_size(work)));
-  for (auto& slot : slots)
+  for (auto& slot : slots) {
+    slot.sums.zero(nd, figures);  // (the shape an unpacked message is read into)
     for (std::size_t d = 0; d < nd; ++d)
       for (std::size_t k = 0; k < sims[d]->kinds(); ++k) slot.watched.add(HazardLayout::of(designs[d].field));
+  }
   assess::on_threads(threads, [&] { assess::run_chunks(work); });
+  J232_CHECK(total.units == n || !assess::cluster::is_writer());  // rank 0 merged every object once
   FieldComparison out;
   out.objects = n, out.seed = designs.front().run.seed;
   for (std::size_t d = 0; d < nd; ++d) {
@@ -203,17 +178,18 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     };
     for (std::size_t j = 0; j < figures; ++j)
       fd.figures.push_back(
-          {figure[j].name, quasi_poisson(total.sum[d * figures + j], total.squares[d * figures + j], heaviest(figure[j].threshold))});
+          {figure[j].name, quasi_poisson(total.sum[total.own(d, j)], total.squares[total.own(d, j)], heaviest(figure[j].threshold))});
     if (d > 0)
       for (std::size_t j = 0; j < figures; ++j) {
-        const double mean = total.diff[(d - 1) * figures + j];
-        const double variance = std::max(0.0, total.diff_squares[(d - 1) * figures + j] - mean * mean / static_cast<double>(n));
+        const std::size_t at = total.versus_first(d, j);
+        const double mean = total.diff[at];
+        const double variance = std::max(0.0, total.diff_squares[at] - mean * mean / static_cast<double>(n));
         // No object differed: the difference this run could have missed is about what 3.69
         // objects (Garwood's upper end for none seen) of the heavier weight would make.
         const double missed = -std::log(0.025) * 1000 * std::max(*std::max_element(weight[0].begin(), weight[0].end()),
                                                                    *std::max_element(weight[d].begin(), weight[d].end()));
-        const double half = total.differing[(d - 1) * figures + j] == 0 ? missed : 1.959963984540054 * std::sqrt(variance);
-        fd.differences.push_back({figure[j].name, {mean, mean - half, mean + half}, total.differing[(d - 1) * figures + j]});
+        const double half = total.differing[at] == 0 ? missed : 1.959963984540054 * std::sqrt(variance);
+        fd.differences.push_back({figure[j].name, {mean, mean - half, mean + half}, total.differing[at]});
       }
     // The design's whole run, summarised as j232 hazard summarises one: its hazard
     // distances, P(struck), planes.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "assess/paired_sums.hpp"
 #include "assess/summary.hpp"
 
 namespace j232::study {
@@ -11,10 +12,10 @@ namespace j232::study {
 namespace {
 constexpr double kZ = 1.959963984540054;
 
-// Running sums for a mean and its spread, in replicate order (deterministic).
+// A mean over units and its spread, from the sums of a paired comparison (the units added
+// in their order: deterministic).
 struct Moments {
   double n = 0, sum = 0, sum_sq = 0;
-  void add(double x) { n += 1, sum += x, sum_sq += x * x; }
   double mean() const { return n > 0 ? sum / n : 0.0; }
   double variance() const { return n > 1 ? std::max(0.0, (sum_sq - sum * sum / n) / (n - 1)) : 0.0; }
   // Clipped to the values the quantity can take: [0, 1] for a share, [-1, 1] for a difference.
@@ -26,6 +27,32 @@ struct Moments {
     return {clean(mean()), clean(std::max(lowest, mean() - half)), clean(std::min(highest, mean() + half))};
   }
 };
+
+// A design's figure j, and its difference from the first design's.
+Moments own(const assess::PairedSums& p, std::size_t d, std::size_t j) {
+  const std::size_t at = p.own(d, j);
+  return {static_cast<double>(p.units), p.sum[at], p.squares[at]};
+}
+Moments versus_first(const assess::PairedSums& p, std::size_t d, std::size_t j) {
+  const std::size_t at = p.versus_first(d, j);
+  return {static_cast<double>(p.units), p.diff[at], p.diff_squares[at]};
+}
+
+// The figures of a J232 design, a row per replicate: the four shares, then the pass (0 or 1).
+constexpr std::size_t kFigures = assess::kCategories + 1;
+constexpr std::size_t kPass = assess::kCategories;
+
+// Every design's rows, replicate by replicate, in replicate order.
+assess::PairedSums paired_sums(const std::vector<DesignRecord>& designs) {
+  assess::PairedSums p(designs.size(), kFigures);
+  std::vector<double> y(designs.size() * kFigures);
+  for (std::size_t r = 0; r < designs.front().per_replicate.size(); ++r) {
+    for (std::size_t d = 0; d < designs.size(); ++d)
+      for (std::size_t j = 0; j < kFigures; ++j) y[d * kFigures + j] = designs[d].per_replicate[r][j];
+    p.add(y.data());
+  }
+  return p;
+}
 }  // namespace
 
 assess::ReplicateSink DesignRecorder::sink() {
@@ -50,10 +77,9 @@ DesignRecord DesignRecorder::finish(const scenario::Scenario& s, const assess::A
   res.basis = assess::basis_name(sum.verdict.basis);
   res.deciding = sum.deciding;
   res.deciding_pass = sum.criteria[static_cast<std::size_t>(sum.deciding)].pass.estimate;
-  for (int k = 0; k < assess::kCategories; ++k) {
-    Moments m;
-    for (const auto& row : record.per_replicate) m.add(row[static_cast<std::size_t>(k)]);
-    res.shares[static_cast<std::size_t>(k)] = m.interval(0.0, 1.0);
+  {
+    const assess::PairedSums own_sums = paired_sums({record});
+    for (std::size_t k = 0; k < assess::kCategories; ++k) res.shares[k] = own(own_sums, 0, k).interval(0.0, 1.0);
   }
   res.limits = {s.criteria.hits_zone, s.criteria.punctures_zone, s.criteria.hits_outside, s.criteria.punctures_outside};
   res.marks = a.marks;
@@ -88,37 +114,32 @@ Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned lo
     if (d.per_replicate.size() != c.replicates) throw std::invalid_argument("designs compared must have run the same replicates");
     c.designs.push_back(d.result);
   }
+  const assess::PairedSums p = paired_sums(designs);
+  const double n = static_cast<double>(c.replicates);
   for (std::size_t d = 1; d < designs.size(); ++d) {
     Difference diff;
-    for (std::uint64_t r = 0; r < c.replicates; ++r)
-      if (designs[0].per_replicate[r] != designs[d].per_replicate[r]) ++diff.replicates_differing;
+    diff.replicates_differing = p.units_differing[d - 1];
     if (diff.replicates_differing == 0 && c.replicates > 0)
       diff.differing_at_most = 1.0 - std::pow(0.025, 1.0 / static_cast<double>(c.replicates));
-    for (int k = 0; k <= assess::kCategories; ++k) {
-      Moments paired, first, other;
-      for (std::uint64_t r = 0; r < c.replicates; ++r) {
-        const double a = designs[0].per_replicate[r][static_cast<std::size_t>(k)],
-                     b = designs[d].per_replicate[r][static_cast<std::size_t>(k)];
-        paired.add(b - a);
-        first.add(a);
-        other.add(b);
-      }
-      const double n = static_cast<double>(c.replicates);
-      const double independent = n > 1 ? kZ * std::sqrt((first.variance() + other.variance()) / n) : 0.0;
-      if (k == assess::kCategories) {
+    for (std::size_t k = 0; k < kFigures; ++k) {
+      const double independent = n > 1 ? kZ * std::sqrt((own(p, 0, k).variance() + own(p, d, k).variance()) / n) : 0.0;
+      if (k == kPass) {
         // The pass indicators' difference: Newcombe's paired interval, which does not
-        // collapse to zero width when few or no replicates differ.
-        std::uint64_t both = 0, only_first = 0, only_other = 0, neither = 0;
-        for (std::uint64_t r = 0; r < c.replicates; ++r) {
-          const bool x = designs[0].per_replicate[r][static_cast<std::size_t>(k)] > 0.5, y = designs[d].per_replicate[r][static_cast<std::size_t>(k)] > 0.5;
-          (x && y ? both : x ? only_first : y ? only_other : neither) += 1;
-        }
+        // collapse to zero width when few or no replicates differ. Its table from the sums of
+        // 0/1 values (exact in double): replicates that differ number only_first + only_other,
+        // and the differences add up to only_other - only_first.
+        const std::uint64_t differ = p.differing[p.versus_first(d, k)];
+        const auto gained = static_cast<std::int64_t>(p.diff[p.versus_first(d, k)]);
+        const auto only_other = static_cast<std::uint64_t>((static_cast<std::int64_t>(differ) + gained) / 2);
+        const std::uint64_t only_first = differ - only_other;
+        const auto first_passed = static_cast<std::uint64_t>(p.sum[p.own(0, k)]);
+        const std::uint64_t both = first_passed - only_first, neither = c.replicates - both - only_first - only_other;
         const assess::Interval nc = assess::newcombe_paired(both, only_first, only_other, neither);
         diff.pass = {nc.estimate, nc.low, nc.high};
         diff.independent_pass_half_width = independent;
       } else {
-        diff.shares[static_cast<std::size_t>(k)] = paired.interval(-1.0, 1.0);
-        diff.independent_half_width[static_cast<std::size_t>(k)] = independent;
+        diff.shares[k] = versus_first(p, d, k).interval(-1.0, 1.0);
+        diff.independent_half_width[k] = independent;
       }
     }
     c.versus_first.push_back(diff);
