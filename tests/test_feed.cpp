@@ -16,7 +16,7 @@ scenario::Scenario straight_scenario() {
   s.spindles[0].blade.omega = 1000 * units::rpm;
   s.spindles[0].blade.hub.bar_mass = 10;
   s.spindles[0].blade.hub.bar_length = 1.2192;  // centred: two edges, 24 in reach
-  s.feed.stations = {{0, 0.55, 0.0}};
+  s.feed.stations = std::vector<scenario::FeedStation>{{0, 0.55, 0.0}};
   return s;
 }
 constexpr double kTwoPi = 2 * units::pi;

@@ -56,7 +56,8 @@ TEST_CASE("field: the [field] form, with its defaults", "[field][input]") {
   CHECK(o.restitution.value() == Approx(0.5));
   CHECK(s.field.planes.at(0).receptor == scenario::FieldPlaneSpec::Receptor::Vehicle);
   CHECK(s.field.ground_speed == Approx(8 / 3.6));
-  CHECK(s.run.time_limit == Approx(20.0));  // a field's flights last seconds
+  CHECK_FALSE(s.run.time_limit);  // not written: derived
+  CHECK(s.time_limit() == Approx(20.0));  // a field's flights last seconds
   CHECK(s.field.person_energy == Approx(79));
   CHECK(s.field.acceptable_area == Approx(55.74));
   CHECK(!o.rolls);  // a stone skids unless the scenario calls it round

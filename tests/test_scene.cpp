@@ -27,7 +27,6 @@ scenario::Scenario basic() {
   s.spindles[0].blade.hub.bar_mass = 10;
   s.spindles[0].blade.hub.bar_length = 1.2;  // tip radius 0.6
   s.housing.deck_radius = 0.65;
-  s.target.top = s.spindles[0].geometry.height + 0.61;
   return s;
 }
 
@@ -117,7 +116,7 @@ TEST_CASE("scene: export writes a labelled PLY and a grouped OBJ that read back,
   std::map<std::string, std::size_t> groups;
   for (const auto& m : markers) ++groups[m.group];
   CHECK(groups["tip_circles"] == s.spindles.size());
-  CHECK(groups["feed_stations"] == s.feed.stations.size());
+  CHECK(groups["feed_stations"] == s.feed_station_count());
   CHECK(groups["seat"] == 3);
   CHECK(groups["reach_envelope"] == 9);
   for (const auto& m : markers)

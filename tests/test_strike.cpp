@@ -26,7 +26,7 @@ scenario::Scenario bar_scenario() {
   s.spindles[0].blade.omega = 1000 * units::rpm;
   s.spindles[0].blade.hub.bar_mass = 10;
   s.spindles[0].blade.hub.bar_length = 1.2192;
-  s.feed.stations = {{0, 0.55, 0.0}};
+  s.feed.stations = std::vector<scenario::FeedStation>{{0, 0.55, 0.0}};
   return s;
 }
 
@@ -770,7 +770,7 @@ TEST_CASE("feed: strike probability and strike time match the blade's sweep", "[
 
 TEST_CASE("feed: nails outside the tip circle fall through", "[strike][feed]") {
   auto s = bar_scenario();
-  s.feed.stations = {{0, 0.70, 0.5}};  // beyond the 0.6096 m reach
+  s.feed.stations = std::vector<scenario::FeedStation>{{0, 0.70, 0.5}};  // beyond the 0.6096 m reach
   const auto sp = spindle(s);
   int struck = 0;
   for (int i = 0; i < 500; ++i) {

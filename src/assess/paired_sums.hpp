@@ -1,5 +1,5 @@
 #pragma once
-// The sums every paired comparison of designs rests on (docs/model.md §6a and §9.3): the same
+// The sums every paired comparison of designs rests on: the same
 // units (a J232 test's replicates, a field's objects) run on each design with common random
 // numbers, each unit giving every design a value of each figure. Kept per design and figure:
 // the values' sum and sum of squares (each design's own estimate and spread) and, for every
@@ -7,9 +7,11 @@
 // the units whose own figure differs from the first's (the paired estimate, its spread, and
 // what a run with none differing could have missed). Units are added in their order and
 // chunks merged in chunk order, so the sums are the same on any thread or rank count. Both
-// comparisons (study::compare_records, field::compare_fields) add to this one type; each
-// turns the sums into its own intervals.
+// comparisons (study::compare_records, field::compare_fields, docs/model.md §6a and §9.2)
+// add to this one type; each turns the sums into its own intervals.
+#include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "assess/bytes.hpp"
@@ -82,7 +84,9 @@ struct PairedSums {
     units = r.value<std::uint64_t>();
     for (auto* v : {&sum, &squares, &diff, &diff_squares}) r.list(*v);
     r.list(differing), r.list(units_differing);
-    if (sum.size() != designs * figures || differing.size() != (designs - 1) * figures || units_differing.size() != designs - 1)
+    const std::size_t own_size = designs * figures, versus_size = (designs - 1) * figures;
+    if (sum.size() != own_size || squares.size() != own_size || diff.size() != versus_size || diff_squares.size() != versus_size ||
+        differing.size() != versus_size || units_differing.size() != designs - 1)
       throw std::runtime_error("a message between ranks held paired sums of another shape");
   }
 

@@ -96,7 +96,7 @@ int run(const SceneOptions& o) {
     report::write_atomically(o.export_path, scene::export_text(soup, exported, o.export_path));
     auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
     fmt::print("wrote {} (the scene, {} tip circle{}, {} feed station{}{}{})\n", o.export_path, s.spindles.size(),
-               plural(s.spindles.size()), s.feed.stations.size(), plural(s.feed.stations.size()),
+               plural(s.spindles.size()), s.feed_station_count(), plural(s.feed_station_count()),
                s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived ? ", the seat and reach envelope" : "",
                paths.empty() ? "" : fmt::format(", {} nail paths", paths.size()));
   }

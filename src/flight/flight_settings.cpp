@@ -4,7 +4,7 @@ namespace j232::flight {
 
 FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<scenario::GuardSpec>& guards)
     : chord_tolerance(s.run.chord_tolerance),
-      time_limit(s.run.time_limit),
+      time_limit(s.time_limit()),
       max_bounces(s.run.max_bounces),
       max_gentle_contacts(s.run.max_gentle_contacts),
       max_strikes(s.run.max_strikes),

@@ -86,8 +86,9 @@ class J232Test final : public Pipeline {
 
   std::string refuse_parameter(const std::string& name, const scenario::Scenario&) const override {
     if (name == "object_speed") return "object_speed: a J232 scenario's nails fall onto the blade; sweep feed.ground_speed instead";
-    // The J232 rig is set from the blades' plane when the file is read (the board's top, the
-    // counted height's checks); moved after, the board would be left behind.
+    // The J232 rig is checked against the blades' plane when the file is read (the operator
+    // zone and the counted height against the board); moved after, those checks would not be
+    // re-run, and a board whose top the file wrote would be left behind.
     if (name == "cut_height")
       return "cut_height: a J232 scenario's board is set from the blades' plane as the file is read; sweep the blades' height key ([blade] "
              "height) and the housing's keys instead";

@@ -147,9 +147,10 @@ std::string hit_map_svg(const scenario::Scenario& s, const scene::Soup& soup, co
   chart.hline(s.blade_plane(), "#000", fmt::format("blade plane ({:.0f} mm)", 1000 * s.blade_plane()));
   if (s.criteria.counted_height)
     chart.hline(s.counted_height(), "#444", fmt::format("counted from {:.0f} mm (departs from J232)", 1000 * s.counted_height()));
-  for (std::size_t i = 0; i < s.feed.stations.size(); ++i)
-    chart.vline(azimuth_deg(s.station_x(s.feed.stations[i]), s.station_y(s.feed.stations[i])), "#009E73",
-                s.feed.stations.size() > 1 ? fmt::format("feed {}", i + 1) : "feed station");
+  const auto stations = s.feed_stations();
+  for (std::size_t i = 0; i < stations.size(); ++i)
+    chart.vline(azimuth_deg(s.station_x(stations[i]), s.station_y(stations[i])), "#009E73",
+                stations.size() > 1 ? fmt::format("feed {}", i + 1) : "feed station");
   chart.x_range(-180, 180);
   chart.x_ticks({-180, -135, -90, -45, 0, 45, 90, 135, 180});
   chart.caption(sample_caption(marks));
@@ -236,7 +237,7 @@ void draw_mower_plan(Chart& chart, const scenario::Scenario& s, const scene::Sou
                  true);
   }
   std::vector<double> fx, fy;
-  for (const auto& f : s.feed.stations) fx.push_back(s.station_x(f)), fy.push_back(s.station_y(f));
+  for (const auto& f : s.feed_stations()) fx.push_back(s.station_x(f)), fy.push_back(s.station_y(f));
   chart.points(fx, fy, "#009E73", "feed station", 4);
   if (s.zone.kind == scenario::OperatorZoneSpec::Kind::Derived)
     chart.points({s.zone.seat_x}, {s.zone.seat_y}, "#000000", "operator seat", 4);
@@ -317,7 +318,7 @@ std::string trajectories_side_svg(const scenario::Scenario& s, const std::vector
   if (!scene_has_target_mesh(s)) {
     if (s.target.shape == scenario::TargetSpec::Shape::Circle) {
       const double ring = s.reach() + s.target.distance;
-      chart.segments({ring}, {s.target.bottom}, {ring}, {s.target.top}, kBoardColour, "target board", 3);
+      chart.segments({ring}, {s.target.bottom}, {ring}, {s.target_top()}, kBoardColour, "target board", 3);
     } else {  // a board along the deck stands at a range of distances from the centre
       double nearest = HUGE_VAL, farthest = 0;
       const auto outline = scene::board_outline(s);
@@ -327,7 +328,7 @@ std::string trajectories_side_svg(const scenario::Scenario& s, const std::vector
         const double t = std::clamp(-a.dot(d) / std::max(d.squaredNorm(), 1e-18), 0.0, 1.0);
         nearest = std::min(nearest, (a + t * d).norm());
       }
-      chart.segments({nearest, farthest}, {s.target.bottom, s.target.bottom}, {nearest, farthest}, {s.target.top, s.target.top}, kBoardColour,
+      chart.segments({nearest, farthest}, {s.target.bottom, s.target.bottom}, {nearest, farthest}, {s.target_top(), s.target_top()}, kBoardColour,
                      "target board (nearest and farthest)", 3);
     }
   }

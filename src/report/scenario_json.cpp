@@ -125,9 +125,10 @@ json zone_json(const scenario::OperatorZoneSpec& z) {
           {"knee_height_m", z.knee_height}};
 }
 
-json feed_json(const scenario::FeedSpec& f) {
+json feed_json(const scenario::Scenario& s) {
+  const scenario::FeedSpec& f = s.feed;
   json stations = json::array();
-  for (const auto& st : f.stations)
+  for (const auto& st : s.feed_stations())
     stations.push_back({{"spindle", st.spindle + 1}, {"radius_m", st.radius}, {"azimuth_deg", st.azimuth / units::degree}});
   return {{"nails", f.nails},
           {"stations", stations},
@@ -172,9 +173,9 @@ json target_json(const scenario::Scenario& s, bool from_mesh) {
   if (from_mesh) return {{"generated", false}};
   if (s.target.shape == scenario::TargetSpec::Shape::Outline)
     return {{"generated", true},        {"shape", "outline"}, {"distance_m", s.target.distance}, {"farthest_m", scene::target_radius(s)},
-            {"bottom_m", s.target.bottom}, {"top_m", s.target.top}, {"segments", s.target.segments}};
+            {"bottom_m", s.target.bottom}, {"top_m", s.target_top()}, {"segments", s.target.segments}};
   return {{"generated", true},           {"shape", "circle"},     {"distance_m", s.target.distance}, {"radius_m", s.reach() + s.target.distance},
-          {"bottom_m", s.target.bottom}, {"top_m", s.target.top}, {"segments", s.target.segments}};
+          {"bottom_m", s.target.bottom}, {"top_m", s.target_top()}, {"segments", s.target.segments}};
 }
 
 json criteria_json(const scenario::CriteriaSpec& c) {
@@ -194,7 +195,8 @@ const char* estimator_name(scenario::RunSpec::Estimator e) {
   return "narrower";
 }
 
-json run_json(const scenario::RunSpec& r) {
+json run_json(const scenario::Scenario& s) {
+  const scenario::RunSpec& r = s.run;
   return {{"replicates", r.replicates},
           {"seed", r.seed},
           {"estimator", estimator_name(r.estimator)},
@@ -202,7 +204,7 @@ json run_json(const scenario::RunSpec& r) {
           {"until_settled", r.until_settled},
           {"max_replicates", r.max_replicates},
           {"chord_tolerance_m", r.chord_tolerance},
-          {"time_limit_s", r.time_limit},
+          {"time_limit_s", s.time_limit()},
           {"max_bounces", r.max_bounces},
           {"max_gentle_contacts", r.max_gentle_contacts},
           {"max_strikes", r.max_strikes},
@@ -231,7 +233,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
         {"mass_kg", s.nail.mass},
         {"length_tolerance_m", s.nail.length_tolerance},
         {"mass_tolerance_kg", s.nail.mass_tolerance}}},
-      {"feed", feed_json(s.feed)},
+      {"feed", feed_json(s)},
       {"housing", housing_json(s, roles.housing, scene::opening_widths(s))},
       {"ground",
        {{"restitution", s.ground.restitution},
@@ -246,7 +248,7 @@ nlohmann::ordered_json scenario_json(const scenario::Scenario& s) {
       {"criteria", criteria_json(s.criteria)},
       {"air", {{"drag", s.air.drag}, {"density_kg_m3", s.air.density}, {"cd_normal", s.air.cd_normal}, {"cd_axial", s.air.cd_axial}, {"spin_average", s.air.spin_average}}},
       {"uncertainty", uncertainty_json(s.uncertainty)},
-      {"run", run_json(s.run)},
+      {"run", run_json(s)},
   };
   if (s.field.present) j["ground"]["rolling_resistance"] = s.ground.rolling_resistance;  // round objects roll on it (nails do not)
   // (The default kind, turf, with nothing sinking in, is the earlier releases' ground: named
@@ -297,7 +299,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                            s.nail.mass * 1e3, s.nail.mass_tolerance * 1e3),
                fmt::format("{} (6d box nail)", params)});
   a.push_back({fmt::format("Feed: {} nails, dropped {:.0f} mm onto the blade at {} station(s), upright within {:.0f} deg", s.feed.nails,
-                           s.feed.drop_height * 1e3, s.feed.stations.size(), s.feed.tilt_max * 180 / units::pi),
+                           s.feed.drop_height * 1e3, s.feed_station_count(), s.feed.tilt_max * 180 / units::pi),
                "estimate: SAE J232 feed geometry not available (docs/model.md 5.1)"});
   a.push_back({fmt::format("Board: puncture at {:g} J/m of the width the nail presses on it (its part within {:g} mm of the "
                            "first touch), hit at {:g} of that; the energy a plastic impact takes out at the point that strikes",
@@ -310,7 +312,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                              s.target.shape == scenario::TargetSpec::Shape::Outline ? "board following the deck" : "ring about the deck's centre",
                              s.target.distance * 1e3,
                              s.target.shape == scenario::TargetSpec::Shape::Outline ? "every tip circle" : "the farthest tip",
-                             s.target.bottom * 1e3, s.target.top * 1e3),
+                             s.target.bottom * 1e3, s.target_top() * 1e3),
                  fmt::format("{} (ANSI B71.1 enclosure wording as stand-in)", params)});
   if (scene::mesh_roles(s).housing) {
     a.push_back({"Deck and skirt: the scenario's mesh(es)", "scenario (user geometry)"});

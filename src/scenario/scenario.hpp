@@ -41,7 +41,9 @@ struct FeedStation {
 
 struct FeedSpec {
   int nails = 150;
-  std::vector<FeedStation> stations;  // nails go to stations in turn; default: one per spindle, 2 in inside its tip circle, in front
+  // Nails go to stations in turn. As written; none written: one per spindle, 2 in inside its
+  // tip circle, in front (Scenario::feed_station).
+  std::optional<std::vector<FeedStation>> stations;
   double drop_height = 0.30;          // funnel outlet above the top of the blade, m
   double outlet_diameter = 0.025;     // funnel outlet, m: uniform position within it
   double outlet_speed_max = 0.5;      // speed leaving the outlet, uniform in [0, max], m/s
@@ -188,7 +190,7 @@ struct TargetSpec {
   enum class Shape { Circle, Outline } shape = Shape::Circle;
   double distance = 0.610;  // board wall outside the tip circle, m
   double bottom = 0.0;      // board bottom above ground, m
-  double top = 0.0;         // default: blade height + 0.610 m
+  std::optional<double> top;  // as written; none: the blades' plane + 0.610 m (Scenario::target_top)
   int segments = 360;       // around the ring
 };
 
@@ -260,7 +262,9 @@ struct RunSpec {
   bool until_settled = false;
   long long max_replicates = 100000;
   double chord_tolerance = 0.001;  // max sag of a flight chord, m
-  double time_limit = 3.0;         // s of flight per nail
+  // s of flight per object: as written; none: 3 s a nail of the J232 test, 20 s an object
+  // thrown across a field (Scenario::time_limit).
+  std::optional<double> time_limit;
   int max_bounces = 400;  // a tumbling rod bounces about 15 times a flight; nails riding round a closed skirt, hundreds
   // Gentle contacts (approaching slower than a fall through the object's own diameter): the
   // micro-impacts by which a sustained contact (sliding along a skirt's foot, under a flap,
@@ -423,6 +427,15 @@ struct Scenario {
   // A round deck's radius (one spindle): housing.deck_radius as written, else the blades'
   // reach + housing.margin.
   double deck_radius() const { return housing.deck_radius.value_or(reach() + housing.margin); }
+  // A flight's time limit: run.time_limit as written, else 3 s a nail, 20 s a field's object.
+  double time_limit() const { return run.time_limit.value_or(field.present ? 20.0 : 3.0); }
+  // The target board's top: target.top as written, else 0.610 m above the blades' plane.
+  double target_top() const { return target.top.value_or(blade_plane() + 0.610); }
+  // The feed stations (feed.stations as written, else one per spindle, 2 in inside its tip
+  // circle, in front): how many, station i (allocation-free, for the per-nail path), and all.
+  std::size_t feed_station_count() const { return feed.stations ? feed.stations->size() : spindles.size(); }
+  FeedStation feed_station(std::size_t i) const;
+  std::vector<FeedStation> feed_stations() const;
   double lowest_blade_face() const;
   std::optional<double> front_gap() const;
   double lifted_up_to(const FieldObjectSpec& o, double drag_coefficient, double u) const;

@@ -63,7 +63,8 @@ void read_feed(const TableReader& t, FeedSpec& f, const std::vector<SpindleSpec>
     st.radius = s.quantity("radius", Kind::Length, Range::between(0, spindles[st.spindle].blade.tip_radius()));
     st.azimuth = s.quantity_or("azimuth", Kind::Angle, 0.0, kAnyAzimuth);
     s.refuse_unknown_keys();
-    f.stations.push_back(st);
+    if (!f.stations) f.stations.emplace();
+    f.stations->push_back(st);
   }
   t.refuse_unknown_keys();
 }
@@ -360,7 +361,7 @@ void read_run(const TableReader& t, RunSpec& r) {
   r.chord_tolerance = t.quantity_or("chord_tolerance", Kind::Length, r.chord_tolerance, Range::between(1e-5, 0.1));
   // A nail thrown at blade speed reaches the board in well under 0.1 s; shorter limits cut
   // the test off before it happens.
-  r.time_limit = t.quantity_or("time_limit", Kind::Time, r.time_limit, Range::between(0.1, 60));
+  if (t.has("time_limit")) r.time_limit = t.quantity("time_limit", Kind::Time, Range::between(0.1, 60));
   r.max_bounces = static_cast<int>(t.integer_or("max_bounces", r.max_bounces, 1, 10000));
   r.max_gentle_contacts = static_cast<int>(t.integer_or("max_gentle_contacts", r.max_gentle_contacts, 1, 10'000'000));
   r.max_strikes = static_cast<int>(t.integer_or("max_strikes", r.max_strikes, 1, 100000));
@@ -518,15 +519,16 @@ void read_ground(const TableReader& g, GroundSpec& ground, bool field) {
   g.refuse_unknown_keys();
 }
 
-// `reach`: the blades' reach, for the check that the board stands outside the deck.
-void read_target(const TableReader& t, TargetSpec& target, double reach, double deck_radius) {
+// `reach`: the blades' reach, for the check that the board stands outside the deck;
+// `default_top`: the board's top when it is not written (Scenario::target_top).
+void read_target(const TableReader& t, TargetSpec& target, double reach, double deck_radius, double default_top) {
   target.distance = t.quantity_or("distance", Kind::Length, target.distance, Range::between(0.05, 10));
   target.bottom = t.quantity_or("bottom", Kind::Length, target.bottom, Range::between(0, 5));
-  target.top = t.quantity_or("top", Kind::Length, target.top, Range::positive_up_to(10));
+  if (t.has("top")) target.top = t.quantity("top", Kind::Length, Range::positive_up_to(10));
   target.segments = static_cast<int>(t.integer_or("segments", target.segments, 16, 3600));
   const std::string shape = t.string_or("shape", "circle", {"circle", "outline"});
   target.shape = shape == "outline" ? TargetSpec::Shape::Outline : TargetSpec::Shape::Circle;
-  if (target.top <= target.bottom) throw t.error("top", "expected the board's top above its bottom");
+  if (target.top.value_or(default_top) <= target.bottom) throw t.error("top", "expected the board's top above its bottom");
   if (reach + target.distance <= deck_radius) throw t.error("distance", "expected the board outside the mower deck");
   t.refuse_unknown_keys();
 }
@@ -985,7 +987,7 @@ void check_consistency(const TableReader& root, Scenario& s) {
       const auto deflectors = housing->array_of_tables("deflectors");
       for (std::size_t i = 0; i < s.housing.deflectors.size() && i < deflectors.size(); ++i) {
         const DeflectorSpec& d = s.housing.deflectors[i];
-        if (d.bottom < s.target.top && d.top > s.target.bottom && deflector_crosses_board(s, d))
+        if (d.bottom < s.target_top() && d.top > s.target.bottom && deflector_crosses_board(s, d))
           throw deflectors[i].error(d.along.empty() ? "radius" : "along",
                                     "stands the panel across the board's wall, at the board's height: nails meeting it there would "
                                     "bounce, not mark; expected a panel inside the board (or beyond it)");
@@ -1005,12 +1007,12 @@ void check_consistency(const TableReader& root, Scenario& s) {
       // A zone wholly off the board, or wholly below the counted height, could never be hit:
       // its criteria could not fail.
       const double low = std::max(s.target.bottom, s.counted_height());
-      if (!(s.zone.bottom < s.target.top - 1e-6 && s.zone.top > low + 1e-6))
-        throw zone->error(s.zone.bottom >= s.target.top - 1e-6 ? "bottom" : "top",
+      if (!(s.zone.bottom < s.target_top() - 1e-6 && s.zone.top > low + 1e-6))
+        throw zone->error(s.zone.bottom >= s.target_top() - 1e-6 ? "bottom" : "top",
                           fmt::format("the operator zone ({:.4g} to {:.4g} m) lies wholly {} (the board: {:.4g} to {:.4g} m; counted "
                                       "from {:.4g} m): no counted mark could fall in it; expected a zone on the board's counted part",
-                                      s.zone.bottom, s.zone.top, s.zone.bottom >= s.target.top - 1e-6 ? "above the board" : "below the counted part of the board",
-                                      s.target.bottom, s.target.top, s.counted_height()));
+                                      s.zone.bottom, s.zone.top, s.zone.bottom >= s.target_top() - 1e-6 ? "above the board" : "below the counted part of the board",
+                                      s.target.bottom, s.target_top(), s.counted_height()));
     }
   }
   // A seat over a blade's disc is a seat inside the deck (a mesh deck's too).
@@ -1042,11 +1044,11 @@ void check_consistency(const TableReader& root, Scenario& s) {
   }
   // A board that cannot carry a counted mark is no test (its top within a micrometre of the
   // counted height, as the same height written in two units gives, included).
-  if (!s.field.present && !(s.target.top > s.counted_height() + 1e-6)) {
+  if (!s.field.present && !(s.target_top() > s.counted_height() + 1e-6)) {
     const auto target = root.table("target");
     const std::string what = fmt::format("the board's top at {:.4g} m is at or below the counted height ({:.4g} m: {}); no mark on it "
                                          "could count, so the test could not fail; expected a top above it",
-                                         s.target.top, s.counted_height(),
+                                         s.target_top(), s.counted_height(),
                                          s.criteria.counted_height ? "criteria.counted_height" : "the blade tip circle's plane");
     if (target && target->has("top")) throw target->error("top", what);
     throw root.error("target", what);
@@ -1086,6 +1088,17 @@ double Scenario::tip_speed() const {
   return v;
 }
 
+FeedStation Scenario::feed_station(std::size_t i) const {
+  if (feed.stations) return feed.stations->at(i);
+  return {i, std::max(0.0, spindles.at(i).blade.tip_radius() - 0.0508), 0.0};
+}
+
+std::vector<FeedStation> Scenario::feed_stations() const {
+  std::vector<FeedStation> out;
+  for (std::size_t i = 0; i < feed_station_count(); ++i) out.push_back(feed_station(i));
+  return out;
+}
+
 bool CriteriaSpec::limits_depart_from_j232() const {
   const CriteriaSpec j232;
   return hits_zone != j232.hits_zone || punctures_zone != j232.punctures_zone || hits_outside != j232.hits_outside ||
@@ -1106,9 +1119,6 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto r = root.table("restitution")) s.restitution = read_restitution(*r);
   if (auto n = root.table("nail")) read_nail(*n, s.nail);
   if (auto f = root.table("feed")) read_feed(*f, s.feed, s.spindles);
-  if (s.feed.stations.empty())  // one per spindle, 2 in inside its tip circle, in front
-    for (std::size_t k = 0; k < s.spindles.size(); ++k)
-      s.feed.stations.push_back({k, std::max(0.0, s.spindles[k].blade.tip_radius() - 0.0508), 0.0});
 
   if (auto h = root.table("housing")) read_housing(*h, s.housing, s.spindles.size() > 1, s.notes);
   if (s.deck_radius() <= reach)
@@ -1116,8 +1126,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
 
   if (auto g = root.table("ground")) read_ground(*g, s.ground, root.has("field"));
 
-  s.target.top = s.blade_plane() + 0.610;
-  if (auto t = root.table("target")) read_target(*t, s.target, reach, s.deck_radius());
+  if (auto t = root.table("target")) read_target(*t, s.target, reach, s.deck_radius(), s.blade_plane() + 0.610);
 
   const auto base = std::filesystem::path(file).parent_path();
   for (const auto& m : root.array_of_tables("meshes", 32)) s.meshes.push_back(read_mesh_file(m, base, s.notes));
@@ -1137,8 +1146,6 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto f = root.table("field")) {
     refuse_test_rig(root, s.meshes);
     read_field(*f, s, root.has("restitution"), s.field, s.notes);
-    // An object thrown across a field flies for seconds, not the board's fraction of one.
-    if (!(root.table("run") && root.table("run")->has("time_limit"))) s.run.time_limit = 20.0;
   }
   if (auto u = root.table("uncertainty")) {
     read_uncertainty(*u, s.uncertainty);

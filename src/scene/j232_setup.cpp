@@ -81,7 +81,7 @@ void add_target_ring(Soup& soup, const scenario::Scenario& s, const OperatorZone
     extra_az = {s.zone.azimuth.from, s.zone.azimuth.to};
     extra_z = {s.zone.bottom, s.zone.top};
   }
-  const auto hz = height_breaks(s.target.bottom, s.target.top, 0.05, extra_z);
+  const auto hz = height_breaks(s.target.bottom, s.target_top(), 0.05, extra_z);
   const auto label = [&](const Vec3& c) { return zone.contains(c) ? Surface::TargetZone : Surface::TargetOutside; };
   if (s.target.shape == scenario::TargetSpec::Shape::Circle) {
     const auto az = arc_breaks(0.0, units::two_pi, units::two_pi / s.target.segments, extra_az);

@@ -47,7 +47,7 @@ double escape_radius(const scenario::Scenario& s, const Soup& soup);
 // How far a field's objects are followed from the mower (in its frame): past the corners
 // of the tallied square, and as far again as the mower travels in a flight's time limit.
 inline double field_ground_half(const scenario::Scenario& s) {
-  return 1.5 * s.field.range + s.field.ground_speed * s.run.time_limit;
+  return 1.5 * s.field.range + s.field.ground_speed * s.time_limit();
 }
 // A generated polygon deck's skirt, piece by piece along its outline: pieces of at most
 // 0.1 m, split where an opening or a guard given by azimuths begins or ends, so that each

@@ -26,7 +26,7 @@ std::vector<Polyline> mower_markers(const scenario::Scenario& s) {
   std::vector<Polyline> out;
   for (const auto& sp : s.spindles)
     out.push_back(circle("tip_circles", {0, 0, 0}, {sp.x, sp.y, sp.geometry.height}, sp.blade.tip_radius(), ex, ey));
-  for (const auto& f : s.feed.stations) {
+  for (const auto& f : s.feed_stations()) {
     const double blade_z = s.spindles[f.spindle].geometry.height;
     const double top = blade_z + 0.5 * s.spindles[f.spindle].geometry.thickness + s.feed.drop_height;
     out.push_back({"feed_stations", {0, 158, 115}, {{s.station_x(f), s.station_y(f), top}, {s.station_x(f), s.station_y(f), blade_z}}});

@@ -42,13 +42,14 @@ Moments versus_first(const assess::PairedSums& p, std::size_t d, std::size_t j) 
 constexpr std::size_t kFigures = assess::kCategories + 1;
 constexpr std::size_t kPass = assess::kCategories;
 
-// Every design's rows, replicate by replicate, in replicate order.
-assess::PairedSums paired_sums(const std::vector<DesignRecord>& designs) {
-  assess::PairedSums p(designs.size(), kFigures);
-  std::vector<double> y(designs.size() * kFigures);
-  for (std::size_t r = 0; r < designs.front().per_replicate.size(); ++r) {
-    for (std::size_t d = 0; d < designs.size(); ++d)
-      for (std::size_t j = 0; j < kFigures; ++j) y[d * kFigures + j] = designs[d].per_replicate[r][j];
+// Every design's rows (`designs` of them, each `rows(d)`), replicate by replicate, in replicate order.
+template <class Rows>
+assess::PairedSums paired_sums(std::size_t designs, Rows&& rows) {
+  assess::PairedSums p(designs, kFigures);
+  std::vector<double> y(designs * kFigures);
+  for (std::size_t r = 0; r < rows(0).size(); ++r) {
+    for (std::size_t d = 0; d < designs; ++d)
+      for (std::size_t j = 0; j < kFigures; ++j) y[d * kFigures + j] = rows(d)[r][j];
     p.add(y.data());
   }
   return p;
@@ -78,7 +79,7 @@ DesignRecord DesignRecorder::finish(const scenario::Scenario& s, const assess::A
   res.deciding = sum.deciding;
   res.deciding_pass = sum.criteria[static_cast<std::size_t>(sum.deciding)].pass.estimate;
   {
-    const assess::PairedSums own_sums = paired_sums({record});
+    const assess::PairedSums own_sums = paired_sums(1, [&](std::size_t) -> const auto& { return record.per_replicate; });
     for (std::size_t k = 0; k < assess::kCategories; ++k) res.shares[k] = own(own_sums, 0, k).interval(0.0, 1.0);
   }
   res.limits = {s.criteria.hits_zone, s.criteria.punctures_zone, s.criteria.hits_outside, s.criteria.punctures_outside};
@@ -114,7 +115,7 @@ Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned lo
     if (d.per_replicate.size() != c.replicates) throw std::invalid_argument("designs compared must have run the same replicates");
     c.designs.push_back(d.result);
   }
-  const assess::PairedSums p = paired_sums(designs);
+  const assess::PairedSums p = paired_sums(designs.size(), [&](std::size_t d) -> const auto& { return designs[d].per_replicate; });
   const double n = static_cast<double>(c.replicates);
   for (std::size_t d = 1; d < designs.size(); ++d) {
     Difference diff;
@@ -133,6 +134,9 @@ Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned lo
         const auto only_other = static_cast<std::uint64_t>((static_cast<std::int64_t>(differ) + gained) / 2);
         const std::uint64_t only_first = differ - only_other;
         const auto first_passed = static_cast<std::uint64_t>(p.sum[p.own(0, k)]);
+        // (Pass values are exactly 0 or 1, the sink's: then the counts are whole and fit.)
+        J232_CHECK((static_cast<std::int64_t>(differ) + gained) % 2 == 0 && static_cast<std::int64_t>(differ) + gained >= 0);
+        J232_CHECK(first_passed >= only_first && first_passed - only_first + differ <= c.replicates);
         const std::uint64_t both = first_passed - only_first, neither = c.replicates - both - only_first - only_other;
         const assess::Interval nc = assess::newcombe_paired(both, only_first, only_other, neither);
         diff.pass = {nc.estimate, nc.low, nc.high};

@@ -163,6 +163,10 @@ void apply(const Setting& s, scenario::Scenario& sc) {
   // What the parameter cannot mean for this scenario's pipeline (a field's objects have no feed radius).
   if (s.info.parameter != Parameter::FileKey)
     if (const std::string why = pipeline::pipeline_of(sc).refuse_parameter(s.info.name, sc); !why.empty()) throw std::invalid_argument(why);
+  // The feed stations and the board's top stay where the file put them: a blade reshaped here
+  // (a pivot moved, a mass scaled) may land its tip an ulp away, which must not move them.
+  if (!sc.feed.stations) sc.feed.stations = sc.feed_stations();
+  if (!sc.target.top) sc.target.top = sc.target_top();
   switch (s.info.parameter) {
     case Parameter::BladeSpeed:
       for (auto& sp : sc.spindles) sp.blade.omega = s.si;
@@ -174,7 +178,7 @@ void apply(const Setting& s, scenario::Scenario& sc) {
       sc.restitution = blade::Restitution::constant(s.si);
       break;
     case Parameter::ContactRadius:
-      for (auto& f : sc.feed.stations) f.radius = s.si;
+      for (auto& f : *sc.feed.stations) f.radius = s.si;
       break;
     case Parameter::PivotPosition:
       for (auto& sp : sc.spindles) set_pivot_position(sp.blade, s.si);
