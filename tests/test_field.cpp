@@ -20,6 +20,7 @@
 #include "flight/nail_flight.hpp"
 #include "random/stream.hpp"
 #include "report/hazard_report.hpp"
+#include "report/html_table.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "units/quantity.hpp"
@@ -753,4 +754,13 @@ TEST_CASE("field: --units us shows the same figures in ft, mph, ft-lb and per mi
                        Catch::Contains("hazard.json and hazard.csv keep SI units") && Catch::Contains("per ft2 of ground"));
   CHECK_THAT(page, !Catch::Contains("(m)") && !Catch::Contains(" m/s") && !Catch::Contains("per km"));
   CHECK(report::hazard_html(sim, run, sum, result) == report::hazard_html(sim, run, sum, result, si));
+}
+
+TEST_CASE("report: a page's table writes its header and rows as given, each cell once", "[report]") {
+  report::HtmlTable t({"kind", "met per km"});
+  t.row({"gravel", "1.5e+04"}).row({"<b>cobble</b>", ""});
+  CHECK(t.html() ==
+        "<table><tr><th>kind</th><th>met per km</th></tr>\n<tr><td>gravel</td><td>1.5e+04</td></tr>\n"
+        "<tr><td><b>cobble</b></td><td></td></tr>\n</table>\n");
+  CHECK(report::HtmlTable({"a"}).html() == "<table><tr><th>a</th></tr>\n</table>\n");
 }

@@ -8,6 +8,7 @@
 #include "assess/model_version.hpp"
 #include "report/display_units.hpp"
 #include "report/html_page.hpp"
+#include "report/html_table.hpp"
 #include "report/svg_chart.hpp"
 #include "units/quantity.hpp"
 
@@ -497,31 +498,30 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
       "mower's line. The conservative distance uses the 95 % interval's upper end.</p>\n",
       u.figure(u.energy(s.field.person_energy)), u.energy_unit(), u.figure(u.area(s.field.acceptable_area)), u.area_unit_html(), u.area_unit_html(),
       u.area_unit_html());
-  o += "<table><tr><th>direction</th><th>who</th><th>estimate</th><th>conservative</th></tr>\n";
   const double range = layout.range;
+  HtmlTable distances({"direction", "who", "estimate", "conservative"});
   for (const auto& d : sum.directions)
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", d.direction, escape(in_units(d.meaning, u)),
-                     distance_words(d, false, range, u), distance_words(d, true, range, u));
-  o += "</table>\n";
+    distances.row({d.direction, escape(in_units(d.meaning, u)), distance_words(d, false, range, u), distance_words(d, true, range, u)});
+  o += distances.html();
   // How the setback moves with what is judged acceptable: each distance at other densities.
-  o += "<p>How the hazard distance moves with the acceptable density (estimate / conservative; the scenario's in bold):</p>\n"
-       "<table><tr><th>one hazardous impact per</th>";
-  for (const auto& d : sum.directions) o += fmt::format("<th>{}</th>", d.direction);
-  o += "</tr>\n";
+  o += "<p>How the hazard distance moves with the acceptable density (estimate / conservative; the scenario's in bold):</p>\n";
+  std::vector<std::string> header = {"one hazardous impact per"};
+  for (const auto& d : sum.directions) header.push_back(d.direction);
+  HtmlTable setbacks(header);
   for (std::size_t b = 0; !sum.directions.empty() && b < sum.directions.front().setbacks.size(); ++b) {
     const double area = 1 / sum.directions.front().setbacks[b].acceptable_density;
     const bool own = std::abs(area - s.field.acceptable_area) < 1e-9 * area;
-    o += fmt::format("<tr><td>{}{} {}{}</td>", own ? "<strong>" : "", fmt::format(fmt::runtime(u.us ? "{:.4g}" : "{:.3g}"), u.area(area)), u.area_unit_html(),
-                     own ? "</strong>" : "");
+    std::vector<std::string> cells = {fmt::format("{}{} {}{}", own ? "<strong>" : "", fmt::format(fmt::runtime(u.us ? "{:.4g}" : "{:.3g}"), u.area(area)),
+                                                  u.area_unit_html(), own ? "</strong>" : "")};
     for (const auto& d : sum.directions) {
       field::DirectionCurve at = d;  // the setback's figures in the curve's fields, for distance_words
       at.hazard_distance = d.setbacks[b].estimate, at.hazard_distance_upper = d.setbacks[b].conservative;
       at.beyond_range = d.setbacks[b].beyond_range, at.upper_beyond_range = d.setbacks[b].conservative_beyond_range;
-      o += fmt::format("<td>{} / {}</td>", distance_words(at, false, range, u), distance_words(at, true, range, u));
+      cells.push_back(fmt::format("{} / {}", distance_words(at, false, range, u), distance_words(at, true, range, u)));
     }
-    o += "</tr>\n";
+    setbacks.row(cells);
   }
-  o += "</table>\n";
+  o += setbacks.html();
 
   Chart curves("Probability of being struck by a hazardous object in one pass", fmt::format("distance from the mower ({})", u.length_unit()),
                "probability");
@@ -564,25 +564,24 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
                  sum.directions, u);
 
   if (!sum.planes.empty()) {
-    o += fmt::format("<h2>Planes beside the path</h2>\n<table><tr><th>plane</th><th>where</th><th>receptor</th><th>crossings per {0} mowed</th>"
-                     "<th>hazardous per {0} mowed (95 %)</th><th>person standing there: P(struck) in one pass (95 %)</th>",
-                     u.mowed());
-    o += fmt::format("<th>over a season of {} pass{} (95 %): a person there each pass struck at least once; people struck ({:g} a "
-                       "pass)</th></tr>\n",
-                       s.field.passes_per_season, s.field.passes_per_season == 1 ? "" : "es", s.field.people_per_pass);
+    o += "<h2>Planes beside the path</h2>\n";
+    HtmlTable planes({"plane", "where", "receptor", fmt::format("crossings per {} mowed", u.mowed()), fmt::format("hazardous per {} mowed (95 %)", u.mowed()),
+                      "person standing there: P(struck) in one pass (95 %)",
+                      fmt::format("over a season of {} pass{} (95 %): a person there each pass struck at least once; people struck ({:g} a pass)",
+                                  s.field.passes_per_season, s.field.passes_per_season == 1 ? "" : "es", s.field.people_per_pass)});
     for (const auto& r : sum.planes) {
       const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path;
-      o += fmt::format("<tr><td>{}</td><td>{} {} {}</td><td>{}</td><td>{:.3g}</td><td>{:.3g} ({:.3g}-{:.3g})</td><td>{}</td><td>{}</td></tr>\n",
-                       escape(r.plane.name), side_name(r.plane.side), u.figure(u.length(r.plane.distance)), u.length_unit(), receptor_name(r.plane.receptor),
-                       u.per_mowed(r.crossings_per_km), u.per_mowed(r.hazardous_per_km.value), u.per_mowed(r.hazardous_per_km.low),
-                       u.per_mowed(r.hazardous_per_km.high),
-                       person ? fmt::format("{:.3g} ({:.3g}-{:.3g})", r.probability.value, r.probability.low, r.probability.high) : "-",
-                       person ? fmt::format("{:.3g} ({:.3g}-{:.3g}); {:.3g} ({:.3g}-{:.3g})", r.probability_per_season.value,
-                                            r.probability_per_season.low, r.probability_per_season.high, r.people_struck_per_season.value,
-                                            r.people_struck_per_season.low, r.people_struck_per_season.high)
-                              : "-");
+      planes.row({escape(r.plane.name), fmt::format("{} {} {}", side_name(r.plane.side), u.figure(u.length(r.plane.distance)), u.length_unit()),
+                  receptor_name(r.plane.receptor), fmt::format("{:.3g}", u.per_mowed(r.crossings_per_km)),
+                  fmt::format("{:.3g} ({:.3g}-{:.3g})", u.per_mowed(r.hazardous_per_km.value), u.per_mowed(r.hazardous_per_km.low),
+                              u.per_mowed(r.hazardous_per_km.high)),
+                  person ? fmt::format("{:.3g} ({:.3g}-{:.3g})", r.probability.value, r.probability.low, r.probability.high) : "-",
+                  person ? fmt::format("{:.3g} ({:.3g}-{:.3g}); {:.3g} ({:.3g}-{:.3g})", r.probability_per_season.value,
+                                       r.probability_per_season.low, r.probability_per_season.high, r.people_struck_per_season.value,
+                                       r.people_struck_per_season.low, r.people_struck_per_season.high)
+                         : "-"});
     }
-    o += "</table>\n";
+    o += planes.html();
     Chart heights("Crossings of each plane by height", fmt::format("height above the ground ({})", u.length_unit()),
                   fmt::format("crossings per {} mowed", u.mowed()));
     for (std::size_t i = 0; i < sum.planes.size(); ++i) {
@@ -616,23 +615,26 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
                   "weighted as the field holds it.");
     o += "<figure>" + reach.svg() + "</figure>\n";
   }
-  o += fmt::format("<h2>Objects simulated</h2>\n<table><tr><th>kind</th><th>met per {}</th><th>share that can reach a blade</th><th>simulated</th>",
-                   u.mowed());
-  for (int i = 0; i < field::kObjectFates; ++i) o += fmt::format("<th>{}</th>", field::object_fate_name(static_cast<field::ObjectFate>(i)));
-  o += "<th>at rest under the deck</th><th>left the square</th><th>a knife rode over</th><th>pushed along by an arm</th></tr>\n";
+  o += "<h2>Objects simulated</h2>\n";
+  std::vector<std::string> kinds_header = {"kind", fmt::format("met per {}", u.mowed()), "share that can reach a blade", "simulated"};
+  for (int i = 0; i < field::kObjectFates; ++i) kinds_header.push_back(field::object_fate_name(static_cast<field::ObjectFate>(i)));
+  for (const char* h : {"at rest under the deck", "left the square", "a knife rode over", "pushed along by an arm"}) kinds_header.push_back(h);
+  HtmlTable kinds(kinds_header);
   for (std::size_t k = 0; k < run.kinds.size(); ++k) {
     const auto& t = run.kinds[k];
-    o += fmt::format("<tr><td>{}</td><td>{:.0f}</td><td>{:.3g}</td><td>{}</td>", escape(s.field.objects[k].name), u.per_mowed(1000 * sim.objects_per_metre(k)),
-                     sim.reach_share(k), t.objects);
-    for (int i = 0; i < field::kObjectFates; ++i) o += fmt::format("<td>{}</td>", t.fates[static_cast<std::size_t>(i)]);
-    o += fmt::format("<td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", t.at_rest_under_deck, t.left_square, t.ridden_over, t.pushed_along);
+    std::vector<std::string> cells = {escape(s.field.objects[k].name), fmt::format("{:.0f}", u.per_mowed(1000 * sim.objects_per_metre(k))),
+                                      fmt::format("{:.3g}", sim.reach_share(k)), fmt::format("{}", t.objects)};
+    for (int i = 0; i < field::kObjectFates; ++i) cells.push_back(fmt::format("{}", t.fates[static_cast<std::size_t>(i)]));
+    for (const auto n : {t.at_rest_under_deck, t.left_square, t.ridden_over, t.pushed_along}) cells.push_back(fmt::format("{}", n));
+    kinds.row(cells);
   }
-  o += fmt::format("</table>\n<p>The tallied square reaches &plusmn;{} {} from the mower.</p>\n", u.figure(u.length(range)), u.length_unit());
+  o += kinds.html();
+  o += fmt::format("<p>The tallied square reaches &plusmn;{} {} from the mower.</p>\n", u.figure(u.length(range)), u.length_unit());
 
-  o += "<h2>Assumptions</h2>\n<table><tr><th>assumption</th><th>source</th></tr>\n";
-  for (const auto& a : result["assumptions"])
-    o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(a["what"].get<std::string>()), escape(a["source"].get<std::string>()));
-  o += "</table>\n";
+  o += "<h2>Assumptions</h2>\n";
+  HtmlTable assumptions({"assumption", "source"});
+  for (const auto& a : result["assumptions"]) assumptions.row({escape(a["what"].get<std::string>()), escape(a["source"].get<std::string>())});
+  o += assumptions.html();
   const auto& p = result["provenance"];
   o += fmt::format("<section id=\"provenance\"><p class=\"small\">j232 {} ({}), {}; seed {}; {} thread(s), {:.1f} s ({:.0f} objects/s).</p></section>\n", escape(p["version"].get<std::string>()),
                    escape(p["git_revision"].get<std::string>()), escape(p["date"].get<std::string>()), p["seed"].get<std::uint64_t>(),
@@ -746,25 +748,23 @@ std::string comparison_hazard_html(const field::FieldComparison& c, const Displa
   std::string o = "<h2>Each design's hazard</h2>\n<p>From each design's own run over the same objects, as <code>j232 hazard</code> "
                   "gives it: the hazard distance (hazardous impacts below the acceptable density for good; conservative: on "
                   "the density's 95 % upper bound) and a person's probability of being struck in one pass.</p>\n";
-  o += "<table><tr><th>design</th><th>hazard distance (estimate / conservative)</th><th>a person at a plane: P(struck) in one pass "
-       "(95 %)</th></tr>\n";
+  HtmlTable hazards({"design", "hazard distance (estimate / conservative)", "a person at a plane: P(struck) in one pass (95 %)"});
   for (std::size_t d = 0; d < c.designs.size(); ++d) {
     const auto& design = c.designs[d];
-    o += fmt::format("<tr><td>{}{}</td><td>", d == 0 ? "reference: " : fmt::format("design {}: ", d + 1), escape(design.title));
+    const std::string name = (d == 0 ? "reference: " : fmt::format("design {}: ", d + 1)) + escape(design.title);
     if (!design.hazard.valid) {
-      o += fmt::format("<strong>no hazard assessment</strong>: {}</td><td></td></tr>\n", escape(design.hazard.invalid_reason));
+      hazards.row({name, "<strong>no hazard assessment</strong>: " + escape(design.hazard.invalid_reason), ""});
       continue;
     }
+    std::string distances, people;
     for (const auto& dir : design.hazard.directions)
-      o += fmt::format("{}: {} / {}<br>", dir.direction, distance_words(dir, false, design.range, u), distance_words(dir, true, design.range, u));
-    o += "</td><td>";
+      distances += fmt::format("{}: {} / {}<br>", dir.direction, distance_words(dir, false, design.range, u), distance_words(dir, true, design.range, u));
     for (const auto& pl : design.hazard.planes)
       if (pl.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && pl.along_path)
-        o += fmt::format("'{}': {:.3g} ({:.3g}-{:.3g})<br>", escape(pl.plane.name), pl.probability.value, pl.probability.low,
-                         pl.probability.high);
-    o += "</td></tr>\n";
+        people += fmt::format("'{}': {:.3g} ({:.3g}-{:.3g})<br>", escape(pl.plane.name), pl.probability.value, pl.probability.low, pl.probability.high);
+    hazards.row({name, distances, people});
   }
-  o += "</table>\n";
+  o += hazards.html();
   const auto& first = c.designs.front().hazard.directions;
   for (std::size_t i = 0; i < first.size(); ++i) {
     Chart chart(fmt::format("Probability of being struck in one pass: {}", first[i].direction),
@@ -811,26 +811,26 @@ std::string hazard_comparison_html(const field::FieldComparison& c, const Displa
       c.objects, c.seed, u.mowed(),
       u.us ? " Figures per mile mowed and distances in feet (US customary units); compare.json and compare.csv keep SI units (per km, m)."
            : "");
-  o += "<table><tr><th>figure</th>";
+  std::vector<std::string> header = {"figure"};
   for (std::size_t d = 0; d < c.designs.size(); ++d)
-    o += fmt::format("<th>{}{}</th>", d == 0 ? "reference: " : fmt::format("design {}: ", d + 1), escape(c.designs[d].title));
-  o += "</tr>\n";
+    header.push_back((d == 0 ? "reference: " : fmt::format("design {}: ", d + 1)) + escape(c.designs[d].title));
+  HtmlTable figures(header);
   for (std::size_t j = 0; j < c.designs.front().figures.size(); ++j) {
     const std::string& name = c.designs.front().figures[j].name;
-    o += fmt::format("<tr><td>{}{}</td>", escape(in_units(name, u)), u.us ? " (per mile)" : "");
+    std::vector<std::string> cells = {escape(in_units(name, u)) + (u.us ? " (per mile)" : "")};
     for (std::size_t d = 0; d < c.designs.size(); ++d) {
       const auto& f = c.designs[d].figures[j].per_km;
-      o += fmt::format("<td>{:.4g} ({:.4g}-{:.4g})", u.per_mowed(f.value), u.per_mowed(f.low), u.per_mowed(f.high));
+      std::string cell = fmt::format("{:.4g} ({:.4g}-{:.4g})", u.per_mowed(f.value), u.per_mowed(f.low), u.per_mowed(f.high));
       if (d > 0) {
         const auto& x = c.designs[d].differences[j];
-        o += fmt::format("<br><small>minus the reference: {:+.4g} ({:+.4g} to {:+.4g}); {} objects differ</small>", u.per_mowed(x.per_km.value),
-                         u.per_mowed(x.per_km.low), u.per_mowed(x.per_km.high), x.objects_differing);
+        cell += fmt::format("<br><small>minus the reference: {:+.4g} ({:+.4g} to {:+.4g}); {} objects differ</small>", u.per_mowed(x.per_km.value),
+                            u.per_mowed(x.per_km.low), u.per_mowed(x.per_km.high), x.objects_differing);
       }
-      o += "</td>";
+      cells.push_back(cell);
     }
-    o += "</tr>\n";
+    figures.row(cells);
   }
-  o += "</table>\n";
+  o += figures.html();
   o += comparison_hazard_html(c, u);
   o += fmt::format("<section id=\"provenance\"><p class=\"small\">{:.1f} s.</p></section>\n", c.wall_seconds);
   o += page_foot();
