@@ -763,4 +763,10 @@ TEST_CASE("report: a page's table writes its header and rows as given, each cell
         "<table><tr><th>kind</th><th>met per km</th></tr>\n<tr><td>gravel</td><td>1.5e+04</td></tr>\n"
         "<tr><td><b>cobble</b></td><td></td></tr>\n</table>\n");
   CHECK(report::HtmlTable({"a"}).html() == "<table><tr><th>a</th></tr>\n</table>\n");
+  // A table of figures, in sections, with a cell across columns.
+  report::HtmlTable n("numbers", {"design", "verdict", "P(pass)"});
+  n.row({"1", {"no verdict", " colspan=\"2\""}});
+  CHECK(n.html() ==
+        "<table class=\"numbers\"><thead><tr><th>design</th><th>verdict</th><th>P(pass)</th></tr></thead><tbody>\n"
+        "<tr><td>1</td><td colspan=\"2\">no verdict</td></tr>\n</tbody></table>\n");
 }

@@ -4,6 +4,7 @@
 
 #include "assess/tally.hpp"
 #include "report/html_page.hpp"
+#include "report/html_table.hpp"
 #include "report/svg_chart.hpp"
 #include "report/text_safety.hpp"
 
@@ -170,8 +171,8 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
       "comparison).</p>\n",
       number("replicates", c["replicates"], "{}"), number("seed", c["seed"], "{}"));
   // Each design's own verdict first, as its run would give it.
-  o += "<h2>Each design's verdict</h2>\n<table class=\"numbers\"><thead><tr><th>design</th><th>verdict</th><th>P(pass one test)</th>"
-       "<th>from every nail</th><th>decided by</th><th>mean share</th><th>limit</th><th>margin</th></tr></thead><tbody>\n";
+  o += "<h2>Each design's verdict</h2>\n";
+  HtmlTable verdicts("numbers", {"design", "verdict", "P(pass one test)", "from every nail", "decided by", "mean share", "limit", "margin"});
   for (std::size_t d = 0; d < designs.size(); ++d) {
     const auto& x = designs[d];
     const std::string key = fmt::format("designs.{}.", d);
@@ -180,47 +181,51 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
     if (verdict == "invalid") {
       std::string why;
       for (const auto& w : x["invalid_because"]) why += (why.empty() ? "" : "; ") + w.get<std::string>();
-      o += fmt::format("<tr><td>{}</td><td>no verdict (invalid)</td><td colspan=\"6\">{}</td></tr>\n", d + 1, escape(why));
+      verdicts.row({fmt::format("{}", d + 1), "no verdict (invalid)", {escape(why), " colspan=\"6\""}});
       continue;
     }
     const auto& p = x["pass_probability"];
     const auto& e = x["pass_probability_exact"];
     const auto& dc = x["deciding_criterion"];
-    o += fmt::format("<tr><td>{}</td><td>{}{}</td><td>{} ({} to {})</td><td>{}</td><td>{}</td><td>{} %</td><td>{} %</td><td>{} points</td></tr>\n",
-                     d + 1, number(key + "verdict", x["verdict"], "{}"), x["verdict_settled"].get<bool>() ? "" : " (not settled)",
-                     number(key + "pass_probability.estimate", p["estimate"], "{:.3f}"), number(key + "pass_probability.low", p["low"], "{:.3f}"),
-                     number(key + "pass_probability.high", p["high"], "{:.3f}"),
-                     e.value("computed", false)
-                         ? fmt::format("{} ({} to {})", number(key + "pass_probability_exact.estimate", e["estimate"], "{:.3f}"),
-                                       number(key + "pass_probability_exact.low", e["low"], "{:.3f}"),
-                                       number(key + "pass_probability_exact.high", e["high"], "{:.3f}"))
-                         : std::string("&mdash;"),
-                     escape(dc["name"].get<std::string>()), number(key + "deciding_criterion.mean_share", dc["mean_share"], "{:.2f}", 100),
-                     number(key + "deciding_criterion.limit", dc["limit"], "{:.1f}", 100),
-                     number(key + "deciding_criterion.margin", dc["margin"], "{:+.2f}", 100));
+    verdicts.row({fmt::format("{}", d + 1), number(key + "verdict", x["verdict"], "{}") + (x["verdict_settled"].get<bool>() ? "" : " (not settled)"),
+                  fmt::format("{} ({} to {})", number(key + "pass_probability.estimate", p["estimate"], "{:.3f}"),
+                              number(key + "pass_probability.low", p["low"], "{:.3f}"), number(key + "pass_probability.high", p["high"], "{:.3f}")),
+                  e.value("computed", false)
+                      ? fmt::format("{} ({} to {})", number(key + "pass_probability_exact.estimate", e["estimate"], "{:.3f}"),
+                                    number(key + "pass_probability_exact.low", e["low"], "{:.3f}"),
+                                    number(key + "pass_probability_exact.high", e["high"], "{:.3f}"))
+                      : std::string("&mdash;"),
+                  escape(dc["name"].get<std::string>()), number(key + "deciding_criterion.mean_share", dc["mean_share"], "{:.2f}", 100) + " %",
+                  number(key + "deciding_criterion.limit", dc["limit"], "{:.1f}", 100) + " %",
+                  number(key + "deciding_criterion.margin", dc["margin"], "{:+.2f}", 100) + " points"});
   }
-  o += "</tbody></table>\n";
+  o += verdicts.html();
   // P(pass)
-  o += "<h2>P(pass one test)</h2>\n<table class=\"numbers\"><thead><tr><th>design</th><th>P(pass)</th><th>95 % interval</th>"
-       "<th>minus design 1</th><th>95 % interval</th><th>independent runs: &plusmn;</th></tr></thead><tbody>\n";
+  o += "<h2>P(pass one test)</h2>\n";
+  const std::vector<HtmlCell> versus = {"minus design 1", "95 % interval", "independent runs: &plusmn;"};
+  const auto header = [&](std::vector<HtmlCell> own) {
+    own.insert(own.end(), versus.begin(), versus.end());
+    return own;
+  };
+  HtmlTable pass("numbers", header({"design", "P(pass)", "95 % interval"}));
   for (std::size_t d = 0; d < designs.size(); ++d) {
     const std::string key = fmt::format("designs.{}.pass_probability", d);
     const auto& p = designs[d]["pass_probability"];
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} to {}</td>", d + 1, number(key + ".estimate", p["estimate"], "{:.3f}"),
-                     number(key + ".low", p["low"], "{:.3f}"), number(key + ".high", p["high"], "{:.3f}"));
+    std::vector<HtmlCell> cells = {fmt::format("{}", d + 1), number(key + ".estimate", p["estimate"], "{:.3f}"),
+                                   fmt::format("{} to {}", number(key + ".low", p["low"], "{:.3f}"), number(key + ".high", p["high"], "{:.3f}"))};
     if (d == 0) {
-      o += "<td>&mdash;</td><td></td><td></td></tr>\n";
-      continue;
+      cells.insert(cells.end(), {"&mdash;", "", ""});
+    } else {
+      const std::string dk = fmt::format("differences.{}", d - 1);
+      const auto& v = c["differences"][d - 1];
+      cells.insert(cells.end(), {number(dk + ".pass_probability.mean", v["pass_probability"]["mean"], "{:+.3f}"),
+                                 fmt::format("{} to {}", number(dk + ".pass_probability.low", v["pass_probability"]["low"], "{:+.3f}"),
+                                             number(dk + ".pass_probability.high", v["pass_probability"]["high"], "{:+.3f}")),
+                                 number(dk + ".independent_runs_pass_half_width", v["independent_runs_pass_half_width"], "{:.3f}")});
     }
-    const std::string dk = fmt::format("differences.{}", d - 1);
-    const auto& v = c["differences"][d - 1];
-    o += fmt::format("<td>{}</td><td>{} to {}</td><td>{}</td></tr>\n",
-                     number(dk + ".pass_probability.mean", v["pass_probability"]["mean"], "{:+.3f}"),
-                     number(dk + ".pass_probability.low", v["pass_probability"]["low"], "{:+.3f}"),
-                     number(dk + ".pass_probability.high", v["pass_probability"]["high"], "{:+.3f}"),
-                     number(dk + ".independent_runs_pass_half_width", v["independent_runs_pass_half_width"], "{:.3f}"));
+    pass.row(cells);
   }
-  o += "</tbody></table>\n";
+  o += pass.html();
   // How many replicates differ at all: a zero-wide interval below means none did.
   for (std::size_t d = 1; d < designs.size(); ++d) {
     const auto& v = c["differences"][d - 1];
@@ -236,10 +241,8 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
   }
   // Each criterion: a table row per design and a chart with the limit.
   for (int k = 0; k < 4; ++k) {
-    o += fmt::format(
-        "<h2>{}</h2>\n<table class=\"numbers\"><thead><tr><th>design</th><th>mean share</th><th>95 % interval</th>"
-        "<th>minus design 1</th><th>95 % interval</th><th>independent runs: &plusmn;</th></tr></thead><tbody>\n",
-        kCriterionWords[k]);
+    o += fmt::format("<h2>{}</h2>\n", kCriterionWords[k]);
+    HtmlTable shares("numbers", header({"design", "mean share", "95 % interval"}));
     Chart chart(fmt::format("{}: each design's mean share and its 95 % interval", kCriterionWords[k]), "design",
                 "mean share of the nails fed (%)", 640, 300);
     std::vector<double> x, y, lo, hi;
@@ -250,21 +253,21 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
       y.push_back(100 * s["mean"].get<double>());
       lo.push_back(100 * s["low"].get<double>());
       hi.push_back(100 * s["high"].get<double>());
-      o += fmt::format("<tr><td>{}</td><td>{} %</td><td>{} to {} %</td>", d + 1, number(key + ".mean", s["mean"], "{:.3f}", 100),
-                       number(key + ".low", s["low"], "{:.3f}", 100), number(key + ".high", s["high"], "{:.3f}", 100));
+      std::vector<HtmlCell> cells = {fmt::format("{}", d + 1), number(key + ".mean", s["mean"], "{:.3f}", 100) + " %",
+                                     fmt::format("{} to {} %", number(key + ".low", s["low"], "{:.3f}", 100), number(key + ".high", s["high"], "{:.3f}", 100))};
       if (d == 0) {
-        o += "<td>&mdash;</td><td></td><td></td></tr>\n";
-        continue;
+        cells.insert(cells.end(), {"&mdash;", "", ""});
+      } else {
+        const std::string dk = fmt::format("differences.{}.criteria.{}", d - 1, k);
+        const auto& v = c["differences"][d - 1]["criteria"][k];
+        cells.insert(cells.end(), {number(dk + ".difference.mean", v["difference"]["mean"], "{:+.3f}", 100) + " %",
+                                   fmt::format("{} to {} %", number(dk + ".difference.low", v["difference"]["low"], "{:+.3f}", 100),
+                                               number(dk + ".difference.high", v["difference"]["high"], "{:+.3f}", 100)),
+                                   number(dk + ".independent_runs_half_width", v["independent_runs_half_width"], "{:.3f}", 100) + " %"});
       }
-      const std::string dk = fmt::format("differences.{}.criteria.{}", d - 1, k);
-      const auto& v = c["differences"][d - 1]["criteria"][k];
-      o += fmt::format("<td>{} %</td><td>{} to {} %</td><td>{} %</td></tr>\n",
-                       number(dk + ".difference.mean", v["difference"]["mean"], "{:+.3f}", 100),
-                       number(dk + ".difference.low", v["difference"]["low"], "{:+.3f}", 100),
-                       number(dk + ".difference.high", v["difference"]["high"], "{:+.3f}", 100),
-                       number(dk + ".independent_runs_half_width", v["independent_runs_half_width"], "{:.3f}", 100));
+      shares.row(cells);
     }
-    o += "</tbody></table>\n";
+    o += shares.html();
     const double limit = 100 * designs[0]["criteria"][k]["limit"].get<double>();
     chart.x_range(0.5, static_cast<double>(designs.size()) + 0.5);
     std::vector<double> ticks;

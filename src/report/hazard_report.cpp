@@ -505,13 +505,13 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   o += distances.html();
   // How the setback moves with what is judged acceptable: each distance at other densities.
   o += "<p>How the hazard distance moves with the acceptable density (estimate / conservative; the scenario's in bold):</p>\n";
-  std::vector<std::string> header = {"one hazardous impact per"};
+  std::vector<HtmlCell> header = {"one hazardous impact per"};
   for (const auto& d : sum.directions) header.push_back(d.direction);
   HtmlTable setbacks(header);
   for (std::size_t b = 0; !sum.directions.empty() && b < sum.directions.front().setbacks.size(); ++b) {
     const double area = 1 / sum.directions.front().setbacks[b].acceptable_density;
     const bool own = std::abs(area - s.field.acceptable_area) < 1e-9 * area;
-    std::vector<std::string> cells = {fmt::format("{}{} {}{}", own ? "<strong>" : "", fmt::format(fmt::runtime(u.us ? "{:.4g}" : "{:.3g}"), u.area(area)),
+    std::vector<HtmlCell> cells = {fmt::format("{}{} {}{}", own ? "<strong>" : "", fmt::format(fmt::runtime(u.us ? "{:.4g}" : "{:.3g}"), u.area(area)),
                                                   u.area_unit_html(), own ? "</strong>" : "")};
     for (const auto& d : sum.directions) {
       field::DirectionCurve at = d;  // the setback's figures in the curve's fields, for distance_words
@@ -616,13 +616,13 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     o += "<figure>" + reach.svg() + "</figure>\n";
   }
   o += "<h2>Objects simulated</h2>\n";
-  std::vector<std::string> kinds_header = {"kind", fmt::format("met per {}", u.mowed()), "share that can reach a blade", "simulated"};
+  std::vector<HtmlCell> kinds_header = {"kind", fmt::format("met per {}", u.mowed()), "share that can reach a blade", "simulated"};
   for (int i = 0; i < field::kObjectFates; ++i) kinds_header.push_back(field::object_fate_name(static_cast<field::ObjectFate>(i)));
   for (const char* h : {"at rest under the deck", "left the square", "a knife rode over", "pushed along by an arm"}) kinds_header.push_back(h);
   HtmlTable kinds(kinds_header);
   for (std::size_t k = 0; k < run.kinds.size(); ++k) {
     const auto& t = run.kinds[k];
-    std::vector<std::string> cells = {escape(s.field.objects[k].name), fmt::format("{:.0f}", u.per_mowed(1000 * sim.objects_per_metre(k))),
+    std::vector<HtmlCell> cells = {escape(s.field.objects[k].name), fmt::format("{:.0f}", u.per_mowed(1000 * sim.objects_per_metre(k))),
                                       fmt::format("{:.3g}", sim.reach_share(k)), fmt::format("{}", t.objects)};
     for (int i = 0; i < field::kObjectFates; ++i) cells.push_back(fmt::format("{}", t.fates[static_cast<std::size_t>(i)]));
     for (const auto n : {t.at_rest_under_deck, t.left_square, t.ridden_over, t.pushed_along}) cells.push_back(fmt::format("{}", n));
@@ -811,13 +811,13 @@ std::string hazard_comparison_html(const field::FieldComparison& c, const Displa
       c.objects, c.seed, u.mowed(),
       u.us ? " Figures per mile mowed and distances in feet (US customary units); compare.json and compare.csv keep SI units (per km, m)."
            : "");
-  std::vector<std::string> header = {"figure"};
+  std::vector<HtmlCell> header = {"figure"};
   for (std::size_t d = 0; d < c.designs.size(); ++d)
     header.push_back((d == 0 ? "reference: " : fmt::format("design {}: ", d + 1)) + escape(c.designs[d].title));
   HtmlTable figures(header);
   for (std::size_t j = 0; j < c.designs.front().figures.size(); ++j) {
     const std::string& name = c.designs.front().figures[j].name;
-    std::vector<std::string> cells = {escape(in_units(name, u)) + (u.us ? " (per mile)" : "")};
+    std::vector<HtmlCell> cells = {escape(in_units(name, u)) + (u.us ? " (per mile)" : "")};
     for (std::size_t d = 0; d < c.designs.size(); ++d) {
       const auto& f = c.designs[d].figures[j].per_km;
       std::string cell = fmt::format("{:.4g} ({:.4g}-{:.4g})", u.per_mowed(f.value), u.per_mowed(f.low), u.per_mowed(f.high));

@@ -1,32 +1,50 @@
 #pragma once
 // A table of an HTML page, built a row at a time: a header row, rows of cells, each cell's
 // HTML given as it is to be written (text escaped by the caller, report::escape). One place
-// writes the markup, so a page's tables cannot drift apart in it:
+// writes the markup, so a page's tables cannot drift apart in it. Plain:
 //   <table><tr><th>a</th><th>b</th></tr>\n<tr><td>1</td><td>2</td></tr>\n</table>\n
+// or, with a class (a table of figures, "numbers": right-aligned columns), in sections:
+//   <table class="numbers"><thead><tr><th>a</th></tr></thead><tbody>\n<tr><td>1</td></tr>\n</tbody></table>\n
 #include <string>
 #include <vector>
 
 namespace j232::report {
 
+// A cell's HTML and, rarely, its attributes (` colspan="6"`).
+struct HtmlCell {
+  std::string html, attributes;
+  HtmlCell(std::string h) : html(std::move(h)) {}  // NOLINT: a cell is usually just its HTML
+  HtmlCell(const char* h) : html(h) {}             // NOLINT
+  HtmlCell(std::string h, std::string a) : html(std::move(h)), attributes(std::move(a)) {}
+};
+
 class HtmlTable {
  public:
-  explicit HtmlTable(const std::vector<std::string>& header) {
+  explicit HtmlTable(const std::vector<HtmlCell>& header) {
     out_ = "<table>";
     add("th", header);
+    out_ += "\n";
   }
-  HtmlTable& row(const std::vector<std::string>& cells) {
+  HtmlTable(const std::string& css_class, const std::vector<HtmlCell>& header) : sections_(true) {
+    out_ = "<table class=\"" + css_class + "\"><thead>";
+    add("th", header);
+    out_ += "</thead><tbody>\n";
+  }
+  HtmlTable& row(const std::vector<HtmlCell>& cells) {
     add("td", cells);
+    out_ += "\n";
     return *this;
   }
-  std::string html() const { return out_ + "</table>\n"; }
+  std::string html() const { return out_ + (sections_ ? "</tbody></table>\n" : "</table>\n"); }
 
  private:
-  void add(const char* tag, const std::vector<std::string>& cells) {
+  void add(const char* tag, const std::vector<HtmlCell>& cells) {
     out_ += "<tr>";
-    for (const auto& c : cells) out_ += std::string("<") + tag + ">" + c + "</" + tag + ">";
-    out_ += "</tr>\n";
+    for (const auto& c : cells) out_ += std::string("<") + tag + c.attributes + ">" + c.html + "</" + tag + ">";
+    out_ += "</tr>";
   }
   std::string out_;
+  bool sections_ = false;
 };
 
 }  // namespace j232::report
