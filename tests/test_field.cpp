@@ -765,7 +765,7 @@ TEST_CASE("report: a page's table writes its header and rows as given, each cell
   CHECK(report::HtmlTable({"a"}).html() == "<table><tr><th>a</th></tr>\n</table>\n");
   // A table of figures, in sections, with a cell across columns.
   report::HtmlTable n("numbers", {"design", "verdict", "P(pass)"});
-  n.row({"1", {"no verdict", " colspan=\"2\""}});
+  n.row({"1", report::HtmlCell::spanning(2, "no verdict")});
   CHECK(n.html() ==
         "<table class=\"numbers\"><thead><tr><th>design</th><th>verdict</th><th>P(pass)</th></tr></thead><tbody>\n"
         "<tr><td>1</td><td colspan=\"2\">no verdict</td></tr>\n</tbody></table>\n");

@@ -181,7 +181,7 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
     if (verdict == "invalid") {
       std::string why;
       for (const auto& w : x["invalid_because"]) why += (why.empty() ? "" : "; ") + w.get<std::string>();
-      verdicts.row({fmt::format("{}", d + 1), "no verdict (invalid)", {escape(why), " colspan=\"6\""}});
+      verdicts.row({fmt::format("{}", d + 1), "no verdict (invalid)", HtmlCell::spanning(6, escape(why))});
       continue;
     }
     const auto& p = x["pass_probability"];

@@ -6,16 +6,22 @@
 // or, with a class (a table of figures, "numbers": right-aligned columns), in sections:
 //   <table class="numbers"><thead><tr><th>a</th></tr></thead><tbody>\n<tr><td>1</td></tr>\n</tbody></table>\n
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace j232::report {
 
-// A cell's HTML and, rarely, its attributes (` colspan="6"`).
+// A cell's HTML and, rarely, its attributes (` colspan="6"`, from `spanning`).
 struct HtmlCell {
   std::string html, attributes;
   HtmlCell(std::string h) : html(std::move(h)) {}  // NOLINT: a cell is usually just its HTML
   HtmlCell(const char* h) : html(h) {}             // NOLINT
-  HtmlCell(std::string h, std::string a) : html(std::move(h)), attributes(std::move(a)) {}
+  // A cell across `columns` columns.
+  static HtmlCell spanning(int columns, std::string h) {
+    HtmlCell c(std::move(h));
+    c.attributes = " colspan=\"" + std::to_string(columns) + "\"";
+    return c;
+  }
 };
 
 class HtmlTable {
