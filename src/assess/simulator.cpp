@@ -71,7 +71,7 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   const feed::NailDrop drop = feed::sample_drop(s, nail, feed_rng);
   if (replay) replay->drop = drop;
   // The spindle this nail's station feeds strikes it (drop and strike are about its axis).
-  const std::size_t k0 = s.feed_station(static_cast<std::size_t>(drop.station)).spindle;
+  const std::size_t k0 = drop.spindle;
   const strike::Spindle& spindle = spindles_[k0];
   const scenario::SpindleSpec& spec = s.spindles[k0];
   out.station = drop.station;

@@ -12,6 +12,7 @@ NailDrop sample_drop(const scenario::Scenario& s, int nail_index, random::Stream
   NailDrop d;
   d.station = nail_index % static_cast<int>(s.feed_station_count());
   const scenario::FeedStation st = s.feed_station(static_cast<std::size_t>(d.station));
+  d.spindle = st.spindle;
   // Nail as made: uniform within tolerance; mass follows length.
   const double length_factor = rng.uniform(-1.0, 1.0);
   d.nail = projectile::Projectile::capsule(n.length + n.length_tolerance * length_factor, n.diameter,

@@ -20,6 +20,7 @@ inline constexpr double kGravity = units::standard_gravity;
 
 struct NailDrop {
   int station = 0;
+  std::size_t spindle = 0;  // the spindle whose blade the station feeds
   projectile::Projectile nail;
   Vec3 axis = Vec3::UnitZ();                           // unit, tip -> head
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  // the tip at t = 0, from the spindle's axis, m

@@ -519,17 +519,18 @@ void read_ground(const TableReader& g, GroundSpec& ground, bool field) {
   g.refuse_unknown_keys();
 }
 
-// `reach`: the blades' reach, for the check that the board stands outside the deck;
-// `default_top`: the board's top when it is not written (Scenario::target_top).
-void read_target(const TableReader& t, TargetSpec& target, double reach, double deck_radius, double default_top) {
+// Into s.target; the blades and the deck already read (the board must stand outside the deck,
+// its top, written or derived, above its bottom).
+void read_target(const TableReader& t, Scenario& s) {
+  TargetSpec& target = s.target;
   target.distance = t.quantity_or("distance", Kind::Length, target.distance, Range::between(0.05, 10));
   target.bottom = t.quantity_or("bottom", Kind::Length, target.bottom, Range::between(0, 5));
   if (t.has("top")) target.top = t.quantity("top", Kind::Length, Range::positive_up_to(10));
   target.segments = static_cast<int>(t.integer_or("segments", target.segments, 16, 3600));
   const std::string shape = t.string_or("shape", "circle", {"circle", "outline"});
   target.shape = shape == "outline" ? TargetSpec::Shape::Outline : TargetSpec::Shape::Circle;
-  if (target.top.value_or(default_top) <= target.bottom) throw t.error("top", "expected the board's top above its bottom");
-  if (reach + target.distance <= deck_radius) throw t.error("distance", "expected the board outside the mower deck");
+  if (s.target_top() <= target.bottom) throw t.error("top", "expected the board's top above its bottom");
+  if (s.reach() + target.distance <= s.deck_radius()) throw t.error("distance", "expected the board outside the mower deck");
   t.refuse_unknown_keys();
 }
 
@@ -1126,7 +1127,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
 
   if (auto g = root.table("ground")) read_ground(*g, s.ground, root.has("field"));
 
-  if (auto t = root.table("target")) read_target(*t, s.target, reach, s.deck_radius(), s.blade_plane() + 0.610);
+  if (auto t = root.table("target")) read_target(*t, s);
 
   const auto base = std::filesystem::path(file).parent_path();
   for (const auto& m : root.array_of_tables("meshes", 32)) s.meshes.push_back(read_mesh_file(m, base, s.notes));
