@@ -769,4 +769,15 @@ TEST_CASE("report: a page's table writes its header and rows as given, each cell
   CHECK(n.html() ==
         "<table class=\"numbers\"><thead><tr><th>design</th><th>verdict</th><th>P(pass)</th></tr></thead><tbody>\n"
         "<tr><td>1</td><td colspan=\"2\">no verdict</td></tr>\n</tbody></table>\n");
+  // In sections without a class, a row with attributes, and a list of keys without a header.
+  report::HtmlTable a("", {"assumption"});
+  a.row({"rigid rod"}, " class=\"deciding\"");
+  CHECK(a.html() == "<table><thead><tr><th>assumption</th></tr></thead><tbody>\n<tr class=\"deciding\"><td>rigid rod</td></tr>\n</tbody></table>\n");
+  auto k = report::HtmlTable::without_header("keys");
+  k.row({"seed", "7"});
+  CHECK(k.html() == "<table class=\"keys\"><tbody>\n<tr><td>seed</td><td>7</td></tr>\n</tbody></table>\n");
+  report::HtmlTable r("numbers", {"input", "value"});
+  r.row({report::HtmlCell::spanning_rows(2, "e"), report::HtmlCell::of_class("verdict-cell", "0.4")}).row({"0.6"});
+  CHECK(r.html() == "<table class=\"numbers\"><thead><tr><th>input</th><th>value</th></tr></thead><tbody>\n"
+                    "<tr><td rowspan=\"2\">e</td><td class=\"verdict-cell\">0.4</td></tr>\n<tr><td>0.6</td></tr>\n</tbody></table>\n");
 }

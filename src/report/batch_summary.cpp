@@ -5,6 +5,7 @@
 #include "assess/tally.hpp"
 #include "report/comparison_report.hpp"
 #include "report/html_page.hpp"
+#include "report/html_table.hpp"
 #include "report/svg_chart.hpp"
 #include "report/text_safety.hpp"
 
@@ -129,39 +130,36 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
       "verdict); {} refused as bad input.</p></section>\n",
       all ? "pass" : "fail", number("passed", summary["passed"], "{}"), number("scenarios", summary["scenarios"], "{}"),
       number("failed", summary["failed"], "{}"), number("invalid", summary["invalid"], "{}"), number("refused", summary["refused"], "{}"));
-  o += "<table class=\"numbers\"><thead><tr><th>scenario</th><th>verdict</th><th>P(pass)<br><small>the verdict's basis</small></th><th>95 % interval</th><th>required</th>"
-       "<th>hits, zone</th><th>punctures, zone</th><th>hits, outside</th><th>punctures, outside</th><th>replicates</th><th>report</th>"
-       "</tr></thead><tbody>\n";
+  HtmlTable tests("numbers", {"scenario", "verdict", "P(pass)<br><small>the verdict's basis</small>", "95 % interval", "required",
+                              "hits, zone", "punctures, zone", "hits, outside", "punctures, outside", "replicates", "report"});
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
     if (r.hazard) continue;  // in the field table below
     if (!r.result) {
-      o += fmt::format("<tr class=\"error\"><td>{}</td><td class=\"verdict-cell\">refused</td><td colspan=\"9\">{}</td></tr>\n",
-                       escape(r.scenario), escape(r.error));
+      tests.row({escape(r.scenario), HtmlCell::of_class("verdict-cell", "refused"), HtmlCell::spanning(9, escape(r.error))},
+                " class=\"error\"");
       continue;
     }
     const json& x = *r.result;
     const std::string k = fmt::format("rows.{}.", i);
-    o += fmt::format(
-        "<tr class=\"{}\"><td>{}<br><small>{}</small></td><td class=\"verdict-cell\">{}{}</td><td>{}</td><td>{} – {}</td><td>{}</td>",
-        verdict_of(r), escape(x["scenario"]["title"].get<std::string>()), escape(r.scenario), verdict_of(r),
-        verdict_of(r) != "invalid" && !x["verdict_settled"].get<bool>() ? " (not settled)" : "",
+    std::vector<HtmlCell> cells = {
+        fmt::format("{}<br><small>{}</small>", escape(x["scenario"]["title"].get<std::string>()), escape(r.scenario)),
+        HtmlCell::of_class("verdict-cell", verdict_of(r) + (verdict_of(r) != "invalid" && !x["verdict_settled"].get<bool>() ? " (not settled)" : "")),
         number(k + "pass_probability.estimate", verdict_pass(x)["estimate"], "{:.3f}"),
-        number(k + "pass_probability.low", verdict_pass(x)["low"], "{:.3f}"),
-        number(k + "pass_probability.high", verdict_pass(x)["high"], "{:.3f}"),
-        number(k + "required_pass_probability", x["required_pass_probability"], "{:.2f}"));
+        fmt::format("{} – {}", number(k + "pass_probability.low", verdict_pass(x)["low"], "{:.3f}"),
+                    number(k + "pass_probability.high", verdict_pass(x)["high"], "{:.3f}")),
+        number(k + "required_pass_probability", x["required_pass_probability"], "{:.2f}")};
     for (std::size_t c = 0; c < 4; ++c)
-      o += fmt::format("<td>{} %</td>", number(k + "mean_shares." + assess::category_name(static_cast<int>(c)),
-                                               x["criteria"][c]["mean_share"], "{:.2f}", 100));
-    o += fmt::format("<td>{}</td><td><a href=\"{}\">report</a></td></tr>\n", number(k + "replicates", x["replicates"], "{}"),
-                     escape(relative_url(r.folder + "/report.html")));
+      cells.emplace_back(number(k + "mean_shares." + assess::category_name(static_cast<int>(c)), x["criteria"][c]["mean_share"], "{:.2f}", 100) + " %");
+    cells.emplace_back(number(k + "replicates", x["replicates"], "{}"));
+    cells.emplace_back(fmt::format("<a href=\"{}\">report</a>", escape(relative_url(r.folder + "/report.html"))));
+    tests.row(cells, fmt::format(" class=\"{}\"", verdict_of(r)));
   }
-  o += "</tbody></table>\n<p>Shares are the mean over replicates of each kind of mark as a share of the denominator the scenario "
+  o += tests.html() + "<p>Shares are the mean over replicates of each kind of mark as a share of the denominator the scenario "
        "sets; each report gives their spread and the criterion that decides its verdict.</p>\n";
   if (summary["fields"].get<std::size_t>() > 0) {
-    o += "<h2>Field scenarios: thrown-object hazard (j232 hazard)</h2>\n<table class=\"numbers\"><thead><tr><th>scenario</th>"
-         "<th>thrown per km</th><th>hazard distance: left, right, front, rear (estimate / conservative)</th><th>planes: hazardous per "
-         "km mowed (95 %)</th><th>report</th></tr></thead><tbody>\n";
+    HtmlTable fields("numbers", {"scenario", "thrown per km", "hazard distance: left, right, front, rear (estimate / conservative)",
+                                 "planes: hazardous per km mowed (95 %)", "report"});
     for (const auto& r : rows) {
       if (!r.hazard) continue;
       const json& h = *r.hazard;
@@ -173,13 +171,13 @@ std::string batch_summary_html(const std::vector<BatchRow>& rows, const json& co
         planes += fmt::format("{}{}: {:.3g} ({:.3g}-{:.3g})", planes.empty() ? "" : "<br>", escape(p["name"].get<std::string>()),
                               p["hazardous_per_km"]["value"].get<double>(), p["hazardous_per_km"]["low"].get<double>(),
                               p["hazardous_per_km"]["high"].get<double>());
-      o += fmt::format("<tr class=\"{}\"><td>{}<br><small>{}</small>{}</td><td>{:.0f}</td><td>{}</td><td>{}</td><td><a href=\"{}\">report</a></td></tr>\n",
-                       verdict_of(r), escape(h["title"].get<std::string>()), escape(r.scenario),
-                       h["valid"].get<bool>() ? "" : "<br><strong>invalid:</strong> " + escape(h["invalid_reason"].get<std::string>()),
-                       h["objects"]["thrown_per_km"].get<double>(), distances, planes.empty() ? "-" : planes,
-                       escape(relative_url(r.folder + "/hazard.html")));
+      fields.row({fmt::format("{}<br><small>{}</small>{}", escape(h["title"].get<std::string>()), escape(r.scenario),
+                              h["valid"].get<bool>() ? "" : "<br><strong>invalid:</strong> " + escape(h["invalid_reason"].get<std::string>())),
+                  fmt::format("{:.0f}", h["objects"]["thrown_per_km"].get<double>()), distances, planes.empty() ? "-" : planes,
+                  fmt::format("<a href=\"{}\">report</a>", escape(relative_url(r.folder + "/hazard.html")))},
+                 fmt::format(" class=\"{}\"", verdict_of(r)));
     }
-    o += "</tbody></table>\n";
+    o += "<h2>Field scenarios: thrown-object hazard (j232 hazard)</h2>\n" + fields.html();
   }
   if (!comparison.is_null())
     o += "<section id=\"comparison\">\n<h2>The designs compared (common random numbers; <a href=\"compare.html\">compare.html</a>)</h2>\n" +

@@ -6,6 +6,7 @@
 
 #include "report/board_views.hpp"
 #include "report/html_page.hpp"
+#include "report/html_table.hpp"
 #include "report/drivers_report.hpp"
 #include "report/uncertainty_report.hpp"
 #include "report/svg_chart.hpp"
@@ -110,22 +111,22 @@ std::string criteria_section(const assess::Summary& sum, const json& r) {
       "Shares are over replicates; P(pass) is the share of replicates in which the criterion held, with its "
       "Wilson 95 % interval.</p>\n",
       r["denominator"] == "marks" ? "all marks (hits plus punctures)" : "the nails fed");
-  o += "<table class=\"numbers\"><thead><tr><th>criterion</th><th>limit</th><th>mean share</th><th>5–95 % of tests</th>"
-       "<th>P(criterion passes)</th><th></th></tr></thead><tbody>\n";
+  HtmlTable criteria("numbers", {"criterion", "limit", "mean share", "5–95 % of tests", "P(criterion passes)", ""});
   for (std::size_t c = 0; c < sum.criteria.size(); ++c) {
     const auto& cj = r["criteria"][c];
     const std::string k = fmt::format("criteria.{}.", c);
     const bool deciding = static_cast<int>(c) == sum.deciding;
-    o += fmt::format("<tr{}><td>{}</td><td>{} %</td><td>{} %</td><td>{} – {} %</td><td>{} ({} – {})</td><td>{}</td></tr>\n",
-                     deciding ? " class=\"deciding\"" : "", escape(cj["name"].get<std::string>()),
-                     number(k + "limit", cj["limit"], "{:.1f}", 100), number(k + "mean_share", cj["mean_share"], "{:.3f}", 100),
-                     number(k + "share_q05", cj["share_q05"], "{:.2f}", 100), number(k + "share_q95", cj["share_q95"], "{:.2f}", 100),
-                     number(k + "pass_probability.estimate", cj["pass_probability"]["estimate"], "{:.3f}"),
-                     number(k + "pass_probability.low", cj["pass_probability"]["low"], "{:.3f}"),
-                     number(k + "pass_probability.high", cj["pass_probability"]["high"], "{:.3f}"),
-                     deciding ? "<strong>decides the verdict</strong>" : "");
+    criteria.row({escape(cj["name"].get<std::string>()), number(k + "limit", cj["limit"], "{:.1f}", 100) + " %",
+                  number(k + "mean_share", cj["mean_share"], "{:.3f}", 100) + " %",
+                  fmt::format("{} – {} %", number(k + "share_q05", cj["share_q05"], "{:.2f}", 100),
+                              number(k + "share_q95", cj["share_q95"], "{:.2f}", 100)),
+                  fmt::format("{} ({} – {})", number(k + "pass_probability.estimate", cj["pass_probability"]["estimate"], "{:.3f}"),
+                              number(k + "pass_probability.low", cj["pass_probability"]["low"], "{:.3f}"),
+                              number(k + "pass_probability.high", cj["pass_probability"]["high"], "{:.3f}")),
+                  deciding ? "<strong>decides the verdict</strong>" : ""},
+                 deciding ? " class=\"deciding\"" : "");
   }
-  o += "</tbody></table>\n";
+  o += criteria.html();
   o += fmt::format(
       "<p>Counted marks: {} in all, {} per nail fed ({} could not be located: more than four marks from one "
       "nail). SAE J232 counts only marks above the plane of the blade tip circle: marks from {} m up are counted; "
@@ -192,10 +193,8 @@ std::string histogram_section(const scenario::Scenario& s, const assess::Assessm
 // Which way the marking nails got out, so the reader sees which path to close.
 std::string exits_section(const json& r) {
   const auto& h = r["how_nails_leave"];
-  std::string o =
-      "<section id=\"exits\">\n<h3>How nails leave the deck</h3>\n<table class=\"numbers\"><thead><tr><th>way out</th>"
-      "<th>struck nails</th><th>share of struck nails</th><th>counted marks</th><th>share of counted marks (95 %)</th>"
-      "<th>where most of its marks left (azimuth)</th></tr></thead><tbody>\n";
+  HtmlTable exits("numbers", {"way out", "struck nails", "share of struck nails", "counted marks", "share of counted marks (95 %)",
+                              "where most of its marks left (azimuth)"});
   for (std::size_t i = 0; i < h["by_exit"].size(); ++i) {
     const auto& e = h["by_exit"][i];
     const std::string key = fmt::format("how_nails_leave.by_exit.{}", i);
@@ -214,12 +213,12 @@ std::string exits_section(const json& r) {
     if (e.contains("share_of_marks_95") && !e["share_of_marks_95"].is_null())
       marks_share += fmt::format(" ({}&ndash;{})", number(key + ".share_of_marks_95.low", e["share_of_marks_95"]["low"], "{:.1f}", 100),
                                  number(key + ".share_of_marks_95.high", e["share_of_marks_95"]["high"], "{:.1f}", 100));
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} %</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                     escape(e["exit"].get<std::string>()), number(key + ".nails", e["nails"], "{}"),
-                     number(key + ".share_of_struck_nails", e["share_of_struck_nails"], "{:.2f}", 100),
-                     number(key + ".marks", e["marks"], "{}"), marks_share, band);
+    exits.row({escape(e["exit"].get<std::string>()), number(key + ".nails", e["nails"], "{}"),
+               number(key + ".share_of_struck_nails", e["share_of_struck_nails"], "{:.2f}", 100) + " %",
+               number(key + ".marks", e["marks"], "{}"), marks_share, band});
   }
-  o += "</tbody></table>\n<p>Counted marks by the number of blade strikes of their nail: ";
+  std::string o = "<section id=\"exits\">\n<h3>How nails leave the deck</h3>\n" + exits.html() +
+                  "<p>Counted marks by the number of blade strikes of their nail: ";
   for (std::size_t i = 0; i < h["by_strikes"].size(); ++i)
     o += fmt::format(
         "{}{}: {} %", i ? ", " : "", h["by_strikes"][i]["strikes"].get<std::string>(),
@@ -243,9 +242,7 @@ std::string exits_section(const json& r) {
 }
 
 std::string fates_section(const json& r) {
-  std::string o =
-      "<section id=\"fates\">\n<h2>4. Where the nails went</h2>\n<table class=\"numbers\"><thead><tr><th>fate</th>"
-      "<th>nails</th><th>share of nails fed</th><th></th></tr></thead><tbody>\n";
+  HtmlTable fates("numbers", {"fate", "nails", "share of nails fed", ""});
   static const std::vector<std::pair<std::string, std::string>> names = {
       {"not_struck", "not struck by the blade"},
       {"contained_by_housing", "contained by the housing (at rest under the deck)"},
@@ -259,13 +256,14 @@ std::string fates_section(const json& r) {
   for (const auto& [key, label] : names) {
     const auto& f = r["fates"][key];
     const double share = f["fraction"].get<double>();
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} %</td><td><span class=\"bar\" style=\"width:{:.1f}px\"></span></td></tr>\n", label,
-                     number("fates." + key + ".nails", f["nails"], "{}"),
-                     number("fates." + key + ".fraction", f["fraction"], "{:.2f}", 100), 240 * share);
+    fates.row({label, number("fates." + key + ".nails", f["nails"], "{}"),
+               number("fates." + key + ".fraction", f["fraction"], "{:.2f}", 100) + " %",
+               fmt::format("<span class=\"bar\" style=\"width:{:.1f}px\"></span>", 240 * share)});
   }
   const auto& k = r["strikes_per_struck_nail"];
+  std::string o = "<section id=\"fates\">\n<h2>4. Where the nails went</h2>\n" + fates.html();
   o += fmt::format(
-      "</tbody></table>\n<p>{} nails fed in all, {} struck. The turning blade is part of the scene: a nail "
+      "<p>{} nails fed in all, {} struck. The turning blade is part of the scene: a nail "
       "that comes back into its disc is struck again. Blade strikes per struck nail: {} on average; {} % were "
       "struck more than once (at most {} times).</p>\n</section>\n",
       number("nails_fed", r["nails_fed"], "{}"), number("nails_struck", r["nails_struck"], "{}"),
@@ -293,37 +291,34 @@ void flatten(const json& j, const std::string& prefix, std::vector<std::pair<std
 std::string scenario_section(const json& r) {
   std::vector<std::pair<std::string, std::string>> rows;
   flatten(r["scenario"], "", rows);
-  std::string o =
-      "<section id=\"scenario\">\n<h2>5. The scenario as run</h2>\n<p>Every value the run used, defaults filled in, "
-      "SI units (the unit is in each key's name).</p>\n<table class=\"keys\"><tbody>\n";
-  for (const auto& [k, v] : rows) o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(k), escape(v));
-  o += "</tbody></table>\n</section>\n";
-  return o;
+  auto keys = HtmlTable::without_header("keys");
+  for (const auto& [k, v] : rows) keys.row({escape(k), escape(v)});
+  return "<section id=\"scenario\">\n<h2>5. The scenario as run</h2>\n<p>Every value the run used, defaults filled in, "
+         "SI units (the unit is in each key's name).</p>\n" +
+         keys.html() + "</section>\n";
 }
 
 std::string assumptions_section(const json& r) {
-  std::string o =
-      "<section id=\"assumptions\">\n<h2>6. Assumptions and their sources</h2>\n<table><thead><tr><th>assumption</th>"
-      "<th>source</th></tr></thead><tbody>\n";
-  for (const auto& x : r["assumptions"])
-    o += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escape(x["assumption"].get<std::string>()),
-                     escape(x["source"].get<std::string>()));
-  o += fmt::format("</tbody></table>\n<p>Denominator of the shares: {}.</p>\n</section>\n", number("denominator", r["denominator"], "{}"));
+  HtmlTable assumptions("", {"assumption", "source"});
+  for (const auto& x : r["assumptions"]) assumptions.row({escape(x["assumption"].get<std::string>()), escape(x["source"].get<std::string>())});
+  std::string o = "<section id=\"assumptions\">\n<h2>6. Assumptions and their sources</h2>\n" + assumptions.html();
+  o += fmt::format("<p>Denominator of the shares: {}.</p>\n</section>\n", number("denominator", r["denominator"], "{}"));
   return o;
 }
 
 std::string provenance_section(const json& r) {
   const auto& p = r["provenance"];
-  std::string o = "<section id=\"provenance\">\n<h2>7. Provenance</h2>\n<table class=\"keys\"><tbody>\n";
-  o += fmt::format("<tr><td>program</td><td>j232 {}</td></tr>\n", escape(p["version"].get<std::string>()));
-  o += fmt::format("<tr><td>git revision</td><td>{}</td></tr>\n", escape(p["git_revision"].get<std::string>()));
-  o += fmt::format("<tr><td>scenario file</td><td>{}</td></tr>\n", escape(r["scenario"]["file"].get<std::string>()));
-  o += fmt::format("<tr><td>seed</td><td>{}</td></tr>\n", number("provenance.seed", p["seed"], "{}"));
-  o += fmt::format("<tr><td>replicates</td><td>{}</td></tr>\n", number("replicates", r["replicates"], "{}"));
-  o += fmt::format("<tr><td>threads</td><td>{}</td></tr>\n", number("provenance.threads", p["threads"], "{}"));
-  o += fmt::format("<tr><td>wall time</td><td>{} s</td></tr>\n", number("provenance.wall_time_s", p["wall_time_s"], "{:.2f}"));
-  o += fmt::format("<tr><td>date (UTC)</td><td>{}</td></tr>\n", escape(p["date"].get<std::string>()));
-  o += "</tbody></table>\n<p>The same scenario, seed and replicates give the same results, bit for bit, on any number of "
+  auto keys = HtmlTable::without_header("keys");
+  keys.row({"program", "j232 " + escape(p["version"].get<std::string>())})
+      .row({"git revision", escape(p["git_revision"].get<std::string>())})
+      .row({"scenario file", escape(r["scenario"]["file"].get<std::string>())})
+      .row({"seed", number("provenance.seed", p["seed"], "{}")})
+      .row({"replicates", number("replicates", r["replicates"], "{}")})
+      .row({"threads", number("provenance.threads", p["threads"], "{}")})
+      .row({"wall time", number("provenance.wall_time_s", p["wall_time_s"], "{:.2f}") + " s"})
+      .row({"date (UTC)", escape(p["date"].get<std::string>())});
+  std::string o = "<section id=\"provenance\">\n<h2>7. Provenance</h2>\n" + keys.html();
+  o += "<p>The same scenario, seed and replicates give the same results, bit for bit, on any number of "
        "threads; only this section changes between runs.</p>\n</section>\n";
   return o;
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "report/html_page.hpp"
+#include "report/html_table.hpp"
 #include "report/svg_chart.hpp"
 #include "report/text_safety.hpp"
 
@@ -71,28 +72,32 @@ std::string drivers_html(const json& r) {
     return o + fmt::format("<p><strong>None of the {} inputs moves it</strong> at either end of its range, at these replicates: the verdict "
                            "does not rest on any one of them (result.json lists each end).</p>\n</section>\n",
                            d["ranked"].size());
-  o += "<p>The three inputs that move it most:</p>\n<table class=\"numbers\"><thead><tr><th>input</th><th>value</th><th>share</th><th>change, points (95 %, paired)</th><th>P(pass) from "
-       "every nail</th><th>its own verdict</th><th>what the range rests on</th></tr></thead><tbody>\n";
+  HtmlTable table("numbers", {"input", "value", "share", "change, points (95 %, paired)", "P(pass) from every nail", "its own verdict",
+                              "what the range rests on"});
   for (std::size_t i = 0; i < d["ranked"].size() && i < kDriversShown; ++i) {
     const auto& in = d["ranked"][i];
     const std::string key = fmt::format("deciding_inputs.ranked.{}", i);
     for (std::size_t e = 0; e < in["ends"].size(); ++e) {
       const auto& end = in["ends"][e];
       const std::string k = fmt::format("{}.ends.{}", key, e);
-      o += "<tr>";
-      if (e == 0) o += fmt::format("<td rowspan=\"{}\">{}</td>", in["ends"].size(), escape(in["input"].get<std::string>()));
-      o += fmt::format("<td>{}</td><td>{} %</td><td>{} ({} to {})</td><td>{}</td><td>{}</td>", escape(end["value"].get<std::string>()),
-                       number(k + ".share", end["share"], "{:.2f}", 100), number(k + ".change.mean", end["change"]["mean"], "{:+.2f}", 100),
-                       number(k + ".change.low", end["change"]["low"], "{:+.2f}", 100), number(k + ".change.high", end["change"]["high"], "{:+.2f}", 100),
-                       number(k + ".p_pass_exact", end["p_pass_exact"], "{:.3f}"), escape(end["verdict"].get<std::string>()));
-      if (e == 0) o += fmt::format("<td rowspan=\"{}\">{}</td>", in["ends"].size(), escape(in["basis"].get<std::string>()));
-      o += "</tr>\n";
+      // The input's name and its range's basis span its ends' rows.
+      std::vector<HtmlCell> cells;
+      if (e == 0) cells.push_back(HtmlCell::spanning_rows(in["ends"].size(), escape(in["input"].get<std::string>())));
+      cells.insert(cells.end(),
+                   {escape(end["value"].get<std::string>()), number(k + ".share", end["share"], "{:.2f}", 100) + " %",
+                    fmt::format("{} ({} to {})", number(k + ".change.mean", end["change"]["mean"], "{:+.2f}", 100),
+                                number(k + ".change.low", end["change"]["low"], "{:+.2f}", 100),
+                                number(k + ".change.high", end["change"]["high"], "{:+.2f}", 100)),
+                    number(k + ".p_pass_exact", end["p_pass_exact"], "{:.3f}"), escape(end["verdict"].get<std::string>())});
+      if (e == 0) cells.push_back(HtmlCell::spanning_rows(in["ends"].size(), escape(in["basis"].get<std::string>())));
+      table.row(cells);
     }
   }
   std::size_t runs = 1;  // the scenario as written, and each end
   for (const auto& in : d["ranked"]) runs += in["ends"].size();
+  o += "<p>The three inputs that move it most:</p>\n" + table.html();
   o += fmt::format(
-      "</tbody></table>\n<p>Every input, ranked, is in result.json (<code>deciding_inputs</code>). One input at a time: what the "
+      "<p>Every input, ranked, is in result.json (<code>deciding_inputs</code>). One input at a time: what the "
       "inputs do together, and how much of the verdict's spread each carries, is <code>j232 uq</code>'s study (Sobol' indices). "
       "These {} runs were asked for with <code>--drivers</code>.</p>\n</section>\n",
       runs);

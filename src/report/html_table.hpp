@@ -5,13 +5,19 @@
 //   <table><tr><th>a</th><th>b</th></tr>\n<tr><td>1</td><td>2</td></tr>\n</table>\n
 // or, with a class (a table of figures, "numbers": right-aligned columns), in sections:
 //   <table class="numbers"><thead><tr><th>a</th></tr></thead><tbody>\n<tr><td>1</td></tr>\n</tbody></table>\n
+// (an empty class: `<table><thead>`), or a body without a header (`without_header("keys")`,
+// a list of keys and values):
+//   <table class="keys"><tbody>\n<tr><td>seed</td><td>7</td></tr>\n</tbody></table>\n
+// A row may carry attributes of its own (` class="deciding"`).
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace j232::report {
 
-// A cell's HTML and, rarely, its attributes (` colspan="6"`, from `spanning`).
+// A cell's HTML and, rarely, its attributes (` colspan="6"`, from `spanning`; ` rowspan="2"`,
+// from `spanning_rows`; ` class="verdict-cell"`, from `of_class`).
 struct HtmlCell {
   std::string html, attributes;
   HtmlCell(std::string h) : html(std::move(h)) {}  // NOLINT: a cell is usually just its HTML
@@ -22,30 +28,51 @@ struct HtmlCell {
     c.attributes = " colspan=\"" + std::to_string(columns) + "\"";
     return c;
   }
+  // A cell down `rows` rows (the rows below leave its column out).
+  static HtmlCell spanning_rows(std::size_t rows, std::string h) {
+    HtmlCell c(std::move(h));
+    c.attributes = " rowspan=\"" + std::to_string(rows) + "\"";
+    return c;
+  }
+  static HtmlCell of_class(const std::string& css_class, std::string h) {
+    HtmlCell c(std::move(h));
+    c.attributes = " class=\"" + css_class + "\"";
+    return c;
+  }
 };
 
 class HtmlTable {
  public:
   explicit HtmlTable(const std::vector<HtmlCell>& header) {
     out_ = "<table>";
-    add("th", header);
+    add("th", header, "");
     out_ += "\n";
   }
   HtmlTable(const std::string& css_class, const std::vector<HtmlCell>& header) : sections_(true) {
-    out_ = "<table class=\"" + css_class + "\"><thead>";
-    add("th", header);
+    out_ = open_tag(css_class) + "<thead>";
+    add("th", header, "");
     out_ += "</thead><tbody>\n";
   }
-  HtmlTable& row(const std::vector<HtmlCell>& cells) {
-    add("td", cells);
+  static HtmlTable without_header(const std::string& css_class) {
+    HtmlTable t;
+    t.out_ = open_tag(css_class) + "<tbody>\n";
+    t.sections_ = true;
+    return t;
+  }
+  HtmlTable& row(const std::vector<HtmlCell>& cells, const std::string& row_attributes = "") {
+    add("td", cells, row_attributes);
     out_ += "\n";
     return *this;
   }
   std::string html() const { return out_ + (sections_ ? "</tbody></table>\n" : "</table>\n"); }
 
  private:
-  void add(const char* tag, const std::vector<HtmlCell>& cells) {
-    out_ += "<tr>";
+  HtmlTable() = default;
+  static std::string open_tag(const std::string& css_class) {
+    return css_class.empty() ? "<table>" : "<table class=\"" + css_class + "\">";
+  }
+  void add(const char* tag, const std::vector<HtmlCell>& cells, const std::string& row_attributes) {
+    out_ += "<tr" + row_attributes + ">";
     for (const auto& c : cells) out_ += std::string("<") + tag + c.attributes + ">" + c.html + "</" + tag + ">";
     out_ += "</tr>";
   }

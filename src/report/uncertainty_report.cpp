@@ -8,6 +8,7 @@
 #include "assess/statistics.hpp"
 #include "flight/nail_flight.hpp"
 #include "report/html_page.hpp"
+#include "report/html_table.hpp"
 #include "scenario/input_error.hpp"
 #include "report/svg_chart.hpp"
 #include "report/text_safety.hpp"
@@ -256,8 +257,7 @@ std::string inputs_html(const json& j, bool field) {
   std::string o;
   o += fmt::format(
       "<p>{} assessments of {} each (Saltelli scheme, {} base draws{}; common random numbers, seed {}). "
-      "Inputs{}:</p>\n<table><thead><tr><th>#</th><th>input</th><th>from</th><th>to</th><th>distribution</th>"
-      "<th>basis of the range</th></tr></thead><tbody>\n",
+      "Inputs{}:</p>\n",
       number("assessments", j["assessments"], "{}"),
       field ? number("objects_per_assessment", j["objects_per_assessment"], "{}") + " objects"
             : number("replicates_per_assessment", j["replicates_per_assessment"], "{}") + " replicates",
@@ -270,20 +270,17 @@ std::string inputs_html(const json& j, bool field) {
                                                 : " (j232's default set of estimated inputs: the scenario has no [uncertainty])")
                                       : "");
   const auto& inputs = j["inputs"];
+  HtmlTable table("", {"#", "input", "from", "to", "distribution", "basis of the range"});
   for (std::size_t i = 0; i < inputs.size(); ++i)
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", i + 1,
-                     escape(inputs[i]["parameter"].get<std::string>()), escape(inputs[i]["low"].get<std::string>()),
-                     escape(inputs[i]["high"].get<std::string>()), escape(inputs[i]["distribution"].get<std::string>()),
-                     escape(inputs[i]["basis"].get<std::string>()));
-  o += "</tbody></table>\n";
-  return o;
+    table.row({std::to_string(i + 1), escape(inputs[i]["parameter"].get<std::string>()), escape(inputs[i]["low"].get<std::string>()),
+               escape(inputs[i]["high"].get<std::string>()), escape(inputs[i]["distribution"].get<std::string>()),
+               escape(inputs[i]["basis"].get<std::string>())});
+  return o + table.html();
 }
 
 // Each output's mean, quantiles and range over the draws.
 std::string outputs_html(const json& j, bool field) {
-  std::string o;
-  o += "<h2>The outputs over the inputs' uncertainty</h2>\n<table class=\"numbers\"><thead><tr><th>output</th>"
-       "<th>mean</th><th>5 %</th><th>median</th><th>95 %</th><th>min</th><th>max</th></tr></thead><tbody>\n";
+  HtmlTable table("numbers", {"output", "mean", "5 %", "median", "95 %", "min", "max"});
   const auto& listed = j["output_list"];
   for (std::size_t k = 0; k + 1 < listed.size(); ++k) {  // the verdict's share of draws is above
     const std::string name = listed[k]["name"], scale_of = listed[k]["scale"];
@@ -292,13 +289,12 @@ std::string outputs_html(const json& j, bool field) {
     // A field's probabilities of being struck are small: shown to three significant digits.
     const char* f = scale_of == "probability" ? (field ? "{:.3g}" : "{:.3f}") : scale_of == "share" ? "{:.2f}" : "{:.4g}";
     const std::string unit = scale_of == "share" ? " %" : listed[k]["unit"].get<std::string>();
-    o += fmt::format("<tr><td>{}</td>", escape(listed[k]["words"].get<std::string>()));
+    std::vector<HtmlCell> cells = {escape(listed[k]["words"].get<std::string>())};
     for (const char* q : {"mean", "q05", "q50", "q95", "min", "max"})
-      o += fmt::format("<td>{}{}</td>", number(fmt::format("outputs.{}.{}", name, q), x[q], f, scale), escape(unit));
-    o += "</tr>\n";
+      cells.emplace_back(number(fmt::format("outputs.{}.{}", name, q), x[q], f, scale) + escape(unit));
+    table.row(cells);
   }
-  o += "</tbody></table>\n";
-  return o;
+  return "<h2>The outputs over the inputs' uncertainty</h2>\n" + table.html();
 }
 
 // One output's Sobol' indices: the table, what the noise and the intervals allow, the
@@ -324,10 +320,10 @@ std::string sobol_html(const json& j, const json& output) {
   const bool half = !s["largest_change_from_half_the_draws"].is_null();
   bool any_flagged = false;
   for (const auto& row : s["indices"]) any_flagged = any_flagged || row["flagged"].get<bool>();
-  o += fmt::format(
-      "<table class=\"numbers\"><thead><tr><th>{}</th><th>first order</th><th>95 %</th><th>total</th><th>95 %</th>{}<th></th>"
-      "</tr></thead><tbody>\n",
-      words, half ? fmt::format("<th>first / total at N = {}</th>", j["base_draws"].get<std::size_t>() / 2) : "");
+  std::vector<HtmlCell> header = {words, "first order", "95 %", "total", "95 %"};
+  if (half) header.emplace_back(fmt::format("first / total at N = {}", j["base_draws"].get<std::size_t>() / 2));
+  header.emplace_back("");
+  HtmlTable table("numbers", header);
   for (std::size_t i = 0; i < s["indices"].size(); ++i) {
     const auto& row = s["indices"][i];
     const std::string key = fmt::format("sensitivity.{}.indices.{}", name, i);
@@ -335,19 +331,20 @@ std::string sobol_html(const json& j, const json& output) {
         l1.push_back(row["first_order"]["low"]), h1.push_back(row["first_order"]["high"]);
     x2.push_back(static_cast<double>(i + 1) + 0.12), y2.push_back(row["total"]["estimate"]), l2.push_back(row["total"]["low"]),
         h2.push_back(row["total"]["high"]);
-    o += fmt::format(
-        "<tr><td>{} {}</td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} to {}</td>{}<td>{}</td></tr>\n", i + 1,
-        escape(row["input"].get<std::string>()), number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
-        number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
-        number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}"),
-        number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"), number(key + ".total.low", row["total"]["low"], "{:.3f}"),
-        number(key + ".total.high", row["total"]["high"], "{:.3f}"),
-        half ? fmt::format("<td>{} / {}</td>", number(key + ".at_half_the_draws.first_order", row["at_half_the_draws"]["first_order"], "{:.3f}"),
-                           number(key + ".at_half_the_draws.total", row["at_half_the_draws"]["total"], "{:.3f}"))
-             : "",
-        row["flagged"].get<bool>() ? "&#9873; interval leaves [0, 1] by more than 0.05" : "");
+    std::vector<HtmlCell> cells = {
+        fmt::format("{} {}", i + 1, escape(row["input"].get<std::string>())),
+        number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
+        fmt::format("{} to {}", number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
+                    number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}")),
+        number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"),
+        fmt::format("{} to {}", number(key + ".total.low", row["total"]["low"], "{:.3f}"), number(key + ".total.high", row["total"]["high"], "{:.3f}"))};
+    if (half)
+      cells.emplace_back(fmt::format("{} / {}", number(key + ".at_half_the_draws.first_order", row["at_half_the_draws"]["first_order"], "{:.3f}"),
+                                     number(key + ".at_half_the_draws.total", row["at_half_the_draws"]["total"], "{:.3f}")));
+    cells.emplace_back(row["flagged"].get<bool>() ? "&#9873; interval leaves [0, 1] by more than 0.05" : "");
+    table.row(cells);
   }
-  o += "</tbody></table>\n";
+  o += table.html();
   if (!s["noise_share"].is_null() && s["noise_share"].get<double>() >= 0.25)
     o += fmt::format(
         "<p class=\"warning\">Mostly chance: Monte Carlo noise alone would give {} % of this output's variance over the draws "
@@ -457,16 +454,14 @@ std::string uncertainty_summary_html(const json& r) {
       number("uncertainty.p_pass.q50", s["p_pass"]["q50"], "{:.3f}"), number("uncertainty.p_pass.q05", s["p_pass"]["q05"], "{:.3f}"),
       number("uncertainty.p_pass.q95", s["p_pass"]["q95"], "{:.3f}"));
   if (s["p_pass_variance"].get<double>() > 0) {
-    o += "<table class=\"numbers\"><thead><tr><th>input</th><th>total Sobol' index for P(pass) from every nail</th><th>95 % "
-         "interval</th></tr></thead><tbody>\n";
+    HtmlTable table("numbers", {"input", "total Sobol' index for P(pass) from every nail", "95 % interval"});
     for (std::size_t i = 0; i < s["drivers_of_p_pass"].size(); ++i) {
       const auto& d = s["drivers_of_p_pass"][i];
       const std::string key = fmt::format("uncertainty.drivers_of_p_pass.{}.total", i);
-      o += fmt::format("<tr><td>{}</td><td>{}</td><td>{} to {}</td></tr>\n", escape(d["input"].get<std::string>()),
-                       number(key + ".estimate", d["total"]["estimate"], "{:.3f}"), number(key + ".low", d["total"]["low"], "{:.3f}"),
-                       number(key + ".high", d["total"]["high"], "{:.3f}"));
+      table.row({escape(d["input"].get<std::string>()), number(key + ".estimate", d["total"]["estimate"], "{:.3f}"),
+                 fmt::format("{} to {}", number(key + ".low", d["total"]["low"], "{:.3f}"), number(key + ".high", d["total"]["high"], "{:.3f}"))});
     }
-    o += "</tbody></table>\n";
+    o += table.html();
   } else {
     o += s["p_pass_exact"]["min"].get<double>() == s["p_pass_exact"]["max"].get<double>()
              ? "<p>P(pass) is the same at every draw: no input moves the verdict over its range.</p>\n"

@@ -8,6 +8,7 @@
 
 #include "assess/statistics.hpp"
 #include "report/html_page.hpp"
+#include "report/html_table.hpp"
 #include "report/svg_chart.hpp"  // escape
 #include "scenario/input_error.hpp"
 
@@ -220,20 +221,19 @@ std::string version_comparison_html(const json& c) {
   o += "<h1>What moved since an earlier result</h1>\n";
   o += "<ul>\n";
   for (const auto& m : c["what_moved"]) o += "<li>" + escape(m.get<std::string>()) + "</li>\n";
-  o += "</ul>\n<table class=\"numbers\"><thead><tr><th></th><th>result</th><th>physics</th><th>verdict</th><th>replicates</th><th>seed</th>"
-       "<th>P(pass) of the replicates (95 %)</th></tr></thead><tbody>\n";
+  o += "</ul>\n";
+  HtmlTable runs("numbers", {"", "result", "physics", "verdict", "replicates", "seed", "P(pass) of the replicates (95 %)"});
   for (const char* which : {"earlier", "now"}) {
     const json& s = c[which];
     const std::string key = std::string("pass_probability.") + which;
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} ({}&ndash;{})</td></tr>\n", which,
-                     escape(s["file"].get<std::string>()), escape(version_words(s)), escape(s["verdict"].get<std::string>()),
-                     number(std::string(which) + ".replicates", s["replicates"], "{}"), number(std::string(which) + ".seed", s["seed"], "{}"),
-                     number(key + ".estimate", c["pass_probability"][which]["estimate"], "{:.3f}"),
-                     number(key + ".low", c["pass_probability"][which]["low"], "{:.3f}"),
-                     number(key + ".high", c["pass_probability"][which]["high"], "{:.3f}"));
+    runs.row({which, escape(s["file"].get<std::string>()), escape(version_words(s)), escape(s["verdict"].get<std::string>()),
+              number(std::string(which) + ".replicates", s["replicates"], "{}"), number(std::string(which) + ".seed", s["seed"], "{}"),
+              fmt::format("{} ({}&ndash;{})", number(key + ".estimate", c["pass_probability"][which]["estimate"], "{:.3f}"),
+                          number(key + ".low", c["pass_probability"][which]["low"], "{:.3f}"),
+                          number(key + ".high", c["pass_probability"][which]["high"], "{:.3f}"))});
   }
-  o += "</tbody></table>\n<table class=\"numbers\"><thead><tr><th>criterion</th><th>earlier, % of nails fed (95 %)</th>"
-       "<th>now (95 %)</th><th>difference, points (95 %)</th><th></th></tr></thead><tbody>\n";
+  o += runs.html();
+  HtmlTable criteria("numbers", {"criterion", "earlier, % of nails fed (95 %)", "now (95 %)", "difference, points (95 %)", ""});
   for (std::size_t i = 0; i < c["criteria"].size(); ++i) {
     const json& k = c["criteria"][i];
     const std::string key = fmt::format("criteria.{}.", i);
@@ -241,12 +241,13 @@ std::string version_comparison_html(const json& c) {
       return fmt::format("{} ({}&ndash;{})", number(key + which + ".share", k[which]["share"], "{:.3f}", 100),
                          number(key + which + ".low", k[which]["low"], "{:.3f}", 100), number(key + which + ".high", k[which]["high"], "{:.3f}", 100));
     };
-    o += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} ({} to {})</td><td>{}</td></tr>\n", escape(k["name"].get<std::string>()), cell("earlier"),
-                     cell("now"), number(key + "difference.estimate", k["difference"]["estimate"], "{:+.3f}", 100),
-                     number(key + "difference.low", k["difference"]["low"], "{:+.3f}", 100),
-                     number(key + "difference.high", k["difference"]["high"], "{:+.3f}", 100), k["moved"].get<bool>() ? "moved" : "");
+    criteria.row({escape(k["name"].get<std::string>()), cell("earlier"), cell("now"),
+                  fmt::format("{} ({} to {})", number(key + "difference.estimate", k["difference"]["estimate"], "{:+.3f}", 100),
+                              number(key + "difference.low", k["difference"]["low"], "{:+.3f}", 100),
+                              number(key + "difference.high", k["difference"]["high"], "{:+.3f}", 100)),
+                  k["moved"].get<bool>() ? "moved" : ""});
   }
-  o += "</tbody></table>\n<p>" + escape(c["method"].get<std::string>()) + ".</p>\n";
+  o += criteria.html() + "<p>" + escape(c["method"].get<std::string>()) + ".</p>\n";
   o += page_foot();
   return o;
 }
