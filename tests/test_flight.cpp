@@ -453,7 +453,7 @@ TEST_CASE("flight: a stone skidding from 60 m/s stops where friction and air dra
     s.ground.roughness = 0;
     s.run.time_limit = 60;
     flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
-    settings.ground_velocity = {-mower_speed, 0, 0};
+    settings.materials.ground().velocity = {-mower_speed, 0, 0};
     flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
     flight::Drag drag;
     drag.on = true, drag.sphere = true, drag.k_normal = k, drag.air = {-mower_speed, 0, 0};
@@ -607,7 +607,7 @@ TEST_CASE("flight: a ball slips until it rolls, then rolls to a stop, as an inde
       s.ground.rolling_resistance = rho;
       s.run.time_limit = 60;
       flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
-      settings.ground_velocity = {-mower_speed, 0, 0};  // in the mower's frame the turf and the air move back
+      settings.materials.ground().velocity = {-mower_speed, 0, 0};  // in the mower's frame the turf and the air move back
       flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
       ctx.rolls = true;
       std::vector<flight::FlightEvent> events;
@@ -658,7 +658,7 @@ std::vector<flight::FlightEvent> drop_events(scenario::ContactModel model, doubl
   s.ground.roughness = roughness;
   s.run.contact_model = model;
   flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
-  settings.ground_velocity = {-mower_speed, 0, 0};
+  settings.materials.ground().velocity = {-mower_speed, 0, 0};
   std::vector<flight::FlightEvent> events;
   flight::FlightContext ctx{&ground, &settings, 1e6, 0.0, 0.0};
   ctx.events = &events;
@@ -666,7 +666,7 @@ std::vector<flight::FlightEvent> drop_events(scenario::ContactModel model, doubl
   flight::Body b;
   b.axis = Vec3(std::cos(theta), 0, std::sin(theta));
   b.position = {0, 0, nail.radius() + nail.half_segment() * std::sin(theta) + 1e-4};
-  b.velocity = velocity + settings.ground_velocity;
+  b.velocity = velocity + settings.materials.ground().velocity;
   b.spin = spin;
   random::EventDraws rng(1, 0, 0);
   flight::fly(b, nail, {}, ctx, {}, {}, rng);

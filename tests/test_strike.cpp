@@ -8,6 +8,7 @@
 
 #include "blade/impact.hpp"
 #include "feed/feed.hpp"
+#include "flight/launch.hpp"
 #include "random_blades.hpp"
 #include "stats_check.hpp"
 #include "strike/contact_search.hpp"
@@ -129,6 +130,33 @@ TEST_CASE("contact search: its coarse atan2 and its turning axis", "[strike][sea
     CHECK(std::remainder(turned - spin.norm() * dt, units::two_pi) == Approx(0.0).margin(1e-9));
     CHECK(turning.at(0.0) == axis);
   }
+}
+
+TEST_CASE("launch: the turning blade throws a nail from its contact; a nail moving with the blade is not thrown", "[strike][physics]") {
+  const auto s = bar_scenario();
+  const auto sp = spindle(s);
+  const auto nail = projectile::Projectile::capsule(0.0508, 0.00251, 0.002);
+  const auto m = upright_nail(0.01, sp, nail);
+  strike::SearchStats stats;
+  const auto c = strike::first_contact(sp, -0.1, nail, m, m.t0 + 0.02, stats);
+  REQUIRE(c);
+  const Vec3 coming = m.velocity(c->time);
+  const flight::Launch l = flight::launch(sp, *c, nail, coming);
+  REQUIRE(l.result == flight::Launch::Result::Thrown);
+  // The body leaves from the contact, at its time, with the impulse's velocity and the spin
+  // across its axis (a rod's flight follows its axis), and more energy than it came with.
+  const auto direct = strike::strike(sp, *c, nail, coming, Vec3::Zero());
+  CHECK(l.body.position == c->centre);
+  CHECK(l.body.axis == c->axis);
+  CHECK(l.body.time == c->time);
+  CHECK(l.body.velocity == direct.velocity_after);
+  CHECK(std::abs(l.body.spin.dot(l.body.axis)) < 1e-9 * (1 + l.body.spin.norm()));
+  CHECK((l.body.spin - (direct.spin_after - direct.spin_after.dot(c->axis) * c->axis)).norm() < 1e-12 * (1 + l.body.spin.norm()));
+  CHECK(l.body.velocity.squaredNorm() > coming.squaredNorm());
+  // Moving with the blade's point there, it is not approaching: not thrown, no body.
+  const flight::Launch with_blade = flight::launch(sp, *c, nail, sp.velocity_at(c->point));
+  CHECK(with_blade.result == flight::Launch::Result::NotThrown);
+  CHECK_FALSE(with_blade.hit.approaching);
 }
 
 TEST_CASE("strike: an upright nail struck by a frictionless square edge gets no vertical impulse", "[strike][physics]") {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "flight/launch.hpp"
 #include "scenario/input_error.hpp"
 #include "scene/j232_setup.hpp"
 #include "strike/impulse.hpp"
@@ -89,27 +90,18 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   if (!contact) return out;
   contact->spindle = k0;
   const Vec3 falling = fall.motion.velocity(contact->time);
-  const strike::StrikeOutcome hit = strike::strike(spindle, *contact, drop.nail, falling, Vec3::Zero());
-  if (replay) replay->strike = *contact, replay->falling = falling, replay->velocity_after = hit.velocity_after, replay->spin_after = hit.spin_after;
-  if (!hit.approaching) return out;
-  // The blade strikes a nail when it gives it energy: a nail that merely lands on a blade
-  // too slow to throw it (a stopped blade) is not thrown, and the test did not happen for it.
-  const double energy_after = 0.5 * drop.nail.mass * hit.velocity_after.squaredNorm() +
-                              0.5 * hit.spin_after.dot(strike::inverse_inertia(drop.nail, contact->axis).inverse() * hit.spin_after);
-  if (!(energy_after > 0.5 * drop.nail.mass * falling.squaredNorm())) return out;
-  if (!hit.velocity_after.allFinite() || !hit.spin_after.allFinite()) {
+  const flight::Launch struck = flight::launch(spindle, *contact, drop.nail, falling);
+  if (replay)
+    replay->strike = *contact, replay->falling = falling, replay->velocity_after = struck.hit.velocity_after,
+    replay->spin_after = struck.hit.spin_after;
+  if (struck.result == flight::Launch::Result::NonFinite) {
     out.flight.fate = flight::Fate::CutOff;
     out.flight.cut_off = flight::CutOff::NonFinite;
     out.flight.non_finite = true;
     return out;
   }
-
-  flight::Body body;
-  body.position = contact->centre;
-  body.velocity = hit.velocity_after;
-  body.axis = contact->axis;
-  body.spin = hit.spin_after - hit.spin_after.dot(body.axis) * body.axis;  // flight follows the axis (nail_flight.cpp)
-  body.time = contact->time;  // the blades' clock: later contacts are timed against it
+  if (struck.result != flight::Launch::Result::Thrown) return out;  // not struck: the test did not happen for it
+  const flight::Body& body = struck.body;
   flight::Drag drag;
   drag.on = s.air.drag;
   const projectile::Projectile& rod = drop.nail;

@@ -9,6 +9,7 @@
 
 #include "scenario/input_error.hpp"
 #include "strike/contact_search.hpp"
+#include "flight/launch.hpp"
 #include "flight/plane_touch.hpp"
 #include "invariant/check.hpp"
 #include "strike/impulse.hpp"
@@ -57,8 +58,6 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
     throw scenario::InputError(scenario_.file, std::nullopt, "field.objects_simulated", std::to_string(scenario_.field.objects_simulated),
                                fmt::format("at least one object of each of the {} kinds", scenario_.field.objects.size()));
   mower_ = std::make_unique<flight::Mower>(scenario_, engine);
-  mower_->settings().ground_velocity = {-scenario_.field.ground_speed, 0.0, 0.0};  // the turf, seen from the travelling mower
-  mower_->settings().soil_under_strikes = true;
   cut_from_ = HUGE_VAL, cut_to_ = -HUGE_VAL;
   for (const auto& sp : scenario_.spindles) {
     cut_from_ = std::min(cut_from_, sp.y - sp.blade.tip_radius());
@@ -299,37 +298,30 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   }
   if (!contact) return out;
   const strike::Spindle& spindle = spindles[contact->spindle];
-  const Vec3 coming(-v, 0.0, 0.0);
-  const strike::StrikeOutcome hit = strike::strike(spindle, *contact, e.body, coming, Vec3::Zero());
+  const flight::Launch struck = flight::launch(spindle, *contact, e.body, Vec3(-v, 0.0, 0.0));
   out.fate = ObjectFate::NotThrown;
   out.spindle = contact->spindle;
-  if (!hit.approaching) return out;
-  const double energy_after = 0.5 * e.body.mass * hit.velocity_after.squaredNorm() +
-                              0.5 * hit.spin_after.dot(strike::inverse_inertia(e.body, contact->axis).inverse() * hit.spin_after);
-  if (!(energy_after > 0.5 * e.body.mass * coming.squaredNorm())) return out;
-  if (!hit.velocity_after.allFinite() || !hit.spin_after.allFinite()) {
+  if (struck.result == flight::Launch::Result::NonFinite) {
     out.fate = ObjectFate::CutOff;
     out.flight.fate = flight::Fate::CutOff;
     out.flight.cut_off = flight::CutOff::NonFinite;
+    out.flight.non_finite = true;
     return out;
   }
+  if (struck.result != flight::Launch::Result::Thrown) return out;
   out.strike_time = contact->time;
 
-  flight::Body body;
-  body.position = contact->centre;
-  body.velocity = hit.velocity_after;
+  flight::Body body = struck.body;
+  const strike::StrikeOutcome& hit = struck.hit;
   // Struck from above, it is driven into the soil, which takes the downward part; if the
   // blade is then still in its way, the knife rides over it (swinging back on its pivot),
   // and it leaves along the ground with what the soil's friction left it.
   flight::FirstContact first{contact->spindle, contact->edge};
-  if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().ground_velocity, body.velocity, e.support) &&
+  if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().materials.ground().velocity, body.velocity, e.support) &&
       (body.velocity + hit.spin_after.cross(contact->point - body.position) - spindle.velocity_at(contact->point)).dot(contact->normal) <= 0) {
     out.pressed = true;
     first.ridden_until = contact->time + flight::kRideOverTurn / spindle.omega();
   }
-  body.axis = contact->axis;
-  body.spin = e.body.without_axial_spin(hit.spin_after, body.axis);  // (a sphere keeps its whole spin)
-  body.time = contact->time;
   flight::Drag drag = drag_per_unit_[e.kind];
   drag.k_axial /= e.body.diameter, drag.k_normal /= e.body.diameter;
 

@@ -13,8 +13,7 @@ FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<sc
       law(s.run.restitution_law),
       contacts(s.run.contact_model),
       board(s.board),
-      materials(s, guards),
-      rolling_resistance(s.ground.rolling_resistance) {
+      materials(s, guards) {
   for (const auto& o : s.housing.openings) openings.push_back({o.azimuth, o.top});
 }
 

@@ -29,16 +29,8 @@ struct FlightSettings {
     double top = 0;
   };
   std::vector<Opening> openings;
+  // What each surface does, the ground's motion and soil in a field among it.
   SurfaceMaterials materials;
-  // The turf's velocity in the mower's frame: zero in the J232 test (the mower stands); in
-  // a field the mower travels, and an object at rest on the turf under the deck is carried
-  // toward its rear, where a blade may strike it again.
-  Eigen::Vector3d ground_velocity = Eigen::Vector3d::Zero();
-  // A field's flat soil under the turf (z = 0) takes a strike that drives an object lying on
-  // it into it (flight::soil_reaction); the J232 test's nails fall onto the blade.
-  bool soil_under_strikes = false;
-  // A round object rolling on the ground slows by this many g (GroundSpec::rolling_resistance).
-  double rolling_resistance = 0.3;
 
   FlightSettings() = default;
   // `guards`: indexed as the scene numbers them.

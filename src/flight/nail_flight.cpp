@@ -290,7 +290,8 @@ struct NailFlight {
   // slip over it (as the slide and the soil's reaction are).
   Vec3 surface_velocity(scene::Surface s, const Vec3& n) const {
     if (s != scene::Surface::Ground) return Vec3::Zero();
-    return set.ground_velocity - set.ground_velocity.dot(n) * n;
+    const Vec3& turf = set.materials.ground().velocity;
+    return turf - turf.dot(n) * n;
   }
   void touch(Touch t) {
     r.trace.touch(t);
@@ -479,12 +480,12 @@ void NailFlight::restrike(const strike::Contact& k) {
   // ever closer together without end as the turning plate keeps catching it. Past
   // kSustainedContacts contacts in a pass, the last within kSustainedGap, it moves with the
   // blade's point there (a sticking contact) and leaves along that point's path.
-  const bool sustained = set.soil_under_strikes && same_pass && pass_contacts > kSustainedContacts && k.time - last_contact < kSustainedGap;
+  const bool sustained = set.materials.ground().takes_strikes && same_pass && pass_contacts > kSustainedContacts && k.time - last_contact < kSustainedGap;
   pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
   b.velocity = out.velocity_after;
-  if (set.soil_under_strikes &&
-      soil_reaction(b.position, nail.half_segment() + nail.radius(), set.materials.of(scene::Surface::Ground, 0).friction, set.ground_velocity,
+  if (set.materials.ground().takes_strikes &&
+      soil_reaction(b.position, nail.half_segment() + nail.radius(), set.materials.ground().friction, set.materials.ground().velocity,
                     b.velocity) &&
       (b.velocity + out.spin_after.cross(k.point - b.position) - sp.velocity_at(k.point)).dot(k.normal) <= 0)
     ride_over(k.spindle, k.time);
@@ -718,7 +719,7 @@ bool NailFlight::respond_together(const FaceTouch& at) {
         SurfaceMaterial::Response::Bounce)
       return false;
     // (Alike to round-off: the touching points' normals on one face differ in their last bits.)
-    if ((velocity_at(tp) - frame).norm() > 1e-9 * set.ground_velocity.norm()) return false;
+    if ((velocity_at(tp) - frame).norm() > 1e-9 * set.materials.ground().velocity.norm()) return false;
   }
   const bool moving = !frame.isZero(0.0);
   if (moving) b.velocity -= frame;  // restored below, on every way out
@@ -858,7 +859,8 @@ bool NailFlight::slide(const scene::Hit& hit) {
   // The turf's own velocity along its face (a field's, seen from the travelling mower; zero in
   // the J232 test): friction acts on the slip over it, and the still air's drag on the
   // object's speed through it, which on the ground are the same (both rest in the ground's frame).
-  const Vec3 turf = set.ground_velocity - set.ground_velocity.dot(up) * up;
+  const Vec3& ground = set.materials.ground().velocity;
+  const Vec3 turf = ground - ground.dot(up) * up;
   const double before = ctx.events ? energy() : 0.0;
   lie_down(up, hit.point);
   if (FlightEvent* e = log(FlightEvent::Kind::Slide, b.position, up, b.velocity.norm())) e->energy_before = before, e->energy_after = energy();
@@ -922,7 +924,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
         b.axis = slip;  // (a sphere's axis is any: along the track, so that the roll is across it)
       }
     }
-    const double resisting = rolling_now ? set.rolling_resistance * -kGravity.z() * std::max(0.0, up.z()) : friction_decel;
+    const double resisting = rolling_now ? set.materials.ground().rolling_resistance * -kGravity.z() * std::max(0.0, up.z()) : friction_decel;
     const double drag_share = rolling_now ? 5.0 / 7.0 : 1.0;
     if (drag_along(speed) > 0.01 * resisting) end_speed = 0.9 * speed >= set.rest_speed ? 0.9 * speed : 0.0;
     const double drag_mid = drag_share * drag_along(0.5 * (speed + end_speed));
@@ -1248,7 +1250,7 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
 // rear, until a blade reaches it (struck again: the flight goes on) or it has crossed the
 // deck (it stays where it lies). Returns true when struck again.
 bool NailFlight::carried() {
-  const Vec3& turf = set.ground_velocity;
+  const Vec3& turf = set.materials.ground().velocity;
   const double speed = turf.norm();
   for (;;) {
     if (!(speed > 0) || !in_deck || !ctx.spindles || held_by_mower) return false;

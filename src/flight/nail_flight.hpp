@@ -140,7 +140,7 @@ struct FlightResult {
   bool non_finite = false;                // the state stopped being a finite number (a bug or absurd input)
   CutOff cut_off = CutOff::None;          // what cut it off (fate CutOff), the first limit reached
   int queries = 0;                        // scene ray queries (for the benchmark)
-  // A field's objects (flight::FlightSettings::soil_under_strikes): strikes after which a knife
+  // A field's objects (whose ground takes strikes: flight::SurfaceMaterial::takes_strikes): strikes after which a knife
   // rode over the object pressed into the soil, and passes resolved as a sustained push.
   int ridden_over = 0, pushed_along = 0;
   double flight_time = 0;

@@ -17,6 +17,11 @@ SurfaceMaterials::SurfaceMaterials(const scenario::Scenario& s, const std::vecto
   turf.roughness = s.ground.roughness;
   turf.holds_up = true;
   turf.penetrability = s.ground.penetrability;
+  turf.rolling_resistance = s.ground.rolling_resistance;
+  if (s.field.present) {
+    turf.velocity = {-s.field.ground_speed, 0.0, 0.0};  // the turf, seen from the travelling mower
+    turf.takes_strikes = true;
+  }
   kinds_[static_cast<std::size_t>(scene::Surface::Ground)] = turf;
   SurfaceMaterial board;
   board.response = SurfaceMaterial::Response::Board;

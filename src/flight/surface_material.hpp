@@ -10,12 +10,16 @@
 //   guard, flap: a plate hinged at its top that the nail's impulse swings (the flap's mass
 //       felt at the contact, I_hinge / d^2), with its restitution and friction;
 //   ground: turf; restitution by the impact's angle to the surface, friction, and a
-//       random tilt of the local normal (roughness); it holds a nail up (rest and sliding);
+//       random tilt of the local normal (roughness); it holds a nail up (rest and sliding)
+//       and a round object rolls on it; in a field it moves (the mower travels over it) and
+//       the soil under it takes a strike that drives an object lying on it down;
 //   board (target, operator zone): judged by the board model, not bounced off.
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include "blade/restitution.hpp"
 #include "scenario/scenario.hpp"
@@ -35,6 +39,13 @@ struct SurfaceMaterial {
   double openness = 0.0, pass_speed_factor = 1.0;  // a curtain's
   bool holds_up = false;  // a nail can slide and come to rest on it
   double penetrability = 0.0;  // Young's S of soil a point-first nail sinks into (0: none)
+  // The ground's, in a field: its velocity in the mower's frame (the mower travels over it;
+  // an object at rest on it under the deck is carried toward the rear, where a blade may
+  // strike it again), and soil under it that takes a strike driving an object lying on it
+  // down (flight::soil_reaction). The J232 test's mower stands and its nails fall onto the blade.
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  bool takes_strikes = false;
+  double rolling_resistance = 0.3;  // g: a round object rolling on it slows by this (GroundSpec)
   // A flap (Response::Flap): a plate hinged at `hinge_height` with moment of inertia
   // `flap_inertia` about its hinge (kg m^2, of the width that swings as one). Struck at
   // depth d below the hinge along its normal it moves as a mass I / d^2 there.
@@ -59,6 +70,7 @@ class SurfaceMaterials {
     return surface == scene::Surface::Guard ? guards_.at(guard) : kinds_[static_cast<std::size_t>(surface)];
   }
   const SurfaceMaterial& ground() const { return kinds_[static_cast<std::size_t>(scene::Surface::Ground)]; }
+  SurfaceMaterial& ground() { return kinds_[static_cast<std::size_t>(scene::Surface::Ground)]; }
 
  private:
   std::array<SurfaceMaterial, scene::kSurfaceKinds> kinds_{};

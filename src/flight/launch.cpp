@@ -1,0 +1,29 @@
+#include "flight/launch.hpp"
+
+#include <Eigen/Dense>
+
+namespace j232::flight {
+
+Launch launch(const strike::Spindle& spindle, const strike::Contact& contact, const projectile::Projectile& body, const Vec3& coming) {
+  Launch l;
+  l.hit = strike::strike(spindle, contact, body, coming, Vec3::Zero());
+  if (!l.hit.approaching) return l;
+  if (!l.hit.velocity_after.allFinite() || !l.hit.spin_after.allFinite()) {
+    l.result = Launch::Result::NonFinite;
+    return l;
+  }
+  // The blade strikes a body when it gives it energy: one that merely lands on a blade too
+  // slow to throw it (a stopped blade) is not thrown, and the test did not happen for it.
+  const double energy_after = 0.5 * body.mass * l.hit.velocity_after.squaredNorm() +
+                              0.5 * l.hit.spin_after.dot(strike::inverse_inertia(body, contact.axis).inverse() * l.hit.spin_after);
+  if (!(energy_after > 0.5 * body.mass * coming.squaredNorm())) return l;
+  l.result = Launch::Result::Thrown;
+  l.body.position = contact.centre;
+  l.body.velocity = l.hit.velocity_after;
+  l.body.axis = contact.axis;
+  l.body.spin = body.without_axial_spin(l.hit.spin_after, l.body.axis);  // a rod's flight follows its axis; a sphere keeps its whole spin
+  l.body.time = contact.time;  // the blades' clock: later contacts are timed against it
+  return l;
+}
+
+}  // namespace j232::flight
