@@ -163,7 +163,7 @@ TEST_CASE("deck: a discharge chute roofs its opening, runs outward and keeps nai
         const auto& p = soup.points[v];
         if (p.y() < outline_y - 0.01) {  // part of the chute: between the skirt's foot and its roof
           CHECK(p.z() >= s.housing.skirt_bottom - 1e-12);
-          CHECK(p.z() <= o.top + 1e-12);
+          CHECK(p.z() <= s.housing.opening_top(o) + 1e-12);
         }
         lowest_y = std::min(lowest_y, p.y());
       }

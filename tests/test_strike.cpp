@@ -157,6 +157,36 @@ TEST_CASE("launch: the turning blade throws a nail from its contact; a nail movi
   const flight::Launch with_blade = flight::launch(sp, *c, nail, sp.velocity_at(c->point));
   CHECK(with_blade.result == flight::Launch::Result::NotThrown);
   CHECK_FALSE(with_blade.hit.approaching);
+  // A tilted nail's strike spins it about its own axis too; the flight keeps only the spin
+  // across the axis (a rod's flight follows its axis).
+  auto tilted = m;
+  tilted.axis0 = Vec3(0.3, 0.4, 1.0).normalized();
+  const auto ct = strike::first_contact(sp, -0.1, nail, tilted, tilted.t0 + 0.02, stats);
+  REQUIRE(ct);
+  const auto direct_tilted = strike::strike(sp, *ct, nail, tilted.velocity(ct->time), Vec3::Zero());
+  REQUIRE(std::abs(direct_tilted.spin_after.dot(ct->axis)) > 1e-3 * direct_tilted.spin_after.norm());
+  const flight::Launch lt = flight::launch(sp, *ct, nail, tilted.velocity(ct->time));
+  REQUIRE(lt.result == flight::Launch::Result::Thrown);
+  CHECK(std::abs(lt.body.spin.dot(lt.body.axis)) < 1e-9 * lt.body.spin.norm());
+  // A nail dropped flat onto a stopped blade approaches it but gains no energy: not thrown.
+  auto still = s;
+  still.spindles[0].blade.omega = 0;
+  const auto stopped = spindle(still);
+  strike::Motion flat;
+  flat.p0 = {0.5, 0.0, stopped.height + 0.5 * stopped.section.shape().thickness + nail.radius() + 0.01};
+  flat.v0 = {0.0, 0.0, -2.0};
+  flat.a = {0.0, 0.0, -9.81};
+  flat.axis0 = Vec3::UnitY();
+  const auto cs = strike::first_contact(stopped, 0.0, nail, flat, 0.1, stats);
+  REQUIRE(cs);
+  const flight::Launch dropped = flight::launch(stopped, *cs, nail, flat.velocity(cs->time));
+  CHECK(dropped.hit.approaching);
+  CHECK(dropped.result == flight::Launch::Result::NotThrown);
+  // An impulse that is no number (a body of no finite mass) is cut off, never counted as not
+  // struck: the finite check comes before the energy test, which a NaN would fail.
+  const auto no_number = projectile::Projectile::capsule(0.0508, 0.00251, std::nan(""));
+  const flight::Launch broken = flight::launch(sp, *c, no_number, coming);
+  CHECK(broken.result == flight::Launch::Result::NonFinite);
 }
 
 TEST_CASE("strike: an upright nail struck by a frictionless square edge gets no vertical impulse", "[strike][physics]") {

@@ -182,6 +182,32 @@ TEST_CASE("sweep: bad sweep input names the key and value", "[sweep][input]") {
   CHECK_THROWS_WITH(study::parse_axis("blade_speed", "--series"), Catch::Contains("PARAMETER=V1,V2"));
 }
 
+TEST_CASE("sweep: an opening or a curtain left without a top takes the deck plate's, and keeps it through a named parameter", "[sweep]") {
+  scenario::Scenario s;
+  scenario::OpeningSpec open;
+  open.azimuth = {-0.3, 0.3};
+  open.chute_length = 0.2;
+  scenario::GuardSpec curtain;
+  curtain.along = {{0.5, -0.2}, {0.5, 0.2}};
+  s.housing.openings = {open};
+  s.housing.guards = {curtain};
+  const double plate = s.housing.skirt_bottom + s.housing.skirt_depth;
+  CHECK(s.housing.opening_top(s.housing.openings[0]) == plate);
+  CHECK(s.housing.chute_end_top(s.housing.openings[0]) == plate);
+  CHECK(s.housing.guard_top(s.housing.guards[0]) == plate);
+  // Written ones are kept as written.
+  s.housing.openings[0].top = 0.1;
+  CHECK(s.housing.chute_end_top(s.housing.openings[0]) == 0.1);
+  s.housing.openings[0].top.reset();
+  // A named parameter writes them in where the deck put them: a deeper skirt afterwards
+  // leaves them there, and a cut height moves them with the deck.
+  auto set = s;
+  study::apply(study::make_setting(study::parameter_info("restitution"), "0.5", "", std::nullopt, "test"), set);
+  set.housing.skirt_depth += 0.05;
+  CHECK(set.housing.opening_top(set.housing.openings[0]) == plate);
+  CHECK(set.housing.guard_top(set.housing.guards[0]) == plate);
+}
+
 TEST_CASE("sweep: cut_height sets the whole mower, not the ground, and refuses what would go under the turf", "[sweep][field]") {
   const std::string shoulder = std::string(J232_SOURCE_DIR) + "/scenarios/field/batwing-highway-shoulder.toml";
   auto s = scenario::read_scenario(shoulder);
@@ -191,7 +217,7 @@ TEST_CASE("sweep: cut_height sets the whole mower, not the ground, and refuses w
     CHECK(s.spindles[k].geometry.height == Approx(before.spindles[k].geometry.height + units::inch));
   CHECK(s.housing.skirt_bottom == Approx(before.housing.skirt_bottom + units::inch));
   for (std::size_t i = 0; i < s.housing.openings.size(); ++i)
-    CHECK(s.housing.openings[i].top == Approx(before.housing.openings[i].top + units::inch));
+    CHECK(s.housing.opening_top(s.housing.openings[i]) == Approx(before.housing.opening_top(before.housing.openings[i]) + units::inch));
   for (std::size_t i = 0; i < s.housing.guards.size(); ++i)
     CHECK(s.housing.guards[i].bottom == Approx(before.housing.guards[i].bottom + units::inch));
   CHECK(s.front_gap().value() == Approx(before.front_gap().value() + units::inch));

@@ -14,7 +14,7 @@ FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<sc
       contacts(s.run.contact_model),
       board(s.board),
       materials(s, guards) {
-  for (const auto& o : s.housing.openings) openings.push_back({o.azimuth, o.top});
+  for (const auto& o : s.housing.openings) openings.push_back({o.azimuth, s.housing.opening_top(o)});
 }
 
 }  // namespace j232::flight

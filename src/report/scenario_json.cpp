@@ -64,12 +64,12 @@ json spindle_json(const scenario::SpindleSpec& sp) {
           {"phase_deg", sp.phase ? json(*sp.phase / units::degree) : json("random")}};
 }
 
-json guard_json(const scenario::GuardSpec& g) {
+json guard_json(const scenario::HousingSpec& h, const scenario::GuardSpec& g) {
   json j = {{"name", g.name}};
   if (g.along.empty())
     j.update({{"azimuth_from_deg", g.azimuth.from / units::degree}, {"azimuth_to_deg", g.azimuth.to / units::degree}});
   else
-    j.update({{"along_m", g.along}, {"top_m", g.top}});
+    j.update({{"along_m", g.along}, {"top_m", h.guard_top(g)}});
   j.update({{"kind", g.kind == scenario::GuardSpec::Kind::Flap ? "flap" : "chains"}, {"bottom_m", g.bottom}});
   if (g.kind == scenario::GuardSpec::Kind::Flap)
     j.update({{"thickness_m", g.thickness}, {"density_kg_m3", g.density}, {"panel_width_m", g.panel_width}});
@@ -99,12 +99,12 @@ json uncertainty_json(const scenario::UncertaintySpec& u) {
           {"used_by", "j232 uq (not by j232 run); no inputs: the default set of estimated inputs"}};
 }
 
-json opening_json(const scenario::OpeningSpec& o) {
+json opening_json(const scenario::HousingSpec& h, const scenario::OpeningSpec& o) {
   json j = {{"name", o.name},
             {"azimuth_from_deg", o.azimuth.from / units::degree},
             {"azimuth_to_deg", o.azimuth.to / units::degree},
-            {"top_m", o.top}};
-  if (o.chute_length > 0) j.update({{"chute_length_m", o.chute_length}, {"chute_end_top_m", o.chute_end_top}});
+            {"top_m", h.opening_top(o)}};
+  if (o.chute_length > 0) j.update({{"chute_length_m", o.chute_length}, {"chute_end_top_m", h.chute_end_top(o)}});
   return j;
 }
 
@@ -144,10 +144,10 @@ json feed_json(const scenario::Scenario& s) {
 json housing_json(const scenario::Scenario& s, bool from_mesh, const std::vector<double>& opening_widths) {
   const scenario::HousingSpec& h = s.housing;
   json guards = json::array(), deflectors = json::array(), openings = json::array();
-  for (const auto& g : h.guards) guards.push_back(guard_json(g));
+  for (const auto& g : h.guards) guards.push_back(guard_json(h, g));
   for (const auto& d : h.deflectors) deflectors.push_back(deflector_json(d));
   for (std::size_t i = 0; i < h.openings.size(); ++i) {
-    openings.push_back(opening_json(h.openings[i]));
+    openings.push_back(opening_json(h, h.openings[i]));
     if (i < opening_widths.size()) openings.back()["width_m"] = opening_widths[i];  // as cut, along the outline
   }
   if (from_mesh)
@@ -323,7 +323,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     for (std::size_t i = 0; i < s.housing.openings.size(); ++i) {
       const auto& o = s.housing.openings[i];
       deck += fmt::format("; opening '{}' {:g} to {:g} deg up to {:.0f} mm, {:.0f} mm wide as cut along the outline", o.name,
-                          o.azimuth.from / units::degree, o.azimuth.to / units::degree, o.top * 1e3, widths[i] * 1e3);
+                          o.azimuth.from / units::degree, o.azimuth.to / units::degree, s.housing.opening_top(o) * 1e3, widths[i] * 1e3);
     }
     a.push_back({deck, "scenario"});
   }
@@ -353,7 +353,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
                              g.along.empty() ? fmt::format("below the skirt from {:g} to {:g} deg", g.azimuth.from / units::degree,
                                                            g.azimuth.to / units::degree)
                                              : fmt::format("along a {}-point polyline", g.along.size()),
-                             g.bottom * 1e3, (g.along.empty() ? s.housing.skirt_bottom : g.top) * 1e3, s.field.present ? "objects" : "nails",
+                             g.bottom * 1e3, (g.along.empty() ? s.housing.skirt_bottom : s.housing.guard_top(g)) * 1e3, s.field.present ? "objects" : "nails",
                              g.openness, g.pass_speed_factor,
                              g.restitution, g.friction),
                  "scenario, or estimates where not given (openness, speed kept: no published chain-curtain figures)"});

@@ -88,12 +88,12 @@ using PlanPath = std::vector<std::array<double, 2>>;
 struct OpeningSpec {  // a discharge opening: the skirt is cut away between two azimuths
   std::string name = "discharge";
   units::Arc azimuth;  // about the origin, counter-clockwise from -> to
-  double top = 0.0;                             // the opening's upper edge above ground, m (default: the deck)
+  std::optional<double> top;  // the opening's upper edge above ground, m, as written; none: the deck plate (HousingSpec::opening_top)
   // An optional chute: a hood of steel plate from the opening's edges straight outward
   // (along the opening's middle azimuth) for chute_length, its roof sloping from the
   // opening's top to chute_end_top, its side walls down to the skirt's bottom.
   double chute_length = 0.0;   // 0: no chute
-  double chute_end_top = 0.0;  // roof height at the chute's mouth (default: the opening's top)
+  std::optional<double> chute_end_top;  // roof height at the chute's mouth, as written; none: the opening's top (HousingSpec::chute_end_top)
 };
 
 struct GuardSpec {  // a chain curtain, or a belting flap
@@ -110,7 +110,7 @@ struct GuardSpec {  // a chain curtain, or a belting flap
   // `top` down to `bottom` (a curtain on its own bracket; any deck, meshes included).
   units::Arc azimuth;
   PlanPath along;
-  double top = 0.0;                // upper edge along a polyline, m
+  std::optional<double> top;       // upper edge along a polyline, m, as written; none: the deck plate (HousingSpec::guard_top)
   double bottom = 0.010;           // lower edge above ground, m
   double openness = 0.35;          // probability a nail passes between the links
   double pass_speed_factor = 0.7;  // speed kept when passing
@@ -138,6 +138,14 @@ struct HousingSpec {
   std::vector<GuardSpec> guards;
   std::vector<std::string> absent_guards;  // guards given with present = false: described, not fitted
   std::vector<DeflectorSpec> deflectors;
+
+  // The deck plate's height above ground (the skirt's top), and the heights derived from it
+  // where the file leaves them out: an opening's top, its chute's mouth (the opening's top),
+  // and a curtain's top along a polyline.
+  double plate_height() const { return skirt_bottom + skirt_depth; }
+  double opening_top(const OpeningSpec& o) const { return o.top.value_or(plate_height()); }
+  double chute_end_top(const OpeningSpec& o) const { return o.chute_end_top.value_or(opening_top(o)); }
+  double guard_top(const GuardSpec& g) const { return g.top.value_or(plate_height()); }
 };
 
 struct GroundSpec {  // what the mower stands on: `kind` sets the rest (scenario/ground_kinds.hpp)

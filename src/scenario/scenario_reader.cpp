@@ -103,7 +103,7 @@ void read_guard(const TableReader& t, GuardSpec& g, bool with_geometry, std::vec
     if (t.has("along")) {
       refuse_with(t, {"azimuth_from", "azimuth_to"}, "along");
       g.along = t.points("along", Kind::Length, kPlanCoordinate, 2, 64);
-      g.top = t.quantity_or("top", Kind::Length, 0.0, Range::positive_up_to(2));  // 0: the deck's top (resolved later)
+      if (t.has("top")) g.top = t.quantity("top", Kind::Length, Range::positive_up_to(2));  // (left out: the deck plate's height)
     } else {
       read_arc(t, g.azimuth);
     }
@@ -176,9 +176,8 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
     }
     guard_tables.push_back(g);
     if (!guard.along.empty()) {
-      if (guard.top == 0.0) guard.top = h.skirt_bottom + h.skirt_depth;
-      if (guard.bottom >= guard.top)
-        throw g.error("bottom", fmt::format("expected the curtain's lower edge below its top ({} m)", guard.top));
+      if (guard.bottom >= h.guard_top(guard))
+        throw g.error("bottom", fmt::format("expected the curtain's lower edge below its top ({} m)", h.guard_top(guard)));
     }
     g.refuse_unknown_keys();
     h.guards.push_back(guard);
@@ -187,17 +186,17 @@ void read_housing(const TableReader& t, HousingSpec& h, bool several_spindles, s
     OpeningSpec op;
     op.name = o.string_or("name", op.name, {});
     read_arc(o, op.azimuth);
-    op.top = o.quantity_or("top", Kind::Length, h.skirt_bottom + h.skirt_depth, Range::between(0, 2));
+    if (o.has("top")) op.top = o.quantity("top", Kind::Length, Range::between(0, 2));
     // (Within a micrometre: the same height written in two units is no opening.)
-    if (op.top <= h.skirt_bottom + 1e-6)
+    if (h.opening_top(op) <= h.skirt_bottom + 1e-6)
       throw o.error("top", fmt::format("expected the opening's upper edge above the skirt's bottom ({:.4g} m): an opening up to it cuts "
                                        "nothing",
                                        h.skirt_bottom));
     op.chute_length = o.quantity_or("chute_length", Kind::Length, 0.0, Range::between(0, 3));
-    op.chute_end_top = o.quantity_or("chute_end_top", Kind::Length, op.top, Range::between(0, 2));
+    if (o.has("chute_end_top")) op.chute_end_top = o.quantity("chute_end_top", Kind::Length, Range::between(0, 2));
     if (o.has("chute_end_top") && op.chute_length == 0.0)
       throw o.error("chute_end_top", "a chute's mouth needs a chute: set chute_length too");
-    if (op.chute_end_top <= h.skirt_bottom + 1e-6)
+    if (h.chute_end_top(op) <= h.skirt_bottom + 1e-6)
       throw o.error("chute_end_top", fmt::format("expected the chute's mouth above the skirt's bottom ({:.4g} m)", h.skirt_bottom));
     o.refuse_unknown_keys();
     h.openings.push_back(op);
@@ -900,7 +899,7 @@ void check_consistency(const TableReader& root, Scenario& s) {
       if (!g.boolean_or("present", true)) continue;
       const GuardSpec& guard = s.housing.guards.at(present++);
       if (guard.along.empty()) continue;
-      const double top = guard.top > 0 ? guard.top : plate;
+      const double top = s.housing.guard_top(guard);
       for (std::size_t k = 0; k < s.spindles.size(); ++k) {
         const SpindleSpec& sp = s.spindles[k];
         const double off = distance_to_path(sp.x, sp.y, guard.along);
@@ -931,13 +930,13 @@ void check_consistency(const TableReader& root, Scenario& s) {
   if (generated_deck && housing) {
     const auto openings = housing->array_of_tables("openings");
     for (std::size_t i = 0; i < s.housing.openings.size() && i < openings.size(); ++i) {
-      if (s.housing.openings[i].top > plate + 1e-12)
+      if (s.housing.opening_top(s.housing.openings[i]) > plate + 1e-12)
         throw openings[i].error("top", fmt::format("expected the opening's top at or below the deck plate ({:.4g} m): the skirt it "
                                                    "cuts ends there (an opening to the top of the skirt: leave top out)",
                                                    plate));
       // A discharge chute leads the opening out and down; one rising above the plate would
       // stand where the deck's top is.
-      if (s.housing.openings[i].chute_length > 0 && s.housing.openings[i].chute_end_top > plate + 1e-12)
+      if (s.housing.openings[i].chute_length > 0 && s.housing.chute_end_top(s.housing.openings[i]) > plate + 1e-12)
         throw openings[i].error("chute_end_top", fmt::format("puts the chute's mouth above the deck plate ({:.4g} m); expected a chute "
                                                              "that runs out from its opening at or below the plate",
                                                              plate));
@@ -957,7 +956,7 @@ void check_consistency(const TableReader& root, Scenario& s) {
     for (const auto& g : housing->array_of_tables("guards")) {
       if (!g.boolean_or("present", true)) continue;
       const GuardSpec& guard = s.housing.guards.at(present++);
-      if (!guard.along.empty() && guard.top > plate + 1e-12)
+      if (!guard.along.empty() && s.housing.guard_top(guard) > plate + 1e-12)
         throw g.error("top", fmt::format("expected the curtain's top at or below the deck plate ({:.4g} m) it hangs from", plate));
     }
   }
@@ -1076,7 +1075,7 @@ std::optional<double> Scenario::front_gap() const {
   if (!meshes.empty()) return std::nullopt;
   double gap = housing.skirt_bottom;
   for (const auto& op : housing.openings)
-    if (op.azimuth.contains(0.0)) gap = std::max(gap, op.top);
+    if (op.azimuth.contains(0.0)) gap = std::max(gap, housing.opening_top(op));
   return gap;
 }
 double Scenario::lifted_up_to(const FieldObjectSpec& o, double drag_coefficient, double u) const {

@@ -224,16 +224,17 @@ void add_free_parts(Soup& soup, const scenario::HousingSpec& h, std::uint16_t fi
   }
   for (std::size_t g = 0; g < h.guards.size(); ++g)
     if (!h.guards[g].along.empty())
-      add_path_wall(soup, h.guards[g].along, h.guards[g].bottom, h.guards[g].top, Surface::Guard,
+      add_path_wall(soup, h.guards[g].along, h.guards[g].bottom, h.guard_top(h.guards[g]), Surface::Guard,
                     static_cast<std::uint16_t>(first_guard + g));
 }
 
 // A discharge chute over an opening whose skirt pieces are `pieces` (outline segments in
 // plan): a roof swept from each piece straight outward along the opening's middle
 // azimuth, sloping from the opening's top to the chute's mouth, and two side walls.
-void add_chute(Soup& soup, const scenario::OpeningSpec& o, double skirt_bottom,
+void add_chute(Soup& soup, const scenario::HousingSpec& h, const scenario::OpeningSpec& o,
                const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& pieces) {
   if (o.chute_length <= 0 || pieces.empty()) return;
+  const double skirt_bottom = h.skirt_bottom, top = h.opening_top(o), end_top = h.chute_end_top(o);
   const double mid = o.azimuth.middle();
   const Eigen::Vector2d out = o.chute_length * Eigen::Vector2d(std::cos(mid), std::sin(mid));
   auto rel = [&](const Eigen::Vector2d& p) {
@@ -243,13 +244,13 @@ void add_chute(Soup& soup, const scenario::OpeningSpec& o, double skirt_bottom,
   for (const auto& [a, b] : pieces) {
     if (rel(a) < rel(first)) first = a;
     if (rel(b) > rel(last)) last = b;
-    soup.add_quad(soup.add_point({a.x(), a.y(), o.top}), soup.add_point({b.x(), b.y(), o.top}),
-                  soup.add_point({b.x() + out.x(), b.y() + out.y(), o.chute_end_top}),
-                  soup.add_point({a.x() + out.x(), a.y() + out.y(), o.chute_end_top}), Surface::Housing);
+    soup.add_quad(soup.add_point({a.x(), a.y(), top}), soup.add_point({b.x(), b.y(), top}),
+                  soup.add_point({b.x() + out.x(), b.y() + out.y(), end_top}), soup.add_point({a.x() + out.x(), a.y() + out.y(), end_top}),
+                  Surface::Housing);
   }
   for (const Eigen::Vector2d& p : {first, last})
     soup.add_quad(soup.add_point({p.x(), p.y(), skirt_bottom}), soup.add_point({p.x() + out.x(), p.y() + out.y(), skirt_bottom}),
-                  soup.add_point({p.x() + out.x(), p.y() + out.y(), o.chute_end_top}), soup.add_point({p.x(), p.y(), o.top}),
+                  soup.add_point({p.x() + out.x(), p.y() + out.y(), end_top}), soup.add_point({p.x(), p.y(), top}),
                   Surface::Housing);
 }
 
@@ -298,7 +299,7 @@ FlapGeometry flap_geometry(const scenario::Scenario& s, const scenario::GuardSpe
   FlapGeometry f;
   f.bottom = g.bottom;
   if (!g.along.empty()) {
-    f.hinge = g.top;
+    f.hinge = s.housing.guard_top(g);
     for (std::size_t i = 0; i + 1 < g.along.size(); ++i) f.width += std::hypot(g.along[i + 1][0] - g.along[i][0], g.along[i + 1][1] - g.along[i][1]);
     f.swinging = g.panel_width > 0 ? std::min(g.panel_width, f.width) : f.width;
     return f;
@@ -308,7 +309,7 @@ FlapGeometry flap_geometry(const scenario::Scenario& s, const scenario::GuardSpe
     if (!g.azimuth.contains(piece.azimuth)) continue;
     double top = s.housing.skirt_bottom;
     for (const auto& o : s.housing.openings)
-      if (o.azimuth.contains(piece.azimuth)) top = std::max(top, o.top);
+      if (o.azimuth.contains(piece.azimuth)) top = std::max(top, s.housing.opening_top(o));
     if (top <= g.bottom) continue;  // it hangs nowhere here
     f.hinge = std::max(f.hinge, top);
     f.width += (piece.b - piece.a).norm();
@@ -360,7 +361,7 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
       double skirt_from = h.skirt_bottom;
       for (std::size_t o = 0; o < h.openings.size(); ++o)
         if (h.openings[o].azimuth.contains(azimuth)) {
-          skirt_from = std::max(skirt_from, h.openings[o].top);
+          skirt_from = std::max(skirt_from, h.opening_top(h.openings[o]));
           opening_pieces[o].emplace_back(a, b);
         }
       quad(skirt_from, deck_top, Surface::Housing, 0);
@@ -369,7 +370,7 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
           quad(h.guards[g].bottom, skirt_from, Surface::Guard, static_cast<std::uint16_t>(first_guard + g));
     }
   }
-  for (std::size_t o = 0; o < h.openings.size(); ++o) add_chute(soup, h.openings[o], h.skirt_bottom, opening_pieces[o]);
+  for (std::size_t o = 0; o < h.openings.size(); ++o) add_chute(soup, h, h.openings[o], opening_pieces[o]);
 }
 
 // The generated deck plate, skirt, chain guards (numbered from first_guard) and deflectors.

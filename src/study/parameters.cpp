@@ -39,6 +39,15 @@ std::string si_unit(const units::Dimension& d) {
   if (d == D{0, 0, 0, 1}) return "rad";
   return "SI units";
 }
+
+// The heights a deck's openings and curtains take from the deck plate when the file leaves
+// them out, written in: a parameter that moves the deck (cut height) then moves them with it
+// as it moves written ones, and one that reshapes it elsewhere leaves them where they were.
+void materialise_housing_heights(scenario::HousingSpec& h) {
+  for (auto& op : h.openings) op.chute_end_top = h.chute_end_top(op), op.top = h.opening_top(op);
+  for (auto& g : h.guards)
+    if (!g.along.empty()) g.top = h.guard_top(g);
+}
 }  // namespace
 
 Setting make_setting(const ParameterInfo& info, const std::string& text, const std::string& file, std::optional<int> line,
@@ -167,6 +176,7 @@ void apply(const Setting& s, scenario::Scenario& sc) {
   // (a pivot moved, a mass scaled) may land its tip an ulp away, which must not move them.
   if (!sc.feed.stations) sc.feed.stations = sc.feed_stations();
   if (!sc.target.top) sc.target.top = sc.target_top();
+  materialise_housing_heights(sc.housing);
   switch (s.info.parameter) {
     case Parameter::BladeSpeed:
       for (auto& sp : sc.spindles) sp.blade.omega = s.si;
@@ -211,10 +221,11 @@ void set_cut_height(scenario::Scenario& sc, double height) {
   auto& h = sc.housing;
   for (auto& sp : sc.spindles) sp.geometry.height += shift;
   h.skirt_bottom += shift;
-  for (auto& op : h.openings) op.top += shift, op.chute_end_top += shift;
+  materialise_housing_heights(h);  // (then each moves with the deck, as written ones do)
+  for (auto& op : h.openings) *op.top += shift, *op.chute_end_top += shift;
   for (auto& g : h.guards) {
     g.bottom += shift;
-    if (g.top > 0) g.top += shift;  // 0: the deck's top, wherever it is
+    if (!g.along.empty()) *g.top += shift;
   }
   for (auto& d : h.deflectors) d.bottom += shift, d.top += shift;
   // What hangs lowest may reach the turf (a guard's edge, a deflector's); the skirt's foot

@@ -12,16 +12,19 @@ j232=${3:?}
 work=$(mktemp -d "${TMPDIR:-/tmp}/j232-package.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 if [ $embed -eq 1 ]; then
-  # As a unity build (sources compiled eight to a batch, so Eigen, CGAL and toml++ are parsed
-  # once per batch: about 2.5 min alone instead of 4.5; CI's time is short). On baseline
-  # x86-64 unoptimised (-O0): the library builds in two thirds of the time, and
-  # the counts must still equal the optimised program's (no fast-math; no fused multiply-add
-  # there for -O2 to contract into, unless CXXFLAGS asks for it). Elsewhere (aarch64 has FMA
-  # in its baseline) and with -march/-mfma, optimised as the program is.
+  # On baseline x86-64 unoptimised (-O0) and as a unity build (sources compiled eight to a
+  # batch, so Eigen, CGAL and toml++ are parsed once per batch): about 3 min alone instead of
+  # 4.5 (CI's time is short), and the counts must still equal the optimised program's (no
+  # fast-math; no fused multiply-add there for -O2 to contract into, unless CXXFLAGS asks for
+  # it). Elsewhere (aarch64 has FMA in its baseline) and with -march/-mfma, optimised and file
+  # by file as the program is: a batch would let the compiler inline across files and place
+  # its fused multiply-adds elsewhere than in the program, moving last bits.
   flags=()
-  if [ "$(uname -m)" = x86_64 ] && ! [[ "${CXXFLAGS:-}" =~ -march|-mfma ]]; then flags=("-DCMAKE_CXX_FLAGS_RELEASE=-O0 -DNDEBUG"); fi
+  if [ "$(uname -m)" = x86_64 ] && ! [[ "${CXXFLAGS:-}" =~ -march|-mfma ]]; then
+    flags=("-DCMAKE_CXX_FLAGS_RELEASE=-O0 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON)
+  fi
   cmake -S "$source/tests/package/embed" -B "$work/consumer" -DJ232_SOURCE_DIR="$source" -DCMAKE_BUILD_TYPE=Release \
-        -DCMAKE_UNITY_BUILD=ON "${flags[@]}" >/dev/null
+        "${flags[@]}" >/dev/null
 else
   cmake --install "$build" --prefix "$work/prefix" >/dev/null
   for header in include/j232/assess/runner.hpp include/j232/scenario/scenario_reader.hpp include/j232/version.hpp \
