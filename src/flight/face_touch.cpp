@@ -63,22 +63,22 @@ void nearest_segments(const Vec3& p1, const Vec3& d1, const Vec3& p2, const Vec3
 
 }  // namespace
 
-SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::array<Vec3, 3>& tri) {
+SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::array<Vec3, 3>& tri, const scene::Scene::Gram& g) {
   const Vec3 &a = tri[0], &e1 = tri[1], &e2 = tri[2];
   SegmentTriangle best;
-  const Vec3 n = e1.cross(e2);
+  const Vec3& n = g.normal;
   const double s0 = n.dot(p0 - a), s1 = n.dot(p1 - a);
   // Both ends on one side: when the nearer end's foot on the plane lies inside the
   // triangle, that is the closest pair (no point of the segment is nearer the plane).
   if ((s0 > 0 && s1 > 0) || (s0 < 0 && s1 < 0)) {
     const bool first = std::abs(s0) <= std::abs(s1);
     const Vec3& p = first ? p0 : p1;
-    const double sp = first ? s0 : s1, nn = n.squaredNorm();
+    const double sp = first ? s0 : s1, nn = g.nn;
     const Vec3 foot = p - (sp / nn) * n;
     // Barycentric coordinates of the foot.
     const Vec3 w = foot - a;
-    const double d00 = e1.squaredNorm(), d01 = e1.dot(e2), d11 = e2.squaredNorm(), d20 = w.dot(e1), d21 = w.dot(e2);
-    const double denom = d00 * d11 - d01 * d01;
+    const double d00 = g.d00, d01 = g.d01, d11 = g.d11, d20 = w.dot(e1), d21 = w.dot(e2);
+    const double denom = g.det;
     const double v = (d11 * d20 - d01 * d21) / denom, u = (d00 * d21 - d01 * d20) / denom;
     if (v >= 0 && u >= 0 && u + v <= 1) {
       best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(nn);
@@ -92,8 +92,8 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
       // a rounding's margin: a sliver's nearest-point regions are ill-conditioned there).
       const Vec3 x = p0 + (s0 / (s0 - s1)) * (p1 - p0);
       const Vec3 w = x - a;
-      const double d00 = e1.squaredNorm(), d01 = e1.dot(e2), d11 = e2.squaredNorm(), d20 = w.dot(e1), d21 = w.dot(e2);
-      const double denom = d00 * d11 - d01 * d01;
+      const double d00 = g.d00, d01 = g.d01, d11 = g.d11, d20 = w.dot(e1), d21 = w.dot(e2);
+      const double denom = g.det;
       const double v = (d11 * d20 - d01 * d21) / denom, u = (d00 * d21 - d01 * d20) / denom;
       constexpr double eps = 1e-12;
       if (v >= -eps && u >= -eps && u + v <= 1 + eps) {
@@ -128,7 +128,7 @@ bool FaceFilter::ignores(std::uint32_t f) const {
 
 double face_clearance(const scene::Scene& scene, std::uint32_t f, const projectile::Projectile& nail, const Vec3& centre, const Vec3& axis) {
   const double h = nail.half_segment();
-  return segment_triangle(centre - h * axis, centre + h * axis, scene.face_edges(f)).distance - nail.radius();
+  return segment_triangle(centre - h * axis, centre + h * axis, scene.face_edges(f), scene.face_gram(f)).distance - nail.radius();
 }
 
 void swept_box(const strike::Motion& m, const projectile::Projectile& nail, double from, double until, Vec3& lo, Vec3& hi) {
@@ -188,7 +188,7 @@ struct Search {
 
   // The exact clearance of face f at pose p, with the closest points.
   double clearance(std::uint32_t f, const Pose& p, SegmentTriangle* st = nullptr) const {
-    const SegmentTriangle s = segment_triangle(p.centre - h * p.axis, p.centre + h * p.axis, scene.face_edges(f));
+    const SegmentTriangle s = segment_triangle(p.centre - h * p.axis, p.centre + h * p.axis, scene.face_edges(f), scene.face_gram(f));
     if (st) *st = s;
     return s.distance - r;
   }
@@ -343,7 +343,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       for (const double end : {-s.h, s.h}) {
         const Vec3 tip = p.centre + end * p.axis;
         if ((tip - st.on_segment).norm() < s.r) continue;  // the closest point already
-        const SegmentTriangle e = segment_triangle(tip, tip, scene.face_edges(fs.face));
+        const SegmentTriangle e = segment_triangle(tip, tip, scene.face_edges(fs.face), scene.face_gram(fs.face));
         if (e.distance - s.r > kFaceTolerance) continue;
         const Vec3 gap = e.on_segment - e.on_triangle;
         const Vec3 dir = gap.norm() > 1e-12 ? Vec3(gap.normalized()) : normal;

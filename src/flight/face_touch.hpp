@@ -44,7 +44,11 @@ struct SegmentTriangle {  // (no initialisers: the search keeps hundreds of them
   Vec3 on_segment, on_triangle;
   double distance;
 };
-SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::array<Vec3, 3>& triangle);
+// (`gram`: the triangle's constants, scene::Scene::face_gram; the same as Gram::of(triangle).)
+SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::array<Vec3, 3>& triangle, const scene::Scene::Gram& gram);
+inline SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::array<Vec3, 3>& triangle) {
+  return segment_triangle(p0, p1, triangle, scene::Scene::Gram::of(triangle));
+}
 
 // One point where the capsule touches a face, its touching point moving into it.
 struct TouchPoint {

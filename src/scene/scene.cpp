@@ -124,6 +124,7 @@ struct Scene::Impl {
   std::vector<Vec3> normals;             // per soup triangle, unit
   std::vector<TriangleEdges> triangles;  // per soup triangle: corner, two edges
   std::vector<Scene::Ball> balls;        // per soup triangle: a sphere holding it
+  std::vector<Scene::Gram> grams;        // per soup triangle: its nearest-point constants
   std::vector<Box> boxes;                // per soup triangle: its box, from the corner and edges as the queries see it
   std::unique_ptr<BoxTree> box_tree;     // over `boxes`: the broad phase
   std::unique_ptr<CgalIndex> cgal;
@@ -154,6 +155,7 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     for (int k = 0; k < 3; ++k) radius = std::max(radius, (m.soup.points[tri[static_cast<std::size_t>(k)]] - centroid).norm());
     m.balls.push_back({centroid, radius * (1 + 1e-12) + 1e-15});
     const TriangleEdges& e = m.triangles.back();
+    m.grams.push_back(Scene::Gram::of(e));
     const Vec3 b = e[0] + e[1], c = e[0] + e[2];
     m.boxes.push_back({e[0].cwiseMin(b).cwiseMin(c), e[0].cwiseMax(b).cwiseMax(c)});
   }
@@ -199,6 +201,7 @@ std::size_t Scene::faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* o
 
 const std::array<Vec3, 3>& Scene::face_edges(std::uint32_t f) const { return impl_->triangles[f]; }
 const Vec3& Scene::face_normal(std::uint32_t f) const { return impl_->normals[f]; }
+const Scene::Gram& Scene::face_gram(std::uint32_t f) const { return impl_->grams[f]; }
 const Scene::Ball& Scene::face_ball(std::uint32_t f) const { return impl_->balls[f]; }
 
 const Soup& Scene::soup() const { return impl_->soup; }

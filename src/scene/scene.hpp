@@ -67,6 +67,23 @@ class Scene {
   // Face f as its first corner and two edges from it, and its unit normal (either side).
   const std::array<Vec3, 3>& face_edges(std::uint32_t f) const;
   const Vec3& face_normal(std::uint32_t f) const;
+  // Face f's constants for nearest-point tests (flight::segment_triangle), worked out once
+  // with the scene instead of at every test: the unnormalised normal e1 x e2 and its squared
+  // length, and the edges' Gram matrix [d00 d01; d01 d11] with its determinant.
+  struct Gram {
+    Vec3 normal;
+    double nn, d00, d01, d11, det;
+    static Gram of(const std::array<Vec3, 3>& edges) {
+      Gram g;
+      const Vec3 &e1 = edges[1], &e2 = edges[2];
+      g.normal = e1.cross(e2);
+      g.nn = g.normal.squaredNorm();
+      g.d00 = e1.squaredNorm(), g.d01 = e1.dot(e2), g.d11 = e2.squaredNorm();
+      g.det = g.d00 * g.d11 - g.d01 * g.d01;
+      return g;
+    }
+  };
+  const Gram& face_gram(std::uint32_t f) const;
   // A sphere holding face f (its centroid, and the farthest corner's distance from it).
   struct Ball {
     Vec3 centre;
