@@ -206,6 +206,14 @@ TEST_CASE("sweep: an opening or a curtain left without a top takes the deck plat
   set.housing.skirt_depth += 0.05;
   CHECK(set.housing.opening_top(set.housing.openings[0]) == plate);
   CHECK(set.housing.guard_top(set.housing.guards[0]) == plate);
+  // A cut height set directly moves a left-out top with the deck, once.
+  auto shoulder = scenario::read_scenario(std::string(J232_SOURCE_DIR) + "/scenarios/field/batwing-highway-shoulder.toml");
+  for (auto& o : shoulder.housing.openings) o.top.reset(), o.chute_end_top.reset();
+  const auto before = shoulder;
+  study::set_cut_height(shoulder, 4 * units::inch);  // the file's blades at 3 in: 1 in up
+  for (std::size_t i = 0; i < shoulder.housing.openings.size(); ++i)
+    CHECK(shoulder.housing.opening_top(shoulder.housing.openings[i]) ==
+          Approx(before.housing.opening_top(before.housing.openings[i]) + units::inch).epsilon(1e-12));
 }
 
 TEST_CASE("sweep: cut_height sets the whole mower, not the ground, and refuses what would go under the turf", "[sweep][field]") {

@@ -220,8 +220,8 @@ void set_cut_height(scenario::Scenario& sc, double height) {
   const double shift = height - lowest;
   auto& h = sc.housing;
   for (auto& sp : sc.spindles) sp.geometry.height += shift;
+  materialise_housing_heights(h);  // (before the deck moves: then each moves with it, as written ones do)
   h.skirt_bottom += shift;
-  materialise_housing_heights(h);  // (then each moves with the deck, as written ones do)
   for (auto& op : h.openings) *op.top += shift, *op.chute_end_top += shift;
   for (auto& g : h.guards) {
     g.bottom += shift;
