@@ -162,7 +162,7 @@ json housing_json(const scenario::Scenario& s, bool from_mesh, const std::vector
           {"openings", openings},
           {"skirt_bottom_m", h.skirt_bottom},
           {"skirt_depth_m", h.skirt_depth},
-          {"deck_top_m", h.skirt_bottom + h.skirt_depth},
+          {"deck_top_m", h.plate_height()},
           {"restitution", restitution_json(h.restitution)},
           {"friction", h.friction},
           {"guards", guards},
@@ -318,7 +318,7 @@ std::vector<Assumption> assumptions(const scenario::Scenario& s) {
     a.push_back({"Deck and skirt: the scenario's mesh(es)", "scenario (user geometry)"});
   } else {
     std::string deck = fmt::format("Deck: skirt from {:.0f} mm to {:.0f} mm above ground", s.housing.skirt_bottom * 1e3,
-                                   (s.housing.skirt_bottom + s.housing.skirt_depth) * 1e3);
+                                   s.housing.plate_height() * 1e3);
     const auto widths = scene::opening_widths(s);
     for (std::size_t i = 0; i < s.housing.openings.size(); ++i) {
       const auto& o = s.housing.openings[i];

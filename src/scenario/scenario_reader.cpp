@@ -811,7 +811,7 @@ bool deflector_crosses_board(const Scenario& s, const DeflectorSpec& d) {
 
 void check_consistency(const TableReader& root, Scenario& s) {
   const bool generated_deck = s.meshes.empty();
-  const double plate = s.housing.skirt_bottom + s.housing.skirt_depth;
+  const double plate = s.housing.plate_height();
   const auto housing = root.table("housing");
   for (std::size_t k = 0; k < s.spindles.size(); ++k) {
     const SpindleSpec& sp = s.spindles[k];

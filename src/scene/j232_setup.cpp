@@ -337,7 +337,7 @@ namespace {
 // an opening, up to its top).
 void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_guard) {
   const auto& h = s.housing;
-  const double deck_top = h.skirt_bottom + h.skirt_depth;
+  const double deck_top = h.plate_height();
   const auto outline = deck_outline(s);
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   for (const auto& p : outline) centroid += p;
@@ -378,7 +378,7 @@ void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_gu
   const auto& h = s.housing;
   const auto& sp = s.spindles.front();
   if (s.spindles.size() > 1 || sp.x != 0.0 || sp.y != 0.0 || !h.openings.empty()) return add_outline_housing(soup, s, first_guard);
-  const double deck_top = h.skirt_bottom + h.skirt_depth, deck_radius = s.deck_radius();
+  const double deck_top = h.plate_height(), deck_radius = s.deck_radius();
   add_disc(soup, deck_radius, deck_top, 96, Surface::Housing);
   add_wall(soup, deck_radius, arc_breaks(0.0, units::two_pi, units::two_pi / 96), {h.skirt_bottom, deck_top},
            [](const Vec3&) { return Surface::Housing; });
@@ -409,7 +409,7 @@ DeckFootprint deck_footprint(const scenario::Scenario& s, const Soup& soup) {
   DeckFootprint f;
   if (!mesh_roles(s).housing) {
     f.outline = deck_outline(s);
-    f.top = s.housing.skirt_bottom + s.housing.skirt_depth;
+    f.top = s.housing.plate_height();
     f.skirt_bottom = s.housing.skirt_bottom;
     return f;
   }
