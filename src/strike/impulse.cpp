@@ -491,6 +491,21 @@ StrikeOutcome strike(const Spindle& sp, const Contact& k, const projectile::Proj
   out.velocity_after = velocity + P / nail.mass;
   out.spin_after = spin + inv_i * r.cross(P);
   out.energy_lost = -out.solution.energy_change;
+  // The blade yielded during the impact (K_blade) but is driven, and the model turns it
+  // rigidly again at once: where the body's point still approaches the rigid blade's (a
+  // heavy stone against a pivoted blade), the recovering blade carries it on until it no
+  // longer does, a plastic push against the unyielding blade. The contact search would
+  // otherwise find the same touch again at the same instant, impact after impact whose
+  // approach shrinks geometrically (a 1.3 kg cobble: a dozen at every contact, until
+  // [run] max_strikes cut it off); frictionless, their sum is exactly this push.
+  const Vec3 v_left = out.velocity_after + out.spin_after.cross(r) - sp.velocity_at(k.point);
+  if (v_left.dot(k.normal) < 0) {
+    const ImpulseSolution push = solve_impulse(nail_compliance(nail, inv_i, r), v_left, k.normal, blade::Restitution::constant(0.0),
+                                               sp.friction, sp.law);
+    out.push = push.impulse;
+    out.velocity_after += out.push / nail.mass;
+    out.spin_after += inv_i * r.cross(out.push);
+  }
   return out;
 }
 

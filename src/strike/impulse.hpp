@@ -76,7 +76,10 @@ struct StrikeOutcome {
   Vec3 velocity_after = Vec3::Zero(), spin_after = Vec3::Zero();
   double blade_effective_mass = 0;   // along the tangent at the contact, kg
   blade::ContactLocation where;      // the blade body struck
-  double energy_lost = 0;            // J, >= 0
+  double energy_lost = 0;            // J, >= 0 (the impact's, before any push)
+  // The rigid blade's push after the impact, on the body (N s; zero unless its point still
+  // approached the blade's): velocity_after and spin_after include it, `solution` does not.
+  Vec3 push = Vec3::Zero();
 };
 
 // The contact `k` of `spindle` on the nail moving at `velocity` with `spin`.
