@@ -20,9 +20,9 @@ std::string cut_off_limits(const Assessment& a, const scenario::Scenario& s) {
     std::string what;
     switch (static_cast<flight::CutOff>(k)) {
       case flight::CutOff::TimeLimit: what = fmt::format("[run] time_limit ({:g} s)", s.time_limit()); break;
-      case flight::CutOff::MaxBounces: what = fmt::format("[run] max_bounces ({})", s.run.max_bounces); break;
+      case flight::CutOff::MaxBounces: what = fmt::format("[run] max_bounces ({})", s.max_bounces()); break;
       case flight::CutOff::FlightSteps: what = fmt::format("the flight's step cap ({} chords)", flight::kMaxFlightSteps); break;
-      case flight::CutOff::MaxStrikes: what = fmt::format("[run] max_strikes ({} blade strikes)", s.run.max_strikes); break;
+      case flight::CutOff::MaxStrikes: what = fmt::format("[run] max_strikes ({} blade strikes)", s.max_strikes()); break;
       case flight::CutOff::SearchSteps:
         what = fmt::format("the contact searches' limits ({} steps against a blade, {} against the scene's faces, or more faces "
                            "within a nanosecond of flight than a search keeps)",

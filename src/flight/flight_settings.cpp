@@ -5,9 +5,9 @@ namespace j232::flight {
 FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<scenario::GuardSpec>& guards)
     : chord_tolerance(s.run.chord_tolerance),
       time_limit(s.time_limit()),
-      max_bounces(s.run.max_bounces),
+      max_bounces(s.max_bounces()),
       max_gentle_contacts(s.run.max_gentle_contacts),
-      max_strikes(s.run.max_strikes),
+      max_strikes(s.max_strikes()),
       max_contacts_per_pass(s.run.max_contacts_per_pass),
       rest_speed(s.run.rest_speed),
       law(s.run.restitution_law),

@@ -361,9 +361,9 @@ void read_run(const TableReader& t, RunSpec& r) {
   // A nail thrown at blade speed reaches the board in well under 0.1 s; shorter limits cut
   // the test off before it happens.
   if (t.has("time_limit")) r.time_limit = t.quantity("time_limit", Kind::Time, Range::between(0.1, 60));
-  r.max_bounces = static_cast<int>(t.integer_or("max_bounces", r.max_bounces, 1, 10000));
+  if (t.has("max_bounces")) r.max_bounces = static_cast<int>(t.integer_or("max_bounces", 0, 1, 10000));
   r.max_gentle_contacts = static_cast<int>(t.integer_or("max_gentle_contacts", r.max_gentle_contacts, 1, 10'000'000));
-  r.max_strikes = static_cast<int>(t.integer_or("max_strikes", r.max_strikes, 1, 100000));
+  if (t.has("max_strikes")) r.max_strikes = static_cast<int>(t.integer_or("max_strikes", 0, 1, 100000));
   r.max_contacts_per_pass = static_cast<int>(t.integer_or("max_contacts_per_pass", r.max_contacts_per_pass, 1, 100000));
   r.rest_speed = t.quantity_or("rest_speed", Kind::Speed, r.rest_speed, Range::between(0.01, 5));
   r.reference_contact_search = t.string_or("contact_search", "advancement", {"advancement", "fixed_steps"}) == "fixed_steps";
