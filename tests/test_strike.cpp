@@ -704,18 +704,18 @@ TEST_CASE("impulse: angular momentum about the spindle and each pivot is conserv
     const auto out = strike::strike(sp, k, nail, v, w);
     if (!out.approaching) continue;
     const Vec3& P = out.solution.impulse;
-    // The impact alone (the driven blade's push after it, where the nail's point still
-    // approached the rigid blade's, is the motor's: taken off here, tested below).
+    // The impact alone (velocity_after, spin_after; the driven blade's push after it is the
+    // motor's, tested below).
     const Eigen::Matrix3d inertia = strike::inverse_inertia(nail, k.axis).inverse();
     const Vec3 r = k.point - k.centre;
-    const Vec3 v_after = out.velocity_after - out.push / nail.mass;
-    const Vec3 w_after = out.spin_after - inertia.inverse() * r.cross(out.push);
+    const Vec3& v_after = out.velocity_after;
+    const Vec3& w_after = out.spin_after;
     pushed += out.push.norm() > 0;
     // The nail: linear and angular momentum change by the impulse and its moment.
     CHECK((nail.mass * (v_after - v) - P).norm() < 1e-12);
     CHECK((inertia * (w_after - w) - r.cross(P)).norm() < 1e-9 * (1 + P.norm()));
-    // After the push too, the nail's point does not approach the rigid blade's.
-    CHECK((out.velocity_after + out.spin_after.cross(r) - sp.velocity_at(k.point)).dot(k.normal) >= -1e-9);
+    // With the push, the nail's point does not approach the rigid blade's.
+    CHECK((out.pushed_velocity() + out.pushed_spin().cross(r) - sp.velocity_at(k.point)).dot(k.normal) >= -1e-6);
     // The blade takes -P at the contact: its generalised momenta change by the moments of -P
     // about the spindle (all coordinates together) and about the pivot (the link's own).
     const auto where = *blade::locate(b, 0, k.radius);
@@ -734,7 +734,7 @@ TEST_CASE("impulse: angular momentum about the spindle and each pivot is conserv
     CHECK(nail_after + blade_after <= nail_before + blade_before + 1e-9 * (nail_before + blade_before));
   }
   INFO("trials where the rigid blade pushed after the impact: " << pushed);
-  CHECK(pushed < 25);  // a 2 g nail against 2.5 kg links: only at restitutions near 0
+  CHECK(pushed <= 5);  // a 2 g nail against 2.5 kg links: only at restitutions near 0
 }
 
 TEST_CASE("strike: a heavy stone that still approaches the yielded pivoted blade is carried on by the driven blade", "[strike][physics]") {
@@ -763,16 +763,16 @@ TEST_CASE("strike: a heavy stone that still approaches the yielded pivoted blade
     const Vec3 u = sp.velocity_at(k.point);
     const Vec3 r = k.point - k.centre;
     // The impact alone leaves the stone's point approaching the rigid blade's.
-    const Vec3 v_impact = out.velocity_after - out.push / stone.mass;
-    CHECK((v_impact - u).dot(k.normal) < -1.0);  // m/s: why the push is there at all
+    CHECK((out.velocity_after - u).dot(k.normal) < -1.0);  // m/s: why the push is there at all
     CHECK(out.push.dot(k.normal) > 0);
-    // After it, the point no longer approaches, within round-off.
-    const double left = (out.velocity_after + out.spin_after.cross(r) - u).dot(k.normal);
-    CHECK(left >= -1e-9);
+    CHECK((out.push_velocity - out.push / stone.mass).norm() < 1e-12);
+    const Vec3 v_push = out.pushed_velocity(), w_push = out.pushed_spin();
+    // After it, the point neither approaches nor parts: a plastic push, within round-off.
+    const double left = (v_push + w_push.cross(r) - u).dot(k.normal);
+    CHECK(left == Approx(0).margin(1e-9));
     if (friction == 0.0) {
-      CHECK(left == Approx(0).margin(1e-9));
-      CHECK((out.velocity_after - (v + (u - v).dot(k.normal) * k.normal)).norm() < 1e-9);  // a plastic impact on an immovable blade
-      CHECK((out.spin_after - w).norm() < 1e-9);  // a ball's normal passes through its centre
+      CHECK((v_push - (out.velocity_after + (u - out.velocity_after).dot(k.normal) * k.normal)).norm() < 1e-9);  // a plastic impact on an immovable blade
+      CHECK((w_push - out.spin_after).norm() < 1e-9);  // a ball's normal passes through its centre
     } else {
       CHECK(out.push.dot(k.normal) * friction >= (out.push - out.push.dot(k.normal) * k.normal).norm() - 1e-12);  // inside the cone
     }

@@ -92,8 +92,8 @@ NailOutcome Simulator::run_nail(std::uint64_t replicate, int nail, std::vector<f
   const Vec3 falling = fall.motion.velocity(contact->time);
   const flight::Launch struck = flight::launch(spindle, *contact, drop.nail, falling);
   if (replay)
-    replay->strike = *contact, replay->falling = falling, replay->velocity_after = struck.hit.velocity_after,
-    replay->spin_after = struck.hit.spin_after;
+    replay->strike = *contact, replay->falling = falling, replay->velocity_after = struck.hit.pushed_velocity(),
+    replay->spin_after = struck.hit.pushed_spin();
   if (struck.result == flight::Launch::Result::NonFinite) {
     out.flight.fate = flight::Fate::CutOff;
     out.flight.cut_off = flight::CutOff::NonFinite;

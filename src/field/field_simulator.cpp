@@ -316,11 +316,18 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   // Struck from above, it is driven into the soil, which takes the downward part; if the
   // blade is then still in its way, the knife rides over it (swinging back on its pivot),
   // and it leaves along the ground with what the soil's friction left it.
+  // Judged on the impact alone: the driven blade's push (launch's) is for a body that no
+  // soil holds, which the blade would otherwise meet again at once.
   flight::FirstContact first{contact->spindle, contact->edge};
-  if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().materials.ground().velocity, body.velocity, e.support) &&
-      (body.velocity + hit.spin_after.cross(contact->point - body.position) - spindle.velocity_at(contact->point)).dot(contact->normal) <= 0) {
-    out.pressed = true;
-    first.ridden_until = contact->time + flight::kRideOverTurn / spindle.omega();
+  body.velocity = hit.velocity_after;
+  if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().materials.ground().velocity, body.velocity, e.support)) {
+    body.spin = e.body.without_axial_spin(hit.spin_after, body.axis);
+    if ((body.velocity + hit.spin_after.cross(contact->point - body.position) - spindle.velocity_at(contact->point)).dot(contact->normal) <= 0) {
+      out.pressed = true;
+      first.ridden_until = contact->time + flight::kRideOverTurn / spindle.omega();
+    }
+  } else {
+    body.velocity = hit.pushed_velocity();
   }
   flight::Drag drag = drag_per_unit_[e.kind];
   drag.k_axial /= e.body.diameter, drag.k_normal /= e.body.diameter;

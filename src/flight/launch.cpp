@@ -19,9 +19,11 @@ Launch launch(const strike::Spindle& spindle, const strike::Contact& contact, co
   if (!(energy_after > 0.5 * body.mass * coming.squaredNorm())) return l;
   l.result = Launch::Result::Thrown;
   l.body.position = contact.centre;
-  l.body.velocity = l.hit.velocity_after;
+  // It leaves with the driven blade's push (no soil here: a field's object pressed into it
+  // is the field simulator's to judge).
+  l.body.velocity = l.hit.pushed_velocity();
   l.body.axis = contact.axis;
-  l.body.spin = body.without_axial_spin(l.hit.spin_after, l.body.axis);  // a rod's flight follows its axis; a sphere keeps its whole spin
+  l.body.spin = body.without_axial_spin(l.hit.pushed_spin(), l.body.axis);  // a rod's flight follows its axis; a sphere keeps its whole spin
   l.body.time = contact.time;  // the blades' clock: later contacts are timed against it
   return l;
 }

@@ -483,13 +483,16 @@ void NailFlight::restrike(const strike::Contact& k) {
   const bool sustained = set.materials.ground().takes_strikes && same_pass && pass_contacts > kSustainedContacts && k.time - last_contact < kSustainedGap;
   pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
+  // Pressed into the soil, it is judged on the impact alone (the knife rides over it, or it
+  // parts); held by nothing, it leaves with the driven blade's push.
   b.velocity = out.velocity_after;
-  if (set.materials.ground().takes_strikes &&
-      soil_reaction(b.position, nail.half_segment() + nail.radius(), set.materials.ground().friction, set.materials.ground().velocity,
-                    b.velocity) &&
-      (b.velocity + out.spin_after.cross(k.point - b.position) - sp.velocity_at(k.point)).dot(k.normal) <= 0)
+  const bool in_soil = set.materials.ground().takes_strikes &&
+                       soil_reaction(b.position, nail.half_segment() + nail.radius(), set.materials.ground().friction,
+                                     set.materials.ground().velocity, b.velocity);
+  if (in_soil && (b.velocity + out.spin_after.cross(k.point - b.position) - sp.velocity_at(k.point)).dot(k.normal) <= 0)
     ride_over(k.spindle, k.time);
-  b.spin = nail.without_axial_spin(out.spin_after, b.axis);
+  if (!in_soil) b.velocity = out.pushed_velocity();
+  b.spin = nail.without_axial_spin(in_soil ? out.spin_after : out.pushed_spin(), b.axis);
   if (sustained) b.velocity = sp.velocity_at(k.point), b.spin = Vec3::Zero(), ++r.pushed_along;
   if (on_blade) r.launch_velocity = b.velocity;  // its launch: the last contact before it touches anything else
   ++r.strikes;

@@ -237,7 +237,7 @@ class EdgeSearch {
       const Touch touch = touch_at(t, p);
       // (At the search's start, where the last impulse may have left the points barely
       // parting or at rest, only a touch that really approaches counts: no zero-time repeat.)
-      const bool real = t > m_.t0 || -touch.v_rel.dot(touch.contact.normal) > 1e-6;
+      const bool real = t > m_.t0 || -touch.v_rel.dot(touch.contact.normal) > kSameInstantApproach;
       if (touch.approaching && real) return touch.contact;
       const Vec3& v_rel = touch.v_rel;
       // Parting: step on (a step that goes deeper is bisected back), or, overlapping where

@@ -77,6 +77,8 @@ struct SearchStats {
 inline constexpr double kContactTolerance = 2e-6;  // m: a capsule this close to the section touches it
 inline constexpr double kMinStep = 2e-4;            // m: the least travel of a step near the blade (a tenth of a nail's diameter)
 inline constexpr int kMaxSearchSteps = 4000;        // per edge and search
+// m/s: at a search's start (just after an impulse), a touch approaching slower is no new contact
+inline constexpr double kSameInstantApproach = 1e-6;
 inline constexpr double kCoarseAtan2Error = 2e-5;   // rad: coarse_atan2's bound, with a margin
 
 // atan2(y, x) to within kCoarseAtan2Error (for the search's angular bounds; exposed for tests).

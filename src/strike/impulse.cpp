@@ -494,17 +494,18 @@ StrikeOutcome strike(const Spindle& sp, const Contact& k, const projectile::Proj
   // The blade yielded during the impact (K_blade) but is driven, and the model turns it
   // rigidly again at once: where the body's point still approaches the rigid blade's (a
   // heavy stone against a pivoted blade), the recovering blade carries it on until it no
-  // longer does, a plastic push against the unyielding blade. The contact search would
-  // otherwise find the same touch again at the same instant, impact after impact whose
-  // approach shrinks geometrically (a 1.3 kg cobble: a dozen at every contact, until
-  // [run] max_strikes cut it off); frictionless, their sum is exactly this push.
+  // longer does, a plastic push against the unyielding blade (an assumption: the motor's
+  // work, the link's recovery taken as instant). The contact search would otherwise find the
+  // same touch again at the same instant (while it approaches faster than 1e-6 m/s, its
+  // threshold), impact after impact (a 1.3 kg cobble: a dozen at every contact, until
+  // [run] max_strikes cut it off); frictionless at a constant e, their sum is this push.
   const Vec3 v_left = out.velocity_after + out.spin_after.cross(r) - sp.velocity_at(k.point);
-  if (v_left.dot(k.normal) < 0) {
+  if (v_left.dot(k.normal) < -kSameInstantApproach) {
     const ImpulseSolution push = solve_impulse(nail_compliance(nail, inv_i, r), v_left, k.normal, blade::Restitution::constant(0.0),
                                                sp.friction, sp.law);
     out.push = push.impulse;
-    out.velocity_after += out.push / nail.mass;
-    out.spin_after += inv_i * r.cross(out.push);
+    out.push_velocity = out.push / nail.mass;
+    out.push_spin = inv_i * r.cross(out.push);
   }
   return out;
 }

@@ -77,9 +77,14 @@ struct StrikeOutcome {
   double blade_effective_mass = 0;   // along the tangent at the contact, kg
   blade::ContactLocation where;      // the blade body struck
   double energy_lost = 0;            // J, >= 0 (the impact's, before any push)
-  // The rigid blade's push after the impact, on the body (N s; zero unless its point still
-  // approached the blade's): velocity_after and spin_after include it, `solution` does not.
-  Vec3 push = Vec3::Zero();
+  // The driven blade's push after the impact (docs/model.md §5.2), where the body's point
+  // still approaches the rigid blade's faster than the contact search's 1e-6 m/s: its impulse
+  // on the body (N s) and the changes of velocity and spin it brings; zero elsewhere. Not in
+  // velocity_after and spin_after (the impact's alone): a body the strike presses into the
+  // soil is not pushed, the knife rides over it (flight::soil_reaction, ride_over).
+  Vec3 push = Vec3::Zero(), push_velocity = Vec3::Zero(), push_spin = Vec3::Zero();
+  Vec3 pushed_velocity() const { return velocity_after + push_velocity; }
+  Vec3 pushed_spin() const { return spin_after + push_spin; }
 };
 
 // The contact `k` of `spindle` on the nail moving at `velocity` with `spin`.
