@@ -319,15 +319,12 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   // Judged on the impact alone: the driven blade's push (launch's) is for a body that no
   // soil holds, which the blade would otherwise meet again at once.
   flight::FirstContact first{contact->spindle, contact->edge};
-  body.velocity = hit.velocity_after;
-  if (flight::soil_reaction(body.position, r, s.ground.friction, mower_->settings().materials.ground().velocity, body.velocity, e.support)) {
-    body.spin = e.body.without_axial_spin(hit.spin_after, body.axis);
-    if ((body.velocity + hit.spin_after.cross(contact->point - body.position) - spindle.velocity_at(contact->point)).dot(contact->normal) <= 0) {
-      out.pressed = true;
-      first.ridden_until = contact->time + flight::kRideOverTurn / spindle.omega();
-    }
-  } else {
-    body.velocity = hit.pushed_velocity();
+  const flight::StruckSoil soil{r, s.ground.friction, e.support, mower_->settings().materials.ground().velocity};
+  const flight::AfterStrike left = flight::after_strike(hit, spindle, *contact, body.position, &soil);
+  body.velocity = left.velocity, body.spin = e.body.without_axial_spin(left.spin, body.axis);
+  if (left.ride_over) {
+    out.pressed = true;
+    first.ridden_until = contact->time + flight::kRideOverTurn / spindle.omega();
   }
   flight::Drag drag = drag_per_unit_[e.kind];
   drag.k_axial /= e.body.diameter, drag.k_normal /= e.body.diameter;

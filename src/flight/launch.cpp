@@ -2,6 +2,8 @@
 
 #include <Eigen/Dense>
 
+#include "flight/plane_touch.hpp"
+
 namespace j232::flight {
 
 Launch launch(const strike::Spindle& spindle, const strike::Contact& contact, const projectile::Projectile& body, const Vec3& coming) {
@@ -26,6 +28,19 @@ Launch launch(const strike::Spindle& spindle, const strike::Contact& contact, co
   l.body.spin = body.without_axial_spin(l.hit.pushed_spin(), l.body.axis);  // a rod's flight follows its axis; a sphere keeps its whole spin
   l.body.time = contact.time;  // the blades' clock: later contacts are timed against it
   return l;
+}
+
+AfterStrike after_strike(const strike::StrikeOutcome& hit, const strike::Spindle& spindle, const strike::Contact& contact,
+                         const Vec3& centre, const StruckSoil* soil) {
+  AfterStrike a;
+  a.velocity = hit.velocity_after;
+  if (soil && soil_reaction(centre, soil->reach, soil->friction, soil->turf, a.velocity, soil->support)) {
+    a.spin = hit.spin_after;
+    a.ride_over = (a.velocity + hit.spin_after.cross(contact.point - centre) - spindle.velocity_at(contact.point)).dot(contact.normal) <= 0;
+    return a;
+  }
+  a.velocity = hit.pushed_velocity(), a.spin = hit.pushed_spin();
+  return a;
 }
 
 }  // namespace j232::flight

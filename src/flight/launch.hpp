@@ -24,4 +24,21 @@ struct Launch {
 // the turf), without spin.
 Launch launch(const strike::Spindle& spindle, const strike::Contact& contact, const projectile::Projectile& body, const Vec3& coming);
 
+// Where a strike leaves a body, first or later, in either pipeline. Held by nothing, it
+// leaves with the driven blade's push. Struck into soil that takes strikes (`soil`: the
+// ground's friction and velocity, the body's reach below its centre and what it rests on),
+// it is judged on the impact alone: the soil takes the downward part, and `ride_over` says
+// whether the blade is then still in its way (the knife rides over it). Spin as the impulse
+// left it (the caller drops a rod's axial part).
+struct StruckSoil {
+  double reach = 0, friction = 0, support = 0;
+  Vec3 turf = Vec3::Zero();
+};
+struct AfterStrike {
+  Vec3 velocity = Vec3::Zero(), spin = Vec3::Zero();
+  bool ride_over = false;
+};
+AfterStrike after_strike(const strike::StrikeOutcome& hit, const strike::Spindle& spindle, const strike::Contact& contact,
+                         const Vec3& centre, const StruckSoil* soil);
+
 }  // namespace j232::flight

@@ -10,6 +10,7 @@
 #include "board/board.hpp"
 #include "invariant/check.hpp"
 #include "flight/face_touch.hpp"
+#include "flight/launch.hpp"
 #include "flight/penetration.hpp"
 #include "flight/plane_touch.hpp"
 #include "strike/impulse.hpp"
@@ -483,16 +484,12 @@ void NailFlight::restrike(const strike::Contact& k) {
   const bool sustained = set.materials.ground().takes_strikes && same_pass && pass_contacts > kSustainedContacts && k.time - last_contact < kSustainedGap;
   pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
-  // Pressed into the soil, it is judged on the impact alone (the knife rides over it, or it
-  // parts); held by nothing, it leaves with the driven blade's push.
-  b.velocity = out.velocity_after;
-  const bool in_soil = set.materials.ground().takes_strikes &&
-                       soil_reaction(b.position, nail.half_segment() + nail.radius(), set.materials.ground().friction,
-                                     set.materials.ground().velocity, b.velocity);
-  if (in_soil && (b.velocity + out.spin_after.cross(k.point - b.position) - sp.velocity_at(k.point)).dot(k.normal) <= 0)
-    ride_over(k.spindle, k.time);
-  if (!in_soil) b.velocity = out.pushed_velocity();
-  b.spin = nail.without_axial_spin(in_soil ? out.spin_after : out.pushed_spin(), b.axis);
+  const SurfaceMaterial& ground = set.materials.ground();
+  const StruckSoil soil{nail.half_segment() + nail.radius(), ground.friction, 0.0, ground.velocity};
+  const AfterStrike left = after_strike(out, sp, k, b.position, ground.takes_strikes ? &soil : nullptr);
+  if (left.ride_over) ride_over(k.spindle, k.time);
+  b.velocity = left.velocity;
+  b.spin = nail.without_axial_spin(left.spin, b.axis);
   if (sustained) b.velocity = sp.velocity_at(k.point), b.spin = Vec3::Zero(), ++r.pushed_along;
   if (on_blade) r.launch_velocity = b.velocity;  // its launch: the last contact before it touches anything else
   ++r.strikes;
