@@ -1,6 +1,7 @@
 #include "report/result_files.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -342,6 +343,22 @@ const char* verdict_word(const assess::Summary& sum) {
 }
 
 namespace {
+// The significant digits of a number as JSON writes it ("-0.00123e-5": 3).
+int significant_digits(const std::string& number) {
+  int digits = 0, zeros = 0;
+  bool leading = true;
+  for (const char c : number) {
+    if (c == 'e' || c == 'E') break;
+    if (c < '0' || c > '9') continue;
+    if (leading && c == '0') continue;
+    leading = false;
+    // Trailing zeros after the last non-zero digit are not significant (nor written).
+    if (c == '0') ++zeros;
+    else digits += zeros + 1, zeros = 0;
+  }
+  return digits;
+}
+
 template <class Json>
 void round_numbers(Json& j) {
   if (j.is_number_float()) {
@@ -355,10 +372,45 @@ void round_numbers(Json& j) {
     for (auto& v : j) round_numbers(v);
   }
 }
+// nlohmann's Grisu2 is not always the shortest form: the double nearest 0.182594302 comes out
+// as 0.18259430200000001. Each real number of the text longer than 12 significant digits is
+// written again in its shortest form (std::to_chars), which after the rounding has at most 12.
+std::string shortest_numbers(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (in_string) {
+      out += c;
+      if (c == '\\' && i + 1 < text.size()) out += text[++i];
+      else if (c == '"') in_string = false;
+      ++i;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    if (c != '-' && (c < '0' || c > '9')) {
+      out += c, ++i;
+      continue;
+    }
+    const std::size_t end = text.find_first_not_of("+-0123456789.eE", i);
+    const std::string token = text.substr(i, end - i);
+    i = end == std::string::npos ? text.size() : end;
+    if (token.find_first_of(".eE") == std::string::npos || significant_digits(token) <= 12) {
+      out += token;
+      continue;
+    }
+    char shortest[32];
+    const auto written = std::to_chars(shortest, shortest + sizeof shortest, std::strtod(token.c_str(), nullptr));
+    out.append(shortest, written.ptr);
+  }
+  return out;
+}
+
 template <class Json>
 std::string rounded_text(Json j, int indent) {
   round_numbers(j);
-  return j.dump(indent);
+  return shortest_numbers(j.dump(indent));
 }
 }  // namespace
 
