@@ -871,6 +871,110 @@ std::vector<std::array<double, 3>> round_the_skirt(bool rolls, double mu, const 
 }
 }  // namespace
 
+TEST_CASE("flight: in a field a ball the mower's wall meets rolls off it and back and is held there; one rolling out of the square ends there",
+          "[flight][ground]") {
+  // A 50 mm ball rolling back at 0.5 m/s over the turf, which moves back at 2.22 m/s (8 km/h)
+  // in the mower's frame, meets a wall of the mower (restitution 0.3) at u = 2.22-2.72 m/s: it
+  // leaves the wall at e u = 0.67-0.82 m/s relative to it, faster than the rest speed (0.3
+  // m/s), and is slowed by the turf at no less than the rolling resistance rho g while it runs
+  // ahead of the wall. By hand it is back at the wall within 2 e u / (rho g) = 1.4 s, and once
+  // it moves no faster than the rest speed the turf's push holds it there (pushed along).
+  // Before, the wall kept holding it while it moved off at under the gentle speed (1 m/s for
+  // 50 mm), took the deceleration back towards it, and the ball crossed the deck at a
+  // constant speed until the time limit.
+  const double diameter = 0.05, mass = 2650 * units::pi / 6 * diameter * diameter * diameter, turf = 8 / 3.6, u = turf + 0.5, e = 0.3,
+               rho = 0.12;
+  scene::Soup soup;
+  {
+    const double half = 60;
+    const auto a = soup.add_point({-half, -half, 0}), b = soup.add_point({half, -half, 0});
+    const auto c = soup.add_point({half, half, 0}), d = soup.add_point({-half, half, 0});
+    soup.add_quad(a, b, c, d, scene::Surface::Ground);
+    // The wall: the plane x = 0, from y = -1 to 1 m, 0.3 m high.
+    const auto w0 = soup.add_point({0, -1, 0}), w1 = soup.add_point({0, 1, 0});
+    const auto w2 = soup.add_point({0, 1, 0.3}), w3 = soup.add_point({0, -1, 0.3});
+    soup.add_quad(w0, w1, w2, w3, scene::Surface::Housing);
+  }
+  const scene::Scene scene(soup);
+  scenario::Scenario s;
+  s.ground.restitution = 0;
+  s.ground.friction = 0.5;
+  s.ground.roughness = 0;
+  s.ground.rolling_resistance = rho;
+  s.housing.friction = 0.3;
+  s.housing.restitution = blade::Restitution::constant(e);
+  s.run.time_limit = 20;
+  flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+  settings.materials.ground().velocity = {-turf, 0, 0};
+  const auto projectile = projectile::Projectile::sphere(diameter, mass);
+  {
+    flight::FlightContext ctx{&scene, &settings, 50.0, 1.0, 0.0};
+    ctx.rolls = true;
+    std::vector<flight::FlightEvent> events;
+    ctx.events = &events;
+    flight::Body b;
+    b.position = {0.5 * diameter + 0.01, 0, 0.5 * diameter + 1e-6};
+    b.velocity = {-u, 0, 0};
+    b.spin = Vec3(0, -0.5 / (0.5 * diameter), 0);  // rolling back over the turf
+    random::EventDraws rng(1, 0, 0);
+    const auto r = flight::fly(b, projectile, {}, ctx, {}, {}, rng);
+    // Its bounces on the wall (the housing's): off it, and back after at most 2 e u / (rho g).
+    std::vector<double> on_wall;
+    for (const auto& ev : events)
+      if (ev.kind == flight::FlightEvent::Kind::Bounce && ev.surface == scene::Surface::Housing) on_wall.push_back(ev.time);
+    const double away = on_wall.size() >= 2 ? on_wall[1] - on_wall[0] : HUGE_VAL, hand = 2 * e * u / (rho * g);
+    INFO(on_wall.size() << " bounces on the wall; away from it " << away << " s (hand: at most " << hand << " s); ended at "
+                        << r.end_position.transpose() << " after " << r.flight_time << " s");
+    REQUIRE(on_wall.size() >= 2);
+    CHECK(away > 0.01);  // it did leave the wall
+    CHECK(away <= hand);
+    CHECK(r.fate == flight::Fate::Contained);  // at rest under the deck (within ctx.deck_radius), held by the wall
+    CHECK(std::abs(r.end_position.x() - 0.5 * diameter) < 1e-3);
+    CHECK(r.flight_time < 2.0);
+    REQUIRE(!events.empty());
+    CHECK(events.back().kind == flight::FlightEvent::Kind::End);
+  }
+  {
+    // Run along the wall at 3 m/s, pressed into it by the turf: slowed along it by the
+    // turf's resistance and the wall's friction (at least rho g), it stops within 3 / (rho g)
+    // = 2.5 s and is then held there.
+    flight::FlightContext ctx{&scene, &settings, 50.0, 1.0, 0.0};
+    ctx.rolls = true;
+    flight::Body b;
+    b.position = {0.5 * diameter + 1e-4, -0.9, 0.5 * diameter + 1e-6};
+    b.velocity = {-turf - 0.05, 3, 0};
+    random::EventDraws rng(1, 0, 0);
+    const auto r = flight::fly(b, projectile, {}, ctx, {}, {}, rng);
+    INFO("ended at " << r.end_position.transpose() << " after " << r.flight_time << " s");
+    CHECK(r.fate == flight::Fate::Contained);
+    CHECK(r.flight_time < 3 / (rho * g));
+    CHECK(std::abs(r.end_position.x() - 0.5 * diameter) < 1e-3);
+  }
+  {
+    // Rolling away at 30 m/s over the ground, with drag: it would roll on for more than the
+    // time limit (10 s here: rho g alone leaves it 18 m/s then); the space followed ends 50 m
+    // out, and the roll ends there at the end of the part (a tenth of its speed) that crosses
+    // it, not cut off.
+    settings.time_limit = 10;
+    const double k = 1.2 * 0.47 * (units::pi / 4 * diameter * diameter) / (2 * mass);
+    flight::Drag drag;
+    drag.on = true, drag.sphere = true, drag.k_normal = k, drag.air = {-turf, 0, 0};
+    flight::FlightContext ctx{&scene, &settings, 50.0, 1.0, 0.0};
+    ctx.rolls = true;
+    flight::Body b;
+    b.position = {0.5, 0, 0.5 * diameter + 1e-6};
+    b.velocity = {30 - turf, 0, 0};
+    b.spin = Vec3(0, 30 / (0.5 * diameter), 0);  // rolling
+    random::EventDraws rng(1, 0, 0);
+    const auto r = flight::fly(b, projectile, drag, ctx, {}, {}, rng);
+    INFO("ended at " << r.end_position.transpose() << " after " << r.flight_time << " s");
+    CHECK(r.fate == flight::Fate::OverBoard);
+    CHECK(r.cut_off == flight::CutOff::None);
+    CHECK(r.end_position.x() > 50);
+    CHECK(r.end_position.x() < 50 + 0.1 * 30 * 30 / (rho * g));  // (generously: a part runs at most a tenth of the speed)
+  }
+}
+
 TEST_CASE("flight: a stone that does not roll skids round a deck's skirt, slowed as friction on a curve slows it", "[flight][bounce]") {
   // Held to a curved wall, a sliding body's speed falls as v = v0 exp(-mu theta) with the
   // angle it has turned through (the wall's push m v dtheta per turn, friction mu of it:

@@ -864,7 +864,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
   const double before = ctx.events ? energy() : 0.0;
   lie_down(up, hit.point);
   if (FlightEvent* e = log(FlightEvent::Kind::Slide, b.position, up, b.velocity.norm())) e->energy_before = before, e->energy_after = energy();
-  bool stopped = false;
+  bool stopped = false, escaped = false;
   bool against_mower = false;  // held against a face of the mower by the turf (below)
   // A face of the mower the moving turf presses the object into (in a field), while it slides
   // along it: the face's normal (zero: none). The face takes the push into it; the object
@@ -882,6 +882,22 @@ bool NailFlight::slide(const scene::Hit& hit) {
           : part > kMaxSlideParts                      ? CutOff::FlightSteps
                                                        : CutOff::MaxGentleContacts);
       break;
+    }
+    // Slid or rolled out of the space followed (a field's tallied square), as a flight leaves
+    // it (event_check): ended there. (A round stone rolling at 30 m/s on 0.12 g ran 350 m
+    // before the time limit cut it off.)
+    if (b.position.x() * b.position.x() + b.position.y() * b.position.y() > ctx.escape_radius * ctx.escape_radius) {
+      escaped = true;
+      break;
+    }
+    // Slowed to the mower's pace at the wall the turf presses it into, it is held there and
+    // pushed along, as when it meets the wall at that pace (below), if the wall's friction
+    // holds it against the turf's pull along the wall. (Else it had slid on at no speed, part
+    // after part, until the time limit: a stone stopped against the rear chains.)
+    if (pressed.squaredNorm() > 0 && !against_mower) {
+      const Vec3 on_ground = b.velocity - b.velocity.dot(up) * up;
+      const double into = -turf.dot(pressed), pull = (turf + into * pressed).norm();
+      against_mower = into > 1e-9 && pull <= pressed_mu * into && on_ground.norm() <= set.rest_speed;
     }
     // At rest on the turf, or pushed along by the mower (below).
     if (speed < set.rest_speed || against_mower || (friction_decel <= 0 && !drag.on)) {
@@ -952,13 +968,18 @@ bool NailFlight::slide(const scene::Hit& hit) {
     strike::Motion m;
     m.p0 = b.position, m.v0 = turf + speed * slip, m.a = accel, m.t0 = b.time, m.axis0 = b.axis;
     double part_end = b.time + std::min(decel > 0 ? (speed - end_speed) / decel : HUGE_VAL, slip_ends);
-    if (pressed.squaredNorm() > 0 && m.v0.dot(pressed) > gentle_speed) pressed = Vec3::Zero();  // bounced off the wall: free of it
+    // Bounced off the wall faster than the rest speed: free of it. Slower, the rebound is none
+    // (as a bounce slower than the rest speed is rest): held at the wall. (Kept pressed while
+    // moving off it, it had kept that speed with nothing slowing it, the wall having taken the
+    // deceleration back towards it: a cobble crossed the deck at 0.4 m/s for seconds.)
+    if (pressed.squaredNorm() > 0 && m.v0.dot(pressed) > set.rest_speed) pressed = Vec3::Zero();
     if (pressed.squaredNorm() > 0) {
-      // Against the wall: what would move it into the wall the wall takes (its velocity and
-      // acceleration into it removed), its friction slowing the motion along it; the part
-      // ends where that motion stops or the speed has fallen as above.
+      // Against the wall: what would move it into or off the wall the wall takes (its velocity
+      // and acceleration into it removed, and a rebound slower than the rest speed), its
+      // friction slowing the motion along it; the part ends where that motion stops or the
+      // speed has fallen as above.
       const double v_in = m.v0.dot(pressed), a_in = m.a.dot(pressed);
-      if (v_in < 0) m.v0 -= v_in * pressed;
+      m.v0 -= v_in * pressed;
       if (a_in < 0) {
         m.a -= a_in * pressed;
         const Vec3 along = m.v0 - m.v0.dot(pressed) * pressed;
@@ -1048,7 +1069,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
       pressed_mu = set.materials.of(met.surface, met.guard).friction;
     }
   }
-  return !(stopped || ended_at_rest || cut_off);
+  return !(stopped || escaped || ended_at_rest || cut_off);
 }
 
 // After a bounce off `hit`: on the ground with too little rebound to fly, it slides to rest
