@@ -935,9 +935,10 @@ TEST_CASE("flight: in a field a ball the mower's wall meets rolls off it and bac
     CHECK(events.back().kind == flight::FlightEvent::Kind::End);
   }
   {
-    // Run along the wall at 3 m/s, pressed into it by the turf: slowed along it by the
-    // turf's resistance and the wall's friction (at least rho g), it stops within 3 / (rho g)
-    // = 2.5 s and is then held there.
+    // Run along the wall at 3 m/s, pressed into it by the turf: slowed along it by the turf's
+    // resistance and the wall's friction, rho g (v + mu_w c) / sqrt(v^2 + c^2) with c the turf's
+    // speed, never less than mu_w rho g, it stops within 3 / (mu_w rho g) = 8.5 s, before the
+    // wall's end, and is then held there.
     flight::FlightContext ctx{&scene, &settings, 50.0, 1.0, 0.0};
     ctx.rolls = true;
     flight::Body b;
@@ -947,8 +948,27 @@ TEST_CASE("flight: in a field a ball the mower's wall meets rolls off it and bac
     const auto r = flight::fly(b, projectile, {}, ctx, {}, {}, rng);
     INFO("ended at " << r.end_position.transpose() << " after " << r.flight_time << " s");
     CHECK(r.fate == flight::Fate::Contained);
-    CHECK(r.flight_time < 3 / (rho * g));
+    CHECK(r.flight_time < 3 / (0.3 * rho * g));
     CHECK(std::abs(r.end_position.x() - 0.5 * diameter) < 1e-3);
+    CHECK(std::abs(r.end_position.y()) < 1.0);  // on the wall, not held by its plane beyond its end
+  }
+  {
+    // The same run started 0.4 m before the wall's end: it passes the end and is then free
+    // of the wall (nothing holds it in open turf: it comes to rest on the turf beyond the
+    // end, carried back past the wall's plane), not held by the wall's plane.
+    flight::FlightContext ctx{&scene, &settings, 50.0, 1.0, 0.0};
+    ctx.rolls = true;
+    flight::Body b;
+    b.position = {0.5 * diameter + 1e-4, 0.6, 0.5 * diameter + 1e-6};
+    b.velocity = {-turf - 0.05, 3, 0};
+    random::EventDraws rng(1, 0, 0);
+    const auto r = flight::fly(b, projectile, {}, ctx, {}, {}, rng);
+    INFO("ended at " << r.end_position.transpose() << " after " << r.flight_time << " s");
+    CHECK(r.fate != flight::Fate::CutOff);
+    CHECK(r.end_position.y() > 1.0);
+    // Free, the turf draws it back behind the wall's plane as it slows over the ground; held by
+    // that plane, it had stayed on it.
+    CHECK(r.end_position.x() < 0.5 * diameter - 0.01);
   }
   {
     // Rolling away at 30 m/s over the ground, with drag: it would roll on for more than the

@@ -121,6 +121,10 @@ constexpr double kMaxChord = 0.15;
 // A lying nail slides with its lowest point this far above the ground (clear of its faces by
 // more than the touch tolerance, so that sliding along them is no touch).
 constexpr double kLyingGap = 5 * kFaceTolerance;
+// A slide pressed into a face of the mower by the moving turf is held by it only while its
+// clearance to that face is below this (a touch is within kFaceTolerance; round-off in a part
+// along the face stays far below 0.1 mm).
+constexpr double kPressedGap = 1e-4;
 // The faces a chord's search considers at most: a longer list halves the chord.
 constexpr std::size_t kMaxCandidates = 256;
 
@@ -871,6 +875,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
   // slides along the face, slowed by the face's friction too.
   Vec3 pressed = Vec3::Zero();
   double pressed_mu = 0;
+  std::uint32_t pressed_face = 0;
   for (int part = 0; !stopped; ++part) {
     Vec3 slip = b.velocity - b.velocity.dot(up) * up - turf;
     const double speed = slip.norm();
@@ -883,7 +888,8 @@ bool NailFlight::slide(const scene::Hit& hit) {
                                                        : CutOff::MaxGentleContacts);
       break;
     }
-    // Slid or rolled out of the space followed (a field's tallied square), as a flight leaves
+    // Slid or rolled out of the space followed (ctx.escape_radius: a field's, beyond its
+    // tallied square's corners; a J232 test's, 1 m beyond the board ring), as a flight leaves
     // it (event_check): ended there. (A round stone rolling at 30 m/s on 0.12 g ran 350 m
     // before the time limit cut it off.)
     if (b.position.x() * b.position.x() + b.position.y() * b.position.y() > ctx.escape_radius * ctx.escape_radius) {
@@ -894,6 +900,9 @@ bool NailFlight::slide(const scene::Hit& hit) {
     // pushed along, as when it meets the wall at that pace (below), if the wall's friction
     // holds it against the turf's pull along the wall. (Else it had slid on at no speed, part
     // after part, until the time limit: a stone stopped against the rear chains.)
+    // (Only while it still touches that face: slid past its end, or off a convex skirt's
+    // facet along its plane, it is free of it.)
+    if (pressed.squaredNorm() > 0 && face_clearance(*ctx.scene, pressed_face, nail, b.position, b.axis) > kPressedGap) pressed = Vec3::Zero();
     if (pressed.squaredNorm() > 0 && !against_mower) {
       const Vec3 on_ground = b.velocity - b.velocity.dot(up) * up;
       const double into = -turf.dot(pressed), pull = (turf + into * pressed).norm();
@@ -1067,6 +1076,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
       pressed = met.normal - met.normal.dot(up) * up;
       pressed = pressed.norm() > 1e-9 ? Vec3(pressed.normalized()) : Vec3::Zero();
       pressed_mu = set.materials.of(met.surface, met.guard).friction;
+      pressed_face = met.face;
     }
   }
   return !(stopped || escaped || ended_at_rest || cut_off);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fmt/format.h>
 #include <stdexcept>
+#include <string_view>
 
 #include "assess/model_version.hpp"
 #include "assess/statistics.hpp"
@@ -401,8 +402,12 @@ std::string shortest_numbers(const std::string& text) {
       continue;
     }
     char shortest[32];
-    const auto written = std::to_chars(shortest, shortest + sizeof shortest, std::strtod(token.c_str(), nullptr));
+    double value = 0;
+    std::from_chars(token.data(), token.data() + token.size(), value);  // (locale-free, as to_chars)
+    const auto written = std::to_chars(shortest, shortest + sizeof shortest, value);
     out.append(shortest, written.ptr);
+    // A real stays a real when read back (to_chars may write 1e+15 as 1000000000000000).
+    if (std::string_view(shortest, static_cast<std::size_t>(written.ptr - shortest)).find_first_of(".eE") == std::string_view::npos) out += ".0";
   }
   return out;
 }
