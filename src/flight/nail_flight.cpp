@@ -876,6 +876,13 @@ bool NailFlight::slide(const scene::Hit& hit) {
   Vec3 pressed = Vec3::Zero();
   double pressed_mu = 0;
   std::uint32_t pressed_face = 0;
+  // Pushed along by the mower, held at the face of normal `n` (friction `mu`) that the moving
+  // turf presses it into: slowed to the mower's pace there, the turf's pull along the face
+  // within the face's friction cone, |turf_t| <= mu |turf.n|.
+  const auto held_at = [&](const Vec3& n, double mu) {
+    const double into = -turf.dot(n), along = (turf + into * n).norm();
+    return into > 1e-9 && along <= mu * into && (b.velocity - b.velocity.dot(up) * up).norm() <= set.rest_speed;
+  };
   for (int part = 0; !stopped; ++part) {
     Vec3 slip = b.velocity - b.velocity.dot(up) * up - turf;
     const double speed = slip.norm();
@@ -896,18 +903,13 @@ bool NailFlight::slide(const scene::Hit& hit) {
       escaped = true;
       break;
     }
-    // Slowed to the mower's pace at the wall the turf presses it into, it is held there and
-    // pushed along, as when it meets the wall at that pace (below), if the wall's friction
-    // holds it against the turf's pull along the wall. (Else it had slid on at no speed, part
-    // after part, until the time limit: a stone stopped against the rear chains.)
-    // (Only while it still touches that face: slid past its end, or off a convex skirt's
-    // facet along its plane, it is free of it.)
+    // Slowed to the mower's pace at the wall the turf presses it into, it is held there, as
+    // when it meets the wall at that pace (below). (Else it had slid on at no speed, part after
+    // part, until the time limit: a stone stopped against the rear chains.) Only while it
+    // still touches that face: slid past its end, or off a convex skirt's facet along its
+    // plane, it is free of it.
     if (pressed.squaredNorm() > 0 && face_clearance(*ctx.scene, pressed_face, nail, b.position, b.axis) > kPressedGap) pressed = Vec3::Zero();
-    if (pressed.squaredNorm() > 0 && !against_mower) {
-      const Vec3 on_ground = b.velocity - b.velocity.dot(up) * up;
-      const double into = -turf.dot(pressed), pull = (turf + into * pressed).norm();
-      against_mower = into > 1e-9 && pull <= pressed_mu * into && on_ground.norm() <= set.rest_speed;
-    }
+    if (pressed.squaredNorm() > 0 && !against_mower) against_mower = held_at(pressed, pressed_mu);
     // At rest on the turf, or pushed along by the mower (below).
     if (speed < set.rest_speed || against_mower || (friction_decel <= 0 && !drag.on)) {
       b.velocity = Vec3::Zero();
@@ -1064,18 +1066,15 @@ bool NailFlight::slide(const scene::Hit& hit) {
     if (set.materials.of(met.surface, met.guard).holds_up) break;  // slid onto another ground face: fly on from there
     // Pressed into the mower's face by the turf moving under it (in a field) and slowed there
     // to the mower's pace, it is pushed along by the mower (at rest in the mower's frame, held
-    // there) when the face's friction holds it: the turf's pull along the face within the
-    // face's friction cone, |turf_t| <= mu |turf.n|. Not after passing through a curtain.
-    const double into = -turf.dot(met.normal);
-    const double along = (turf + into * met.normal).norm();
-    against_mower = last_touch != Touch::GuardPass && into > 1e-9 && along <= set.materials.of(met.surface, met.guard).friction * into &&
-                    (b.velocity - b.velocity.dot(up) * up).norm() <= set.rest_speed;
+    // there) when the face's friction holds it. Not after passing through a curtain.
+    const double into = -turf.dot(met.normal), mu = set.materials.of(met.surface, met.guard).friction;
+    against_mower = last_touch != Touch::GuardPass && held_at(met.normal, mu);
     // Else, pressed into it, it slides along it (the next parts); through a curtain, on.
     pressed = Vec3::Zero();
     if (last_touch != Touch::GuardPass && into > 1e-9) {
       pressed = met.normal - met.normal.dot(up) * up;
       pressed = pressed.norm() > 1e-9 ? Vec3(pressed.normalized()) : Vec3::Zero();
-      pressed_mu = set.materials.of(met.surface, met.guard).friction;
+      pressed_mu = mu;
       pressed_face = met.face;
     }
   }
