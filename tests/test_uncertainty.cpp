@@ -15,6 +15,8 @@
 #include "scenario/scenario_reader.hpp"
 #include "scenario/toml_override.hpp"
 #include "scenario/toml_reader.hpp"
+#include "field/field_simulator.hpp"
+#include "field/hazard_run.hpp"
 #include "flight/nail_flight.hpp"
 #include "report/uncertainty_report.hpp"
 #include "study/sensitivity.hpp"
@@ -390,6 +392,38 @@ basis = "test"
     const auto &base = a.outputs[j], &mixed = a.outputs[2 * n + j];
     REQUIRE(a.values[2 * n + j][1] == a.values[j][1]);
     CHECK(mixed[0] / base[0] == Approx(a.values[2 * n + j][0] / a.values[j][0]).epsilon(1e-12));
+  }
+  // What chance alone gives each figure: from a run of the nominal field at the draws' size,
+  // worked out here from that run's per-object counts (each kind's weight squared times its
+  // counts' squares; the thrown share binomial; P(struck) to first order); none for a
+  // distance or the acceptable flag.
+  {
+    scenario::Scenario nominal = scenario::read_scenario(scenario::parse_toml_file(file), file);
+    nominal.field.objects_simulated = 1200;
+    const field::FieldSimulator sim(nominal);
+    const field::HazardRun run = field::run_hazard(sim, 2);
+    const std::vector<double> w = field::weights_per_object(sim, run);
+    double thrown = 0;
+    std::vector<double> plane(2, 0.0);
+    for (std::size_t k = 0; k < run.kinds.size(); ++k) {
+      const auto& t = run.kinds[k];
+      const double n = static_cast<double>(t.objects), p = static_cast<double>(t.fates[static_cast<std::size_t>(field::ObjectFate::Thrown)] +
+                                                                                 t.fates[static_cast<std::size_t>(field::ObjectFate::CutOff)]) / n;
+      thrown += 1e6 * w[k] * w[k] * n * p * (1 - p);
+      for (std::size_t q = 0; q < 2; ++q) plane[q] += 1e6 * w[k] * w[k] * static_cast<double>(t.planes[q].hazardous.squares);
+    }
+    REQUIRE(a.noise_variance.size() == names.size());
+    CHECK(a.noise_variance[0] == Approx(thrown).epsilon(1e-9));
+    for (std::size_t o = 1; o <= 4; ++o) CHECK(a.noise_variance[o] == -1.0);
+    CHECK(a.noise_variance[5] == Approx(plane[0]).epsilon(1e-9));
+    CHECK(a.noise_variance[6] == Approx(plane[1]).epsilon(1e-9));
+    REQUIRE(plane[1] > 0);  // the path saw hazardous crossings: the check means something
+    const auto& f = nominal.field;
+    const double q = field::summarise(sim, run).planes[1].hazardous_per_km.value / 1000 / f.person_height;
+    const double slope = f.presented_area * std::exp(-q * f.presented_area) / 1000 / f.person_height;
+    CHECK(a.noise_variance[7] == Approx(slope * slope * plane[1]).epsilon(1e-9));
+    CHECK(a.noise_variance[8] == -1.0);
+    CHECK(a.noise_variance[6] == b.noise_variance[6]);
   }
   // The page and the table name the field's outputs.
   const auto j = report::uncertainty_json(a);

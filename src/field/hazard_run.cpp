@@ -93,7 +93,9 @@ Estimate combined(const std::vector<Stratum>& strata) {
     variance += s.weight_per_object * s.weight_per_object * static_cast<double>(s.counts.squares);
     if (s.possible) largest = std::max(largest, s.weight_per_object);
   }
-  return quasi_poisson(mean, variance, largest);
+  Estimate e = quasi_poisson(mean, variance, largest);
+  e.variance = variance;
+  return e;
 }
 
 Estimate quasi_poisson(double mean, double variance, double heaviest) {
@@ -125,7 +127,9 @@ namespace {
 
 Estimate struck(const Estimate& density, double area) {
   auto p = [&](double q) { return -std::expm1(-q * area); };
-  return {p(density.value), p(density.low), p(density.high)};
+  // Its noise to first order: dP/dq = A exp(-q A).
+  const double slope = area * std::exp(-density.value * area);
+  return {p(density.value), p(density.low), p(density.high), slope * slope * density.variance};
 }
 
 // Where a curve falls below `acceptable` for good: the outer edge of the last cell at or
@@ -157,7 +161,7 @@ namespace {
 void count_and_judge(const FieldSimulator& sim, const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
   const std::size_t kinds = run.kinds.size();
   s.objects = run.objects();
-  double thrown = 0, landed = 0;
+  double thrown = 0, landed = 0, thrown_variance = 0;
   for (std::size_t k = 0; k < kinds; ++k) {
     const HazardTally& t = run.kinds[k];
     const std::uint64_t thrown_k = t.fates[static_cast<std::size_t>(ObjectFate::Thrown)] + t.fates[static_cast<std::size_t>(ObjectFate::CutOff)];
@@ -165,6 +169,10 @@ void count_and_judge(const FieldSimulator& sim, const HazardRun& run, const std:
     s.cut_off += t.fates[static_cast<std::size_t>(ObjectFate::CutOff)];
     s.max_distance = std::max(s.max_distance, t.max_distance);
     thrown += w[k] * static_cast<double>(thrown_k);
+    if (t.objects > 0) {
+      const double n = static_cast<double>(t.objects), share = static_cast<double>(thrown_k) / n;
+      thrown_variance += w[k] * w[k] * n * share * (1 - share);
+    }
     std::uint64_t landed_k = t.landed_beyond_square;
     for (auto c : t.landings) landed_k += c;
     landed += w[k] * static_cast<double>(landed_k);
@@ -195,6 +203,7 @@ void count_and_judge(const FieldSimulator& sim, const HazardRun& run, const std:
     s.warnings.push_back(fmt::format("{:.2f} % of the objects were cut off still moving (a run withholds its answer from {:g} %): {}",
                                      100 * s.cut_off_share, 100 * assess::kMaxCutOffShare, s.cut_off_limits));
   s.thrown_per_km = 1000 * thrown;
+  s.thrown_per_km_variance = 1e6 * thrown_variance;
   s.landed_outside_deck_share = thrown > 0 ? landed / thrown : 0.0;
 }
 

@@ -34,7 +34,8 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
 // once, and when the stratum of the heaviest weight saw nothing.
 struct Estimate {
   double value = 0, low = 0, high = 0;
-  Estimate scaled(double f) const { return {value * f, low * f, high * f}; }
+  double variance = 0;  // of the value, from the per-object counts (V above): its Monte Carlo noise
+  Estimate scaled(double f) const { return {value * f, low * f, high * f, variance * f * f}; }
 };
 struct Stratum {
   CountSum counts;
@@ -101,6 +102,7 @@ struct HazardSummary {
   std::vector<DirectionCurve> directions;
   std::vector<PlaneResult> planes;
   double thrown_per_km = 0, landed_outside_deck_share = 0, max_distance = 0;
+  double thrown_per_km_variance = 0;  // its Monte Carlo noise: each kind's thrown share is binomial
   double exit_speed_mean = 0, exit_speed_q95 = 0, launch_elevation_mean = 0;
   double last_strike_speed_mean = 0, last_strike_speed_q95 = 0;  // off the last blade strike (the speed objects leave with)
 };

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "field/hazard_run.hpp"
+#include "invariant/check.hpp"
 #include "pipeline/estimated_inputs.hpp"
 #include "pipeline/pipeline.hpp"
 #include "scenario/input_error.hpp"
@@ -123,6 +124,28 @@ std::string column_stem(const std::string& name) {
   return o.empty() ? "plane" : o;
 }
 
+// A hazard run's figures in the order of Field::outputs, each with its Monte Carlo variance
+// in that run (-1: none estimated).
+struct Figures {
+  std::vector<double> values, noise;
+  void add(double value, double variance) { values.push_back(value), noise.push_back(variance); }
+};
+Figures figures(const field::HazardSummary& sum) {
+  Figures f;
+  f.add(sum.thrown_per_km, sum.thrown_per_km_variance);
+  bool acceptable = true;
+  for (const auto& d : sum.directions) {
+    f.add(d.hazard_distance, -1.0);
+    acceptable = acceptable && !d.beyond_range && d.hazard_distance <= d.deck_extent;
+  }
+  for (const auto& p : sum.planes) {
+    f.add(p.hazardous_per_km.value, p.hazardous_per_km.variance);
+    if (p.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && p.along_path) f.add(p.probability.value, p.probability.variance);
+  }
+  f.add(acceptable ? 1.0 : 0.0, -1.0);
+  return f;
+}
+
 class Field final : public Pipeline {
  public:
   Kind kind() const override { return Kind::Field; }
@@ -184,17 +207,7 @@ class Field final : public Pipeline {
     const field::HazardRun run = field::run_hazard(sim, threads);
     const field::HazardSummary sum = field::summarise(sim, run);
     DrawOutputs out;
-    out.outputs.push_back(sum.thrown_per_km);
-    bool acceptable = true;
-    for (const auto& d : sum.directions) {
-      out.outputs.push_back(d.hazard_distance);
-      acceptable = acceptable && !d.beyond_range && d.hazard_distance <= d.deck_extent;
-    }
-    for (const auto& p : sum.planes) {
-      out.outputs.push_back(p.hazardous_per_km.value);
-      if (p.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && p.along_path) out.outputs.push_back(p.probability.value);
-    }
-    out.outputs.push_back(acceptable ? 1.0 : 0.0);
+    out.outputs = figures(sum).values;
     out.cut_off_share = sum.cut_off_share;
     std::array<std::uint64_t, flight::kCutOffReasons> by{};
     for (const auto& t : run.kinds)
@@ -282,9 +295,18 @@ class Field final : public Pipeline {
     return v;
   }
 
-  std::vector<double> noise_variance(const scenario::Scenario&, const DrawSize&, const std::vector<Output>& info,
-                                     const std::vector<std::vector<double>>&, std::size_t) const override {
-    return std::vector<double>(info.size(), -1.0);  // weighted counts of rare events: not estimated
+  // From one run of the nominal scenario at the draws' size: each figure's variance from that
+  // run's own per-object counts (a rate's weighted counts, the thrown share's binomial,
+  // P(struck) to first order); a hazard distance and the acceptable flag have none.
+  std::vector<double> noise_variance(const scenario::Scenario& nominal, const DrawSize& size, const std::vector<Output>& info,
+                                     const std::vector<std::vector<double>>&, std::size_t, int threads) const override {
+    scenario::Scenario sc = nominal;
+    sc.field.objects_simulated = size.objects;
+    const field::FieldSimulator sim(sc);
+    const field::HazardSummary sum = field::summarise(sim, field::run_hazard(sim, threads));
+    std::vector<double> noise = figures(sum).noise;
+    J232_CHECK(noise.size() == info.size());
+    return noise;
   }
 };
 

@@ -152,7 +152,7 @@ class J232Test final : public Pipeline {
   // Binomial: a share of the nails fed p(1-p)/(R n), the replicates' P(pass) p(1-p)/R (not
   // P(pass) from every nail, the verdict, or shares of the marks).
   std::vector<double> noise_variance(const scenario::Scenario& nominal, const DrawSize& size, const std::vector<Output>& info,
-                                     const std::vector<std::vector<double>>& runs, std::size_t base_runs) const override {
+                                     const std::vector<std::vector<double>>& runs, std::size_t base_runs, int) const override {
     std::vector<double> variance(info.size(), -1.0);
     const double replicates = static_cast<double>(size.replicates), nails = static_cast<double>(nominal.feed.nails);
     for (std::size_t o = 0; o < info.size() && base_runs > 0; ++o) {

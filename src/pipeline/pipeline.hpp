@@ -103,10 +103,11 @@ class Pipeline {
   virtual std::vector<double> sweep_point(scenario::Scenario& sc, const DrawSize& size, bool first, int threads, SweepColumns& t,
                                           std::string& invalid) const = 0;
   // Per output, the variance Monte Carlo noise alone would give it over the first
-  // `base_runs` draws of `runs` (as if each draw met new nails: common random numbers make
-  // it less); -1 where not estimated.
+  // `base_runs` draws of `runs` (as if each draw met new nails or objects: common random
+  // numbers make it less); -1 where not estimated. A pipeline may run the nominal scenario
+  // at the draws' size to measure it (on `threads` threads).
   virtual std::vector<double> noise_variance(const scenario::Scenario& nominal, const DrawSize& size, const std::vector<Output>& info,
-                                             const std::vector<std::vector<double>>& runs, std::size_t base_runs) const = 0;
+                                             const std::vector<std::vector<double>>& runs, std::size_t base_runs, int threads) const = 0;
 };
 
 // The scenario's pipeline: the field when it has a [field], else the J232 test; of a

@@ -269,7 +269,7 @@ void warn_about_draws(const scenario::Scenario& nominal, const pipeline::Pipelin
 
 // Each output's Sobol' indices (and from the first half of the draws, to show how settled
 // they are), and for a J232 test the variance chance alone would give its shares.
-void estimate_indices(const scenario::Scenario& nominal, const pipeline::Pipeline& pipeline, UncertaintyResult& r) {
+void estimate_indices(const scenario::Scenario& nominal, const pipeline::Pipeline& pipeline, int threads, UncertaintyResult& r) {
   const std::size_t outputs = r.output_info.size();
   const auto column = [&](std::size_t o) {
     std::vector<double> f;
@@ -280,7 +280,7 @@ void estimate_indices(const scenario::Scenario& nominal, const pipeline::Pipelin
   // Rare marks (a few in a draw's 7 500 nails) vary from draw to draw by chance as much as by
   // the inputs: what the noise alone would give says how far their indices can be read.
   const std::size_t base_runs = std::min(r.outputs.size(), 2 * r.design.base);  // A and B, as the variance
-  r.noise_variance = pipeline.noise_variance(nominal, r.plan.size(), r.output_info, r.outputs, base_runs);
+  r.noise_variance = pipeline.noise_variance(nominal, r.plan.size(), r.output_info, r.outputs, base_runs, threads);
   if (r.design.base >= 4) {
     r.half_indices.emplace();
     for (std::size_t o = 0; o < outputs; ++o) r.half_indices->push_back(sobol_indices_prefix(r.design, column(o), r.design.base / 2, 500, 1));
@@ -308,7 +308,7 @@ UncertaintyResult run_uncertainty(const std::string& file, int threads, const st
   r.design = saltelli_design(r.plan.inputs.size(), r.plan.base_draws);
   run_draws(base, file, nominal, pipeline, spreads, threads, on_run, journal, r);
   warn_about_draws(nominal, pipeline, r);
-  estimate_indices(nominal, pipeline, r);
+  estimate_indices(nominal, pipeline, threads, r);
   return r;
 }
 
