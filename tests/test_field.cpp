@@ -108,8 +108,8 @@ TEST_CASE("field: stones that roll go farther than stones that skid, over the sa
   // of all is one object and may be either.)
   const auto beyond = [](const field::HazardRun& r, double d) {
     std::uint64_t n = 0;
-    const auto& far = r.kinds[0].farthest;
-    for (std::size_t i = static_cast<std::size_t>(d / 0.25); i < far.size(); ++i) n += far[i];
+    for (const auto& t : r.strata)
+      for (std::size_t i = static_cast<std::size_t>(d / 0.25); i < t.farthest.size(); ++i) n += t.farthest[i];
     return n;
   };
   INFO("beyond 10 m: skidding " << beyond(skid_run, 10) << ", rolling " << beyond(roll_run, 10) << "; beyond 3 m " << beyond(skid_run, 3) << ", " << beyond(roll_run, 3) << "; beyond 30 m " << beyond(skid_run, 30) << ", " << beyond(roll_run, 30));
@@ -221,29 +221,47 @@ TEST_CASE("field: what holds a stone up: the share that reaches and the draws, a
     const auto pdf = [&](double d) { return boost::math::pdf(z, std::log(d / 0.030) / sl) / (d * sl); };
     const double whole = boost::math::cdf(z, std::log(0.070 / 0.030) / sl) - boost::math::cdf(z, std::log(0.010 / 0.030) / sl);
     constexpr int kSteps = 200000;
-    std::vector<double> sizes(kSteps), cumulative(kSteps + 1, 0.0);
+    std::vector<double> cumulative(kSteps + 1, 0.0);
     for (int i = 0; i < kSteps; ++i) {
       const double d = 0.010 + (0.060 * (i + 0.5)) / kSteps;  // midpoint rule
-      sizes[static_cast<std::size_t>(i)] = d;
       cumulative[static_cast<std::size_t>(i) + 1] = cumulative[static_cast<std::size_t>(i)] + pdf(d) * reach(d) * 0.060 / kSteps;
     }
     CHECK(sim.reach_share(0) == Approx(cumulative.back() / whole).epsilon(1e-6));
     // The old model (every stone on the plane) reaches fewer: only those taller than the face.
     CHECK(sim.reach_share(0) > field::FieldSimulator(read(kMower + kStones)).reach_share(0));
 
-    // Each drawn stone's size and support, through their distribution functions (probability
-    // integral transform): uniform if the draws follow the distributions above.
+    // The size strata: each one's share is the quadrature's between its sizes, and they
+    // cover the reachable sizes without gap or overlap.
+    const auto cumulative_at = [&](double d) {  // the quadrature's cumulative at size d
+      const double x = std::clamp((d - 0.010) / 0.060 * kSteps, 0.0, static_cast<double>(kSteps));
+      const auto i = std::min(static_cast<std::size_t>(x), static_cast<std::size_t>(kSteps) - 1);
+      return cumulative[i] + (x - static_cast<double>(i)) * (cumulative[i + 1] - cumulative[i]);
+    };
+    REQUIRE(sim.strata() == field::FieldSimulator::kSizeStrata);
+    for (std::size_t k = 0; k < sim.strata(); ++k) {
+      const auto& st = sim.stratum(k);
+      INFO("stratum " << k << ": " << st.smallest << " to " << st.largest << " m");
+      CHECK(st.share == Approx((cumulative_at(st.largest) - cumulative_at(st.smallest)) / whole).epsilon(1e-3));
+      if (k > 0) CHECK(st.smallest == sim.stratum(k - 1).largest);
+    }
+    CHECK(sim.stratum(0).smallest == Approx(0.010));
+    CHECK(sim.stratum(sim.strata() - 1).largest <= 0.070);
+    // Each drawn stone's size (within its stratum, object i of stratum i mod S) and support,
+    // through their distribution functions (probability integral transform): uniform if the
+    // draws follow the distributions above.
     std::vector<double> u_size, u_support;
     for (std::uint64_t i = 0; i < 3000; ++i) {
       const auto e = sim.simulate(i).encounter;
+      const auto& st = sim.stratum(i % sim.strata());
       const double d = e.body.diameter;
       REQUIRE_FALSE(e.lifted);  // no updraft
+      REQUIRE(d >= st.smallest);
+      REQUIRE(d <= st.largest);
       const auto b = band_of(d);
       REQUIRE(e.support >= b[0] - 1e-12);
       REQUIRE(e.support <= b[1] + 1e-12);
       CHECK(e.height == Approx(e.support + 0.5 * d - 0.2 * d));
-      const std::size_t at = static_cast<std::size_t>(std::lower_bound(sizes.begin(), sizes.end(), d) - sizes.begin());
-      u_size.push_back(cumulative[std::min(at, sizes.size())] / cumulative.back());
+      u_size.push_back((cumulative_at(d) - cumulative_at(st.smallest)) / (cumulative_at(st.largest) - cumulative_at(st.smallest)));
       u_support.push_back((tail(b[0]) - tail(e.support)) / (tail(b[0]) - tail(b[1])));
     }
     // Kolmogorov's 1 % critical value 1.63 / sqrt(n), and a grid of 60 um: 0.03 at n = 3000.
@@ -493,8 +511,8 @@ TEST_CASE("field: a hazard run is the same on 1 and 2 threads, and tallies what 
   REQUIRE(field::slots_per_wave(field::HazardTally(field::HazardLayout::of(s.field)).bytes(), 1) < 9);
   REQUIRE(field::slots_per_wave(field::HazardTally(field::HazardLayout::of(s.field)).bytes(), 2) >= 9);
   const auto one = field::run_hazard(sim, 1), two = field::run_hazard(sim, 2);
-  REQUIRE(one.kinds.size() == 1);
-  const auto &a = one.kinds[0], &b = two.kinds[0];
+  REQUIRE(one.strata.size() == field::FieldSimulator::kSizeStrata);  // one kind, in size strata
+  const auto a = field::kind_tally(sim, one, 0), b = field::kind_tally(sim, two, 0);
   CHECK(a.objects == 2100);
   CHECK(a.fates == b.fates);
   CHECK(a.landings == b.landings);
@@ -647,7 +665,7 @@ TEST_CASE("field: the strips' vertical planes count what an explicit plane at th
   s.field.objects_simulated = 3000;
   const field::FieldSimulator sim(s);
   const auto run = field::run_hazard(sim, 2);
-  const auto& t = run.kinds[0];
+  const auto t = field::kind_tally(sim, run, 0);
   // The strip plane at (2 + 1/2) cells on the left is the path's plane.
   CHECK(t.vertical[0][2].sum == t.planes[1].hazardous.sum);
   CHECK(t.vertical[0][2].squares == t.planes[1].hazardous.squares);
@@ -666,17 +684,19 @@ TEST_CASE("field: the hazard distance is the outer edge of the last cell at or a
   auto s = read(kMower + kStones);
   const field::FieldSimulator sim(s);
   field::HazardRun run;
-  run.kinds.emplace_back(field::HazardLayout::of(s.field));
-  auto& t = run.kinds[0];
+  // Every size stratum the same: n objects each, 900 of which strike 4 times each in every
+  // strip on the left out to 10 m, more than the acceptable density (one per 55.74 m2);
+  // nothing beyond, nothing elsewhere. Their weights add up to the kind's: w per object.
   const std::uint64_t n = 1000;
-  t.objects = n;
-  t.fates[static_cast<std::size_t>(field::ObjectFate::Thrown)] = n;
-  // More than the acceptable density (one per 55.74 m2) on the left out to 10 m: 900 of the
-  // objects strike 4 times each in every strip there; nothing beyond, nothing elsewhere.
-  const double w = sim.objects_per_metre(0) * sim.reach_share(0) / static_cast<double>(n);
   const std::uint64_t count = 900 * 4;
+  for (std::size_t j = 0; j < sim.strata(); ++j) {
+    auto& t = run.strata.emplace_back(field::HazardLayout::of(s.field));
+    t.objects = n;
+    t.fates[static_cast<std::size_t>(field::ObjectFate::Thrown)] = n;
+    for (std::size_t k = 0; k < 10; ++k) t.directions[0][k] = {count, 900 * 16};
+  }
+  const double w = sim.objects_per_metre(0) * sim.reach_share(0) / static_cast<double>(n);
   REQUIRE(w * static_cast<double>(count) > 1.5 / 55.74);
-  for (std::size_t k = 0; k < 10; ++k) t.directions[0][k] = {count, 900 * 16};
   const auto sum = field::summarise(sim, run);
   const auto& left = sum.directions[0];
   REQUIRE(!left.distance.empty());

@@ -405,11 +405,12 @@ basis = "test"
     const std::vector<double> w = field::weights_per_object(sim, run);
     double thrown = 0;
     std::vector<double> plane(2, 0.0);
-    for (std::size_t k = 0; k < run.kinds.size(); ++k) {
-      const auto& t = run.kinds[k];
-      const double n = static_cast<double>(t.objects), p = static_cast<double>(t.fates[static_cast<std::size_t>(field::ObjectFate::Thrown)] +
-                                                                                 t.fates[static_cast<std::size_t>(field::ObjectFate::CutOff)]) / n;
-      thrown += 1e6 * w[k] * w[k] * n * p * (1 - p);
+    for (std::size_t k = 0; k < run.strata.size(); ++k) {
+      const auto& t = run.strata[k];
+      const double count = static_cast<double>(t.objects);
+      const double share = static_cast<double>(t.fates[static_cast<std::size_t>(field::ObjectFate::Thrown)] +
+                                               t.fates[static_cast<std::size_t>(field::ObjectFate::CutOff)]) / count;
+      thrown += 1e6 * w[k] * w[k] * count * share * (1 - share);
       for (std::size_t q = 0; q < 2; ++q) plane[q] += 1e6 * w[k] * w[k] * static_cast<double>(t.planes[q].hazardous.squares);
     }
     REQUIRE(a.noise_variance.size() == names.size());

@@ -21,7 +21,7 @@ namespace {
 
 // A figure the comparison estimates per km for each design: what it counts of a thrown
 // object (a plane's, of the first design's plane `plane`), its name, and the energy its event
-// needs (the heaviest weight among the kinds that can have that energy bounds a run that
+// needs (the heaviest weight among the strata that can have that energy bounds a run that
 // saw none of them).
 struct Figure {
   enum class Kind { Thrown, LandedOutside, HazardousImpacts, PlaneCrossings, PlaneHazards } kind = Kind::Thrown;
@@ -58,7 +58,7 @@ std::uint64_t count_of(const Figure& f, const ObjectWatch& watch, const std::vec
 }
 
 // What one chunk fills: its sums (in the chunk's object order) and each design's tallies,
-// kind by kind (design d's kind k at first[d] + k), each with its watch, which also keeps
+// stratum by stratum (design d's stratum k at first[d] + k), each with its watch, which also keeps
 // the object's own counts for the paired differences.
 struct ChunkSlot {
   assess::PairedSums sums;  // in the chunk's object order
@@ -91,24 +91,24 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   const std::vector<Figure> figure = figures_of(designs.front().field);
   const std::size_t figures = figure.size(), nd = designs.size();
   const auto n = static_cast<std::uint64_t>(designs.front().field.objects_simulated);
-  // Each design's weight per object of each kind (per metre travelled).
+  // Each design's weight per object of each stratum (per metre travelled).
   std::vector<std::vector<double>> weight;
   for (const auto& sim : sims) weight.push_back(weights_per_object(*sim, n));
   if (progress) progress->total = static_cast<long long>(n), progress->done = 0;
   std::vector<std::size_t> first(nd, 0);
-  for (std::size_t d = 1; d < nd; ++d) first[d] = first[d - 1] + sims[d - 1]->kinds();
+  for (std::size_t d = 1; d < nd; ++d) first[d] = first[d - 1] + sims[d - 1]->strata();
   // Every design's whole run (whole counts), and the chunks' sums added in chunk order: the
   // same totals on any number of threads or ranks (assess/chunk_runner.hpp).
   std::vector<HazardRun> runs(nd);
   for (std::size_t d = 0; d < nd; ++d)
-    for (std::size_t k = 0; k < sims[d]->kinds(); ++k) runs[d].kinds.emplace_back(HazardLayout::of(designs[d].field));
+    for (std::size_t k = 0; k < sims[d]->strata(); ++k) runs[d].strata.emplace_back(HazardLayout::of(designs[d].field));
   assess::PairedSums total(nd, figures);
   std::deque<ChunkSlot> slots;
   assess::ChunkWork work;
   work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
   std::size_t bytes_per_slot = 0;
   for (const auto& r : runs)
-    for (const auto& t : r.kinds) bytes_per_slot += t.bytes();
+    for (const auto& t : r.strata) bytes_per_slot += t.bytes();
   work.most_slots = slots_per_wave(bytes_per_slot, assess::thread_count(threads));
   work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * kObjectsPerChunk) - chunk * kObjectsPerChunk; };
   work.run = [&](std::uint64_t c, std::size_t slot) {
@@ -120,11 +120,11 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     const std::uint64_t last = std::min(n, (c + 1) * kObjectsPerChunk);
     for (std::uint64_t i = c * kObjectsPerChunk; i < last; ++i) {
       for (std::size_t d = 0; d < nd; ++d) {
-        ObjectWatch& watch = at.watched.watches[first[d] + static_cast<std::size_t>(i % sims[d]->kinds())];
+        ObjectWatch& watch = at.watched.watches[first[d] + static_cast<std::size_t>(i % sims[d]->strata())];
         const ObjectOutcome o = sims[d]->simulate(i, &watch);
         watch.finish(o);
         const bool thrown = counted_thrown(o.fate);
-        const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->kinds())];
+        const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->strata())];
         for (std::size_t j = 0; j < figures; ++j) {
           raw[d * figures + j] = thrown ? count_of(figure[j], watch, plane_of[d]) : 0;
           y[d * figures + j] = 1000 * wk * static_cast<double>(raw[d * figures + j]);
@@ -138,7 +138,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     const ChunkSlot& c = slots[slot];
     total.merge(c.sums);
     for (std::size_t d = 0; d < nd; ++d)
-      for (std::size_t k = 0; k < sims[d]->kinds(); ++k) runs[d].kinds[k].merge(c.watched.tallies[first[d] + k]);
+      for (std::size_t k = 0; k < sims[d]->strata(); ++k) runs[d].strata[k].merge(c.watched.tallies[first[d] + k]);
   };
   work.pack = [&](std::size_t count) {
     assess::ByteWriter w;
@@ -159,7 +159,7 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   for (auto& slot : slots) {
     slot.sums.zero(nd, figures);  // (the shape an unpacked message is read into)
     for (std::size_t d = 0; d < nd; ++d)
-      for (std::size_t k = 0; k < sims[d]->kinds(); ++k) slot.watched.add(HazardLayout::of(designs[d].field));
+      for (std::size_t k = 0; k < sims[d]->strata(); ++k) slot.watched.add(HazardLayout::of(designs[d].field));
   }
   assess::on_threads(threads, [&] { assess::run_chunks(work); });
   J232_CHECK(total.units == n || !assess::cluster::is_writer());  // rank 0 merged every object once
@@ -168,12 +168,12 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   for (std::size_t d = 0; d < nd; ++d) {
     FieldDesign fd;
     fd.file = designs[d].file, fd.title = designs[d].title;
-    // The heaviest weight among the kinds that can make each figure's event (a hazardous one
+    // The heaviest weight among the strata that can make each figure's event (a hazardous one
     // needs the energy).
     auto heaviest = [&](double threshold) {
       double h = 0;
       for (std::size_t k = 0; k < weight[d].size(); ++k)
-        if (sims[d]->energy_bound(k) >= threshold) h = std::max(h, 1000 * weight[d][k]);
+        if (sims[d]->stratum(k).energy_bound >= threshold) h = std::max(h, 1000 * weight[d][k]);
       return h;
     };
     for (std::size_t j = 0; j < figures; ++j)

@@ -88,77 +88,81 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
     ReachableSizes reach;
     const double lo = probability_below(o, o.min_size), hi = o.spread <= 1.0 ? 1.0 : probability_below(o, o.max_size);
     const double whole = o.spread <= 1.0 ? 1.0 : hi - lo;
+    // Sizes that reach for certain, [from, to) on the p axis: cells of reach 1, fine enough
+    // for the size strata to split them.
+    const auto certain = [&](double from, double to) {
+      constexpr int kCells = 32;
+      for (int i = 0; i < kCells; ++i) {
+        const double a = from + (to - from) * i / kCells, b = from + (to - from) * (i + 1) / kCells;
+        reach.cells.push_back({a, b, b - a, 1.0, true});
+      }
+    };
     if (scenario_.field.support_height > 0) {
-      sizes_.push_back({});  // held_up reads the kind's spec only; its grid is built here
       // The lifted sizes [lo, lifted_at); above them, each size reaches with the probability
       // its support holds it in the band.
       const double lifted_at = std::clamp(o.spread <= 1.0 ? (o.median_size < lifted_below ? 1.0 : 0.0)
                                                           : probability_below(o, std::max(lifted_below, o.min_size)),
                                           lo, hi);
-      reach.lifted_mass = lifted_at - lo;
+      if (lifted_at > lo) certain(lo, lifted_at);
       if (hi > lifted_at) {
         // A grid over [lifted_at, hi] with a node where the object's top on the plane meets
         // the blade's face: on each cell the reach probability is then monotone in p (rising
         // below that size, falling above it as the front's gap closes), so the larger of a
         // cell's ends bounds it there.
         constexpr int kCells = 1024;
-        for (int i = 0; i <= kCells; ++i) reach.grid.push_back(lifted_at + (hi - lifted_at) * i / kCells);
+        std::vector<double> grid;
+        for (int i = 0; i <= kCells; ++i) grid.push_back(lifted_at + (hi - lifted_at) * i / kCells);
         if (o.spread > 1.0 && tall_above > o.min_size && tall_above < o.max_size) {
           const double peak = probability_below(o, tall_above);
-          if (peak > lifted_at && peak < hi) reach.grid.insert(std::upper_bound(reach.grid.begin(), reach.grid.end(), peak), peak);
+          if (peak > lifted_at && peak < hi) grid.insert(std::upper_bound(grid.begin(), grid.end(), peak), peak);
         }
         const auto w = [&](double p) { return held_up(k, size_at(o, p)).probability; };
-        double mass = 0, left = w(reach.grid.front());
-        reach.cumulative.push_back(0);
-        for (std::size_t i = 0; i + 1 < reach.grid.size(); ++i) {
-          const double a = reach.grid[i], b = reach.grid[i + 1], right = w(b);
-          mass += (b - a) * (left + 4 * w(0.5 * (a + b)) + right) / 6;  // Simpson's rule
-          reach.envelope.push_back(std::max(left, right));
-          reach.cumulative.push_back(reach.cumulative.back() + (b - a) * reach.envelope.back());
+        double left = w(grid.front());
+        for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
+          const double a = grid[i], b = grid[i + 1], right = w(b);
+          const double mass = (b - a) * (left + 4 * w(0.5 * (a + b)) + right) / 6;  // Simpson's rule
+          if (std::max(left, right) > 0) reach.cells.push_back({a, b, mass, std::max(left, right), false});
           left = right;
         }
-        reach.supported_mass = mass;
-        if (!(reach.cumulative.back() > 0)) reach.grid.clear(), reach.envelope.clear(), reach.cumulative.clear(), reach.supported_mass = 0;
       }
-      reach.share = std::min(1.0, (reach.lifted_mass + reach.supported_mass) / whole);
-      sizes_.pop_back();
     } else {
+      // Standing up to the blade, and low enough to pass under the deck's front (the reader
+      // refuses a file whose largest does not; a sweep's cut_height can lower the deck).
+      std::vector<std::array<double, 2>> pieces;
       auto add = [&](double from, double to) {  // sizes [from, to) within the cut
         from = std::max(from, o.min_size), to = std::min(to, o.max_size);
         if (o.spread <= 1.0) {
-          if (o.median_size >= from && o.median_size <= to) reach.pieces.push_back({0.0, 1.0});
+          if (o.median_size >= from && o.median_size <= to) pieces.push_back({0.0, 1.0});
           return;
         }
         if (!(to > from)) return;
         const double a = probability_below(o, from), b = probability_below(o, to);
-        if (!reach.pieces.empty() && a <= reach.pieces.back()[1])
-          reach.pieces.back()[1] = std::max(reach.pieces.back()[1], b);
+        if (!pieces.empty() && a <= pieces.back()[1])
+          pieces.back()[1] = std::max(pieces.back()[1], b);
         else if (b > a)
-          reach.pieces.push_back({a, b});
+          pieces.push_back({a, b});
       };
-      // Standing up to the blade, and low enough to pass under the deck's front (the reader
-      // refuses a file whose largest does not; a sweep's cut_height can lower the deck).
       const std::optional<double> front_gap = scenario_.front_gap();
       add(0.0, lifted_below);
       add(tall_above, front_gap ? *front_gap / (1 - o.embedment) : HUGE_VAL);
-      if (reach.pieces.size() == 2 && reach.pieces[1][0] <= reach.pieces[0][1]) {
-        reach.pieces[0][1] = std::max(reach.pieces[0][1], reach.pieces[1][1]);
-        reach.pieces.pop_back();
+      if (pieces.size() == 2 && pieces[1][0] <= pieces[0][1]) {
+        pieces[0][1] = std::max(pieces[0][1], pieces[1][1]);
+        pieces.pop_back();
       }
-      for (const auto& piece : reach.pieces) reach.share += (piece[1] - piece[0]) / whole;
-      reach.share = std::min(1.0, reach.share);
+      for (const auto& piece : pieces) certain(piece[0], piece[1]);
     }
+    reach.cumulative.push_back(0);
+    double mass = 0;
+    for (const auto& c : reach.cells) {
+      reach.cumulative.push_back(reach.cumulative.back() + (c.to - c.from) * c.envelope);
+      mass += c.mass;
+    }
+    reach.share = std::min(1.0, mass / whole);
     if (!(reach.share > 0))
       throw scenario::InputError(scenario_.file, std::nullopt, fmt::format("field.objects[{}]", k + 1), "",
                                  "no size of these objects can reach a blade (none stands up to a blade's lower face, none is light "
                                  "enough for the updraft): expected larger objects, less embedment, a lower cut or an updraft");
-    const double largest_p = !reach.grid.empty() ? hi : !reach.pieces.empty() ? reach.pieces.back()[1] : lo + reach.lifted_mass;
-    if (reach.share > 0) {
-      const double largest = size_at(o, largest_p);
-      const double mass = o.density * units::pi * largest * largest * largest / 6;
-      const double speed = 2.2 * scenario_.tip_speed() + scenario_.field.ground_speed;
-      reach.energy_bound = 0.5 * mass * speed * speed + mass * units::standard_gravity * 5.0;
-    }
+    add_size_strata(k, whole, reach);
     sizes_.push_back(reach);
   }
 }
@@ -190,41 +194,90 @@ double FieldSimulator::objects_per_metre() const {
   return sum;
 }
 
-double FieldSimulator::drawn_size_probability(std::size_t kind, random::Stream& rng) const {
+// A kind's reachable sizes split into strata of about equal shares of their mass (the
+// cells' reach mass times the cube of their size), so that the few heavy objects that carry a
+// hazardous energy are drawn as often as the many light ones; a kind of one size, or a run
+// too small to give each stratum its objects, has one.
+void FieldSimulator::add_size_strata(std::size_t kind, double whole, const ReachableSizes& reach) {
   const auto& o = scenario_.field.objects[kind];
-  const ReachableSizes& reach = sizes_[kind];
-  if (scenario_.field.support_height > 0) {
-    // Lifted, or resting on a support that holds it up to the blade: the size drawn from
-    // the kind's lognormal weighted by its chance to reach (rejection under the grid's
-    // envelope).
-    if (rng.uniform() * (reach.lifted_mass + reach.supported_mass) < reach.lifted_mass)
-      return (o.spread <= 1.0 ? 0.0 : probability_below(o, o.min_size)) + rng.uniform() * reach.lifted_mass;
-    for (int tries = 0;; ++tries) {
-      J232_CHECK(tries < 1'000'000);  // the envelope bounds a positive mass: draws are accepted
-      const double m = rng.uniform() * reach.cumulative.back();
-      const std::size_t i = std::min<std::size_t>(
-          static_cast<std::size_t>(std::upper_bound(reach.cumulative.begin(), reach.cumulative.end(), m) - reach.cumulative.begin()) - 1,
-          reach.envelope.size() - 1);
-      const double p = reach.grid[i] + rng.uniform() * (reach.grid[i + 1] - reach.grid[i]);
-      if (rng.uniform() * reach.envelope[i] < held_up(kind, size_at(o, p)).probability) return p;
+  const std::size_t n = reach.cells.size();
+  const long long per_kind = scenario_.field.objects_simulated / static_cast<long long>(scenario_.field.objects.size());
+  const std::size_t bands = o.spread <= 1.0 || per_kind < static_cast<long long>(kSizeStrata) * kObjectsPerStratum ? 1 : std::min<std::size_t>(kSizeStrata, n);
+  std::vector<double> heavy(n + 1, 0.0);  // the cells' mass-weighted reach, cumulative
+  for (std::size_t c = 0; c < n; ++c) {
+    const double d = size_at(o, 0.5 * (reach.cells[c].from + reach.cells[c].to));
+    heavy[c + 1] = heavy[c] + reach.cells[c].mass * d * d * d;
+  }
+  std::size_t first = 0;
+  for (std::size_t b = 1; b <= bands && first < n; ++b) {
+    std::size_t end = n;
+    if (b < bands) {
+      const double target = heavy[n] * static_cast<double>(b) / static_cast<double>(bands);
+      end = first + 1;
+      while (end < n - (bands - b) && heavy[end] < target) ++end;
     }
+    double mass = 0;
+    for (std::size_t c = first; c < end; ++c) mass += reach.cells[c].mass;
+    if (mass > 0 || strata_.empty() || strata_.back().kind != kind) {
+      SizeStratum s;
+      s.kind = kind, s.first_cell = first, s.end_cell = end, s.share = mass / whole;
+      strata_.push_back(s);
+    } else {
+      strata_.back().end_cell = end;  // (a stratum that reaches nothing joins the one below)
+    }
+    first = end;
   }
-  // Without supports: a uniform draw over the sizes that reach.
-  double total = 0;
-  for (const auto& piece : reach.pieces) total += piece[1] - piece[0];
-  double p = rng.uniform() * total;
-  for (const auto& piece : reach.pieces) {
-    if (p < piece[1] - piece[0]) return piece[0] + p;
-    p -= piece[1] - piece[0];
+  // Each stratum's sizes, and a bound on the kinetic energy any of them can have after the
+  // blades threw it: its largest at (1 + e) <= 2 times the fastest tip speed with a margin,
+  // plus the mower's travel and a fall of 5 m.
+  for (auto& s : strata_) {
+    if (s.kind != kind) continue;
+    s.smallest = size_at(o, reach.cells[s.first_cell].from), s.largest = size_at(o, reach.cells[s.end_cell - 1].to);
+    const double m = o.density * units::pi * s.largest * s.largest * s.largest / 6;
+    const double speed = 2.2 * scenario_.tip_speed() + scenario_.field.ground_speed;
+    s.energy_bound = 0.5 * m * speed * speed + m * units::standard_gravity * 5.0;
   }
-  return reach.pieces.empty() ? 0.5 : reach.pieces.back()[1];
 }
 
-Encounter FieldSimulator::sample(std::size_t kind, random::Stream& rng) const {
+double FieldSimulator::reach_share(std::size_t kind) const {
+  double share = 0;
+  for (const auto& s : strata_)
+    if (s.kind == kind) share += s.share;
+  return std::min(1.0, share);
+}
+
+double FieldSimulator::energy_bound(std::size_t kind) const {
+  double bound = 0;
+  for (const auto& s : strata_)
+    if (s.kind == kind) bound = std::max(bound, s.energy_bound);
+  return bound;
+}
+
+// Under the envelope of the stratum's cells: a cell by its envelope's mass, p uniform in it,
+// kept with the reach probability over the envelope (always, where the cell reaches for
+// certain): p drawn with density proportional to its reach probability, exactly.
+double FieldSimulator::drawn_size_probability(const SizeStratum& stratum, random::Stream& rng) const {
+  const auto& o = scenario_.field.objects[stratum.kind];
+  const ReachableSizes& reach = sizes_[stratum.kind];
+  const double from = reach.cumulative[stratum.first_cell], to = reach.cumulative[stratum.end_cell];
+  for (int tries = 0;; ++tries) {
+    J232_CHECK(tries < 1'000'000);  // the envelope bounds a positive mass: draws are accepted
+    const double m = from + rng.uniform() * (to - from);
+    const auto at = std::upper_bound(reach.cumulative.begin() + static_cast<std::ptrdiff_t>(stratum.first_cell),
+                                     reach.cumulative.begin() + static_cast<std::ptrdiff_t>(stratum.end_cell), m);
+    const std::size_t i = std::clamp<std::size_t>(static_cast<std::size_t>(at - reach.cumulative.begin()), stratum.first_cell + 1, stratum.end_cell) - 1;
+    const ReachCell& c = reach.cells[i];
+    const double p = c.from + rng.uniform() * (c.to - c.from);
+    if (c.certain) return p;
+    if (rng.uniform() * c.envelope < held_up(stratum.kind, size_at(o, p)).probability) return p;
+  }
+}
+
+Encounter FieldSimulator::sample(const SizeStratum& stratum, random::Stream& rng) const {
   Encounter e;
-  e.kind = kind;
+  e.kind = stratum.kind;
   const auto& o = scenario_.field.objects[e.kind];
-  const double size = size_at(o, drawn_size_probability(kind, rng));
+  const double size = size_at(o, drawn_size_probability(stratum, rng));
   e.body = projectile::Projectile::sphere(size, o.density * units::pi * size * size * size / 6.0);
   e.lateral = cut_from_ - 0.5 * o.max_size + rng.uniform() * met_width(e.kind);
   // The updraft's drag against its weight: 1/2 rho u^2 C_d (pi d^2 / 4) > m g.
@@ -254,7 +307,7 @@ ObjectOutcome FieldSimulator::simulate(std::uint64_t index, Watch* watch, std::v
   const scenario::Scenario& s = scenario_;
   ObjectOutcome out;
   random::Stream rng(s.run.seed, 0, index, random::Purpose::FieldObject);
-  out.encounter = sample(static_cast<std::size_t>(index % kinds()), rng);
+  out.encounter = sample(strata_[static_cast<std::size_t>(index % strata_.size())], rng);
   const Encounter& e = out.encounter;
   const auto& spindles = spindles_[e.kind];
   const double v = s.field.ground_speed, r = e.body.radius();

@@ -64,9 +64,9 @@ class FieldSimulator {
   FieldSimulator(const scenario::Scenario& s, scene::Engine engine = scene::default_engine());
 
   // Object `index` of the run (a pure function of the scenario's seed and the index): of
-  // kind index mod kinds() (each kind its own stratum), its size drawn from the sizes that
-  // can reach a blade (standing up to the lowest blade's lower face, or light enough for the
-  // updraft to lift), which are reach_share(kind) of the kind's objects. The
+  // stratum index mod strata() (each kind's reachable sizes split into size strata), its size
+  // drawn from the stratum's sizes that can reach a blade (standing up to the lowest blade's
+  // lower face, or light enough for the updraft to lift). The
   // observer (may be null) is told of its flight; `prepare` is called first with the thrown
   // object's mass and strike time, so that it can judge energies and move to the ground's frame.
   struct Watch {
@@ -90,38 +90,61 @@ class FieldSimulator {
   // Objects of a kind the mower meets per metre travelled, and the share of them whose
   // size lets them reach a blade (the rest pass under untouched).
   double objects_per_metre(std::size_t kind) const;
-  double reach_share(std::size_t kind) const { return sizes_[kind].share; }
-  // A bound on the kinetic energy any object of a kind can have after the blades threw it:
-  // its largest size that reaches a blade, at (1 + e) <= 2 times the fastest tip speed with a
-  // margin, plus the mower's travel and a fall of 5 m. A kind whose bound is below an energy
-  // threshold can make no event of it (its stratum does not widen that figure's interval).
-  double energy_bound(std::size_t kind) const { return sizes_[kind].energy_bound; }
+  double reach_share(std::size_t kind) const;
+  // The strata objects are drawn from (docs/model.md §9): each kind's sizes that reach a
+  // blade, split at sizes that give each stratum about an equal share of their mass
+  // (kSizeStrata of them, one for a kind of one size or a run of fewer than
+  // kObjectsPerStratum objects for each), so that the rare heavy objects that carry a
+  // hazardous energy are drawn as often as the many light ones; every stratum is given the
+  // same number of objects and weighted by its share.
+  struct SizeStratum {
+    std::size_t kind = 0;
+    std::size_t first_cell = 0, end_cell = 0;  // its cells of the kind's reachable sizes
+    double share = 0;                          // of the kind's objects met: those of its sizes that reach a blade
+    double smallest = 0, largest = 0;          // m
+    // A bound on the kinetic energy any of its objects can have after the blades threw it
+    // (its largest at 2.2 times the fastest tip speed, plus the mower's travel and a fall of
+    // 5 m): a stratum whose bound is below an energy threshold can make no event of it, and
+    // does not widen that figure's interval.
+    double energy_bound = 0;  // J
+  };
+  static constexpr std::size_t kSizeStrata = 4;
+  static constexpr long long kObjectsPerStratum = 25;
+  std::size_t strata() const { return strata_.size(); }
+  const SizeStratum& stratum(std::size_t s) const { return strata_[s]; }
+  double energy_bound(std::size_t kind) const;  // the largest of its strata's
   // Objects the mower meets per metre travelled (every kind).
   double objects_per_metre() const;
 
  private:
-  Encounter sample(std::size_t kind, random::Stream& rng) const;  // one object of a kind, among its sizes that reach
-  double drawn_size_probability(std::size_t kind, random::Stream& rng) const;  // its size's place on the lognormal's axis
+  // Per kind, the sizes that can reach a blade, on the lognormal's probability axis p, as
+  // cells: without support (field.support_height 0) the pieces that reach for certain (the
+  // lifted small ones, the tall ones), in cells of reach 1; with support, the lifted piece so,
+  // and above it a grid of cells on which each size reaches with the probability its support
+  // puts its top between the blade's lower face and the deck's front gap (held_up), with that
+  // probability's integral over the cell (Simpson) and its largest value there (envelope).
+  // Drawn by rejection under the envelope (exact, docs/model.md §9).
+  struct ReachCell {
+    double from = 0, to = 0;  // p
+    double mass = 0;          // the reach probability's integral over [from, to)
+    double envelope = 1;      // its largest value there
+    bool certain = true;      // reach probability 1 throughout
+  };
+  struct ReachableSizes {
+    std::vector<ReachCell> cells;
+    std::vector<double> cumulative;  // the envelopes' masses before each cell (cells + 1)
+    double share = 0;                // the whole reach mass over the kind's
+  };
+  Encounter sample(const SizeStratum& stratum, random::Stream& rng) const;  // one object of a stratum
+  double drawn_size_probability(const SizeStratum& stratum, random::Stream& rng) const;  // its size's place on the lognormal's axis
+  void add_size_strata(std::size_t kind, double whole, const ReachableSizes& reach);
   scenario::Scenario scenario_;
   std::unique_ptr<flight::Mower> mower_;
   std::vector<std::vector<strike::Spindle>> spindles_;  // per kind: its restitution and friction on the blades
   std::vector<flight::Drag> drag_per_unit_;             // per kind, for a 1 m sphere (scaled by 1 / size)
   double cut_from_ = 0, cut_to_ = 0;
-  // Per kind, the sizes that can reach a blade, on the lognormal's probability axis p.
-  // Without support (field.support_height 0): pieces [p_low, p_high) (at most two: the lifted
-  // small ones, the tall ones), each reaching for certain. With support: the lifted piece,
-  // and above it the supported sizes, each reaching with the probability its support puts
-  // its top between the blade's lower face and the deck's front gap (held_up); drawn by
-  // rejection under a piecewise-constant envelope over a grid of p (exact, docs/model.md §9).
-  struct ReachableSizes {
-    std::vector<std::array<double, 2>> pieces;
-    double share = 0;
-    double energy_bound = 0;  // J
-    // With support: the grid over [supported_from, p_high] and its envelope's cumulative mass.
-    std::vector<double> grid, envelope, cumulative;
-    double lifted_mass = 0, supported_mass = 0;  // of p; their sum / the kind's whole is the share
-  };
   std::vector<ReachableSizes> sizes_;
+  std::vector<SizeStratum> strata_;
   // The probability that an object of a kind and size rests high enough for its top to
   // stand above the blade's lower face and low enough to pass under the deck's front, and
   // the band of support heights that does it.

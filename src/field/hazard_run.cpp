@@ -17,7 +17,7 @@ namespace j232::field {
 
 std::uint64_t HazardRun::objects() const {
   std::uint64_t n = 0;
-  for (const auto& t : kinds) n += t.objects;
+  for (const auto& t : strata) n += t.objects;
   return n;
 }
 
@@ -31,9 +31,9 @@ std::uint64_t slots_per_wave(std::size_t bytes_per_slot, int threads) {
 HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress) {
   const HazardLayout layout = HazardLayout::of(sim.scenario().field);
   const auto n = static_cast<std::uint64_t>(sim.scenario().field.objects_simulated);
-  const std::size_t kinds = sim.kinds();
+  const std::size_t strata_count = sim.strata();
   HazardRun run;
-  for (std::size_t k = 0; k < kinds; ++k) run.kinds.emplace_back(layout);
+  for (std::size_t k = 0; k < strata_count; ++k) run.strata.emplace_back(layout);
   if (progress) progress->total = static_cast<long long>(n);
   const auto start = std::chrono::steady_clock::now();
   // One runner for every pipeline (assess/chunk_runner.hpp): chunks of objects, each into a
@@ -41,19 +41,19 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   std::deque<WatchedTallies> slots;
   assess::ChunkWork work;
   work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
-  work.most_slots = slots_per_wave(kinds * run.kinds.front().bytes(), assess::thread_count(threads));
+  work.most_slots = slots_per_wave(strata_count * run.strata.front().bytes(), assess::thread_count(threads));
   work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * kObjectsPerChunk) - chunk * kObjectsPerChunk; };
   work.run = [&](std::uint64_t chunk, std::size_t slot) {
     WatchedTallies& w = slots[slot];
     w.clear();
     const std::uint64_t last = std::min(n, (chunk + 1) * kObjectsPerChunk);
     for (std::uint64_t i = chunk * kObjectsPerChunk; i < last; ++i) {
-      ObjectWatch& watch = w.watches[static_cast<std::size_t>(i % kinds)];
+      ObjectWatch& watch = w.watches[static_cast<std::size_t>(i % strata_count)];
       watch.finish(sim.simulate(i, &watch));
     }
   };
   work.merge = [&](std::uint64_t, std::size_t slot) {
-    for (std::size_t k = 0; k < kinds; ++k) run.kinds[k].merge(slots[slot].tallies[k]);
+    for (std::size_t k = 0; k < strata_count; ++k) run.strata[k].merge(slots[slot].tallies[k]);
   };
   work.pack = [&](std::size_t count) {
     std::string bytes;
@@ -68,17 +68,17 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   work.progress = progress;
   slots.resize(static_cast<std::size_t>(assess::wave_size(work)));
   for (auto& slot : slots)
-    for (std::size_t k = 0; k < kinds; ++k) slot.add(layout);
+    for (std::size_t k = 0; k < strata_count; ++k) slot.add(layout);
   run.threads = assess::on_threads(threads, [&] { assess::run_chunks(work); });
   if (assess::cluster::size() > 1) {
     // Every rank goes on from the whole run, as after a J232 assessment's.
     std::string whole;
     if (assess::cluster::is_writer())
-      for (const auto& t : run.kinds) t.pack_at(whole);
+      for (const auto& t : run.strata) t.pack_at(whole);
     assess::cluster::broadcast_from_writer(whole);
     if (!assess::cluster::is_writer()) {
       std::size_t at = 0;
-      for (auto& t : run.kinds) t.unpack_at(whole, at);
+      for (auto& t : run.strata) t.unpack_at(whole, at);
       if (at != whole.size()) throw std::runtime_error("hazard tallies: bytes of another layout from rank 0");
     }
   }
@@ -115,10 +115,11 @@ std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRu
 
 std::vector<double> weights_per_object(const FieldSimulator& sim, std::uint64_t objects) {
   std::vector<double> w;
-  const std::size_t kinds = sim.kinds();
-  for (std::size_t k = 0; k < kinds; ++k) {
-    const double n = static_cast<double>(objects / kinds + (k < objects % kinds ? 1 : 0));
-    w.push_back(n > 0 ? sim.objects_per_metre(k) * sim.reach_share(k) / n : 0.0);
+  const std::size_t strata_count = sim.strata();
+  for (std::size_t k = 0; k < strata_count; ++k) {
+    const double n = static_cast<double>(objects / strata_count + (k < objects % strata_count ? 1 : 0));
+    const FieldSimulator::SizeStratum& s = sim.stratum(k);
+    w.push_back(n > 0 ? sim.objects_per_metre(s.kind) * s.share / n : 0.0);
   }
   return w;
 }
@@ -159,11 +160,11 @@ namespace {
 // may claim a hazard: no object thrown, or more than kMaxCutOffShare cut off by the run's
 // limits, and it may not (named, so the user knows which setting to raise).
 void count_and_judge(const FieldSimulator& sim, const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
-  const std::size_t kinds = run.kinds.size();
+  const std::size_t strata_count = run.strata.size();
   s.objects = run.objects();
   double thrown = 0, landed = 0, thrown_variance = 0;
-  for (std::size_t k = 0; k < kinds; ++k) {
-    const HazardTally& t = run.kinds[k];
+  for (std::size_t k = 0; k < strata_count; ++k) {
+    const HazardTally& t = run.strata[k];
     const std::uint64_t thrown_k = t.fates[static_cast<std::size_t>(ObjectFate::Thrown)] + t.fates[static_cast<std::size_t>(ObjectFate::CutOff)];
     s.thrown += thrown_k;
     s.cut_off += t.fates[static_cast<std::size_t>(ObjectFate::CutOff)];
@@ -181,7 +182,7 @@ void count_and_judge(const FieldSimulator& sim, const HazardRun& run, const std:
   {
     // Which limits cut them off, so the user knows which setting to raise.
     std::array<std::uint64_t, flight::kCutOffReasons> by{};
-    for (const auto& t : run.kinds)
+    for (const auto& t : run.strata)
       for (std::size_t i = 0; i < by.size(); ++i) by[i] += t.cut_off_by[i];
     for (int i = 1; i < flight::kCutOffReasons; ++i)
       if (by[static_cast<std::size_t>(i)])
@@ -207,17 +208,17 @@ void count_and_judge(const FieldSimulator& sim, const HazardRun& run, const std:
   s.landed_outside_deck_share = thrown > 0 ? landed / thrown : 0.0;
 }
 
-// Throw statistics over the kinds, each weighted as the field holds it: the speed off the
+// Throw statistics over the strata, each weighted as the field holds it: the speed off the
 // first and the last strike (mean, 95th percentile) and the launch's elevation.
 void throw_statistics(const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
-  const std::size_t kinds = run.kinds.size();
-  // A speed histogram's (0.5 m/s bins) mean and 95th percentile over the kinds.
+  const std::size_t strata_count = run.strata.size();
+  // A speed histogram's (0.5 m/s bins) mean and 95th percentile over the strata.
   const auto mean_and_q95 = [&](std::array<std::uint64_t, 400> HazardTally::*histogram, double& mean, double& q95) {
     double n = 0, sum = 0;
-    std::vector<double> speed((run.kinds.front().*histogram).size());
-    for (std::size_t k = 0; k < kinds; ++k)
+    std::vector<double> speed((run.strata.front().*histogram).size());
+    for (std::size_t k = 0; k < strata_count; ++k)
       for (std::size_t i = 0; i < speed.size(); ++i) {
-        const double c = w[k] * static_cast<double>((run.kinds[k].*histogram)[i]);
+        const double c = w[k] * static_cast<double>((run.strata[k].*histogram)[i]);
         speed[i] += c, n += c, sum += c * (static_cast<double>(i) + 0.5) * 0.5;
       }
     mean = n > 0 ? sum / n : 0.0;
@@ -233,9 +234,9 @@ void throw_statistics(const HazardRun& run, const std::vector<double>& w, Hazard
   mean_and_q95(&HazardTally::exit_speed, s.exit_speed_mean, s.exit_speed_q95);
   mean_and_q95(&HazardTally::last_strike_speed, s.last_strike_speed_mean, s.last_strike_speed_q95);
   double elevation = 0, en = 0;
-  for (std::size_t k = 0; k < kinds; ++k)
-    for (std::size_t i = 0; i < run.kinds[k].launch_elevation.size(); ++i) {
-      const double c = w[k] * static_cast<double>(run.kinds[k].launch_elevation[i]);
+  for (std::size_t k = 0; k < strata_count; ++k)
+    for (std::size_t i = 0; i < run.strata[k].launch_elevation.size(); ++i) {
+      const double c = w[k] * static_cast<double>(run.strata[k].launch_elevation[i]);
       en += c, elevation += c * (static_cast<double>(i) + 0.5 - 90.0);
     }
   s.launch_elevation_mean = en > 0 ? elevation / en : 0.0;
@@ -246,8 +247,8 @@ void throw_statistics(const HazardRun& run, const std::vector<double>& w, Hazard
 // its hazard distance at the acceptable density and at each setback factor of it.
 void direction_curves(const FieldSimulator& sim, const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
   const scenario::FieldSpec& f = sim.scenario().field;
-  const HazardLayout& l = run.kinds.front().layout;
-  const std::size_t kinds = run.kinds.size();
+  const HazardLayout& l = run.strata.front().layout;
+  const std::size_t strata_count = run.strata.size();
   static const char* names[] = {"left", "right", "front", "rear"};
   static const char* meanings[] = {
       "a person standing this far to the left of the mower's centre line while it mows past (one pass): the larger of the "
@@ -256,7 +257,7 @@ void direction_curves(const FieldSimulator& sim, const HazardRun& run, const std
       "hazardous impacts per m2 of ground there and the hazardous crossings per m2 of the vertical plane there",
       "a person on the mower's line ahead of it, whom it approaches to no nearer than this",
       "a person on the mower's line behind it, from whom it moves away from this distance on"};
-  std::vector<Stratum> strata(kinds);
+  std::vector<Stratum> strata(strata_count);
   // How far the deck reaches in each direction: nobody stands under it, so each curve starts
   // at the first cell wholly beyond it.
   std::array<double, 4> deck_extent{};
@@ -271,15 +272,15 @@ void direction_curves(const FieldSimulator& sim, const HazardRun& run, const std
     // in a band one cell wide, summed over the distances the mower passes through.
     for (int k = static_cast<int>(std::ceil(deck_extent[d] / l.cell - 1e-9)); k < l.half_cells; ++k) {
       c.distance.push_back(d < 2 ? (k + 0.5) * l.cell : k * l.cell);
-      for (std::size_t j = 0; j < kinds; ++j)
-        strata[j] = {run.kinds[j].directions[d][static_cast<std::size_t>(k)], w[j], sim.energy_bound(j) >= f.person_energy};
+      for (std::size_t j = 0; j < strata_count; ++j)
+        strata[j] = {run.strata[j].directions[d][static_cast<std::size_t>(k)], w[j], sim.stratum(j).energy_bound >= f.person_energy};
       const Estimate q = combined(strata).scaled(1.0 / l.cell);
       c.density.push_back(q);
       Estimate exposure = q;
       if (d < 2) {
         // The plane along the path there: crossings per metre travelled over the person's height.
-        for (std::size_t j = 0; j < kinds; ++j)
-          strata[j] = {run.kinds[j].vertical[d][static_cast<std::size_t>(k)], w[j], sim.energy_bound(j) >= f.person_energy};
+        for (std::size_t j = 0; j < strata_count; ++j)
+          strata[j] = {run.strata[j].vertical[d][static_cast<std::size_t>(k)], w[j], sim.stratum(j).energy_bound >= f.person_energy};
         const Estimate v = combined(strata).scaled(1.0 / f.person_height);
         c.vertical.push_back(v);
         exposure = {std::max(q.value, v.value), std::max(q.low, v.low), std::max(q.high, v.high)};
@@ -301,21 +302,21 @@ void direction_curves(const FieldSimulator& sim, const HazardRun& run, const std
 // path, per m2 of it, with P(struck) per pass and per season for a person there.
 void plane_results(const FieldSimulator& sim, const HazardRun& run, const std::vector<double>& w, HazardSummary& s) {
   const scenario::FieldSpec& f = sim.scenario().field;
-  const std::size_t kinds = run.kinds.size();
-  std::vector<Stratum> strata(kinds);
+  const std::size_t strata_count = run.strata.size();
+  std::vector<Stratum> strata(strata_count);
   for (std::size_t p = 0; p < f.planes.size(); ++p) {
     PlaneResult r;
     r.plane = f.planes[p];
     r.per_km_by_height.assign(kHeightBands, 0.0);
-    for (std::size_t j = 0; j < kinds; ++j) {
-      const PlaneTally& pt = run.kinds[j].planes[p];
+    for (std::size_t j = 0; j < strata_count; ++j) {
+      const PlaneTally& pt = run.strata[j].planes[p];
       for (int b = 0; b < kHeightBands; ++b) {
         const double c = 1000 * w[j] * static_cast<double>(pt.by_height[static_cast<std::size_t>(b)]);
         r.per_km_by_height[static_cast<std::size_t>(b)] += c;
         r.crossings_per_km += c;
       }
       const double threshold = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person ? f.person_energy : f.vehicle_energy;
-      strata[j] = {pt.hazardous, w[j], sim.energy_bound(j) >= threshold};
+      strata[j] = {pt.hazardous, w[j], sim.stratum(j).energy_bound >= threshold};
     }
     const Estimate rate = combined(strata);  // per metre travelled
     r.hazardous_per_km = rate.scaled(1000);
@@ -342,6 +343,13 @@ void plane_results(const FieldSimulator& sim, const HazardRun& run, const std::v
 
 }  // namespace
 
+HazardTally kind_tally(const FieldSimulator& sim, const HazardRun& run, std::size_t kind) {
+  HazardTally t(run.strata.front().layout);
+  for (std::size_t k = 0; k < run.strata.size(); ++k)
+    if (sim.stratum(k).kind == kind) t.merge(run.strata[k]);
+  return t;
+}
+
 HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
   const scenario::FieldSpec& f = sim.scenario().field;
   const std::vector<double> w = weights_per_object(sim, run);
@@ -349,7 +357,7 @@ HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run) {
   s.cut_width = sim.cut_to() - sim.cut_from();
   s.objects_per_metre = sim.objects_per_metre();
   s.objects_per_km = 1000 * s.objects_per_metre;
-  for (std::size_t k = 0; k < run.kinds.size(); ++k) s.reaching_per_km += 1000 * sim.objects_per_metre(k) * sim.reach_share(k);
+  for (std::size_t k = 0; k < sim.kinds(); ++k) s.reaching_per_km += 1000 * sim.objects_per_metre(k) * sim.reach_share(k);
   s.acceptable_density = 1.0 / f.acceptable_area;
   count_and_judge(sim, run, w, s);
   throw_statistics(run, w, s);

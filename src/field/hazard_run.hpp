@@ -15,7 +15,7 @@
 namespace j232::field {
 
 struct HazardRun {
-  std::vector<HazardTally> kinds;  // one tally per kind of object (each its own stratum)
+  std::vector<HazardTally> strata;  // one tally per stratum of objects (FieldSimulator::stratum: a kind's size range)
   std::uint64_t objects() const;
   double wall_seconds = 0;
   int threads = 1;
@@ -26,8 +26,8 @@ struct HazardRun {
 // Bit-identical for any thread and rank count.
 HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress = nullptr);
 
-// A rate per metre travelled from the strata's per-object counts: the sum over kinds of
-// w_k S_k / N_k (w_k: the kind's objects met per metre that can reach a blade, N_k its
+// A rate per metre travelled from the strata's per-object counts: the sum over strata of
+// w_k S_k / N_k (w_k: the stratum's objects met per metre that can reach a blade, N_k its
 // objects simulated), with a 95 % interval. The per-object counts' squares give the
 // variance V = sum (w_k / N_k)^2 Q_k; the interval is Fay and Feuer's gamma interval for a
 // weighted sum of counts (quasi_poisson): honest at zero, for objects that strike more than
@@ -102,18 +102,21 @@ struct HazardSummary {
   std::vector<DirectionCurve> directions;
   std::vector<PlaneResult> planes;
   double thrown_per_km = 0, landed_outside_deck_share = 0, max_distance = 0;
-  double thrown_per_km_variance = 0;  // its Monte Carlo noise: each kind's thrown share is binomial
+  double thrown_per_km_variance = 0;  // its Monte Carlo noise: each stratum's thrown share is binomial
   double exit_speed_mean = 0, exit_speed_q95 = 0, launch_elevation_mean = 0;
   double last_strike_speed_mean = 0, last_strike_speed_q95 = 0;  // off the last blade strike (the speed objects leave with)
 };
 HazardSummary summarise(const FieldSimulator& sim, const HazardRun& run);
-// Each kind's weight per simulated object (w_k / N_k, per metre travelled).
+// What the run counted of one kind: its strata's tallies merged (whole counts of the objects
+// simulated, not weighted).
+HazardTally kind_tally(const FieldSimulator& sim, const HazardRun& run, std::size_t kind);
+// Each stratum's weight per simulated object (w_k / N_k, per metre travelled).
 std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRun& run);
-// The same for a run of `objects` objects: object i is of kind i mod kinds, so kind k has
-// objects / kinds of them, one more for the first objects mod kinds kinds.
+// The same for a run of `objects` objects: object i is of stratum i mod strata, so stratum k
+// has objects / strata of them, one more for the first objects mod strata strata.
 std::vector<double> weights_per_object(const FieldSimulator& sim, std::uint64_t objects);
 inline constexpr std::uint64_t kObjectsPerChunk = 256;  // objects per task of a parallel run
-// Chunks in flight at once on a rank, each holding `bytes_per_slot` (a tally per kind and
+// Chunks in flight at once on a rank, each holding `bytes_per_slot` (a tally per stratum and
 // design: the ground's grid, some 0.7 MB at the default range and cell, up to 64 MB at the
 // finest): eight per thread, so that the chunks' uneven times even out, fewer when they would
 // hold more than 512 MB together, but never fewer than one per thread (the memory a run on

@@ -125,6 +125,9 @@ constexpr double kLyingGap = 5 * kFaceTolerance;
 // clearance to that face is below this (a touch is within kFaceTolerance; round-off in a part
 // along the face stays far below 0.1 mm).
 constexpr double kPressedGap = 1e-4;
+// A face over a sliding object (its normal more than 60 deg down from the ground's up: a
+// skirt's lower edge, the deck's underside) touched again within kWedgeGap: jammed under it.
+constexpr double kCeilingSlope = 0.5;
 // The faces a chord's search considers at most: a longer list halves the chord.
 constexpr std::size_t kMaxCandidates = 256;
 
@@ -876,6 +879,7 @@ bool NailFlight::slide(const scene::Hit& hit) {
   Vec3 pressed = Vec3::Zero();
   double pressed_mu = 0;
   std::uint32_t pressed_face = 0;
+  double ceiling_touched = -HUGE_VAL;  // when it last touched a face over it (below)
   // Pushed along by the mower, held at the face of normal `n` (friction `mu`) that the moving
   // turf presses it into: slowed to the mower's pace there, the turf's pull along the face
   // within the face's friction cone, |turf_t| <= mu |turf.n|.
@@ -1064,6 +1068,22 @@ bool NailFlight::slide(const scene::Hit& hit) {
     stopped = !respond(met);
     if (cut_off) break;
     if (set.materials.of(met.surface, met.guard).holds_up) break;  // slid onto another ground face: fly on from there
+    // Touching a face over it (a skirt's lower edge, the deck's underside) again at the same
+    // instant: the gap between that face and the ground is closing along its track, and it is
+    // too tall to go on: jammed between them, pinned there by the mower (in a field, pushed
+    // along by it). (Else it touched the face again and again at no progress, a hundredth of
+    // a m/s lost each time, until the step cap: a 38.1 mm stone under a 1.5-in skirt.)
+    if (last_touch != Touch::GuardPass && met.normal.dot(up) < -kCeilingSlope) {
+      if (b.time - ceiling_touched <= kWedgeGap) {
+        b.velocity = Vec3::Zero();
+        b.spin = Vec3::Zero();
+        ended_at_rest = true;
+        held_by_mower = true;
+        log(FlightEvent::Kind::Rest, b.position, up);
+        break;
+      }
+      ceiling_touched = b.time;
+    }
     // Pressed into the mower's face by the turf moving under it (in a field) and slowed there
     // to the mower's pace, it is pushed along by the mower (at rest in the mower's frame, held
     // there) when the face's friction holds it. Not after passing through a curtain.

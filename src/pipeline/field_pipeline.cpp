@@ -210,7 +210,7 @@ class Field final : public Pipeline {
     out.outputs = figures(sum).values;
     out.cut_off_share = sum.cut_off_share;
     std::array<std::uint64_t, flight::kCutOffReasons> by{};
-    for (const auto& t : run.kinds)
+    for (const auto& t : run.strata)
       for (std::size_t why = 0; why < by.size(); ++why) by[why] += t.cut_off_by[why];
     out.cut_off_limit = commonest_cut_off(by);
     if (!sum.valid) invalid = sum.invalid_reason;

@@ -158,12 +158,16 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
 json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum, const HazardProvenance& p) {
   const scenario::Scenario& s = sim.scenario();
   const scenario::FieldSpec& f = s.field;
-  const field::HazardLayout& layout = run.kinds.front().layout;
+  const field::HazardLayout& layout = run.strata.front().layout;
   const std::vector<double> w = field::weights_per_object(sim, run);
   json objects = json::array();
   for (std::size_t k = 0; k < f.objects.size(); ++k) {
     const auto& o = f.objects[k];
-    const field::HazardTally& t = run.kinds[k];
+    const field::HazardTally t = field::kind_tally(sim, run, k);
+    json strata = json::array();
+    for (std::size_t j = 0; j < run.strata.size(); ++j)
+      if (const auto& st = sim.stratum(j); st.kind == k)
+        strata.push_back({{"smallest_m", st.smallest}, {"largest_m", st.largest}, {"share_of_kind_met", st.share}, {"objects", run.strata[j].objects}});
     json fates = json::object();
     for (int i = 0; i < field::kObjectFates; ++i) fates[field::object_fate_name(static_cast<field::ObjectFate>(i))] = t.fates[static_cast<std::size_t>(i)];
     json cut = json::object();
@@ -186,7 +190,9 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
                        {"share_that_can_reach_a_blade", sim.reach_share(k)},
                        {"simulated",
                         {{"objects", t.objects},
-                         {"note", "drawn among the sizes that can reach a blade; each kind its own stratum"},
+                         {"note", "drawn among the sizes that can reach a blade, in strata of size (each about an equal share of the "
+                                  "kind's mass), each given the same number of objects and weighted by its share"},
+                         {"size_strata", strata},
                          {"fates", fates},
                          {"cut_off_by", cut},
                          {"at_rest_under_deck", t.at_rest_under_deck},
@@ -245,13 +251,13 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
   }
   json reach = json::array();
   double thrown = 0;
-  for (std::size_t k = 0; k < run.kinds.size(); ++k)
-    for (auto c : run.kinds[k].farthest) thrown += w[k] * static_cast<double>(c);
+  for (std::size_t k = 0; k < run.strata.size(); ++k)
+    for (auto c : run.strata[k].farthest) thrown += w[k] * static_cast<double>(c);
   for (double d : {1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 50.0, 75.0, 100.0, 150.0, 200.0}) {
     double beyond = 0;
-    for (std::size_t k = 0; k < run.kinds.size(); ++k)
-      for (std::size_t i = static_cast<std::size_t>(d / 0.25); i < run.kinds[k].farthest.size(); ++i)
-        beyond += w[k] * static_cast<double>(run.kinds[k].farthest[i]);
+    for (std::size_t k = 0; k < run.strata.size(); ++k)
+      for (std::size_t i = static_cast<std::size_t>(d / 0.25); i < run.strata[k].farthest.size(); ++i)
+        beyond += w[k] * static_cast<double>(run.strata[k].farthest[i]);
     reach.push_back({{"distance_m", d}, {"share_beyond", thrown > 0 ? beyond / thrown : 0.0}});
   }
   json scenario = scenario_json(s);
@@ -458,9 +464,9 @@ std::string plan_view(const field::FieldSimulator& sim, const field::HazardLayou
 // A per-cell count of every kind, weighted as the field holds each kind, per km mowed.
 std::vector<double> per_km(const field::FieldSimulator& sim, const field::HazardRun& run, std::vector<std::uint64_t> field::HazardTally::*cells) {
   const std::vector<double> w = field::weights_per_object(sim, run);
-  std::vector<double> out((run.kinds.front().*cells).size());
-  for (std::size_t k = 0; k < run.kinds.size(); ++k)
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] += 1000 * w[k] * static_cast<double>((run.kinds[k].*cells)[i]);
+  std::vector<double> out((run.strata.front().*cells).size());
+  for (std::size_t k = 0; k < run.strata.size(); ++k)
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] += 1000 * w[k] * static_cast<double>((run.strata[k].*cells)[i]);
   return out;
 }
 
@@ -469,7 +475,7 @@ std::vector<double> per_km(const field::FieldSimulator& sim, const field::Hazard
 std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum, const json& result,
                         const DisplayUnits& u) {
   const scenario::Scenario& s = sim.scenario();
-  const field::HazardLayout& layout = run.kinds.front().layout;
+  const field::HazardLayout& layout = run.strata.front().layout;
   std::string o = page_head("Thrown-object hazard: " + s.title);
   o += fmt::format("<h1>Thrown-object hazard in the field: {}</h1>\n", escape(s.title));
   if (!sum.valid)
@@ -620,8 +626,8 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   for (int i = 0; i < field::kObjectFates; ++i) kinds_header.push_back(field::object_fate_name(static_cast<field::ObjectFate>(i)));
   for (const char* h : {"at rest under the deck", "left the square", "a knife rode over", "pushed along by an arm"}) kinds_header.push_back(h);
   HtmlTable kinds(kinds_header);
-  for (std::size_t k = 0; k < run.kinds.size(); ++k) {
-    const auto& t = run.kinds[k];
+  for (std::size_t k = 0; k < sim.kinds(); ++k) {
+    const field::HazardTally t = field::kind_tally(sim, run, k);
     std::vector<HtmlCell> cells = {escape(s.field.objects[k].name), fmt::format("{:.0f}", u.per_mowed(1000 * sim.objects_per_metre(k))),
                                       fmt::format("{:.3g}", sim.reach_share(k)), fmt::format("{}", t.objects)};
     for (int i = 0; i < field::kObjectFates; ++i) cells.push_back(fmt::format("{}", t.fates[static_cast<std::size_t>(i)]));
