@@ -995,6 +995,52 @@ TEST_CASE("flight: in a field a ball the mower's wall meets rolls off it and bac
   }
 }
 
+TEST_CASE("flight: a stone skidding under a face whose gap to the turf closes is jammed where its top meets the face", "[flight][ground]") {
+  // A 38.1 mm stone skids at 5 m/s along +x on turf (friction 0.5) under a steel plate that
+  // falls from 45 mm above the turf at x = 0 to 30 mm at x = 1 m (a skirt's lower edge seen
+  // from inside, 0.86 deg). Its top meets the plate where 45 mm - 15 mm x = 38.1 mm: x = 0.46 m,
+  // its speed then sqrt(5^2 - 2 mu g 0.46) = 4.5 m/s, too tall to go on: jammed there and
+  // pinned by the mower. (It had touched the plate again and again at the same instant, a
+  // hundredth of a m/s lost each time, until the slide's step cap cut it off.)
+  const double diameter = 0.0381, mass = 2650 * units::pi / 6 * diameter * diameter * diameter;
+  scene::Soup soup;
+  {
+    const auto a = soup.add_point({-5, -5, 0}), b = soup.add_point({5, -5, 0});
+    const auto c = soup.add_point({5, 5, 0}), d = soup.add_point({-5, 5, 0});
+    soup.add_quad(a, b, c, d, scene::Surface::Ground);
+    // The plate, facing down.
+    const auto p0 = soup.add_point({0, -0.5, 0.045}), p1 = soup.add_point({0, 0.5, 0.045});
+    const auto p2 = soup.add_point({1, 0.5, 0.030}), p3 = soup.add_point({1, -0.5, 0.030});
+    soup.add_quad(p0, p1, p2, p3, scene::Surface::Housing);
+  }
+  const scene::Scene scene(soup);
+  scenario::Scenario s;
+  s.ground.restitution = 0;
+  s.ground.friction = 0.5;
+  s.ground.roughness = 0;
+  s.housing.friction = 0.3;
+  s.housing.restitution = blade::Restitution::constant(0.3);
+  flight::FlightSettings settings(s, std::vector<scenario::GuardSpec>(1));
+  const auto projectile = projectile::Projectile::sphere(diameter, mass);
+  flight::FlightContext ctx{&scene, &settings, 50.0, 1.0, 0.0};
+  std::vector<flight::FlightEvent> events;
+  ctx.events = &events;
+  flight::Body b;
+  b.position = {-0.2, 0, 0.5 * diameter + 1e-6};
+  b.velocity = {5, 0, 0};
+  random::EventDraws rng(1, 0, 0);
+  const auto r = flight::fly(b, projectile, {}, ctx, {}, {}, rng);
+  const double meets = (0.045 - diameter) / 0.015;
+  INFO("ended at " << r.end_position.transpose() << " after " << r.flight_time << " s, " << events.size() << " events (hand: jammed at x = "
+                   << meets << " m)");
+  CHECK(r.cut_off == flight::CutOff::None);
+  CHECK(r.fate == flight::Fate::Contained);
+  CHECK(std::abs(r.end_position.x() - meets) < 0.01);
+  CHECK(events.size() < 20);
+  // Its top at the plate, not through it.
+  CHECK(r.end_position.z() + 0.5 * diameter <= 0.045 - 0.015 * r.end_position.x() + 1e-4);
+}
+
 TEST_CASE("flight: a stone that does not roll skids round a deck's skirt, slowed as friction on a curve slows it", "[flight][bounce]") {
   // Held to a curved wall, a sliding body's speed falls as v = v0 exp(-mu theta) with the
   // angle it has turned through (the wall's push m v dtheta per turn, friction mu of it:
