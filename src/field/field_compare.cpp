@@ -105,20 +105,21 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   assess::PairedSums total(nd, figures);
   std::deque<ChunkSlot> slots;
   assess::ChunkWork work;
-  work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
+  const std::uint64_t per_chunk = objects_per_chunk(n);
+  work.chunks = (n + per_chunk - 1) / per_chunk;
   std::size_t bytes_per_slot = 0;
   for (const auto& r : runs)
     for (const auto& t : r.strata) bytes_per_slot += t.bytes();
   work.most_slots = slots_per_wave(bytes_per_slot, assess::thread_count(threads));
-  work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * kObjectsPerChunk) - chunk * kObjectsPerChunk; };
+  work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * per_chunk) - chunk * per_chunk; };
   work.run = [&](std::uint64_t c, std::size_t slot) {
     ChunkSlot& at = slots[slot];
     at.watched.clear();
     at.sums.zero(nd, figures);
     std::vector<double> y(nd * figures);
     std::vector<std::uint64_t> raw(nd * figures);
-    const std::uint64_t last = std::min(n, (c + 1) * kObjectsPerChunk);
-    for (std::uint64_t i = c * kObjectsPerChunk; i < last; ++i) {
+    const std::uint64_t last = std::min(n, (c + 1) * per_chunk);
+    for (std::uint64_t i = c * per_chunk; i < last; ++i) {
       for (std::size_t d = 0; d < nd; ++d) {
         ObjectWatch& watch = at.watched.watches[first[d] + static_cast<std::size_t>(i % sims[d]->strata())];
         const ObjectOutcome o = sims[d]->simulate(i, &watch);

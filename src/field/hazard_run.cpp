@@ -40,14 +40,15 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   // slot's tallies, merged in chunk order (whole counts: any order would give the same sums).
   std::deque<WatchedTallies> slots;
   assess::ChunkWork work;
-  work.chunks = (n + kObjectsPerChunk - 1) / kObjectsPerChunk;
+  const std::uint64_t per_chunk = objects_per_chunk(n);
+  work.chunks = (n + per_chunk - 1) / per_chunk;
   work.most_slots = slots_per_wave(strata_count * run.strata.front().bytes(), assess::thread_count(threads));
-  work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * kObjectsPerChunk) - chunk * kObjectsPerChunk; };
+  work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * per_chunk) - chunk * per_chunk; };
   work.run = [&](std::uint64_t chunk, std::size_t slot) {
     WatchedTallies& w = slots[slot];
     w.clear();
-    const std::uint64_t last = std::min(n, (chunk + 1) * kObjectsPerChunk);
-    for (std::uint64_t i = chunk * kObjectsPerChunk; i < last; ++i) {
+    const std::uint64_t last = std::min(n, (chunk + 1) * per_chunk);
+    for (std::uint64_t i = chunk * per_chunk; i < last; ++i) {
       ObjectWatch& watch = w.watches[static_cast<std::size_t>(i % strata_count)];
       watch.finish(sim.simulate(i, &watch));
     }

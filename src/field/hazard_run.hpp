@@ -3,6 +3,7 @@
 // parallel, tallied, and turned into what a safety engineer reads: densities of hazardous
 // impacts against distance in each direction with their intervals, the probability of a
 // person being struck, the hazard distances, and each plane's hazardous flux.
+#include <algorithm>
 #include <atomic>
 #include <deque>
 #include <string>
@@ -115,7 +116,10 @@ std::vector<double> weights_per_object(const FieldSimulator& sim, const HazardRu
 // The same for a run of `objects` objects: object i is of stratum i mod strata, so stratum k
 // has objects / strata of them, one more for the first objects mod strata strata.
 std::vector<double> weights_per_object(const FieldSimulator& sim, std::uint64_t objects);
-inline constexpr std::uint64_t kObjectsPerChunk = 256;  // objects per task of a parallel run
+// Objects per task of a parallel run of n objects: 256, fewer in a small run (an uncertainty
+// study's hundreds at each draw), so that its eight or more tasks keep both cores busy. A
+// function of n alone: the run is the same on any number of threads.
+inline std::uint64_t objects_per_chunk(std::uint64_t n) { return std::clamp<std::uint64_t>((n + 7) / 8, 32, 256); }
 // Chunks in flight at once on a rank, each holding `bytes_per_slot` (a tally per stratum and
 // design: the ground's grid, some 0.7 MB at the default range and cell, up to 64 MB at the
 // finest): eight per thread, so that the chunks' uneven times even out, fewer when they would

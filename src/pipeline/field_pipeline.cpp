@@ -124,6 +124,8 @@ std::string column_stem(const std::string& name) {
   return o.empty() ? "plane" : o;
 }
 
+constexpr long long kUqObjectsPerStratum = 30;
+
 // A hazard run's figures in the order of Field::outputs, each with its Monte Carlo variance
 // in that run (-1: none estimated).
 struct Figures {
@@ -194,8 +196,14 @@ class Field final : public Pipeline {
     if (key == "air.cd_normal" || key == "air.cd_axial") return "a field's objects are spheres: their drag is field.objects[N].drag_coefficient";
     return "";
   }
+  // By default 30 objects of each size stratum (120 of a kind), at most the scenario's own
+  // count: the shipped shoulder's study (256 base draws of 21 inputs, 5 888 hazard runs of 240
+  // objects) takes about 8 minutes on 2 cores, and chance gives under 1 % of any figure's
+  // variance over the draws (uq.json noise_share; docs/validation.md §5).
   DrawSize draw_size(const scenario::Scenario& s) const override {
-    return {s.uncertainty.replicates, s.uncertainty.objects.value_or(std::min(s.field.objects_simulated, 20000LL))};
+    const auto per_kind = static_cast<long long>(field::FieldSimulator::kSizeStrata) * kUqObjectsPerStratum;
+    const auto objects = per_kind * static_cast<long long>(s.field.objects.size());
+    return {s.uncertainty.replicates, s.uncertainty.objects.value_or(std::min(s.field.objects_simulated, objects))};
   }
 
   // The same objects (seed and count) at every draw. Every rank of an MPI job holds the whole
