@@ -314,7 +314,7 @@ TEST_CASE("field: with supports, the share that reaches falls smoothly with the 
   CHECK(with_tall.reach_share(0) > 0);
 }
 
-TEST_CASE("field: each kind a stratum, drawn among the sizes that can reach a blade", "[field]") {
+TEST_CASE("field: each kind drawn among the sizes that can reach a blade", "[field]") {
   const auto s = read(kMower + kStones);
   const field::FieldSimulator sim(s);
   // Stones stand up to the blade's lower face (2 in - 3 mm) when (1 - 0.2) d exceeds it.

@@ -488,7 +488,8 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   o += fmt::format(
       "<p>A simulation of this mower at work at {:.1f} {} over turf strewn with objects ({:.2f} {} cut): {:.0f} objects met "
       "per {} mowed, {:.0f} of them of a size that can reach a blade, {:.0f} thrown. {} objects were simulated (a "
-      "Monte Carlo sample, each kind its own stratum, drawn among the sizes that can reach a blade). Every figure is an "
+      "Monte Carlo sample drawn among the sizes that can reach a blade, in strata of kind and size, so that the few heavy "
+      "objects are drawn as often as the many light ones, each weighted by its share). Every figure is an "
       "estimate from that sample, with its 95 % interval; the figures are of the simulated model with its stated "
       "assumptions (below), not a measurement.{}</p>\n",
       u.travel(s.field.ground_speed), u.travel_unit(), u.length(sum.cut_width), u.length_unit(), u.per_mowed(sum.objects_per_km),
