@@ -54,9 +54,6 @@ double probability_below(const scenario::FieldObjectSpec& o, double d) {
 }  // namespace
 
 FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine) : scenario_(with_field(s)) {
-  if (scenario_.field.objects_simulated < static_cast<long long>(scenario_.field.objects.size()))
-    throw scenario::InputError(scenario_.file, std::nullopt, "field.objects_simulated", std::to_string(scenario_.field.objects_simulated),
-                               fmt::format("at least one object of each of the {} kinds", scenario_.field.objects.size()));
   mower_ = std::make_unique<flight::Mower>(scenario_, engine);
   cut_from_ = HUGE_VAL, cut_to_ = -HUGE_VAL;
   for (const auto& sp : scenario_.spindles) {
@@ -165,6 +162,11 @@ FieldSimulator::FieldSimulator(const scenario::Scenario& s, scene::Engine engine
     add_size_strata(k, whole, reach);
     sizes_.push_back(reach);
   }
+  if (scenario_.field.objects_simulated < static_cast<long long>(strata_.size()))
+    throw scenario::InputError(scenario_.file, std::nullopt, "field.objects_simulated", std::to_string(scenario_.field.objects_simulated),
+                               fmt::format("at least one object of each of the {} strata the {} kinds are drawn from (each kind's sizes "
+                                           "in up to {} size strata)",
+                                           strata_.size(), scenario_.field.objects.size(), kSizeStrata));
 }
 
 FieldSimulator::SupportBand FieldSimulator::held_up(std::size_t kind, double size) const {
@@ -196,13 +198,11 @@ double FieldSimulator::objects_per_metre() const {
 
 // A kind's reachable sizes split into strata of about equal shares of their mass (the
 // cells' reach mass times the cube of their size), so that the few heavy objects that carry a
-// hazardous energy are drawn as often as the many light ones; a kind of one size, or a run
-// too small to give each stratum its objects, has one.
+// hazardous energy are drawn as often as the many light ones; a kind of one size has one.
 void FieldSimulator::add_size_strata(std::size_t kind, double whole, const ReachableSizes& reach) {
   const auto& o = scenario_.field.objects[kind];
   const std::size_t n = reach.cells.size();
-  const long long per_kind = scenario_.field.objects_simulated / static_cast<long long>(scenario_.field.objects.size());
-  const std::size_t bands = o.spread <= 1.0 || per_kind < static_cast<long long>(kSizeStrata) * kObjectsPerStratum ? 1 : std::min<std::size_t>(kSizeStrata, n);
+  const std::size_t bands = o.spread <= 1.0 ? 1 : std::min<std::size_t>(kSizeStrata, n);
   std::vector<double> heavy(n + 1, 0.0);  // the cells' mass-weighted reach, cumulative
   for (std::size_t c = 0; c < n; ++c) {
     const double d = size_at(o, 0.5 * (reach.cells[c].from + reach.cells[c].to));

@@ -93,8 +93,7 @@ class FieldSimulator {
   double reach_share(std::size_t kind) const;
   // The strata objects are drawn from (docs/model.md §9): each kind's sizes that reach a
   // blade, split at sizes that give each stratum about an equal share of their mass
-  // (kSizeStrata of them, one for a kind of one size or a run of fewer than
-  // kObjectsPerStratum objects for each), so that the rare heavy objects that carry a
+  // (kSizeStrata of them, one for a kind of one size), so that the rare heavy objects that carry a
   // hazardous energy are drawn as often as the many light ones; every stratum is given the
   // same number of objects and weighted by its share.
   struct SizeStratum {
@@ -109,7 +108,6 @@ class FieldSimulator {
     double energy_bound = 0;  // J
   };
   static constexpr std::size_t kSizeStrata = 4;
-  static constexpr long long kObjectsPerStratum = 25;
   std::size_t strata() const { return strata_.size(); }
   const SizeStratum& stratum(std::size_t s) const { return strata_[s]; }
   double energy_bound(std::size_t kind) const;  // the largest of its strata's

@@ -92,7 +92,8 @@ Estimate combined(const std::vector<Stratum>& strata) {
   for (const auto& s : strata) {
     mean += s.weight_per_object * static_cast<double>(s.counts.sum);
     variance += s.weight_per_object * s.weight_per_object * static_cast<double>(s.counts.squares);
-    if (s.possible) largest = std::max(largest, s.weight_per_object);
+    // (A stratum that made the event can make it, whatever its energy bound says.)
+    if (s.possible || s.counts.sum > 0) largest = std::max(largest, s.weight_per_object);
   }
   Estimate e = quasi_poisson(mean, variance, largest);
   e.variance = variance;

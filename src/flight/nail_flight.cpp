@@ -1069,18 +1069,27 @@ bool NailFlight::slide(const scene::Hit& hit) {
     if (cut_off) break;
     if (set.materials.of(met.surface, met.guard).holds_up) break;  // slid onto another ground face: fly on from there
     // Touching a face over it (a skirt's lower edge, the deck's underside) again at the same
-    // instant: the gap between that face and the ground is closing along its track, and it is
-    // too tall to go on: jammed between them, pinned there by the mower (in a field, pushed
-    // along by it). (Else it touched the face again and again at no progress, a hundredth of
-    // a m/s lost each time, until the step cap: a 38.1 mm stone under a 1.5-in skirt.)
+    // instant: its track closes the gap between that face and the ground. It goes on along
+    // the crease between the two (the velocity across it taken by both faces: along a
+    // skirt's lip, past a seam of its facets), or, left slower than the rest speed, it is
+    // jammed there: at rest, held by the mower where the moving turf presses it into the face
+    // within the face's friction, else left to the turf. (Else it touched the face again and
+    // again at no progress, a hundredth of a m/s lost each time, until the step cap: a
+    // 38.1 mm stone under a 1.5-in skirt.)
     if (last_touch != Touch::GuardPass && met.normal.dot(up) < -kCeilingSlope) {
       if (b.time - ceiling_touched <= kWedgeGap) {
-        b.velocity = Vec3::Zero();
-        b.spin = Vec3::Zero();
-        ended_at_rest = true;
-        held_by_mower = true;
-        log(FlightEvent::Kind::Rest, b.position, up);
-        break;
+        const Vec3 crease = up.cross(met.normal);
+        const Vec3 along = crease.norm() > 1e-9 ? Vec3(crease.normalized()) : Vec3::Zero();
+        b.velocity = b.velocity.dot(along) * along;
+        if (b.velocity.norm() <= set.rest_speed) {
+          const Vec3 across = met.normal - met.normal.dot(up) * up;
+          held_by_mower = across.norm() > 1e-9 && held_at(across.normalized(), set.materials.of(met.surface, met.guard).friction);
+          b.velocity = Vec3::Zero();
+          b.spin = Vec3::Zero();
+          ended_at_rest = true;
+          log(FlightEvent::Kind::Rest, b.position, up);
+          break;
+        }
       }
       ceiling_touched = b.time;
     }

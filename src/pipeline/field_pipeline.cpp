@@ -198,8 +198,8 @@ class Field final : public Pipeline {
   }
   // By default 30 objects of each size stratum (120 of a kind), at most the scenario's own
   // count: the shipped shoulder's study (256 base draws of 21 inputs, 5 888 hazard runs of 240
-  // objects) takes about 8 minutes on 2 cores, and chance gives under 1 % of any figure's
-  // variance over the draws (uq.json noise_share; docs/validation.md §5).
+  // objects) takes about 9 1/2 minutes on 2 cores, and chance gives under 1 % of the
+  // variance over the draws of each rate it estimates (uq.json noise_share; docs/validation.md §5).
   DrawSize draw_size(const scenario::Scenario& s) const override {
     const auto per_kind = static_cast<long long>(field::FieldSimulator::kSizeStrata) * kUqObjectsPerStratum;
     const auto objects = per_kind * static_cast<long long>(s.field.objects.size());
