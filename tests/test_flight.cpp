@@ -1,6 +1,8 @@
 // Flight between contacts, against closed-form answers: the drag-free parabola (apex,
 // range) and the vertical fall with quadratic drag (tanh law); drag shortens the range.
 #include <catch2/catch.hpp>
+
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -24,11 +26,23 @@ namespace {
 constexpr double g = 9.80665;
 constexpr double kRadius = 0.00125;  // of the sphere land() flies
 
-scene::Scene flat_ground(double half = 200.0) {
+// A square of turf 2 half across, centred on the origin.
+scene::Soup ground_soup(double half) {
   scene::Soup soup;
   const auto a = soup.add_point({-half, -half, 0}), b = soup.add_point({half, -half, 0});
   const auto c = soup.add_point({half, half, 0}), d = soup.add_point({-half, half, 0});
   soup.add_quad(a, b, c, d, scene::Surface::Ground);
+  return soup;
+}
+
+scene::Scene flat_ground(double half = 200.0) { return scene::Scene(ground_soup(half)); }
+
+// The same square with one quad of the housing's steel on it, corners in order.
+scene::Scene ground_and_housing_quad(double half, const std::array<Vec3, 4>& corner) {
+  scene::Soup soup = ground_soup(half);
+  std::array<std::uint32_t, 4> at{};
+  for (std::size_t i = 0; i < 4; ++i) at[i] = soup.add_point(corner[i]);
+  soup.add_quad(at[0], at[1], at[2], at[3], scene::Surface::Housing);
   return scene::Scene(soup);
 }
 
@@ -884,18 +898,8 @@ TEST_CASE("flight: in a field a ball the mower's wall meets rolls off it and bac
   // constant speed until the time limit.
   const double diameter = 0.05, mass = 2650 * units::pi / 6 * diameter * diameter * diameter, turf = 8 / 3.6, u = turf + 0.5, e = 0.3,
                rho = 0.12;
-  scene::Soup soup;
-  {
-    const double half = 60;
-    const auto a = soup.add_point({-half, -half, 0}), b = soup.add_point({half, -half, 0});
-    const auto c = soup.add_point({half, half, 0}), d = soup.add_point({-half, half, 0});
-    soup.add_quad(a, b, c, d, scene::Surface::Ground);
-    // The wall: the plane x = 0, from y = -1 to 1 m, 0.3 m high.
-    const auto w0 = soup.add_point({0, -1, 0}), w1 = soup.add_point({0, 1, 0});
-    const auto w2 = soup.add_point({0, 1, 0.3}), w3 = soup.add_point({0, -1, 0.3});
-    soup.add_quad(w0, w1, w2, w3, scene::Surface::Housing);
-  }
-  const scene::Scene scene(soup);
+  // The wall: the plane x = 0, from y = -1 to 1 m, 0.3 m high.
+  const scene::Scene scene = ground_and_housing_quad(60, {Vec3(0, -1, 0), Vec3(0, 1, 0), Vec3(0, 1, 0.3), Vec3(0, -1, 0.3)});
   scenario::Scenario s;
   s.ground.restitution = 0;
   s.ground.friction = 0.5;
@@ -1003,17 +1007,9 @@ TEST_CASE("flight: a stone skidding under a face whose gap to the turf closes is
   // pinned by the mower. (It had touched the plate again and again at the same instant, a
   // hundredth of a m/s lost each time, until the slide's step cap cut it off.)
   const double diameter = 0.0381, mass = 2650 * units::pi / 6 * diameter * diameter * diameter;
-  scene::Soup soup;
-  {
-    const auto a = soup.add_point({-5, -5, 0}), b = soup.add_point({5, -5, 0});
-    const auto c = soup.add_point({5, 5, 0}), d = soup.add_point({-5, 5, 0});
-    soup.add_quad(a, b, c, d, scene::Surface::Ground);
-    // The plate, facing down.
-    const auto p0 = soup.add_point({0, -0.5, 0.045}), p1 = soup.add_point({0, 0.5, 0.045});
-    const auto p2 = soup.add_point({1, 0.5, 0.030}), p3 = soup.add_point({1, -0.5, 0.030});
-    soup.add_quad(p0, p1, p2, p3, scene::Surface::Housing);
-  }
-  const scene::Scene scene(soup);
+  // The plate, facing down.
+  const scene::Scene scene =
+      ground_and_housing_quad(5, {Vec3(0, -0.5, 0.045), Vec3(0, 0.5, 0.045), Vec3(1, 0.5, 0.030), Vec3(1, -0.5, 0.030)});
   scenario::Scenario s;
   s.ground.restitution = 0;
   s.ground.friction = 0.5;
