@@ -373,21 +373,27 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
   for (std::size_t o = 0; o < h.openings.size(); ++o) add_chute(soup, h, h.openings[o], opening_pieces[o]);
 }
 
+// Sides of the generated round deck's plate, skirt and skirt guards. A nail skidding round the
+// skirt bounces off each facet it passes, so the cost of those rides grows with the sides;
+// the results do not move beyond their noise from 96 to 384 sides (docs/validation.md §3,
+// "The round skirt's facets"), and 48 moves the shares outside.
+constexpr int kRoundDeckSides = 96;
+
 // The generated deck plate, skirt, chain guards (numbered from first_guard) and deflectors.
 void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_guard) {
   const auto& h = s.housing;
   const auto& sp = s.spindles.front();
   if (s.spindles.size() > 1 || sp.x != 0.0 || sp.y != 0.0 || !h.openings.empty()) return add_outline_housing(soup, s, first_guard);
   const double deck_top = h.plate_height(), deck_radius = s.deck_radius();
-  add_disc(soup, deck_radius, deck_top, 96, Surface::Housing);
-  add_wall(soup, deck_radius, arc_breaks(0.0, units::two_pi, units::two_pi / 96), {h.skirt_bottom, deck_top},
+  add_disc(soup, deck_radius, deck_top, kRoundDeckSides, Surface::Housing);
+  add_wall(soup, deck_radius, arc_breaks(0.0, units::two_pi, units::two_pi / kRoundDeckSides), {h.skirt_bottom, deck_top},
            [](const Vec3&) { return Surface::Housing; });
   for (std::size_t g = 0; g < h.guards.size(); ++g) {
     const auto& guard = h.guards[g];
     if (!guard.along.empty()) continue;  // hung along its own path (add_free_parts)
     const double span = guard.azimuth.span();
     add_wall(
-        soup, deck_radius, arc_breaks(guard.azimuth.from, span, units::two_pi / 96), {guard.bottom, h.skirt_bottom},
+        soup, deck_radius, arc_breaks(guard.azimuth.from, span, units::two_pi / kRoundDeckSides), {guard.bottom, h.skirt_bottom},
         [](const Vec3&) { return Surface::Guard; }, static_cast<std::uint16_t>(first_guard + g));
   }
 }
