@@ -398,6 +398,13 @@ TEST_CASE("field: the combined interval covers a known rate 95 % of the time", "
   const auto none = field::combined({{field::CountSum{}, 2.0 / 1000}, {field::CountSum{}, 1.0 / 1000}});
   CHECK(none.value == 0);
   CHECK(none.high == Approx(-std::log(0.025) * 2.0 / 1000));
+  // The heaviest weight one more event could carry: a stratum that cannot make the event
+  // does not count, unless it made it.
+  field::CountSum seen;
+  seen.add(1);
+  CHECK(field::heaviest_weight({{field::CountSum{}, 9.0, false}, {seen, 5.0, false}, {field::CountSum{}, 3.0, true}}) == 5.0);
+  CHECK(field::heaviest_weight({{field::CountSum{}, 9.0, false}, {field::CountSum{}, 3.0, true}}) == 3.0);
+  CHECK(field::heaviest_weight({{field::CountSum{}, 9.0, false}}) == 0.0);
 }
 
 TEST_CASE("field: the tally's strips against an analytic density falling as 1/R^2", "[field][stats]") {
@@ -642,6 +649,16 @@ TEST_CASE("field: designs compared object by object, with common random numbers"
       CHECK(compared.directions[i].probability[k].value == alone.directions[i].probability[k].value);
   }
   REQUIRE(compared.planes.size() == 2);
+  // The comparison's own figure of each plane's hazardous crossings is j232 hazard's, its
+  // interval included (one rule for the heaviest weight one more event could carry).
+  for (std::size_t p = 0; p < 2; ++p) {
+    const auto& figure = c.designs[1].figures[4 + 2 * p].per_km;
+    const auto& own = alone.planes[p].hazardous_per_km;
+    INFO("plane " << p);
+    CHECK(figure.value == Approx(own.value).epsilon(1e-12));
+    CHECK(figure.low == Approx(own.low).epsilon(1e-12));
+    CHECK(figure.high == Approx(own.high).epsilon(1e-12));
+  }
   CHECK(compared.planes[1].probability.value == alone.planes[1].probability.value);
   CHECK(compared.planes[1].probability.value > 0);
   CHECK(compared.planes[1].probability.value < c.designs[0].hazard.planes[1].probability.value);  // the chains protect the path

@@ -6,6 +6,7 @@
 #include <deque>
 #include <fmt/format.h>
 #include <memory>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -21,8 +22,8 @@ namespace {
 
 // A figure the comparison estimates per km for each design: what it counts of a thrown
 // object (a plane's, of the first design's plane `plane`), its name, and the energy its event
-// needs (the heaviest weight among the strata that can have that energy bounds a run that
-// saw none of them).
+// needs (a stratum whose objects cannot have that energy, and made none of the events, does
+// not widen its interval).
 struct Figure {
   enum class Kind { Thrown, LandedOutside, HazardousImpacts, PlaneCrossings, PlaneHazards } kind = Kind::Thrown;
   std::size_t plane = 0;
@@ -53,6 +54,21 @@ std::uint64_t count_of(const Figure& f, const ObjectWatch& watch, const std::vec
     case Figure::Kind::HazardousImpacts: return static_cast<std::uint64_t>(watch.hazardous_impacts());
     case Figure::Kind::PlaneCrossings: return watch.plane_crossings()[plane_of[f.plane]];
     case Figure::Kind::PlaneHazards: return watch.plane_hazards()[plane_of[f.plane]];
+  }
+  return 0;
+}
+
+// How many of the figure's events a stratum's objects made in all (from its tally).
+std::uint64_t events_of(const Figure& f, const HazardTally& t, const std::vector<std::size_t>& plane_of) {
+  switch (f.kind) {
+    case Figure::Kind::Thrown: return t.fates[static_cast<std::size_t>(ObjectFate::Thrown)] + t.fates[static_cast<std::size_t>(ObjectFate::CutOff)];
+    case Figure::Kind::LandedOutside: return std::accumulate(t.landings.begin(), t.landings.end(), t.landed_beyond_square);
+    case Figure::Kind::HazardousImpacts: return std::accumulate(t.hazardous.begin(), t.hazardous.end(), t.hazardous_beyond_square);
+    case Figure::Kind::PlaneCrossings: {
+      const auto& bands = t.planes[plane_of[f.plane]].by_height;
+      return std::accumulate(bands.begin(), bands.end(), std::uint64_t{0});
+    }
+    case Figure::Kind::PlaneHazards: return t.planes[plane_of[f.plane]].hazardous.sum;
   }
   return 0;
 }
@@ -169,17 +185,15 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   for (std::size_t d = 0; d < nd; ++d) {
     FieldDesign fd;
     fd.file = designs[d].file, fd.title = designs[d].title;
-    // The heaviest weight among the strata that can make each figure's event (a hazardous one
-    // needs the energy).
-    auto heaviest = [&](double threshold) {
-      double h = 0;
-      for (std::size_t k = 0; k < weight[d].size(); ++k)
-        if (sims[d]->stratum(k).energy_bound >= threshold) h = std::max(h, 1000 * weight[d][k]);
-      return h;
-    };
-    for (std::size_t j = 0; j < figures; ++j)
-      fd.figures.push_back(
-          {figure[j].name, quasi_poisson(total.sum[total.own(d, j)], total.squares[total.own(d, j)], heaviest(figure[j].threshold))});
+    // The heaviest weight one more event of each figure could carry, by j232 hazard's rule:
+    // among the strata that can make it (a hazardous one needs the energy) or made it.
+    std::vector<Stratum> strata(weight[d].size());
+    for (std::size_t j = 0; j < figures; ++j) {
+      for (std::size_t k = 0; k < strata.size(); ++k)
+        strata[k] = {{events_of(figure[j], runs[d].strata[k], plane_of[d]), 0}, 1000 * weight[d][k],
+                     sims[d]->stratum(k).energy_bound >= figure[j].threshold};
+      fd.figures.push_back({figure[j].name, quasi_poisson(total.sum[total.own(d, j)], total.squares[total.own(d, j)], heaviest_weight(strata))});
+    }
     if (d > 0)
       for (std::size_t j = 0; j < figures; ++j) {
         const std::size_t at = total.versus_first(d, j);

@@ -87,15 +87,21 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   return run;
 }
 
+double heaviest_weight(const std::vector<Stratum>& strata) {
+  double largest = 0;
+  for (const auto& s : strata)
+    // (A stratum that made the event can make it, whatever its energy bound says.)
+    if (s.possible || s.counts.sum > 0) largest = std::max(largest, s.weight_per_object);
+  return largest;
+}
+
 Estimate combined(const std::vector<Stratum>& strata) {
-  double mean = 0, variance = 0, largest = 0;
+  double mean = 0, variance = 0;
   for (const auto& s : strata) {
     mean += s.weight_per_object * static_cast<double>(s.counts.sum);
     variance += s.weight_per_object * s.weight_per_object * static_cast<double>(s.counts.squares);
-    // (A stratum that made the event can make it, whatever its energy bound says.)
-    if (s.possible || s.counts.sum > 0) largest = std::max(largest, s.weight_per_object);
   }
-  Estimate e = quasi_poisson(mean, variance, largest);
+  Estimate e = quasi_poisson(mean, variance, heaviest_weight(strata));
   e.variance = variance;
   return e;
 }

@@ -44,6 +44,10 @@ struct Stratum {
   bool possible = true;          // its objects can make the event counted (energy_bound above the threshold)
 };
 Estimate combined(const std::vector<Stratum>& strata);
+// The heaviest weight per object among the strata that can make the event (`possible`) or
+// did make it (counts.sum > 0; the squares are not read): what one more event could add, the
+// widening of the interval's upper end for what a run may have missed.
+double heaviest_weight(const std::vector<Stratum>& strata);
 // The same interval from an estimate's mean and variance and the largest weight one event
 // can carry (Fay and Feuer's gamma interval).
 Estimate quasi_poisson(double mean, double variance, double heaviest);
