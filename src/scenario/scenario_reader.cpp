@@ -809,10 +809,11 @@ bool deflector_crosses_board(const Scenario& s, const DeflectorSpec& d) {
   return on || (in && out);
 }
 
-void check_consistency(const TableReader& root, Scenario& s) {
+// Each blade against the ground, the deck plate and its own arms; a blade hanging below the
+// skirt's foot is noted.
+void check_blades(const TableReader& root, Scenario& s) {
   const bool generated_deck = s.meshes.empty();
   const double plate = s.housing.plate_height();
-  const auto housing = root.table("housing");
   for (std::size_t k = 0; k < s.spindles.size(); ++k) {
     const SpindleSpec& sp = s.spindles[k];
     const double bottom = sp.geometry.height - 0.5 * sp.geometry.thickness;
@@ -866,9 +867,14 @@ void check_consistency(const TableReader& root, Scenario& s) {
                                                  bottom, s.housing.skirt_bottom, root.has("field") ? "objects" : "nails"))
                             .what());
   }
-  // Nothing fixed may stand in a blade's swept disc (its tip circle, over the height from its
-  // lower face to its top or sail): a panel, a curtain hung along a polyline, another
-  // spindle's shaft (from its blade up to the deck plate).
+}
+
+// Nothing fixed may stand in a blade's swept disc (its tip circle, over the height from its
+// lower face to its top or sail): a panel, a curtain hung along a polyline, another
+// spindle's shaft (from its blade up to the deck plate).
+void check_swept_discs(const TableReader& root, const Scenario& s) {
+  const double plate = s.housing.plate_height();
+  const auto housing = root.table("housing");
   const auto band_of = [&](const SpindleSpec& sp) {
     return std::array<double, 2>{sp.geometry.height - 0.5 * sp.geometry.thickness,
                                  sp.geometry.height + 0.5 * sp.geometry.thickness + sp.geometry.edge.sail_height};
@@ -927,94 +933,107 @@ void check_consistency(const TableReader& root, Scenario& s) {
         throw root.error("spindles", what);
       }
     }
-  if (generated_deck && housing) {
-    const auto openings = housing->array_of_tables("openings");
-    for (std::size_t i = 0; i < s.housing.openings.size() && i < openings.size(); ++i) {
-      if (s.housing.opening_top(s.housing.openings[i]) > plate + 1e-12)
-        throw openings[i].error("top", fmt::format("expected the opening's top at or below the deck plate ({:.4g} m): the skirt it "
-                                                   "cuts ends there (an opening to the top of the skirt: leave top out)",
-                                                   plate));
-      // A discharge chute leads the opening out and down; one rising above the plate would
-      // stand where the deck's top is.
-      if (s.housing.openings[i].chute_length > 0 && s.housing.chute_end_top(s.housing.openings[i]) > plate + 1e-12)
-        throw openings[i].error("chute_end_top", fmt::format("puts the chute's mouth above the deck plate ({:.4g} m); expected a chute "
-                                                             "that runs out from its opening at or below the plate",
-                                                             plate));
+}
+
+// A generated deck's openings, chutes, panels and curtains end at or below its plate.
+void check_deck_plate(const TableReader& root, const Scenario& s) {
+  const double plate = s.housing.plate_height();
+  const auto housing = root.table("housing");
+  if (!s.meshes.empty() || !housing) return;
+  const auto openings = housing->array_of_tables("openings");
+  for (std::size_t i = 0; i < s.housing.openings.size() && i < openings.size(); ++i) {
+    if (s.housing.opening_top(s.housing.openings[i]) > plate + 1e-12)
+      throw openings[i].error("top", fmt::format("expected the opening's top at or below the deck plate ({:.4g} m): the skirt it "
+                                                 "cuts ends there (an opening to the top of the skirt: leave top out)",
+                                                 plate));
+    // A discharge chute leads the opening out and down; one rising above the plate would
+    // stand where the deck's top is.
+    if (s.housing.openings[i].chute_length > 0 && s.housing.chute_end_top(s.housing.openings[i]) > plate + 1e-12)
+      throw openings[i].error("chute_end_top", fmt::format("puts the chute's mouth above the deck plate ({:.4g} m); expected a chute "
+                                                           "that runs out from its opening at or below the plate",
+                                                           plate));
+  }
+  // A panel standing inside the deck ends at the plate; one rising above it would pass
+  // through the plate.
+  const auto deflectors = housing->array_of_tables("deflectors");
+  for (std::size_t i = 0; i < s.housing.deflectors.size() && i < deflectors.size(); ++i) {
+    const DeflectorSpec& d = s.housing.deflectors[i];
+    if (d.top > plate + 1e-12 && deflector_enters(d, [&](double x, double y) { return inside_deck(s, x, y); }))
+      throw deflectors[i].error("top", fmt::format("raises the panel to {:.4g} m, through the deck plate ({:.4g} m) above the part of "
+                                                   "it inside the deck (or on its skirt); expected a top at or below the plate (or the panel outside "
+                                                   "the deck)",
+                                                   d.top, plate));
+  }
+  std::size_t present = 0;
+  for (const auto& g : housing->array_of_tables("guards")) {
+    if (!g.boolean_or("present", true)) continue;
+    const GuardSpec& guard = s.housing.guards.at(present++);
+    if (!guard.along.empty() && s.housing.guard_top(guard) > plate + 1e-12)
+      throw g.error("top", fmt::format("expected the curtain's top at or below the deck plate ({:.4g} m) it hangs from", plate));
+  }
+}
+
+// The J232 test's board and operator zone around a generated deck (not a field's): the
+// board beyond the deck, clear of panels, reaching down to the counted height; a zone on it.
+void check_board(const TableReader& root, const Scenario& s) {
+  if (s.field.present || !s.meshes.empty()) return;
+  const auto housing = root.table("housing");
+  const auto target = root.table("target");
+  // The board stands around the mower: beyond the deck's edge, not under it.
+  {
+    const bool several = s.spindles.size() > 1;
+    const double board = several ? s.target.distance : s.reach() + s.target.distance;
+    const double deck = several ? s.housing.margin : s.deck_radius();
+    if (!(board > deck)) {
+      const std::string what =
+          several ? fmt::format("puts the board {:.3g} m outside the tip circles, within the deck's {:.3g} m margin (housing.margin): the "
+                                "board would stand inside the deck; expected a board beyond the deck's edge",
+                                s.target.distance, s.housing.margin)
+                  : fmt::format("puts the board {:.3g} m from the deck's centre, within its {:.3g} m radius (housing.deck_radius): the "
+                                "board would stand inside the deck; expected a board beyond the deck's edge",
+                                board, s.deck_radius());
+      if (target && target->has("distance")) throw target->error("distance", what);
+      if (housing && housing->has(several ? "margin" : "deck_radius")) throw housing->error(several ? "margin" : "deck_radius", what);
+      throw root.error("target", what);
     }
-    // A panel standing inside the deck ends at the plate; one rising above it would pass
-    // through the plate.
+  }
+  // A panel standing across the board's wall (at the board's height) takes its place there:
+  // nails meeting it would bounce, not mark.
+  if (housing) {
     const auto deflectors = housing->array_of_tables("deflectors");
     for (std::size_t i = 0; i < s.housing.deflectors.size() && i < deflectors.size(); ++i) {
       const DeflectorSpec& d = s.housing.deflectors[i];
-      if (d.top > plate + 1e-12 && deflector_enters(d, [&](double x, double y) { return inside_deck(s, x, y); }))
-        throw deflectors[i].error("top", fmt::format("raises the panel to {:.4g} m, through the deck plate ({:.4g} m) above the part of "
-                                                     "it inside the deck (or on its skirt); expected a top at or below the plate (or the panel outside "
-                                                     "the deck)",
-                                                     d.top, plate));
-    }
-    std::size_t present = 0;
-    for (const auto& g : housing->array_of_tables("guards")) {
-      if (!g.boolean_or("present", true)) continue;
-      const GuardSpec& guard = s.housing.guards.at(present++);
-      if (!guard.along.empty() && s.housing.guard_top(guard) > plate + 1e-12)
-        throw g.error("top", fmt::format("expected the curtain's top at or below the deck plate ({:.4g} m) it hangs from", plate));
+      if (d.bottom < s.target_top() && d.top > s.target.bottom && deflector_crosses_board(s, d))
+        throw deflectors[i].error(d.along.empty() ? "radius" : "along",
+                                  "stands the panel across the board's wall, at the board's height: nails meeting it there would "
+                                  "bounce, not mark; expected a panel inside the board (or beyond it)");
     }
   }
-  // The J232 test's board and operator zone (not a field's).
-  if (!s.field.present && generated_deck) {
-    const auto target = root.table("target");
-    // The board stands around the mower: beyond the deck's edge, not under it.
-    {
-      const bool several = s.spindles.size() > 1;
-      const double board = several ? s.target.distance : s.reach() + s.target.distance;
-      const double deck = several ? s.housing.margin : s.deck_radius();
-      if (!(board > deck)) {
-        const std::string what =
-            several ? fmt::format("puts the board {:.3g} m outside the tip circles, within the deck's {:.3g} m margin (housing.margin): the "
-                                  "board would stand inside the deck; expected a board beyond the deck's edge",
-                                  s.target.distance, s.housing.margin)
-                    : fmt::format("puts the board {:.3g} m from the deck's centre, within its {:.3g} m radius (housing.deck_radius): the "
-                                  "board would stand inside the deck; expected a board beyond the deck's edge",
-                                  board, s.deck_radius());
-        if (target && target->has("distance")) throw target->error("distance", what);
-        if (housing && housing->has(several ? "margin" : "deck_radius")) throw housing->error(several ? "margin" : "deck_radius", what);
-        throw root.error("target", what);
-      }
-    }
-    // A panel standing across the board's wall (at the board's height) takes its place there:
-    // nails meeting it would bounce, not mark.
-    if (housing) {
-      const auto deflectors = housing->array_of_tables("deflectors");
-      for (std::size_t i = 0; i < s.housing.deflectors.size() && i < deflectors.size(); ++i) {
-        const DeflectorSpec& d = s.housing.deflectors[i];
-        if (d.bottom < s.target_top() && d.top > s.target.bottom && deflector_crosses_board(s, d))
-          throw deflectors[i].error(d.along.empty() ? "radius" : "along",
-                                    "stands the panel across the board's wall, at the board's height: nails meeting it there would "
-                                    "bounce, not mark; expected a panel inside the board (or beyond it)");
-      }
-    }
-    // A board whose bottom is above the counted height: nails passing under it there would be
-    // counted by SAE J232 but meet no board.
-    if (s.target.bottom > s.counted_height() + 1e-6) {
-      const std::string what = fmt::format("the board's bottom at {:.4g} m is above the counted height ({:.4g} m): nails passing under "
-                                           "it would be counted by SAE J232 but meet no board; expected a bottom at or below it",
-                                           s.target.bottom, s.counted_height());
-      if (target && target->has("bottom")) throw target->error("bottom", what);
-      throw root.error("target", what);
-    }
-    const auto zone = root.table("operator_zone");
-    if (zone && s.zone.kind == OperatorZoneSpec::Kind::Sector) {
-      // A zone wholly off the board, or wholly below the counted height, could never be hit:
-      // its criteria could not fail.
-      const double low = std::max(s.target.bottom, s.counted_height());
-      if (!(s.zone.bottom < s.target_top() - 1e-6 && s.zone.top > low + 1e-6))
-        throw zone->error(s.zone.bottom >= s.target_top() - 1e-6 ? "bottom" : "top",
-                          fmt::format("the operator zone ({:.4g} to {:.4g} m) lies wholly {} (the board: {:.4g} to {:.4g} m; counted "
-                                      "from {:.4g} m): no counted mark could fall in it; expected a zone on the board's counted part",
-                                      s.zone.bottom, s.zone.top, s.zone.bottom >= s.target_top() - 1e-6 ? "above the board" : "below the counted part of the board",
-                                      s.target.bottom, s.target_top(), s.counted_height()));
-    }
+  // A board whose bottom is above the counted height: nails passing under it there would be
+  // counted by SAE J232 but meet no board.
+  if (s.target.bottom > s.counted_height() + 1e-6) {
+    const std::string what = fmt::format("the board's bottom at {:.4g} m is above the counted height ({:.4g} m): nails passing under "
+                                         "it would be counted by SAE J232 but meet no board; expected a bottom at or below it",
+                                         s.target.bottom, s.counted_height());
+    if (target && target->has("bottom")) throw target->error("bottom", what);
+    throw root.error("target", what);
   }
+  const auto zone = root.table("operator_zone");
+  if (zone && s.zone.kind == OperatorZoneSpec::Kind::Sector) {
+    // A zone wholly off the board, or wholly below the counted height, could never be hit:
+    // its criteria could not fail.
+    const double low = std::max(s.target.bottom, s.counted_height());
+    if (!(s.zone.bottom < s.target_top() - 1e-6 && s.zone.top > low + 1e-6))
+      throw zone->error(s.zone.bottom >= s.target_top() - 1e-6 ? "bottom" : "top",
+                        fmt::format("the operator zone ({:.4g} to {:.4g} m) lies wholly {} (the board: {:.4g} to {:.4g} m; counted "
+                                    "from {:.4g} m): no counted mark could fall in it; expected a zone on the board's counted part",
+                                    s.zone.bottom, s.zone.top, s.zone.bottom >= s.target_top() - 1e-6 ? "above the board" : "below the counted part of the board",
+                                    s.target.bottom, s.target_top(), s.counted_height()));
+  }
+}
+
+// The seat outside the blades, a nail that fits the feed, and a board with a counted part.
+void check_seat_feed_and_counted_board(const TableReader& root, const Scenario& s) {
   // A seat over a blade's disc is a seat inside the deck (a mesh deck's too).
   if (!s.field.present && s.zone.kind == OperatorZoneSpec::Kind::Derived) {
     const auto zone = root.table("operator_zone");
@@ -1053,6 +1072,14 @@ void check_consistency(const TableReader& root, Scenario& s) {
     if (target && target->has("top")) throw target->error("top", what);
     throw root.error("target", what);
   }
+}
+
+void check_consistency(const TableReader& root, Scenario& s) {
+  check_blades(root, s);
+  check_swept_discs(root, s);
+  check_deck_plate(root, s);
+  check_board(root, s);
+  check_seat_feed_and_counted_board(root, s);
 }
 }  // namespace
 
