@@ -16,6 +16,13 @@ namespace j232::scene {
 
 namespace {
 
+// Sides of a one-spindle deck's outline: the generated round deck's plate, skirt and skirt
+// guards, and the outline the flight tells the deck's inside by. A nail skidding round the
+// skirt bounces off each side it passes, so the cost of those rides grows with the sides;
+// the results do not move beyond their noise from 96 to 384 sides (docs/validation.md §3,
+// "The round skirt's facets"), and at 48 more of the marks count.
+constexpr int kRoundDeckSides = 96;
+
 // A vertical cylindrical patch from azimuth `from` counter-clockwise over `span`,
 // between heights z0 and z1, cut at the given azimuths and heights; each quad labelled
 // by `label(centre)`.
@@ -187,9 +194,10 @@ std::vector<Eigen::Vector2d> widened_tip_hull(const scenario::Scenario& s, doubl
 // spindle's tip circle widened by the margin (a round deck for one spindle).
 std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
   std::vector<Eigen::Vector2d> points;
+  const int sides = s.spindles.size() == 1 ? kRoundDeckSides : 96;  // (several: each tip circle's polygon, before the hull)
   for (const auto& sp : s.spindles)
-    for (int i = 0; i < 96; ++i) {
-      const double a = units::two_pi * i / 96,
+    for (int i = 0; i < sides; ++i) {
+      const double a = units::two_pi * i / sides,
                    r = s.spindles.size() == 1 ? s.deck_radius() : sp.blade.tip_radius() + s.housing.margin;
       points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
     }
@@ -372,12 +380,6 @@ void add_outline_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t 
   }
   for (std::size_t o = 0; o < h.openings.size(); ++o) add_chute(soup, h, h.openings[o], opening_pieces[o]);
 }
-
-// Sides of the generated round deck's plate, skirt and skirt guards. A nail skidding round the
-// skirt bounces off each facet it passes, so the cost of those rides grows with the sides;
-// the results do not move beyond their noise from 96 to 384 sides (docs/validation.md §3,
-// "The round skirt's facets"), and 48 moves the shares outside.
-constexpr int kRoundDeckSides = 96;
 
 // The generated deck plate, skirt, chain guards (numbered from first_guard) and deflectors.
 void add_housing(Soup& soup, const scenario::Scenario& s, std::uint16_t first_guard) {
