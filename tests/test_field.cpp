@@ -608,6 +608,23 @@ TEST_CASE("field: the knives meet an object sliding under the deck, as they meet
   CHECK(struck_again_at_rest == 0);
 }
 
+TEST_CASE("field: designs compared must count by the same energies and receptors", "[field][compare]") {
+  auto base = scenario::read_scenario(std::string(J232_SOURCE_DIR) + "/scenarios/field/batwing-highway-shoulder.toml");
+  base.field.objects_simulated = 16;
+  auto stricter = base;
+  stricter.field.person_energy = 40;
+  CHECK_THROWS_WITH(field::compare_fields({base, stricter}, 1), Catch::Contains("field.person_energy") && Catch::Contains("same energies"));
+  auto vehicle = base;
+  vehicle.field.vehicle_energy = 3;
+  CHECK_THROWS_WITH(field::compare_fields({base, vehicle}, 1), Catch::Contains("field.vehicle_energy"));
+  REQUIRE(!base.field.planes.empty());
+  auto other = base;
+  auto& plane = other.field.planes.front();
+  plane.receptor = plane.receptor == scenario::FieldPlaneSpec::Receptor::Person ? scenario::FieldPlaneSpec::Receptor::Vehicle
+                                                                                : scenario::FieldPlaneSpec::Receptor::Person;
+  CHECK_THROWS_WITH(field::compare_fields({base, other}, 1), Catch::Contains("another receptor"));
+}
+
 TEST_CASE("field: designs compared object by object, with common random numbers", "[field][compare][long]") {
   auto read_file = [](const char* name) { return scenario::read_scenario(std::string(J232_SOURCE_DIR) + "/scenarios/field/" + name); };
   auto without = read_file("batwing-highway-shoulder-no-chains.toml"), with = read_file("batwing-highway-shoulder.toml");

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "assess/bytes.hpp"
 #include "assess/chunk_runner.hpp"
@@ -92,18 +93,30 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
     d.field.objects_simulated = designs.front().field.objects_simulated;
     sims.push_back(std::make_unique<FieldSimulator>(d));
   }
-  // Each design's planes in the first's order, by name.
-  const auto& first_planes = designs.front().field.planes;
+  // Each design's planes in the first's order, by name. A figure is named, and judged, by the
+  // first design's energies and receptors: every design must count by the same ones.
+  const scenario::FieldSpec& first_field = designs.front().field;
+  const auto& first_planes = first_field.planes;
   std::vector<std::vector<std::size_t>> plane_of(designs.size());
-  for (std::size_t d = 0; d < designs.size(); ++d)
+  for (std::size_t d = 0; d < designs.size(); ++d) {
+    const scenario::FieldSpec& f = designs[d].field;
+    for (const auto& [key, value, first_value] : {std::tuple{"field.person_energy", f.person_energy, first_field.person_energy},
+                                                  std::tuple{"field.vehicle_energy", f.vehicle_energy, first_field.vehicle_energy}})
+      if (value != first_value)
+        throw scenario::InputError(designs[d].file, std::nullopt, key, fmt::format("{:g} J", value),
+                                   fmt::format("expected the first design's {:g} J: compared designs must count hazardous objects by the same energies", first_value));
     for (const auto& p : first_planes) {
-      const auto& planes = designs[d].field.planes;
+      const auto& planes = f.planes;
       const auto it = std::find_if(planes.begin(), planes.end(), [&](const auto& q) { return q.name == p.name; });
       if (it == planes.end())
         throw scenario::InputError(designs[d].file, std::nullopt, "field.planes", "",
                                    fmt::format("the first design's plane '{}' is missing: compared designs need the same planes (by name)", p.name));
+      if (it->receptor != p.receptor)
+        throw scenario::InputError(designs[d].file, std::nullopt, "field.planes", p.name,
+                                   fmt::format("the plane '{}' guards another receptor than the first design's: expected the same receptor for each plane compared", p.name));
       plane_of[d].push_back(static_cast<std::size_t>(it - planes.begin()));
     }
+  }
   const std::vector<Figure> figure = figures_of(designs.front().field);
   const std::size_t figures = figure.size(), nd = designs.size();
   const auto n = static_cast<std::uint64_t>(designs.front().field.objects_simulated);
