@@ -191,16 +191,15 @@ std::vector<Eigen::Vector2d> widened_tip_hull(const scenario::Scenario& s, doubl
 }
 
 // The deck's outline seen from above, counter-clockwise: the convex hull of every
-// spindle's tip circle widened by the margin (a round deck for one spindle).
+// spindle's tip circle widened by the margin (a round deck of kRoundDeckSides for one spindle).
 std::vector<Eigen::Vector2d> deck_outline(const scenario::Scenario& s) {
+  if (s.spindles.size() != 1) return widened_tip_hull(s, s.housing.margin, 96);
+  const auto& sp = s.spindles.front();
   std::vector<Eigen::Vector2d> points;
-  const int sides = s.spindles.size() == 1 ? kRoundDeckSides : 96;  // (several: each tip circle's polygon, before the hull)
-  for (const auto& sp : s.spindles)
-    for (int i = 0; i < sides; ++i) {
-      const double a = units::two_pi * i / sides,
-                   r = s.spindles.size() == 1 ? s.deck_radius() : sp.blade.tip_radius() + s.housing.margin;
-      points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
-    }
+  for (int i = 0; i < kRoundDeckSides; ++i) {
+    const double a = units::two_pi * i / kRoundDeckSides, r = s.deck_radius();
+    points.emplace_back(sp.x + r * std::cos(a), sp.y + r * std::sin(a));
+  }
   return convex_hull(std::move(points));
 }
 
