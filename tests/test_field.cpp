@@ -21,6 +21,7 @@
 #include "random/stream.hpp"
 #include "report/hazard_report.hpp"
 #include "report/html_table.hpp"
+#include "report/result_files.hpp"
 #include "scenario/input_error.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "units/quantity.hpp"
@@ -681,12 +682,16 @@ TEST_CASE("field: designs compared object by object, with common random numbers"
   CHECK(compared.planes[1].probability.value < c.designs[0].hazard.planes[1].probability.value);  // the chains protect the path
   const std::string text = report::hazard_comparison_text(c);
   CHECK_THAT(text, Catch::Contains("hazard distance (estimate / conservative): left") && Catch::Contains("P(struck) in one pass"));
-  const std::string html = report::hazard_comparison_html(c);
+  const auto j = report::hazard_comparison_json(c);
+  const std::string html = report::hazard_comparison_html(j);
   CHECK_THAT(html, Catch::Contains("Each design's hazard") && Catch::Contains("Probability of being struck in one pass: left"));
-  CHECK(report::hazard_comparison_json(c)["designs"][1]["person_at_plane"][0]["plane"] == "path on the left");
+  CHECK(j["designs"][1]["person_at_plane"][0]["plane"] == "path on the left");
+  // The page is drawn from compare.json alone: the saved file (written and read back) draws
+  // the same page.
+  CHECK(report::hazard_comparison_html(nlohmann::ordered_json::parse(report::json_text(j))) == html);
   // In US units: every rate per mile (the figure's own, converted), the threshold in ft-lb.
   const report::DisplayUnits us{true};
-  const std::string us_text = report::hazard_comparison_text(c, us), us_html = report::hazard_comparison_html(c, us);
+  const std::string us_text = report::hazard_comparison_text(c, us), us_html = report::hazard_comparison_html(j, us);
   const auto& thrown_per_km = c.designs[1].figures[0].per_km;
   CHECK_THAT(us_text, Catch::Contains(fmt::format("{:.4g} per mile", 1.609344 * thrown_per_km.value)) && !Catch::Contains("per km") &&
                           !Catch::Contains(" J)") && Catch::Contains("ft-lb)"));

@@ -21,6 +21,46 @@ namespace {
 
 json estimate_json(const Estimate& e) { return {{"value", e.value}, {"low", e.low}, {"high", e.high}}; }
 
+// Each direction's hazard distances (hazard.json's and compare.json's "hazard_distance").
+json hazard_distances_json(const std::vector<field::DirectionCurve>& directions) {
+  json distances = json::array();
+  for (const auto& d : directions) {
+    distances.push_back({{"direction", d.direction},
+                         {"meaning", d.meaning},
+                         {"deck_extent_m", d.deck_extent},
+                         {"estimate_m", d.hazard_distance},
+                         {"conservative_m", d.hazard_distance_upper},
+                         {"beyond_range", d.beyond_range},
+                         {"conservative_beyond_range", d.upper_beyond_range}});
+    json setbacks = json::array();
+    for (const auto& b : d.setbacks)
+      setbacks.push_back({{"acceptable_area_m2", 1 / b.acceptable_density},
+                          {"estimate_m", b.estimate},
+                          {"conservative_m", b.conservative},
+                          {"beyond_range", b.beyond_range},
+                          {"conservative_beyond_range", b.conservative_beyond_range}});
+    distances.back()["at_other_acceptable_densities"] = setbacks;
+  }
+  return distances;
+}
+
+// Each direction's curve, point by point (hazard.json's and compare.json's "directions").
+json direction_curves_json(const std::vector<field::DirectionCurve>& directions) {
+  json curves = json::array();
+  for (const auto& d : directions) {
+    json points = json::array();
+    for (std::size_t k = 0; k < d.distance.size(); ++k) {
+      json point = {{"distance_m", d.distance[k]}, {"density_per_m2", estimate_json(d.density[k])}};
+      if (!d.vertical.empty()) point["vertical_flux_per_m2"] = estimate_json(d.vertical[k]);
+      point["exposure_per_m2"] = estimate_json(d.exposure[k]);
+      point["p_struck"] = estimate_json(d.probability[k]);
+      points.push_back(point);
+    }
+    curves.push_back({{"direction", d.direction}, {"meaning", d.meaning}, {"points", points}});
+  }
+  return curves;
+}
+
 const char* side_name(scenario::FieldPlaneSpec::Side s) {
   switch (s) {
     case scenario::FieldPlaneSpec::Side::Left: return "left";
@@ -43,13 +83,24 @@ void probability_log_axis(Chart& chart, double highest, double lowest) {
   chart.y_log_range(std::max(top * 1e-8, std::min(top / 10, std::pow(10.0, std::floor(std::log10(lowest) + 1e-9)))), top);
 }
 
-std::string distance_words(const field::DirectionCurve& c, bool conservative, double range, const DisplayUnits& u) {
-  const bool beyond = conservative ? c.upper_beyond_range : c.beyond_range;
-  const double d = conservative ? c.hazard_distance_upper : c.hazard_distance;
+// A hazard distance in words: `d` metres, or the deck's edge when it is no farther, or only
+// "beyond" the range when the density never falls low enough within it.
+std::string distance_words(double d, bool beyond, double deck_extent, double range, const DisplayUnits& u) {
   if (beyond) return fmt::format("beyond {:.0f} {} (the range)", u.length(range), u.length_unit());
-  if (d <= c.deck_extent + 1e-9) return fmt::format("the deck's edge ({:.1f} {})", u.length(c.deck_extent), u.length_unit());
+  if (d <= deck_extent + 1e-9) return fmt::format("the deck's edge ({:.1f} {})", u.length(deck_extent), u.length_unit());
   return fmt::format("{:.0f} {}", u.length(d), u.length_unit());
 }
+std::string distance_words(const field::DirectionCurve& c, bool conservative, double range, const DisplayUnits& u) {
+  return distance_words(conservative ? c.hazard_distance_upper : c.hazard_distance, conservative ? c.upper_beyond_range : c.beyond_range,
+                        c.deck_extent, range, u);
+}
+// The same from a "hazard_distance" entry of hazard.json or compare.json.
+std::string distance_words(const json& c, bool conservative, double range, const DisplayUnits& u) {
+  return distance_words(c.at(conservative ? "conservative_m" : "estimate_m").get<double>(),
+                        c.at(conservative ? "conservative_beyond_range" : "beyond_range").get<bool>(), c.at("deck_extent_m").get<double>(), range, u);
+}
+// An {value, low, high} of the JSON as an Estimate.
+Estimate estimate_of(const json& e) { return {e.at("value").get<double>(), e.at("low").get<double>(), e.at("high").get<double>()}; }
 
 // Words written in SI (a direction's meaning, a compared figure's name) in the display's
 // units: unchanged in SI; in US units "per m2" as "per ft2", "at least 79 J" as "at least 58.3 ft-lb".
@@ -203,33 +254,7 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
                          {"objects_a_knife_rode_over", t.ridden_over},
                          {"objects_pushed_along_by_an_arm", t.pushed_along}}}});
   }
-  json distances = json::array(), curves = json::array();
-  for (const auto& d : sum.directions) {
-    distances.push_back({{"direction", d.direction},
-                         {"meaning", d.meaning},
-                         {"deck_extent_m", d.deck_extent},
-                         {"estimate_m", d.hazard_distance},
-                         {"conservative_m", d.hazard_distance_upper},
-                         {"beyond_range", d.beyond_range},
-                         {"conservative_beyond_range", d.upper_beyond_range}});
-    json setbacks = json::array();
-    for (const auto& b : d.setbacks)
-      setbacks.push_back({{"acceptable_area_m2", 1 / b.acceptable_density},
-                          {"estimate_m", b.estimate},
-                          {"conservative_m", b.conservative},
-                          {"beyond_range", b.beyond_range},
-                          {"conservative_beyond_range", b.conservative_beyond_range}});
-    distances.back()["at_other_acceptable_densities"] = setbacks;
-    json points = json::array();
-    for (std::size_t k = 0; k < d.distance.size(); ++k) {
-      json point = {{"distance_m", d.distance[k]}, {"density_per_m2", estimate_json(d.density[k])}};
-      if (!d.vertical.empty()) point["vertical_flux_per_m2"] = estimate_json(d.vertical[k]);
-      point["exposure_per_m2"] = estimate_json(d.exposure[k]);
-      point["p_struck"] = estimate_json(d.probability[k]);
-      points.push_back(point);
-    }
-    curves.push_back({{"direction", d.direction}, {"meaning", d.meaning}, {"points", points}});
-  }
+  const json distances = hazard_distances_json(sum.directions), curves = direction_curves_json(sum.directions);
   json planes = json::array();
   for (const auto& r : sum.planes) {
     json pj = {{"name", r.plane.name},
@@ -678,20 +703,18 @@ json hazard_comparison_json(const field::FieldComparison& c) {
     if (!d.differences.empty()) dj["minus_first"] = differences;
     dj["valid"] = d.hazard.valid;
     dj["invalid_reason"] = d.hazard.invalid_reason;
-    json distances = json::array(), struck = json::array();
-    for (const auto& dir : d.hazard.directions)
-      distances.push_back({{"direction", dir.direction},
-                           {"deck_extent_m", dir.deck_extent},
-                           {"estimate_m", dir.hazard_distance},
-                           {"conservative_m", dir.hazard_distance_upper},
-                           {"beyond_range", dir.beyond_range},
-                           {"conservative_beyond_range", dir.upper_beyond_range}});
+    json struck = json::array();
     for (const auto& pl : d.hazard.planes)
       if (pl.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && pl.along_path)
         struck.push_back({{"plane", pl.plane.name}, {"p_struck_in_one_pass", estimate_json(pl.probability)}});
-    dj["hazard_distance"] = distances;
+    dj["hazard_distance"] = hazard_distances_json(d.hazard.directions);
     dj["person_at_plane"] = struck;
     dj["range_m"] = d.range;
+    // What the page draws: each direction's curve, against the design's acceptable density
+    // and a person's acceptable probability of being struck.
+    dj["acceptable_density_per_m2"] = d.hazard.acceptable_density;
+    dj["acceptable_probability"] = d.acceptable_probability;
+    dj["directions"] = direction_curves_json(d.hazard.directions);
     designs.push_back(dj);
   }
   return {{"kind", "field designs compared (j232 compare)"},
@@ -749,49 +772,59 @@ std::string hazard_comparison_text(const field::FieldComparison& c, const Displa
 }
 
 namespace {
+// A compared design's name on the page.
+std::string design_name(std::size_t d, const json& design) {
+  return (d == 0 ? "reference: " : fmt::format("design {}: ", d + 1)) + escape(design.at("title").get<std::string>());
+}
+
 // Each design's own hazard: a table of its distances and P(struck) at its person planes, and
 // per direction a chart of P(struck) against distance with every design's curve.
-std::string comparison_hazard_html(const field::FieldComparison& c, const DisplayUnits& u) {
+std::string comparison_hazard_html(const json& designs, const DisplayUnits& u) {
   std::string o = "<h2>Each design's hazard</h2>\n<p>From each design's own run over the same objects, as <code>j232 hazard</code> "
                   "gives it: the hazard distance (hazardous impacts below the acceptable density for good; conservative: on "
                   "the density's 95 % upper bound) and a person's probability of being struck in one pass.</p>\n";
   HtmlTable hazards({"design", "hazard distance (estimate / conservative)", "a person at a plane: P(struck) in one pass (95 %)"});
-  for (std::size_t d = 0; d < c.designs.size(); ++d) {
-    const auto& design = c.designs[d];
-    const std::string name = (d == 0 ? "reference: " : fmt::format("design {}: ", d + 1)) + escape(design.title);
-    if (!design.hazard.valid) {
-      hazards.row({name, "<strong>no hazard assessment</strong>: " + escape(design.hazard.invalid_reason), ""});
+  for (std::size_t d = 0; d < designs.size(); ++d) {
+    const json& design = designs[d];
+    if (!design.at("valid").get<bool>()) {
+      hazards.row({design_name(d, design), "<strong>no hazard assessment</strong>: " + escape(design.at("invalid_reason").get<std::string>()), ""});
       continue;
     }
+    const double range = design.at("range_m").get<double>();
     std::string distances, people;
-    for (const auto& dir : design.hazard.directions)
-      distances += fmt::format("{}: {} / {}<br>", dir.direction, distance_words(dir, false, design.range, u), distance_words(dir, true, design.range, u));
-    for (const auto& pl : design.hazard.planes)
-      if (pl.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && pl.along_path)
-        people += fmt::format("'{}': {:.3g} ({:.3g}-{:.3g})<br>", escape(pl.plane.name), pl.probability.value, pl.probability.low, pl.probability.high);
-    hazards.row({name, distances, people});
+    for (const json& dir : design.at("hazard_distance"))
+      distances += fmt::format("{}: {} / {}<br>", dir.at("direction").get<std::string>(), distance_words(dir, false, range, u),
+                               distance_words(dir, true, range, u));
+    for (const json& pl : design.at("person_at_plane")) {
+      const Estimate p = estimate_of(pl.at("p_struck_in_one_pass"));
+      people += fmt::format("'{}': {:.3g} ({:.3g}-{:.3g})<br>", escape(pl.at("plane").get<std::string>()), p.value, p.low, p.high);
+    }
+    hazards.row({design_name(d, design), distances, people});
   }
   o += hazards.html();
-  const auto& first = c.designs.front().hazard.directions;
+  const json& first = designs.front().at("directions");
   for (std::size_t i = 0; i < first.size(); ++i) {
-    Chart chart(fmt::format("Probability of being struck in one pass: {}", first[i].direction),
+    Chart chart(fmt::format("Probability of being struck in one pass: {}", first[i].at("direction").get<std::string>()),
                 fmt::format("distance from the mower ({})", u.length_unit()), "probability");
-    const double acceptable = c.designs.front().acceptable_probability;
+    const double acceptable = designs.front().at("acceptable_probability").get<double>();
     double highest = acceptable, lowest = acceptable, far = 5;
-    for (const auto& design : c.designs)
-      if (i < design.hazard.directions.size()) {
-        const auto& dir = design.hazard.directions[i];
-        for (std::size_t k = 0; k < dir.distance.size(); ++k)
-          if (dir.exposure[k].value > 0 || dir.exposure[k].high >= design.hazard.acceptable_density) far = std::max(far, dir.distance[k] + 2);
-        far = std::min(far, design.range);
+    for (const json& design : designs)
+      if (i < design.at("directions").size()) {
+        const double density = design.at("acceptable_density_per_m2").get<double>();
+        for (const json& point : design.at("directions")[i].at("points")) {
+          const Estimate exposure = estimate_of(point.at("exposure_per_m2"));
+          if (exposure.value > 0 || exposure.high >= density) far = std::max(far, point.at("distance_m").get<double>() + 2);
+        }
+        far = std::min(far, design.at("range_m").get<double>());
       }
-    for (std::size_t d = 0; d < c.designs.size(); ++d) {
-      if (!c.designs[d].hazard.valid || i >= c.designs[d].hazard.directions.size()) continue;
-      const auto& dir = c.designs[d].hazard.directions[i];
+    for (std::size_t d = 0; d < designs.size(); ++d) {
+      if (!designs[d].at("valid").get<bool>() || i >= designs[d].at("directions").size()) continue;
       std::vector<double> x, p, lo, hi;
-      for (std::size_t k = 0; k < dir.distance.size() && dir.distance[k] <= far; ++k)
-        x.push_back(u.length(dir.distance[k])), p.push_back(dir.probability[k].value), lo.push_back(dir.probability[k].low),
-            hi.push_back(dir.probability[k].high);
+      for (const json& point : designs[d].at("directions")[i].at("points")) {
+        if (!(point.at("distance_m").get<double>() <= far)) break;
+        const Estimate struck = estimate_of(point.at("p_struck"));
+        x.push_back(u.length(point.at("distance_m").get<double>())), p.push_back(struck.value), lo.push_back(struck.low), hi.push_back(struck.high);
+      }
       chart.band(x, lo, hi, palette(d), "");
       chart.line(x, p, palette(d), d == 0 ? "reference" : fmt::format("design {}", d + 1), false);
       for (const auto* values : {&p, &lo, &hi})
@@ -800,14 +833,15 @@ std::string comparison_hazard_html(const field::FieldComparison& c, const Displa
     }
     probability_log_axis(chart, highest, lowest);
     chart.hline(acceptable, "#000000", fmt::format("acceptable ({:.3g})", acceptable));
-    chart.caption(escape(first[i].meaning) + ". Bands: 95 % intervals; logarithmic scale, zero on the floor.");
+    chart.caption(escape(first[i].at("meaning").get<std::string>()) + ". Bands: 95 % intervals; logarithmic scale, zero on the floor.");
     o += "<figure>" + chart.svg() + "</figure>\n";
   }
   return o;
 }
 }  // namespace
 
-std::string hazard_comparison_html(const field::FieldComparison& c, const DisplayUnits& u) {
+std::string hazard_comparison_html(const json& c, const DisplayUnits& u) {
+  const json& designs = c.at("designs");
   std::string o = page_head("Field designs compared");
   o += "<h1>Field designs compared: thrown-object hazard</h1>\n";
   o += fmt::format(
@@ -815,31 +849,32 @@ std::string hazard_comparison_html(const field::FieldComparison& c, const Displa
       "same seed and index and its flight's random events are keyed by their number, so the differences are judged object by "
       "object. Figures per {} mowed with 95 % intervals (each design: quasi-Poisson; differences: normal, from the paired "
       "differences; the objects whose own counts differ are counted).{}</p>\n",
-      c.objects, c.seed, u.mowed(),
+      c.at("objects").get<std::uint64_t>(), c.at("seed").get<unsigned long long>(), u.mowed(),
       u.us ? " Figures per mile mowed and distances in feet (US customary units); compare.json and compare.csv keep SI units (per km, m)."
            : "");
   std::vector<HtmlCell> header = {"figure"};
-  for (std::size_t d = 0; d < c.designs.size(); ++d)
-    header.push_back((d == 0 ? "reference: " : fmt::format("design {}: ", d + 1)) + escape(c.designs[d].title));
+  for (std::size_t d = 0; d < designs.size(); ++d) header.push_back(design_name(d, designs[d]));
   HtmlTable figures(header);
-  for (std::size_t j = 0; j < c.designs.front().figures.size(); ++j) {
-    const std::string& name = c.designs.front().figures[j].name;
+  const json& names = designs.front().at("figures");
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const std::string name = names[j].at("name").get<std::string>();
     std::vector<HtmlCell> cells = {escape(in_units(name, u)) + (u.us ? " (per mile)" : "")};
-    for (std::size_t d = 0; d < c.designs.size(); ++d) {
-      const auto& f = c.designs[d].figures[j].per_km;
+    for (std::size_t d = 0; d < designs.size(); ++d) {
+      const Estimate f = estimate_of(designs[d].at("figures")[j].at("per_km"));
       std::string cell = fmt::format("{:.4g} ({:.4g}-{:.4g})", u.per_mowed(f.value), u.per_mowed(f.low), u.per_mowed(f.high));
       if (d > 0) {
-        const auto& x = c.designs[d].differences[j];
-        cell += fmt::format("<br><small>minus the reference: {:+.4g} ({:+.4g} to {:+.4g}); {} objects differ</small>", u.per_mowed(x.per_km.value),
-                            u.per_mowed(x.per_km.low), u.per_mowed(x.per_km.high), x.objects_differing);
+        const json& x = designs[d].at("minus_first")[j];
+        const Estimate diff = estimate_of(x.at("per_km"));
+        cell += fmt::format("<br><small>minus the reference: {:+.4g} ({:+.4g} to {:+.4g}); {} objects differ</small>", u.per_mowed(diff.value),
+                            u.per_mowed(diff.low), u.per_mowed(diff.high), x.at("objects_differing").get<std::uint64_t>());
       }
       cells.push_back(cell);
     }
     figures.row(cells);
   }
   o += figures.html();
-  o += comparison_hazard_html(c, u);
-  o += fmt::format("<section id=\"provenance\"><p class=\"small\">{:.1f} s.</p></section>\n", c.wall_seconds);
+  o += comparison_hazard_html(designs, u);
+  o += fmt::format("<section id=\"provenance\"><p class=\"small\">{:.1f} s.</p></section>\n", c.at("provenance").at("wall_time_s").get<double>());
   o += page_foot();
   return o;
 }

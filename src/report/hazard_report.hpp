@@ -36,10 +36,11 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
 std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u = {});
 
 // Field designs compared (j232 compare of field scenarios): compare.json, .csv, .html and
-// the terminal's table.
+// the terminal's table. The page is drawn from compare.json alone (what it shows is all
+// there), so a saved comparison can be drawn again.
 nlohmann::ordered_json hazard_comparison_json(const field::FieldComparison& c);
 std::string hazard_comparison_csv(const field::FieldComparison& c);
-std::string hazard_comparison_html(const field::FieldComparison& c, const DisplayUnits& u = {});
+std::string hazard_comparison_html(const nlohmann::ordered_json& compare_json, const DisplayUnits& u = {});
 std::string hazard_comparison_text(const field::FieldComparison& c, const DisplayUnits& u = {});
 
 }  // namespace j232::report
