@@ -119,6 +119,130 @@ std::string in_units(std::string words, const DisplayUnits& u) {
   return words;
 }
 
+
+// A colour for a share t in [0, 1] of a log scale (light yellow to dark red).
+std::string heat(double t) {
+  static const double stops[][3] = {{255, 255, 204}, {254, 217, 118}, {253, 141, 60}, {227, 26, 28}, {128, 0, 38}};
+  t = std::clamp(t, 0.0, 1.0) * 4;
+  const int i = std::min(3, static_cast<int>(t));
+  const double u = t - i;
+  auto c = [&](int k) { return static_cast<int>(std::lround(stops[i][k] + u * (stops[i + 1][k] - stops[i][k]))); };
+  return fmt::format("#{:02x}{:02x}{:02x}", c(0), c(1), c(2));
+}
+
+// A plan view of counts per cell (per km mowed, per cell), coarsened to at most ~90 blocks
+// across the part of the square that holds any: hazard.json's "plan_views" entry, as the
+// page draws it (each block's count per m^2 per km mowed, the blocks holding any, row by row).
+json plan_view_json(const field::HazardLayout& l, const std::vector<double>& cells) {
+  const int n = l.cells();
+  int reach = 1;
+  for (int iy = 0; iy < n; ++iy)
+    for (int ix = 0; ix < n; ++ix)
+      if (cells[static_cast<std::size_t>(iy * n + ix)] > 0)
+        reach = std::max({reach, std::abs(ix - l.half_cells) + 1, std::abs(iy - l.half_cells) + 1});
+  reach = std::min(l.half_cells, reach + 2);
+  const int block = std::max(1, (2 * reach + 89) / 90);
+  reach = std::min(l.half_cells, (reach + block - 1) / block * block);
+  const double area = (block * l.cell) * (block * l.cell);
+  const int blocks = 2 * reach / block;
+  json dense = json::array();
+  for (int by = 0; by < blocks; ++by)
+    for (int bx = 0; bx < blocks; ++bx) {
+      double sum = 0;
+      for (int iy = 0; iy < block; ++iy)
+        for (int ix = 0; ix < block; ++ix) {
+          const int cx = l.half_cells - reach + bx * block + ix, cy = l.half_cells - reach + by * block + iy;
+          sum += cells[static_cast<std::size_t>(cy * n + cx)];
+        }
+      if (sum / area > 0) dense.push_back({bx, by, sum / area});
+    }
+  return {{"cell_m", l.cell},
+          {"reach_cells", reach},
+          {"block_cells", block},
+          {"note", "blocks of block_cells x block_cells cells from -reach_cells to +reach_cells cells about the mower's centre (x ahead, "
+                   "y to its left); each [x block, y block, per m2 per km mowed], the blocks holding none left out"},
+          {"blocks", dense}};
+}
+
+// The plan view of `view` (plan_view_json's) with the deck's outline, its travel, the planes
+// (hazard.json's) and the hazard distance each way drawn.
+std::string plan_view(const json& view, const json& outline, const json& planes, const json& distances, double range, const std::string& title,
+                      const std::string& what, const DisplayUnits& u) {
+  const int reach = view.at("reach_cells").get<int>(), block = view.at("block_cells").get<int>();
+  const double l_cell = view.at("cell_m").get<double>();
+  double top = 0, bottom = HUGE_VAL;
+  std::vector<std::array<double, 3>> density;  // block x, y, per area per mowed in the display's units
+  for (const json& b : view.at("blocks")) {
+    const double d = u.per_area(u.per_mowed(b[2].get<double>()));
+    density.push_back({b[0].get<double>(), b[1].get<double>(), d});
+    if (d > 0) top = std::max(top, d), bottom = std::min(bottom, d);
+  }
+  Chart c(title, fmt::format("ahead of the mower ({})", u.length_unit()), fmt::format("to its left ({})", u.length_unit()), 640, 640);
+  c.equal_aspect();
+  const double half = u.length(reach * l_cell), cell = u.length(l_cell);
+  c.x_range(-half, half), c.y_range(-half, half);
+  const double span = top > bottom ? std::log10(top / bottom) : 1.0;
+  for (const auto& [bx, by, d] : density) {
+    if (d <= 0) continue;
+    const double x0 = -half + bx * block * cell, y0 = -half + by * block * cell;
+    c.rect(x0, y0, x0 + block * cell, y0 + block * cell, heat(std::log10(d / bottom) / span), 1.0, "");
+  }
+  if (!outline.empty()) {
+    std::vector<double> x, y;
+    for (const json& p : outline) x.push_back(u.length(p[0].get<double>())), y.push_back(u.length(p[1].get<double>()));
+    x.push_back(u.length(outline.front()[0].get<double>())), y.push_back(u.length(outline.front()[1].get<double>()));
+    c.line(x, y, "#000000", "the mower's deck", false);
+  }
+  c.segments({0.0}, {0.0}, {std::max(2.0, 0.2 * half)}, {0.0}, "#0072B2", "its travel", 2.5);
+  for (const json& p : planes) {
+    const std::string side = p.at("side").get<std::string>(), name = p.at("name").get<std::string>();
+    const double distance = p.at("distance_m").get<double>();
+    const double at = u.length(side == "left" || side == "front" ? distance : -distance);
+    if (std::abs(at) > half) continue;
+    if (side == "left" || side == "right")
+      c.hline(at, "#009E73", "plane '" + name + "'");
+    else
+      c.vline(at, "#009E73", "plane '" + name + "'");
+  }
+  // The hazard distance each way (the estimate): beside the path a line along it, ahead and
+  // behind a line across it. Off the map (or beyond the range tallied) it is named in the caption.
+  std::string drawn, off_map;
+  for (const json& d : distances) {
+    const std::string direction = d.at("direction").get<std::string>();
+    const double hazard_distance = d.at("estimate_m").get<double>();
+    const bool beyond_range = d.at("beyond_range").get<bool>();
+    const bool beside = direction == "left" || direction == "right";
+    const double at = (direction == "left" || direction == "front" ? 1.0 : -1.0) * u.length(hazard_distance);
+    if (beyond_range || std::abs(at) > half) {
+      off_map += fmt::format("{}{} {} (off this map)", off_map.empty() && drawn.empty() ? "" : ", ", direction,
+                             beyond_range ? fmt::format("beyond the {} {} tallied", u.figure(u.length(range)), u.length_unit())
+                                          : fmt::format("{:.3g} {}", u.length(hazard_distance), u.length_unit()));
+      continue;
+    }
+    drawn += fmt::format("{}{} {:.3g} {}", drawn.empty() ? "" : ", ", direction, u.length(hazard_distance), u.length_unit());
+    if (beside)
+      c.hline(at, "#D55E00", "");
+    else
+      c.vline(at, "#D55E00", "");
+  }
+  c.caption((top > 0 ? fmt::format("{} per {} around the mower, per {} mowed, in {:.3g} {} cells: colours on a log scale from {:.2g} (pale) "
+                                   "to {:.2g} (dark) per {}.",
+                                   what, u.area_unit(), u.mowed(), block * cell, u.length_unit(), bottom, top, u.area_unit())
+                     : what + ": none in the tallied square.") +
+            (drawn.empty() && off_map.empty() ? std::string()
+                                              : " Orange dashed lines: the hazard distance each way (the estimate): " + drawn + off_map + "."));
+  return "<figure>" + c.svg() + "</figure>\n";
+}
+
+// A per-cell count of every kind, weighted as the field holds each kind, per km mowed.
+std::vector<double> per_km(const field::FieldSimulator& sim, const field::HazardRun& run, std::vector<std::uint64_t> field::HazardTally::*cells) {
+  const std::vector<double> w = field::weights_per_object(sim, run);
+  std::vector<double> out((run.strata.front().*cells).size());
+  for (std::size_t k = 0; k < run.strata.size(); ++k)
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] += 1000 * w[k] * static_cast<double>((run.strata[k].*cells)[i]);
+  return out;
+}
+
 }  // namespace
 
 std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s) {
@@ -285,6 +409,12 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
         beyond += w[k] * static_cast<double>(run.strata[k].farthest[i]);
     reach.push_back({{"distance_m", d}, {"share_beyond", thrown > 0 ? beyond / thrown : 0.0}});
   }
+  // Where objects come down, as the page's plan views draw it, with the deck's outline.
+  json outline = json::array();
+  for (const auto& q : sim.mower().footprint().outline) outline.push_back({q.x(), q.y()});
+  const json plan_views = {{"deck_outline_m", outline},
+                           {"first_landings_per_m2_per_km", plan_view_json(layout, per_km(sim, run, &field::HazardTally::landings))},
+                           {"hazardous_impacts_per_m2_per_km", plan_view_json(layout, per_km(sim, run, &field::HazardTally::hazardous))}};
   json scenario = scenario_json(s);
   for (const char* key : {"nail", "feed", "target", "operator_zone", "board", "criteria", "uncertainty"}) scenario.erase(key);
   json assumed = json::array();
@@ -329,6 +459,7 @@ json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, 
       {"hazard_distance", distances},
       {"directions", curves},
       {"planes", planes},
+      {"plan_views", plan_views},
       {"assumptions", assumed},
       {"scenario", scenario},
       {"provenance",
@@ -388,128 +519,24 @@ std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u) 
   return o;
 }
 
-namespace {
 
-// A colour for a share t in [0, 1] of a log scale (light yellow to dark red).
-std::string heat(double t) {
-  static const double stops[][3] = {{255, 255, 204}, {254, 217, 118}, {253, 141, 60}, {227, 26, 28}, {128, 0, 38}};
-  t = std::clamp(t, 0.0, 1.0) * 4;
-  const int i = std::min(3, static_cast<int>(t));
-  const double u = t - i;
-  auto c = [&](int k) { return static_cast<int>(std::lround(stops[i][k] + u * (stops[i + 1][k] - stops[i][k]))); };
-  return fmt::format("#{:02x}{:02x}{:02x}", c(0), c(1), c(2));
-}
-
-// A plan view of counts per cell (per object, per m^2), coarsened to at most ~90 cells across
-// the part of the square that holds any, on a log colour scale; the mower, its travel and
-// the planes drawn.
-std::string plan_view(const field::FieldSimulator& sim, const field::HazardLayout& l, const std::vector<double>& cells, const std::string& title,
-                      const std::string& what, const std::vector<field::DirectionCurve>& directions, const DisplayUnits& u) {
-  const int n = l.cells();
-  int reach = 1;
-  for (int iy = 0; iy < n; ++iy)
-    for (int ix = 0; ix < n; ++ix)
-      if (cells[static_cast<std::size_t>(iy * n + ix)] > 0)
-        reach = std::max({reach, std::abs(ix - l.half_cells) + 1, std::abs(iy - l.half_cells) + 1});
-  reach = std::min(l.half_cells, reach + 2);
-  const int block = std::max(1, (2 * reach + 89) / 90);
-  reach = std::min(l.half_cells, (reach + block - 1) / block * block);
-  const double area = (block * l.cell) * (block * l.cell);
-  std::vector<double> density;
-  double top = 0, bottom = HUGE_VAL;
-  const int blocks = 2 * reach / block;
-  density.assign(static_cast<std::size_t>(blocks * blocks), 0.0);
-  for (int by = 0; by < blocks; ++by)
-    for (int bx = 0; bx < blocks; ++bx) {
-      double sum = 0;
-      for (int iy = 0; iy < block; ++iy)
-        for (int ix = 0; ix < block; ++ix) {
-          const int cx = l.half_cells - reach + bx * block + ix, cy = l.half_cells - reach + by * block + iy;
-          sum += cells[static_cast<std::size_t>(cy * n + cx)];
-        }
-      const double d = u.per_area(u.per_mowed(sum / area));
-      density[static_cast<std::size_t>(by * blocks + bx)] = d;
-      if (d > 0) top = std::max(top, d), bottom = std::min(bottom, d);
-    }
-  Chart c(title, fmt::format("ahead of the mower ({})", u.length_unit()), fmt::format("to its left ({})", u.length_unit()), 640, 640);
-  c.equal_aspect();
-  const double half = u.length(reach * l.cell), cell = u.length(l.cell);
-  c.x_range(-half, half), c.y_range(-half, half);
-  const double span = top > bottom ? std::log10(top / bottom) : 1.0;
-  for (int by = 0; by < blocks; ++by)
-    for (int bx = 0; bx < blocks; ++bx) {
-      const double d = density[static_cast<std::size_t>(by * blocks + bx)];
-      if (d <= 0) continue;
-      const double x0 = -half + bx * block * cell, y0 = -half + by * block * cell;
-      c.rect(x0, y0, x0 + block * cell, y0 + block * cell, heat(std::log10(d / bottom) / span), 1.0, "");
-    }
-  const auto& outline = sim.mower().footprint().outline;
-  if (!outline.empty()) {
-    std::vector<double> x, y;
-    for (const auto& p : outline) x.push_back(u.length(p.x())), y.push_back(u.length(p.y()));
-    x.push_back(u.length(outline.front().x())), y.push_back(u.length(outline.front().y()));
-    c.line(x, y, "#000000", "the mower's deck", false);
-  }
-  c.segments({0.0}, {0.0}, {std::max(2.0, 0.2 * half)}, {0.0}, "#0072B2", "its travel", 2.5);
-  for (const auto& p : l.planes) {
-    const double at = u.length(p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Front ? p.distance : -p.distance);
-    if (std::abs(at) > half) continue;
-    if (p.side == scenario::FieldPlaneSpec::Side::Left || p.side == scenario::FieldPlaneSpec::Side::Right)
-      c.hline(at, "#009E73", "plane '" + p.name + "'");
-    else
-      c.vline(at, "#009E73", "plane '" + p.name + "'");
-  }
-  // The hazard distance each way (the estimate): beside the path a line along it, ahead and
-  // behind a line across it. Off the map (or beyond the range tallied) it is named in the caption.
-  std::string drawn, off_map;
-  for (const auto& d : directions) {
-    const bool beside = d.direction == "left" || d.direction == "right";
-    const double at = (d.direction == "left" || d.direction == "front" ? 1.0 : -1.0) * u.length(d.hazard_distance);
-    if (d.beyond_range || std::abs(at) > half) {
-      off_map += fmt::format("{}{} {} (off this map)", off_map.empty() && drawn.empty() ? "" : ", ", d.direction,
-                             d.beyond_range ? fmt::format("beyond the {} {} tallied", u.figure(u.length(l.range)), u.length_unit())
-                                            : fmt::format("{:.3g} {}", u.length(d.hazard_distance), u.length_unit()));
-      continue;
-    }
-    drawn += fmt::format("{}{} {:.3g} {}", drawn.empty() ? "" : ", ", d.direction, u.length(d.hazard_distance), u.length_unit());
-    if (beside)
-      c.hline(at, "#D55E00", "");
-    else
-      c.vline(at, "#D55E00", "");
-  }
-  c.caption((top > 0 ? fmt::format("{} per {} around the mower, per {} mowed, in {:.3g} {} cells: colours on a log scale from {:.2g} (pale) "
-                                   "to {:.2g} (dark) per {}.",
-                                   what, u.area_unit(), u.mowed(), block * cell, u.length_unit(), bottom, top, u.area_unit())
-                     : what + ": none in the tallied square.") +
-            (drawn.empty() && off_map.empty() ? std::string()
-                                              : " Orange dashed lines: the hazard distance each way (the estimate): " + drawn + off_map + "."));
-  return "<figure>" + c.svg() + "</figure>\n";
-}
-
-// A per-cell count of every kind, weighted as the field holds each kind, per km mowed.
-std::vector<double> per_km(const field::FieldSimulator& sim, const field::HazardRun& run, std::vector<std::uint64_t> field::HazardTally::*cells) {
-  const std::vector<double> w = field::weights_per_object(sim, run);
-  std::vector<double> out((run.strata.front().*cells).size());
-  for (std::size_t k = 0; k < run.strata.size(); ++k)
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] += 1000 * w[k] * static_cast<double>((run.strata[k].*cells)[i]);
-  return out;
-}
-
-}  // namespace
-
-std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum, const json& result,
-                        const DisplayUnits& u) {
-  const scenario::Scenario& s = sim.scenario();
-  const field::HazardLayout& layout = run.strata.front().layout;
-  std::string o = page_head("Thrown-object hazard: " + s.title);
-  o += fmt::format("<h1>Thrown-object hazard in the field: {}</h1>\n", escape(s.title));
-  if (!sum.valid)
-    o += fmt::format("<p class=\"verdict fail\"><strong>No hazard assessment:</strong> {}</p>\n", escape(sum.invalid_reason));
-  if (!sum.warnings.empty()) {
+std::string hazard_html(const json& result, const DisplayUnits& u) {
+  const json& field = result.at("field");
+  const json& distances = result.at("hazard_distance");
+  const json& directions = result.at("directions");
+  const json& planes_json = result.at("planes");
+  const std::string title = result.at("title").get<std::string>();
+  const double person_energy = field.at("person_energy_J").get<double>(), acceptable_area = field.at("acceptable_area_m2").get<double>();
+  std::string o = page_head("Thrown-object hazard: " + title);
+  o += fmt::format("<h1>Thrown-object hazard in the field: {}</h1>\n", escape(title));
+  if (!result.at("valid").get<bool>())
+    o += fmt::format("<p class=\"verdict fail\"><strong>No hazard assessment:</strong> {}</p>\n", escape(result.at("invalid_reason").get<std::string>()));
+  if (!result.at("warnings").empty()) {
     o += "<ul class=\"warnings\">\n";
-    for (const auto& w : sum.warnings) o += fmt::format("<li>Warning: {}</li>\n", escape(w));
+    for (const json& w : result.at("warnings")) o += fmt::format("<li>Warning: {}</li>\n", escape(w.get<std::string>()));
     o += "</ul>\n";
   }
+  const json& objects = result.at("objects");
   o += fmt::format(
       "<p>A simulation of this mower at work at {:.1f} {} over turf strewn with objects ({:.2f} {} cut): {:.0f} objects met "
       "per {} mowed, {:.0f} of them of a size that can reach a blade, {:.0f} thrown. {} objects were simulated (a "
@@ -517,8 +544,10 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
       "objects are drawn as often as the many light ones, each weighted by its share). Every figure is an "
       "estimate from that sample, with its 95 % interval; the figures are of the simulated model with its stated "
       "assumptions (below), not a measurement.{}</p>\n",
-      u.travel(s.field.ground_speed), u.travel_unit(), u.length(sum.cut_width), u.length_unit(), u.per_mowed(sum.objects_per_km),
-      u.us ? "mile" : "kilometre", u.per_mowed(sum.reaching_per_km), u.per_mowed(sum.thrown_per_km), sum.objects,
+      u.travel(field.at("ground_speed_m_s").get<double>()), u.travel_unit(), u.length(field.at("cut_width_m").get<double>()), u.length_unit(),
+      u.per_mowed(field.at("objects_met_per_km").get<double>()), u.us ? "mile" : "kilometre",
+      u.per_mowed(field.at("objects_that_can_reach_a_blade_per_km").get<double>()), u.per_mowed(objects.at("thrown_per_km").get<double>()),
+      objects.at("simulated").get<std::uint64_t>(),
       u.us ? " Figures in US customary units (ft, mph, ft-lb, per mile mowed); the assumptions quote the scenario's own inputs, and "
              "hazard.json and hazard.csv keep SI units."
            : "");
@@ -528,27 +557,27 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
       "fall below one per {} {} for good: beside the path, the larger of those coming down per {} of ground and "
       "those flying or skidding through per {} of the vertical plane there; ahead and behind, those coming down on the "
       "mower's line. The conservative distance uses the 95 % interval's upper end.</p>\n",
-      u.figure(u.energy(s.field.person_energy)), u.energy_unit(), u.figure(u.area(s.field.acceptable_area)), u.area_unit_html(), u.area_unit_html(),
+      u.figure(u.energy(person_energy)), u.energy_unit(), u.figure(u.area(acceptable_area)), u.area_unit_html(), u.area_unit_html(),
       u.area_unit_html());
-  const double range = layout.range;
-  HtmlTable distances({"direction", "who", "estimate", "conservative"});
-  for (const auto& d : sum.directions)
-    distances.row({d.direction, escape(in_units(d.meaning, u)), distance_words(d, false, range, u), distance_words(d, true, range, u)});
-  o += distances.html();
+  const double range = field.at("range_m").get<double>();
+  HtmlTable distance_table({"direction", "who", "estimate", "conservative"});
+  for (const json& d : distances)
+    distance_table.row({d.at("direction").get<std::string>(), escape(in_units(d.at("meaning").get<std::string>(), u)), distance_words(d, false, range, u),
+                        distance_words(d, true, range, u)});
+  o += distance_table.html();
   // How the setback moves with what is judged acceptable: each distance at other densities.
   o += "<p>How the hazard distance moves with the acceptable density (estimate / conservative; the scenario's in bold):</p>\n";
   std::vector<HtmlCell> header = {"one hazardous impact per"};
-  for (const auto& d : sum.directions) header.push_back(d.direction);
+  for (const json& d : distances) header.push_back(d.at("direction").get<std::string>());
   HtmlTable setbacks(header);
-  for (std::size_t b = 0; !sum.directions.empty() && b < sum.directions.front().setbacks.size(); ++b) {
-    const double area = 1 / sum.directions.front().setbacks[b].acceptable_density;
-    const bool own = std::abs(area - s.field.acceptable_area) < 1e-9 * area;
+  for (std::size_t b = 0; !distances.empty() && b < distances.front().at("at_other_acceptable_densities").size(); ++b) {
+    const double area = distances.front().at("at_other_acceptable_densities")[b].at("acceptable_area_m2").get<double>();
+    const bool own = std::abs(area - acceptable_area) < 1e-9 * area;
     std::vector<HtmlCell> cells = {fmt::format("{}{} {}{}", own ? "<strong>" : "", fmt::format(fmt::runtime(u.us ? "{:.4g}" : "{:.3g}"), u.area(area)),
                                                   u.area_unit_html(), own ? "</strong>" : "")};
-    for (const auto& d : sum.directions) {
-      field::DirectionCurve at = d;  // the setback's figures in the curve's fields, for distance_words
-      at.hazard_distance = d.setbacks[b].estimate, at.hazard_distance_upper = d.setbacks[b].conservative;
-      at.beyond_range = d.setbacks[b].beyond_range, at.upper_beyond_range = d.setbacks[b].conservative_beyond_range;
+    for (const json& d : distances) {
+      json at = d.at("at_other_acceptable_densities")[b];  // the setback's figures with the direction's deck, for distance_words
+      at["deck_extent_m"] = d.at("deck_extent_m");
       cells.push_back(fmt::format("{} / {}", distance_words(at, false, range, u), distance_words(at, true, range, u)));
     }
     setbacks.row(cells);
@@ -557,70 +586,78 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
 
   Chart curves("Probability of being struck by a hazardous object in one pass", fmt::format("distance from the mower ({})", u.length_unit()),
                "probability");
-  const double acceptable_p = -std::expm1(-s.field.presented_area / s.field.acceptable_area);
+  const double acceptable_p = -std::expm1(-field.at("presented_area_m2").get<double>() / acceptable_area);
+  const double acceptable_density = field.at("acceptable_density_per_m2").get<double>();
   double far = 5;
-  for (const auto& d : sum.directions)
-    for (std::size_t k = 0; k < d.distance.size(); ++k)
-      if (d.exposure[k].value > 0 || d.exposure[k].high >= sum.acceptable_density) far = std::max(far, d.distance[k] + 2);
+  for (const json& d : directions)
+    for (const json& point : d.at("points")) {
+      const Estimate exposure = estimate_of(point.at("exposure_per_m2"));
+      if (exposure.value > 0 || exposure.high >= acceptable_density) far = std::max(far, point.at("distance_m").get<double>() + 2);
+    }
   far = std::min(far, range);
   // On a logarithmic axis: the probabilities fall by decades with distance, and the acceptable
   // level may lie far above or below the curves. The axis spans the acceptable level and the
   // values drawn, eight decades at most; what lies below its floor (zero among it) is drawn on it.
   double highest = acceptable_p, lowest = acceptable_p;
-  for (std::size_t i = 0; i < sum.directions.size(); ++i) {
-    const auto& d = sum.directions[i];
+  for (std::size_t i = 0; i < directions.size(); ++i) {
     std::vector<double> x, p, lo, hi;
-    for (std::size_t k = 0; k < d.distance.size() && d.distance[k] <= far; ++k)
-      x.push_back(u.length(d.distance[k])), p.push_back(d.probability[k].value), lo.push_back(d.probability[k].low),
-          hi.push_back(d.probability[k].high);
+    for (const json& point : directions[i].at("points")) {
+      if (!(point.at("distance_m").get<double>() <= far)) break;
+      const Estimate struck = estimate_of(point.at("p_struck"));
+      x.push_back(u.length(point.at("distance_m").get<double>())), p.push_back(struck.value), lo.push_back(struck.low), hi.push_back(struck.high);
+    }
     curves.band(x, lo, hi, palette(i), "");
-    curves.line(x, p, palette(i), d.direction, false);
+    curves.line(x, p, palette(i), directions[i].at("direction").get<std::string>(), false);
     for (const auto* values : {&p, &lo, &hi})
       for (double v : *values)
         if (v > 0) highest = std::max(highest, v), lowest = std::min(lowest, v);
   }
   // (A value at a power of ten is that decade's end: no empty decade beyond it.)
   probability_log_axis(curves, highest, lowest);
-  curves.hline(acceptable_p, "#000000",
-               fmt::format("acceptable ({:.3g}: one per {} {})", acceptable_p, u.figure(u.area(s.field.acceptable_area)), u.area_unit()));
+  curves.hline(acceptable_p, "#000000", fmt::format("acceptable ({:.3g}: one per {} {})", acceptable_p, u.figure(u.area(acceptable_area)), u.area_unit()));
   curves.caption("Beside the path: a person standing at that lateral distance from the mower's centre line while it mows past. Ahead "
                  "and behind: a person on its line whom it approaches no nearer than that distance, or leaves from it. Bands: 95 % "
                  "intervals. Logarithmic scale: a probability below its floor (none seen there: zero) is drawn on the floor.");
   o += "<figure>" + curves.svg() + "</figure>\n";
 
   o += "<h2>Where objects come down</h2>\n";
-  o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::landings), "First landings outside the deck", "Objects first coming down",
-                 sum.directions, u);
-  o += plan_view(sim, layout, per_km(sim, run, &field::HazardTally::hazardous),
-                 fmt::format("Hazardous ground impacts (at least {} {})", u.figure(u.energy(s.field.person_energy)), u.energy_unit()), "Hazardous impacts",
-                 sum.directions, u);
+  const json& views = result.at("plan_views");
+  o += plan_view(views.at("first_landings_per_m2_per_km"), views.at("deck_outline_m"), planes_json, distances, range, "First landings outside the deck",
+                 "Objects first coming down", u);
+  o += plan_view(views.at("hazardous_impacts_per_m2_per_km"), views.at("deck_outline_m"), planes_json, distances, range,
+                 fmt::format("Hazardous ground impacts (at least {} {})", u.figure(u.energy(person_energy)), u.energy_unit()), "Hazardous impacts", u);
 
-  if (!sum.planes.empty()) {
+  if (!planes_json.empty()) {
     o += "<h2>Planes beside the path</h2>\n";
+    const long long passes = field.at("passes_per_season").get<long long>();
     HtmlTable planes({"plane", "where", "receptor", fmt::format("crossings per {} mowed", u.mowed()), fmt::format("hazardous per {} mowed (95 %)", u.mowed()),
                       "person standing there: P(struck) in one pass (95 %)",
                       fmt::format("over a season of {} pass{} (95 %): a person there each pass struck at least once; people struck ({:g} a pass)",
-                                  s.field.passes_per_season, s.field.passes_per_season == 1 ? "" : "es", s.field.people_per_pass)});
-    for (const auto& r : sum.planes) {
-      const bool person = r.plane.receptor == scenario::FieldPlaneSpec::Receptor::Person && r.along_path;
-      planes.row({escape(r.plane.name), fmt::format("{} {} {}", side_name(r.plane.side), u.figure(u.length(r.plane.distance)), u.length_unit()),
-                  receptor_name(r.plane.receptor), fmt::format("{:.3g}", u.per_mowed(r.crossings_per_km)),
-                  fmt::format("{:.3g} ({:.3g}-{:.3g})", u.per_mowed(r.hazardous_per_km.value), u.per_mowed(r.hazardous_per_km.low),
-                              u.per_mowed(r.hazardous_per_km.high)),
-                  person ? fmt::format("{:.3g} ({:.3g}-{:.3g})", r.probability.value, r.probability.low, r.probability.high) : "-",
-                  person ? fmt::format("{:.3g} ({:.3g}-{:.3g}); {:.3g} ({:.3g}-{:.3g})", r.probability_per_season.value,
-                                       r.probability_per_season.low, r.probability_per_season.high, r.people_struck_per_season.value,
-                                       r.people_struck_per_season.low, r.people_struck_per_season.high)
-                         : "-"});
+                                  passes, passes == 1 ? "" : "es", field.at("people_per_pass").get<double>())});
+    for (const json& r : planes_json) {
+      const bool person = r.contains("p_struck_per_pass");
+      const Estimate hazardous = estimate_of(r.at("hazardous_per_km"));
+      std::string struck = "-", season = "-";
+      if (person) {
+        const Estimate p = estimate_of(r.at("p_struck_per_pass")), ps = estimate_of(r.at("p_struck_per_season")),
+                       people = estimate_of(r.at("people_struck_per_season"));
+        struck = fmt::format("{:.3g} ({:.3g}-{:.3g})", p.value, p.low, p.high);
+        season = fmt::format("{:.3g} ({:.3g}-{:.3g}); {:.3g} ({:.3g}-{:.3g})", ps.value, ps.low, ps.high, people.value, people.low, people.high);
+      }
+      planes.row({escape(r.at("name").get<std::string>()),
+                  fmt::format("{} {} {}", r.at("side").get<std::string>(), u.figure(u.length(r.at("distance_m").get<double>())), u.length_unit()),
+                  r.at("receptor").get<std::string>(), fmt::format("{:.3g}", u.per_mowed(r.at("crossings_per_km").get<double>())),
+                  fmt::format("{:.3g} ({:.3g}-{:.3g})", u.per_mowed(hazardous.value), u.per_mowed(hazardous.low), u.per_mowed(hazardous.high)), struck,
+                  season});
     }
     o += planes.html();
     Chart heights("Crossings of each plane by height", fmt::format("height above the ground ({})", u.length_unit()),
                   fmt::format("crossings per {} mowed", u.mowed()));
-    for (std::size_t i = 0; i < sum.planes.size(); ++i) {
+    for (std::size_t i = 0; i < planes_json.size(); ++i) {
       std::vector<double> edges, h;
       for (int b = 0; b <= field::kHeightBands; ++b) edges.push_back(u.length(b * field::kHeightBand));
-      for (double v : sum.planes[i].per_km_by_height) h.push_back(u.per_mowed(v));
-      heights.bars(edges, h, palette(i), sum.planes[i].plane.name);
+      for (const json& v : planes_json[i].at("crossings_per_km_by_height").at("per_km")) h.push_back(u.per_mowed(v.get<double>()));
+      heights.bars(edges, h, palette(i), planes_json[i].at("name").get<std::string>());
     }
     heights.caption(fmt::format("Every crossing, hazardous or not, in {:.3g} {} bands (the last: {:.3g} {} and above). A vehicle's hazard is "
                                 "the windshield band's; a person's, the band up to their height.",
@@ -629,19 +666,20 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
     o += "<figure>" + heights.svg() + "</figure>\n";
   }
 
+  const json& thrown = result.at("throw");
   o += "<h2>The throw</h2>\n";
   o += fmt::format("<p>Speed off the last blade strike (the speed objects leave with: many are struck again inside the deck, "
                    "faster) {0:.0f} {6} on average (95th percentile {1:.0f} {6}); off the first strike {2:.0f} {6} on average (95th "
                    "percentile {3:.0f} {6}), launch elevation {4:.1f}&deg; on average; {5:.0f} % of the thrown objects first came down outside "
                    "the deck; the farthest ground contact was {7:.0f} {8} from the mower.</p>\n",
-                   u.speed(sum.last_strike_speed_mean), u.speed(sum.last_strike_speed_q95), u.speed(sum.exit_speed_mean),
-                   u.speed(sum.exit_speed_q95), sum.launch_elevation_mean, 100 * sum.landed_outside_deck_share, u.speed_unit(),
-                   u.length(sum.max_distance), u.length_unit());
+                   u.speed(thrown.at("last_strike_speed_m_s").at("mean").get<double>()), u.speed(thrown.at("last_strike_speed_m_s").at("q95").get<double>()),
+                   u.speed(thrown.at("exit_speed_m_s").at("mean").get<double>()), u.speed(thrown.at("exit_speed_m_s").at("q95").get<double>()),
+                   thrown.at("launch_elevation_deg_mean").get<double>(), 100 * thrown.at("first_landing_outside_deck_share").get<double>(), u.speed_unit(),
+                   u.length(thrown.at("farthest_ground_contact_m").get<double>()), u.length_unit());
   {
     Chart reach("How far thrown objects reach", fmt::format("distance from the mower ({})", u.length_unit()), "share of thrown objects beyond it");
-    const auto& r = result["throw"]["reach"];
     std::vector<double> x, y;
-    for (const auto& point : r) x.push_back(u.length(point["distance_m"].get<double>())), y.push_back(point["share_beyond"].get<double>());
+    for (const json& point : thrown.at("reach")) x.push_back(u.length(point.at("distance_m").get<double>())), y.push_back(point.at("share_beyond").get<double>());
     reach.line(x, y, palette(0), "", true);
     reach.caption("Each thrown object's farthest ground contact from the mower (its first landing or a later bounce), every kind "
                   "weighted as the field holds it.");
@@ -652,12 +690,15 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
   for (int i = 0; i < field::kObjectFates; ++i) kinds_header.push_back(field::object_fate_name(static_cast<field::ObjectFate>(i)));
   for (const char* h : {"at rest under the deck", "left the square", "a knife rode over", "pushed along by an arm"}) kinds_header.push_back(h);
   HtmlTable kinds(kinds_header);
-  for (std::size_t k = 0; k < sim.kinds(); ++k) {
-    const field::HazardTally t = field::kind_tally(sim, run, k);
-    std::vector<HtmlCell> cells = {escape(s.field.objects[k].name), fmt::format("{:.0f}", u.per_mowed(1000 * sim.objects_per_metre(k))),
-                                      fmt::format("{:.3g}", sim.reach_share(k)), fmt::format("{}", t.objects)};
-    for (int i = 0; i < field::kObjectFates; ++i) cells.push_back(fmt::format("{}", t.fates[static_cast<std::size_t>(i)]));
-    for (const auto n : {t.at_rest_under_deck, t.left_square, t.ridden_over, t.pushed_along}) cells.push_back(fmt::format("{}", n));
+  for (const json& k : field.at("objects")) {
+    const json& t = k.at("simulated");
+    std::vector<HtmlCell> cells = {escape(k.at("name").get<std::string>()), fmt::format("{:.0f}", u.per_mowed(k.at("met_per_km").get<double>())),
+                                      fmt::format("{:.3g}", k.at("share_that_can_reach_a_blade").get<double>()),
+                                      fmt::format("{}", t.at("objects").get<std::uint64_t>())};
+    for (int i = 0; i < field::kObjectFates; ++i)
+      cells.push_back(fmt::format("{}", t.at("fates").at(field::object_fate_name(static_cast<field::ObjectFate>(i))).get<std::uint64_t>()));
+    for (const char* key : {"at_rest_under_deck", "left_tallied_square", "objects_a_knife_rode_over", "objects_pushed_along_by_an_arm"})
+      cells.push_back(fmt::format("{}", t.at(key).get<std::uint64_t>()));
     kinds.row(cells);
   }
   o += kinds.html();
@@ -665,12 +706,12 @@ std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun
 
   o += "<h2>Assumptions</h2>\n";
   HtmlTable assumptions({"assumption", "source"});
-  for (const auto& a : result["assumptions"]) assumptions.row({escape(a["what"].get<std::string>()), escape(a["source"].get<std::string>())});
+  for (const auto& a : result.at("assumptions")) assumptions.row({escape(a.at("what").get<std::string>()), escape(a.at("source").get<std::string>())});
   o += assumptions.html();
-  const auto& p = result["provenance"];
-  o += fmt::format("<section id=\"provenance\"><p class=\"small\">j232 {} ({}), {}; seed {}; {} thread(s), {:.1f} s ({:.0f} objects/s).</p></section>\n", escape(p["version"].get<std::string>()),
-                   escape(p["git_revision"].get<std::string>()), escape(p["date"].get<std::string>()), p["seed"].get<std::uint64_t>(),
-                   p["threads"].get<int>(), p["wall_time_s"].get<double>(), p["objects_per_second"].get<double>());
+  const auto& p = result.at("provenance");
+  o += fmt::format("<section id=\"provenance\"><p class=\"small\">j232 {} ({}), {}; seed {}; {} thread(s), {:.1f} s ({:.0f} objects/s).</p></section>\n", escape(p.at("version").get<std::string>()),
+                   escape(p.at("git_revision").get<std::string>()), escape(p.at("date").get<std::string>()), p.at("seed").get<std::uint64_t>(),
+                   p.at("threads").get<int>(), p.at("wall_time_s").get<double>(), p.at("objects_per_second").get<double>());
   o += page_foot();
   return o;
 }

@@ -30,8 +30,9 @@ nlohmann::ordered_json hazard_json(const field::FieldSimulator& sim, const field
                                    const HazardProvenance& p);
 std::string hazard_csv(const field::HazardSummary& sum);
 // (In the units `u` names: SI by default.)
-std::string hazard_html(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum,
-                        const nlohmann::ordered_json& result, const DisplayUnits& u = {});
+// The page is drawn from hazard.json alone (its plan views included), so a saved result can be
+// drawn again.
+std::string hazard_html(const nlohmann::ordered_json& result, const DisplayUnits& u = {});
 // The terminal's summary: the hazard distances and the planes, with their intervals.
 std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u = {});
 
