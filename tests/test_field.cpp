@@ -850,3 +850,44 @@ TEST_CASE("report: a page's table writes its header and rows as given, each cell
   CHECK(r.html() == "<table class=\"numbers\"><thead><tr><th>input</th><th>value</th></tr></thead><tbody>\n"
                     "<tr><td rowspan=\"2\">e</td><td class=\"verdict-cell\">0.4</td></tr>\n<tr><td>0.6</td></tr>\n</tbody></table>\n");
 }
+
+TEST_CASE("report: hazard.json's plan views hold every cell's count once, the square's edge included", "[field][report]") {
+  // A square small beside the throw (25 m, 0.25 m cells: 100 cells a side from the centre), so
+  // that objects come down at its edge and its blocks (3 cells) do not divide it: the last row
+  // and column of blocks are cut short, and must still be counted.
+  std::string text = kMower + kStones;
+  text.replace(text.find("objects_simulated = 4000"), 24, "objects_simulated = 1500");
+  text.replace(text.find("[field]\n"), 8, "[field]\nrange = \"25 m\"\ncell = \"0.25 m\"\n");
+  const auto s = read(text);
+  const field::FieldSimulator sim(s);
+  const auto run = field::run_hazard(sim, 2);
+  const auto sum = field::summarise(sim, run);
+  const auto result = report::hazard_json(sim, run, sum, {});
+  const std::vector<double> w = field::weights_per_object(sim, run);
+  const auto check = [&](const char* key, std::vector<std::uint64_t> field::HazardTally::*cells) {
+    INFO(key);
+    double total = 0;  // every cell's count per km mowed, as the plan view weights it
+    for (std::size_t k = 0; k < run.strata.size(); ++k)
+      for (const auto c : run.strata[k].*cells) total += 1000 * w[k] * static_cast<double>(c);
+    const auto& view = result["plan_views"][key];
+    const int reach = view["reach_cells"].get<int>(), block = view["block_cells"].get<int>();
+    const double cell = view["cell_m"].get<double>();
+    double in_blocks = 0;
+    for (const auto& b : view["blocks"]) {
+      const int bx = b[0].get<int>(), by = b[1].get<int>();
+      const int wx = std::min(block, 2 * reach - bx * block), wy = std::min(block, 2 * reach - by * block);
+      REQUIRE(wx > 0);
+      REQUIRE(wy > 0);
+      in_blocks += b[2].get<double>() * (wx * cell) * (wy * cell);
+    }
+    CHECK(total > 0);
+    CHECK(in_blocks == Approx(total).epsilon(1e-9));
+    return std::make_pair(reach, block);
+  };
+  const auto [reach, block] = check("first_landings_per_m2_per_km", &field::HazardTally::landings);
+  check("hazardous_impacts_per_m2_per_km", &field::HazardTally::hazardous);
+  // The case this test is for: the blocks reach the square's edge and do not divide it.
+  CHECK(reach == 100);
+  CHECK((2 * reach) % block != 0);
+  CHECK(result["plan_views"]["deck_outline_m"].size() >= 3);
+}

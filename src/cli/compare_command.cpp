@@ -49,7 +49,7 @@ int compare_fields(const CompareOptions& o, std::vector<scenario::Scenario>& des
   const auto j = report::hazard_comparison_json(c);
   report::write_atomically(out.staged("compare.csv"), report::hazard_comparison_csv(c));
   const report::DisplayUnits units = report::display_units(o.units);
-  report::write_atomically(out.staged("compare.html"), report::hazard_comparison_html(j, units));
+  report::write_atomically(out.staged("compare.html"), report::hazard_comparison_html(report::as_saved(j), units));
   report::write_atomically(out.staged("compare.json"), report::json_text(j) + "\n");
   out.commit();
   fmt::print("{}", terminal_safe(report::hazard_comparison_text(c, units)));

@@ -36,7 +36,7 @@ HazardOutcome hazard_to_folder(const std::string& scenario_file, const HazardOve
   const HazardProvenance p{j232::version, j232::git_revision, utc_now(), s.run.seed, run.threads, assess::cluster::size(), run.wall_seconds};
   outcome.result = hazard_json(sim, run, sum, p);
   write_atomically(folder->staged("hazard.csv"), hazard_csv(sum));
-  write_atomically(folder->staged("hazard.html"), hazard_html(outcome.result, o.units));
+  write_atomically(folder->staged("hazard.html"), hazard_html(as_saved(outcome.result), o.units));
   write_atomically(folder->staged("hazard.json"), json_text(outcome.result) + "\n");
   folder->commit();
   outcome.valid = sum.valid;

@@ -1,7 +1,9 @@
 #include "report/hazard_report.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <stdexcept>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -119,7 +121,6 @@ std::string in_units(std::string words, const DisplayUnits& u) {
   return words;
 }
 
-
 // A colour for a share t in [0, 1] of a log scale (light yellow to dark red).
 std::string heat(double t) {
   static const double stops[][3] = {{255, 255, 204}, {254, 217, 118}, {253, 141, 60}, {227, 26, 28}, {128, 0, 38}};
@@ -133,6 +134,10 @@ std::string heat(double t) {
 // A plan view of counts per cell (per km mowed, per cell), coarsened to at most ~90 blocks
 // across the part of the square that holds any: hazard.json's "plan_views" entry, as the
 // page draws it (each block's count per m^2 per km mowed, the blocks holding any, row by row).
+// Block (i, j) starts i (j) blocks from -reach cells ahead of (to the left of) the mower's
+// centre and spans `block` cells a side, but the last row and column, which end at +reach
+// (when the square's edge cuts them short).
+int block_span(int b, int reach, int block) { return std::min(block, 2 * reach - b * block); }
 json plan_view_json(const field::HazardLayout& l, const std::vector<double>& cells) {
   const int n = l.cells();
   int reach = 1;
@@ -143,24 +148,27 @@ json plan_view_json(const field::HazardLayout& l, const std::vector<double>& cel
   reach = std::min(l.half_cells, reach + 2);
   const int block = std::max(1, (2 * reach + 89) / 90);
   reach = std::min(l.half_cells, (reach + block - 1) / block * block);
-  const double area = (block * l.cell) * (block * l.cell);
-  const int blocks = 2 * reach / block;
+  const int blocks = (2 * reach + block - 1) / block;
   json dense = json::array();
   for (int by = 0; by < blocks; ++by)
     for (int bx = 0; bx < blocks; ++bx) {
+      const int wx = block_span(bx, reach, block), wy = block_span(by, reach, block);
       double sum = 0;
-      for (int iy = 0; iy < block; ++iy)
-        for (int ix = 0; ix < block; ++ix) {
+      for (int iy = 0; iy < wy; ++iy)
+        for (int ix = 0; ix < wx; ++ix) {
           const int cx = l.half_cells - reach + bx * block + ix, cy = l.half_cells - reach + by * block + iy;
           sum += cells[static_cast<std::size_t>(cy * n + cx)];
         }
+      const double area = (wx * l.cell) * (wy * l.cell);
       if (sum / area > 0) dense.push_back({bx, by, sum / area});
     }
   return {{"cell_m", l.cell},
           {"reach_cells", reach},
           {"block_cells", block},
-          {"note", "blocks of block_cells x block_cells cells from -reach_cells to +reach_cells cells about the mower's centre (x ahead, "
-                   "y to its left); each [x block, y block, per m2 per km mowed], the blocks holding none left out"},
+          {"note", "the square from -reach_cells to +reach_cells cells about the mower's centre (x ahead, y to its left) in blocks of "
+                   "block_cells x block_cells cells, block [i, j] starting at (-reach_cells + i block_cells, -reach_cells + j "
+                   "block_cells) cells, the last row and column cut short at +reach_cells; each [i, j, per m2 per km mowed], the "
+                   "blocks holding none left out"},
           {"blocks", dense}};
 }
 
@@ -173,8 +181,8 @@ std::string plan_view(const json& view, const json& outline, const json& planes,
   double top = 0, bottom = HUGE_VAL;
   std::vector<std::array<double, 3>> density;  // block x, y, per area per mowed in the display's units
   for (const json& b : view.at("blocks")) {
-    const double d = u.per_area(u.per_mowed(b[2].get<double>()));
-    density.push_back({b[0].get<double>(), b[1].get<double>(), d});
+    const double d = u.per_area(u.per_mowed(b.at(2).get<double>()));
+    density.push_back({b.at(0).get<double>(), b.at(1).get<double>(), d});
     if (d > 0) top = std::max(top, d), bottom = std::min(bottom, d);
   }
   Chart c(title, fmt::format("ahead of the mower ({})", u.length_unit()), fmt::format("to its left ({})", u.length_unit()), 640, 640);
@@ -185,12 +193,13 @@ std::string plan_view(const json& view, const json& outline, const json& planes,
   for (const auto& [bx, by, d] : density) {
     if (d <= 0) continue;
     const double x0 = -half + bx * block * cell, y0 = -half + by * block * cell;
-    c.rect(x0, y0, x0 + block * cell, y0 + block * cell, heat(std::log10(d / bottom) / span), 1.0, "");
+    const int wx = block_span(static_cast<int>(bx), reach, block), wy = block_span(static_cast<int>(by), reach, block);
+    c.rect(x0, y0, x0 + wx * cell, y0 + wy * cell, heat(std::log10(d / bottom) / span), 1.0, "");
   }
   if (!outline.empty()) {
     std::vector<double> x, y;
-    for (const json& p : outline) x.push_back(u.length(p[0].get<double>())), y.push_back(u.length(p[1].get<double>()));
-    x.push_back(u.length(outline.front()[0].get<double>())), y.push_back(u.length(outline.front()[1].get<double>()));
+    for (const json& p : outline) x.push_back(u.length(p.at(0).get<double>())), y.push_back(u.length(p.at(1).get<double>()));
+    x.push_back(u.length(outline.at(0).at(0).get<double>())), y.push_back(u.length(outline.at(0).at(1).get<double>()));
     c.line(x, y, "#000000", "the mower's deck", false);
   }
   c.segments({0.0}, {0.0}, {std::max(2.0, 0.2 * half)}, {0.0}, "#0072B2", "its travel", 2.5);
@@ -519,14 +528,13 @@ std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u) 
   return o;
 }
 
-
 std::string hazard_html(const json& result, const DisplayUnits& u) {
-  const json& field = result.at("field");
+  const json& field_json = result.at("field");
   const json& distances = result.at("hazard_distance");
   const json& directions = result.at("directions");
   const json& planes_json = result.at("planes");
   const std::string title = result.at("title").get<std::string>();
-  const double person_energy = field.at("person_energy_J").get<double>(), acceptable_area = field.at("acceptable_area_m2").get<double>();
+  const double person_energy = field_json.at("person_energy_J").get<double>(), acceptable_area = field_json.at("acceptable_area_m2").get<double>();
   std::string o = page_head("Thrown-object hazard: " + title);
   o += fmt::format("<h1>Thrown-object hazard in the field: {}</h1>\n", escape(title));
   if (!result.at("valid").get<bool>())
@@ -544,9 +552,9 @@ std::string hazard_html(const json& result, const DisplayUnits& u) {
       "objects are drawn as often as the many light ones, each weighted by its share). Every figure is an "
       "estimate from that sample, with its 95 % interval; the figures are of the simulated model with its stated "
       "assumptions (below), not a measurement.{}</p>\n",
-      u.travel(field.at("ground_speed_m_s").get<double>()), u.travel_unit(), u.length(field.at("cut_width_m").get<double>()), u.length_unit(),
-      u.per_mowed(field.at("objects_met_per_km").get<double>()), u.us ? "mile" : "kilometre",
-      u.per_mowed(field.at("objects_that_can_reach_a_blade_per_km").get<double>()), u.per_mowed(objects.at("thrown_per_km").get<double>()),
+      u.travel(field_json.at("ground_speed_m_s").get<double>()), u.travel_unit(), u.length(field_json.at("cut_width_m").get<double>()), u.length_unit(),
+      u.per_mowed(field_json.at("objects_met_per_km").get<double>()), u.us ? "mile" : "kilometre",
+      u.per_mowed(field_json.at("objects_that_can_reach_a_blade_per_km").get<double>()), u.per_mowed(objects.at("thrown_per_km").get<double>()),
       objects.at("simulated").get<std::uint64_t>(),
       u.us ? " Figures in US customary units (ft, mph, ft-lb, per mile mowed); the assumptions quote the scenario's own inputs, and "
              "hazard.json and hazard.csv keep SI units."
@@ -559,7 +567,7 @@ std::string hazard_html(const json& result, const DisplayUnits& u) {
       "mower's line. The conservative distance uses the 95 % interval's upper end.</p>\n",
       u.figure(u.energy(person_energy)), u.energy_unit(), u.figure(u.area(acceptable_area)), u.area_unit_html(), u.area_unit_html(),
       u.area_unit_html());
-  const double range = field.at("range_m").get<double>();
+  const double range = field_json.at("range_m").get<double>();
   HtmlTable distance_table({"direction", "who", "estimate", "conservative"});
   for (const json& d : distances)
     distance_table.row({d.at("direction").get<std::string>(), escape(in_units(d.at("meaning").get<std::string>(), u)), distance_words(d, false, range, u),
@@ -576,9 +584,11 @@ std::string hazard_html(const json& result, const DisplayUnits& u) {
     std::vector<HtmlCell> cells = {fmt::format("{}{} {}{}", own ? "<strong>" : "", fmt::format(fmt::runtime(u.us ? "{:.4g}" : "{:.3g}"), u.area(area)),
                                                   u.area_unit_html(), own ? "</strong>" : "")};
     for (const json& d : distances) {
-      json at = d.at("at_other_acceptable_densities")[b];  // the setback's figures with the direction's deck, for distance_words
-      at["deck_extent_m"] = d.at("deck_extent_m");
-      cells.push_back(fmt::format("{} / {}", distance_words(at, false, range, u), distance_words(at, true, range, u)));
+      const json& at = d.at("at_other_acceptable_densities").at(b);
+      const double deck = d.at("deck_extent_m").get<double>();
+      cells.push_back(fmt::format("{} / {}",
+                                  distance_words(at.at("estimate_m").get<double>(), at.at("beyond_range").get<bool>(), deck, range, u),
+                                  distance_words(at.at("conservative_m").get<double>(), at.at("conservative_beyond_range").get<bool>(), deck, range, u)));
     }
     setbacks.row(cells);
   }
@@ -586,8 +596,8 @@ std::string hazard_html(const json& result, const DisplayUnits& u) {
 
   Chart curves("Probability of being struck by a hazardous object in one pass", fmt::format("distance from the mower ({})", u.length_unit()),
                "probability");
-  const double acceptable_p = -std::expm1(-field.at("presented_area_m2").get<double>() / acceptable_area);
-  const double acceptable_density = field.at("acceptable_density_per_m2").get<double>();
+  const double acceptable_p = -std::expm1(-field_json.at("presented_area_m2").get<double>() / acceptable_area);
+  const double acceptable_density = field_json.at("acceptable_density_per_m2").get<double>();
   double far = 5;
   for (const json& d : directions)
     for (const json& point : d.at("points")) {
@@ -629,11 +639,11 @@ std::string hazard_html(const json& result, const DisplayUnits& u) {
 
   if (!planes_json.empty()) {
     o += "<h2>Planes beside the path</h2>\n";
-    const long long passes = field.at("passes_per_season").get<long long>();
+    const long long passes = field_json.at("passes_per_season").get<long long>();
     HtmlTable planes({"plane", "where", "receptor", fmt::format("crossings per {} mowed", u.mowed()), fmt::format("hazardous per {} mowed (95 %)", u.mowed()),
                       "person standing there: P(struck) in one pass (95 %)",
                       fmt::format("over a season of {} pass{} (95 %): a person there each pass struck at least once; people struck ({:g} a pass)",
-                                  passes, passes == 1 ? "" : "es", field.at("people_per_pass").get<double>())});
+                                  passes, passes == 1 ? "" : "es", field_json.at("people_per_pass").get<double>())});
     for (const json& r : planes_json) {
       const bool person = r.contains("p_struck_per_pass");
       const Estimate hazardous = estimate_of(r.at("hazardous_per_km"));
@@ -653,16 +663,20 @@ std::string hazard_html(const json& result, const DisplayUnits& u) {
     o += planes.html();
     Chart heights("Crossings of each plane by height", fmt::format("height above the ground ({})", u.length_unit()),
                   fmt::format("crossings per {} mowed", u.mowed()));
+    // (The bands as the file gives them: its band's width, and as many as it has.)
+    double band = 0;
+    std::size_t bands = 0;
     for (std::size_t i = 0; i < planes_json.size(); ++i) {
+      const json& by_height = planes_json[i].at("crossings_per_km_by_height");
+      band = by_height.at("band_m").get<double>(), bands = by_height.at("per_km").size();
       std::vector<double> edges, h;
-      for (int b = 0; b <= field::kHeightBands; ++b) edges.push_back(u.length(b * field::kHeightBand));
-      for (const json& v : planes_json[i].at("crossings_per_km_by_height").at("per_km")) h.push_back(u.per_mowed(v.get<double>()));
+      for (std::size_t b = 0; b <= bands; ++b) edges.push_back(u.length(static_cast<double>(b) * band));
+      for (const json& v : by_height.at("per_km")) h.push_back(u.per_mowed(v.get<double>()));
       heights.bars(edges, h, palette(i), planes_json[i].at("name").get<std::string>());
     }
     heights.caption(fmt::format("Every crossing, hazardous or not, in {:.3g} {} bands (the last: {:.3g} {} and above). A vehicle's hazard is "
                                 "the windshield band's; a person's, the band up to their height.",
-                                u.length(field::kHeightBand), u.length_unit(), u.length(field::kHeightBands * field::kHeightBand - field::kHeightBand),
-                                u.length_unit()));
+                                u.length(band), u.length_unit(), u.length(static_cast<double>(bands) * band - band), u.length_unit()));
     o += "<figure>" + heights.svg() + "</figure>\n";
   }
 
@@ -690,7 +704,7 @@ std::string hazard_html(const json& result, const DisplayUnits& u) {
   for (int i = 0; i < field::kObjectFates; ++i) kinds_header.push_back(field::object_fate_name(static_cast<field::ObjectFate>(i)));
   for (const char* h : {"at rest under the deck", "left the square", "a knife rode over", "pushed along by an arm"}) kinds_header.push_back(h);
   HtmlTable kinds(kinds_header);
-  for (const json& k : field.at("objects")) {
+  for (const json& k : field_json.at("objects")) {
     const json& t = k.at("simulated");
     std::vector<HtmlCell> cells = {escape(k.at("name").get<std::string>()), fmt::format("{:.0f}", u.per_mowed(k.at("met_per_km").get<double>())),
                                       fmt::format("{:.3g}", k.at("share_that_can_reach_a_blade").get<double>()),
@@ -883,6 +897,7 @@ std::string comparison_hazard_html(const json& designs, const DisplayUnits& u) {
 
 std::string hazard_comparison_html(const json& c, const DisplayUnits& u) {
   const json& designs = c.at("designs");
+  if (designs.empty()) throw std::invalid_argument("compare.json: no design to draw");
   std::string o = page_head("Field designs compared");
   o += "<h1>Field designs compared: thrown-object hazard</h1>\n";
   o += fmt::format(
@@ -901,10 +916,10 @@ std::string hazard_comparison_html(const json& c, const DisplayUnits& u) {
     const std::string name = names[j].at("name").get<std::string>();
     std::vector<HtmlCell> cells = {escape(in_units(name, u)) + (u.us ? " (per mile)" : "")};
     for (std::size_t d = 0; d < designs.size(); ++d) {
-      const Estimate f = estimate_of(designs[d].at("figures")[j].at("per_km"));
+      const Estimate f = estimate_of(designs[d].at("figures").at(j).at("per_km"));
       std::string cell = fmt::format("{:.4g} ({:.4g}-{:.4g})", u.per_mowed(f.value), u.per_mowed(f.low), u.per_mowed(f.high));
       if (d > 0) {
-        const json& x = designs[d].at("minus_first")[j];
+        const json& x = designs[d].at("minus_first").at(j);
         const Estimate diff = estimate_of(x.at("per_km"));
         cell += fmt::format("<br><small>minus the reference: {:+.4g} ({:+.4g} to {:+.4g}); {} objects differ</small>", u.per_mowed(diff.value),
                             u.per_mowed(diff.low), u.per_mowed(diff.high), x.at("objects_differing").get<std::uint64_t>());

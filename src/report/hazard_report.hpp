@@ -1,8 +1,8 @@
 #pragma once
 // What `j232 hazard` writes (docs/model.md §9): hazard.json (every figure with its
-// interval, the inputs and the provenance), hazard.csv (the curves, a row a point) and
-// hazard.html (the plan view of where objects land, the curves, the hazard distances, the
-// planes, the assumptions with their sources).
+// interval, the plan views as drawn, the inputs and the provenance), hazard.csv (the curves,
+// a row a point) and hazard.html (the plan views of where objects land, the curves, the
+// hazard distances, the planes, the assumptions with their sources), drawn from hazard.json.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -29,19 +29,19 @@ std::vector<Assumption> hazard_assumptions(const scenario::Scenario& s);
 nlohmann::ordered_json hazard_json(const field::FieldSimulator& sim, const field::HazardRun& run, const field::HazardSummary& sum,
                                    const HazardProvenance& p);
 std::string hazard_csv(const field::HazardSummary& sum);
-// (In the units `u` names: SI by default.)
-// The page is drawn from hazard.json alone (its plan views included), so a saved result can be
-// drawn again.
+// The page, from hazard.json alone (`result`: hazard_json's, as saved), in the units `u`
+// names (SI by default). Throws nlohmann::json's errors on a file without what it draws (one
+// written before its plan views were kept).
 std::string hazard_html(const nlohmann::ordered_json& result, const DisplayUnits& u = {});
 // The terminal's summary: the hazard distances and the planes, with their intervals.
 std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u = {});
 
 // Field designs compared (j232 compare of field scenarios): compare.json, .csv, .html and
-// the terminal's table. The page is drawn from compare.json alone (what it shows is all
-// there), so a saved comparison can be drawn again.
+// the terminal's table. The page is drawn from compare.json alone (`c`: hazard_comparison_json's,
+// as saved), so a saved comparison draws the same page.
 nlohmann::ordered_json hazard_comparison_json(const field::FieldComparison& c);
 std::string hazard_comparison_csv(const field::FieldComparison& c);
-std::string hazard_comparison_html(const nlohmann::ordered_json& compare_json, const DisplayUnits& u = {});
+std::string hazard_comparison_html(const nlohmann::ordered_json& c, const DisplayUnits& u = {});
 std::string hazard_comparison_text(const field::FieldComparison& c, const DisplayUnits& u = {});
 
 }  // namespace j232::report

@@ -421,6 +421,7 @@ std::string rounded_text(Json j, int indent) {
 
 std::string json_text(const nlohmann::json& j, int indent) { return rounded_text(j, indent); }
 std::string json_text(const nlohmann::ordered_json& j, int indent) { return rounded_text(j, indent); }
+nlohmann::ordered_json as_saved(const nlohmann::ordered_json& j) { return nlohmann::ordered_json::parse(json_text(j)); }
 
 void require_finite(const json& j, const std::string& where) {
   if (j.is_number_float() && !std::isfinite(j.get<double>()))

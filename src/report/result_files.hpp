@@ -41,6 +41,10 @@ const char* verdict_word(const assess::Summary& sum);
 // written again is the same text.
 std::string json_text(const nlohmann::json& j, int indent = 2);
 std::string json_text(const nlohmann::ordered_json& j, int indent = 2);
+// The JSON as a reader of its saved file gets it (json_text's numbers read back): a page drawn
+// from it is the saved file's page, and a number that is not finite (written as null) stops
+// the page being drawn instead of reaching it.
+nlohmann::ordered_json as_saved(const nlohmann::ordered_json& j);
 
 // Throws std::logic_error naming the first non-finite number in `j` (a bug: every
 // number a result holds must be finite).
