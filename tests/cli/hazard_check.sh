@@ -26,7 +26,7 @@ a, b = (json.load(open(f"{out}/{d}/hazard.json")) for d in ("one", "two"))
 for j in (a, b):
     j.pop("provenance")
 assert a == b, "hazard.json differs between 1 and 2 threads"
-for key in ("valid", "field", "objects", "throw", "hazard_distance", "directions", "planes", "assumptions", "scenario"):
+for key in ("valid", "field", "objects", "throw", "hazard_distance", "directions", "planes", "plan_views", "assumptions", "scenario"):
     assert key in a, key
 assert a["objects"]["simulated"] == int(sys.argv[2])
 assert isinstance(a["model_version"], int) and a["physics_model"], "hazard.json names the physics that made it"
