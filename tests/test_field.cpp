@@ -805,8 +805,15 @@ TEST_CASE("field: --units us shows the same figures in ft, mph, ft-lb and per mi
   const field::FieldSimulator sim(s);
   const auto run = field::run_hazard(sim, 2);
   const auto sum = field::summarise(sim, run);
-  const std::string in_si = report::hazard_text(sum), in_us = report::hazard_text(sum, us);
-  CHECK(in_si == report::hazard_text(sum, si));
+  const double range = run.strata.front().layout.range;
+  const std::string in_si = report::hazard_text(sum, range), in_us = report::hazard_text(sum, range, us);
+  CHECK(in_si == report::hazard_text(sum, range, si));
+  // A distance beyond the curves names the field's range, as the page does, not the last
+  // curve point (a cell short of it).
+  auto beyond = sum;
+  beyond.directions.front().beyond_range = true;
+  CHECK_THAT(report::hazard_text(beyond, range), Catch::Contains(fmt::format("beyond {:.0f} m (the range)", range)));
+  CHECK(beyond.directions.front().distance.back() < range);
   CHECK_THAT(in_si, Catch::Contains("per km mowed") && Catch::Contains("left 2.5 m"));
   // Each figure converted, not relabelled: the plane's rate, the cut, the speed, the plane's place.
   const auto& path = sum.planes.back();

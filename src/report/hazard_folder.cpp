@@ -40,7 +40,7 @@ HazardOutcome hazard_to_folder(const std::string& scenario_file, const HazardOve
   write_atomically(folder->staged("hazard.json"), json_text(outcome.result) + "\n");
   folder->commit();
   outcome.valid = sum.valid;
-  outcome.summary_text = fmt::format("{}: thrown-object hazard in the field\n{}", s.title, hazard_text(sum, o.units));
+  outcome.summary_text = fmt::format("{}: thrown-object hazard in the field\n{}", s.title, hazard_text(sum, run.strata.front().layout.range, o.units));
   // What the reader noticed in the file (a guard named as a flap without `kind`, a blade below
   // the skirt's foot) and cut-offs near the limit, as `j232 run` lists among its warnings
   // (hazard.json's `warnings`, hazard.html's list).

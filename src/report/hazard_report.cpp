@@ -505,7 +505,7 @@ std::string hazard_csv(const field::HazardSummary& sum) {
   return o;
 }
 
-std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u) {
+std::string hazard_text(const field::HazardSummary& sum, double range, const DisplayUnits& u) {
   std::string o;
   if (!sum.valid) o += fmt::format("  NO HAZARD ASSESSMENT: {}\n", sum.invalid_reason);
   o += fmt::format("  {:.0f} objects met per {} mowed ({:.2f} {} cut), {:.0f} thrown per {}; speed off the last blade strike {:.0f} {} "
@@ -515,8 +515,8 @@ std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u) 
                    u.speed(sum.exit_speed_mean), u.speed_unit());
   o += "  Hazard distance (hazardous impacts fall below the acceptable density), estimate / conservative (95 % upper bound):\n";
   for (const auto& d : sum.directions)
-    o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d, false, d.distance.empty() ? 0 : d.distance.back(), u),
-                     distance_words(d, true, d.distance.empty() ? 0 : d.distance.back(), u));
+    o += fmt::format("    {:<6} {:>28} / {}\n", d.direction, distance_words(d, false, range, u),
+                     distance_words(d, true, range, u));
   for (const auto& r : sum.planes) {
     o += fmt::format("  Plane '{}' ({} {} {}, {}): {:.3g} hazardous per {} mowed (95 %: {:.3g}-{:.3g})\n", r.plane.name,
                      side_name(r.plane.side), u.figure(u.length(r.plane.distance)), u.length_unit(), receptor_name(r.plane.receptor),

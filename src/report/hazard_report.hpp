@@ -33,8 +33,9 @@ std::string hazard_csv(const field::HazardSummary& sum);
 // names (SI by default). Throws nlohmann::json's errors on a file without what it draws (one
 // written before its plan views were kept).
 std::string hazard_html(const nlohmann::ordered_json& result, const DisplayUnits& u = {});
-// The terminal's summary: the hazard distances and the planes, with their intervals.
-std::string hazard_text(const field::HazardSummary& sum, const DisplayUnits& u = {});
+// The terminal's summary: the hazard distances and the planes, with their intervals (`range`:
+// the field's, as hazard.json's range_m, which a distance past the curves is said to be beyond).
+std::string hazard_text(const field::HazardSummary& sum, double range, const DisplayUnits& u = {});
 
 // Field designs compared (j232 compare of field scenarios): compare.json, .csv, .html and
 // the terminal's table. The page is drawn from compare.json alone (`c`: hazard_comparison_json's,

@@ -17,7 +17,8 @@ struct Box {
   Vec3 lo, hi;
   // Whether the two boxes share a point (touching counts), exactly in double precision.
   bool meets(const Vec3& qlo, const Vec3& qhi) const {
-    return !((lo.array() > qhi.array()).any() || (hi.array() < qlo.array()).any());
+    // (Written out: Eigen's array comparisons with any() cost the broad phase a third of its time.)
+    return !(lo.x() > qhi.x() || lo.y() > qhi.y() || lo.z() > qhi.z() || hi.x() < qlo.x() || hi.y() < qlo.y() || hi.z() < qlo.z());
   }
 };
 

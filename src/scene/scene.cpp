@@ -160,6 +160,7 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     m.boxes.push_back({e[0].cwiseMin(b).cwiseMin(c), e[0].cwiseMax(b).cwiseMax(c)});
   }
   m.box_tree = std::make_unique<BoxTree>(m.boxes);
+  faces_ = {m.triangles.data(), m.normals.data(), m.grams.data(), m.balls.data()};
 #ifdef J232_HAVE_EMBREE
   if (engine == Engine::Embree) {
     m.embree = std::make_unique<EmbreeIndex>(m.triangles);
@@ -199,10 +200,6 @@ std::size_t Scene::faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* o
   return collect.count;
 }
 
-const std::array<Vec3, 3>& Scene::face_edges(std::uint32_t f) const { return impl_->triangles[f]; }
-const Vec3& Scene::face_normal(std::uint32_t f) const { return impl_->normals[f]; }
-const Scene::Gram& Scene::face_gram(std::uint32_t f) const { return impl_->grams[f]; }
-const Scene::Ball& Scene::face_ball(std::uint32_t f) const { return impl_->balls[f]; }
 
 const Soup& Scene::soup() const { return impl_->soup; }
 std::size_t Scene::face_count() const { return impl_->soup.triangles.size(); }

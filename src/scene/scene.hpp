@@ -65,8 +65,9 @@ class Scene {
   // again over a smaller box). Allocation-free.
   std::size_t faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* out, std::size_t capacity) const;
   // Face f as its first corner and two edges from it, and its unit normal (either side).
-  const std::array<Vec3, 3>& face_edges(std::uint32_t f) const;
-  const Vec3& face_normal(std::uint32_t f) const;
+  // (These four are inline: the contact search reads them millions of times a second.)
+  const std::array<Vec3, 3>& face_edges(std::uint32_t f) const { return faces_.edges[f]; }
+  const Vec3& face_normal(std::uint32_t f) const { return faces_.normals[f]; }
   // Face f's constants for nearest-point tests (flight::segment_triangle), worked out once
   // with the scene instead of at every test: the unnormalised normal e1 x e2 and its squared
   // length, and the edges' Gram matrix [d00 d01; d01 d11] with its determinant.
@@ -83,13 +84,13 @@ class Scene {
       return g;
     }
   };
-  const Gram& face_gram(std::uint32_t f) const;
+  const Gram& face_gram(std::uint32_t f) const { return faces_.grams[f]; }
   // A sphere holding face f (its centroid, and the farthest corner's distance from it).
   struct Ball {
     Vec3 centre;
     double radius;
   };
-  const Ball& face_ball(std::uint32_t f) const;
+  const Ball& face_ball(std::uint32_t f) const { return faces_.balls[f]; }
 
   const Soup& soup() const;
   std::size_t face_count() const;
@@ -98,6 +99,13 @@ class Scene {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  // The per-face arrays Impl keeps (they move with it).
+  struct FaceArrays {
+    const std::array<Vec3, 3>* edges = nullptr;
+    const Vec3* normals = nullptr;
+    const Gram* grams = nullptr;
+    const Ball* balls = nullptr;
+  } faces_;
 };
 
 // The labelled scene for a mesh viewer, as the text of a file named `path`: .ply (face
