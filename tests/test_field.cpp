@@ -810,10 +810,15 @@ TEST_CASE("field: --units us shows the same figures in ft, mph, ft-lb and per mi
   CHECK(in_si == report::hazard_text(sum, range, si));
   // A distance beyond the curves names the field's range, as the page does, not the last
   // curve point (a cell short of it).
+  // (Ahead and behind, the curves' last point is a whole cell short: 99 m of 100.)
   auto beyond = sum;
-  beyond.directions.front().beyond_range = true;
-  CHECK_THAT(report::hazard_text(beyond, range), Catch::Contains(fmt::format("beyond {:.0f} m (the range)", range)));
-  CHECK(beyond.directions.front().distance.back() < range);
+  for (auto& d : beyond.directions) d.beyond_range = true;
+  const std::string beyond_text = report::hazard_text(beyond, range), said = fmt::format("beyond {:.0f} m (the range)", range);
+  std::size_t times = 0;
+  for (std::size_t at = beyond_text.find(said); at != std::string::npos; at = beyond_text.find(said, at + 1)) ++times;
+  CHECK(times == beyond.directions.size());
+  CHECK(std::any_of(beyond.directions.begin(), beyond.directions.end(),
+                    [&](const auto& d) { return fmt::format("{:.0f}", d.distance.back()) != fmt::format("{:.0f}", range); }));
   CHECK_THAT(in_si, Catch::Contains("per km mowed") && Catch::Contains("left 2.5 m"));
   // Each figure converted, not relabelled: the plane's rate, the cut, the speed, the plane's place.
   const auto& path = sum.planes.back();
