@@ -17,5 +17,6 @@ Runner add_uq_command(CLI::App& app);
 Runner add_calibrate_command(CLI::App& app);
 Runner add_trace_command(CLI::App& app);
 Runner add_hazard_command(CLI::App& app);
+Runner add_redraw_command(CLI::App& app);
 
 }  // namespace j232::cli

@@ -33,11 +33,12 @@ int run_command_line(int argc, char** argv) {
   const Runner calibrate = add_calibrate_command(app);
   const Runner trace = add_trace_command(app);
   const Runner hazard = add_hazard_command(app);
+  const Runner redraw = add_redraw_command(app);
   // An unknown first word is named as such (CLI11 would say only that a subcommand is required).
   if (argc > 1 && argv[1][0] != '-' && app.get_subcommands([&](const CLI::App* c) { return c->get_name() == argv[1]; }).empty()) {
     if (reporter)
       fmt::print(stderr, "j232: error: unknown command \"{}\"; expected one of impact, run, scene, batch, sweep, compare, uq, calibrate, "
-                         "trace, hazard (j232 --help)\n",
+                         "trace, hazard, redraw (j232 --help)\n",
                  terminal_safe(argv[1]));
     return kBadInput;
   }
@@ -58,6 +59,7 @@ int run_command_line(int argc, char** argv) {
     if (app.got_subcommand("calibrate")) return calibrate();
     if (app.got_subcommand("trace")) return trace();
     if (app.got_subcommand("hazard")) return hazard();
+    if (app.got_subcommand("redraw")) return redraw();
   } catch (const j232::scenario::InputError& e) {
     if (reporter) fmt::print(stderr, "j232: error: {}\n", terminal_safe(e.what()));
     return kBadInput;
