@@ -812,7 +812,7 @@ TEST_CASE("field: --units us shows the same figures in ft, mph, ft-lb and per mi
   // curve point (a cell short of it).
   // (Ahead and behind, the curves' last point is a whole cell short: 99 m of 100.)
   auto beyond = sum;
-  for (auto& d : beyond.directions) d.beyond_range = true;
+  for (auto& d : beyond.directions) d.beyond_range = true, d.upper_beyond_range = false;
   const std::string beyond_text = report::hazard_text(beyond, range), said = fmt::format("beyond {:.0f} m (the range)", range);
   std::size_t times = 0;
   for (std::size_t at = beyond_text.find(said); at != std::string::npos; at = beyond_text.find(said, at + 1)) ++times;

@@ -78,7 +78,11 @@ int redraw(const RedrawOptions& o) {
     throw InputError::file_problem(o.file, std::nullopt,
                                    fmt::format("lacks what {} draws, as this version of j232 writes it ({})", k.page, e.what()));
   }
-  const std::string out = o.out.empty() ? (std::filesystem::path(o.file).parent_path() / k.page).string() : o.out;
+  // Beside the file by default: the page itself in SI, a page of its own in US units (the
+  // SI page stays, as the JSON and CSV beside it are SI).
+  std::string page_name = k.page;
+  if (units.us) page_name.insert(page_name.size() - 5, "-us");
+  const std::string out = o.out.empty() ? (std::filesystem::path(o.file).parent_path() / page_name).string() : o.out;
   report::write_atomically(out, page);
   fmt::print("Wrote {} from {}\n", terminal_safe(out), terminal_safe(o.file));
   return kOk;
@@ -94,7 +98,8 @@ Runner add_redraw_command(CLI::App& app) {
   cmd->add_option("--units", o->units,
                   "Units of a field's page (hazard.json, a field's compare.json): si (m, m/s, J, per km) or us (ft, mph, ft-lb, per mile)")
       ->capture_default_str();
-  cmd->add_option("--out", o->out, "The page to write (default: hazard.html, compare.html or uq.html beside the file)");
+  cmd->add_option("--out", o->out,
+                  "The page to write (default: hazard.html, compare.html or uq.html beside the file; hazard-us.html or compare-us.html in US units)");
   return [o] { return redraw(*o); };
 }
 

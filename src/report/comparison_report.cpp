@@ -157,19 +157,19 @@ std::string comparison_html(const json& c) {
 }
 
 std::string comparison_body_html(const json& c, const std::string& prefix) {
-  const auto& designs = c["designs"];
+  const auto& designs = c.at("designs");
   auto number = [&](const std::string& key, const json& value, const char* format, double scale = 1.0) {
     return report::number(prefix + key, value, format, scale);
   };
   std::string o = "<ol>\n";
   for (const auto& d : designs)
-    o += fmt::format("<li>{} ({})</li>\n", escape(d["title"].get<std::string>()), escape(d["scenario"].get<std::string>()));
+    o += fmt::format("<li>{} ({})</li>\n", escape(d.at("title").get<std::string>()), escape(d.at("scenario").get<std::string>()));
   o += fmt::format(
       "</ol>\n<p>{} replicates of the whole test each, seed {}, with common random numbers: replicate r of "
       "every design drops its nails from the same random feed, so the differences below are judged replicate "
       "by replicate and their intervals are far tighter than those of independent runs (shown for "
       "comparison).</p>\n",
-      number("replicates", c["replicates"], "{}"), number("seed", c["seed"], "{}"));
+      number("replicates", c.at("replicates"), "{}"), number("seed", c.at("seed"), "{}"));
   // Each design's own verdict first, as its run would give it.
   o += "<h2>Each design's verdict</h2>\n";
   HtmlTable verdicts("numbers", {"design", "verdict", "P(pass one test)", "from every nail", "decided by", "mean share", "limit", "margin"});
@@ -177,27 +177,27 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
     const auto& x = designs[d];
     const std::string key = fmt::format("designs.{}.", d);
     if (!x.contains("verdict")) continue;
-    const std::string verdict = x["verdict"].get<std::string>();
+    const std::string verdict = x.at("verdict").get<std::string>();
     if (verdict == "invalid") {
       std::string why;
-      for (const auto& w : x["invalid_because"]) why += (why.empty() ? "" : "; ") + w.get<std::string>();
+      for (const auto& w : x.at("invalid_because")) why += (why.empty() ? "" : "; ") + w.get<std::string>();
       verdicts.row({fmt::format("{}", d + 1), "no verdict (invalid)", HtmlCell::spanning(6, escape(why))});
       continue;
     }
-    const auto& p = x["pass_probability"];
-    const auto& e = x["pass_probability_exact"];
-    const auto& dc = x["deciding_criterion"];
-    verdicts.row({fmt::format("{}", d + 1), number(key + "verdict", x["verdict"], "{}") + (x["verdict_settled"].get<bool>() ? "" : " (not settled)"),
-                  fmt::format("{} ({} to {})", number(key + "pass_probability.estimate", p["estimate"], "{:.3f}"),
-                              number(key + "pass_probability.low", p["low"], "{:.3f}"), number(key + "pass_probability.high", p["high"], "{:.3f}")),
+    const auto& p = x.at("pass_probability");
+    const auto& e = x.at("pass_probability_exact");
+    const auto& dc = x.at("deciding_criterion");
+    verdicts.row({fmt::format("{}", d + 1), number(key + "verdict", x.at("verdict"), "{}") + (x.at("verdict_settled").get<bool>() ? "" : " (not settled)"),
+                  fmt::format("{} ({} to {})", number(key + "pass_probability.estimate", p.at("estimate"), "{:.3f}"),
+                              number(key + "pass_probability.low", p.at("low"), "{:.3f}"), number(key + "pass_probability.high", p.at("high"), "{:.3f}")),
                   e.value("computed", false)
-                      ? fmt::format("{} ({} to {})", number(key + "pass_probability_exact.estimate", e["estimate"], "{:.3f}"),
-                                    number(key + "pass_probability_exact.low", e["low"], "{:.3f}"),
-                                    number(key + "pass_probability_exact.high", e["high"], "{:.3f}"))
+                      ? fmt::format("{} ({} to {})", number(key + "pass_probability_exact.estimate", e.at("estimate"), "{:.3f}"),
+                                    number(key + "pass_probability_exact.low", e.at("low"), "{:.3f}"),
+                                    number(key + "pass_probability_exact.high", e.at("high"), "{:.3f}"))
                       : std::string("&mdash;"),
-                  escape(dc["name"].get<std::string>()), number(key + "deciding_criterion.mean_share", dc["mean_share"], "{:.2f}", 100) + " %",
-                  number(key + "deciding_criterion.limit", dc["limit"], "{:.1f}", 100) + " %",
-                  number(key + "deciding_criterion.margin", dc["margin"], "{:+.2f}", 100) + " points"});
+                  escape(dc.at("name").get<std::string>()), number(key + "deciding_criterion.mean_share", dc.at("mean_share"), "{:.2f}", 100) + " %",
+                  number(key + "deciding_criterion.limit", dc.at("limit"), "{:.1f}", 100) + " %",
+                  number(key + "deciding_criterion.margin", dc.at("margin"), "{:+.2f}", 100) + " points"});
   }
   o += verdicts.html();
   // P(pass)
@@ -210,34 +210,34 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
   HtmlTable pass("numbers", header({"design", "P(pass)", "95 % interval"}));
   for (std::size_t d = 0; d < designs.size(); ++d) {
     const std::string key = fmt::format("designs.{}.pass_probability", d);
-    const auto& p = designs[d]["pass_probability"];
-    std::vector<HtmlCell> cells = {fmt::format("{}", d + 1), number(key + ".estimate", p["estimate"], "{:.3f}"),
-                                   fmt::format("{} to {}", number(key + ".low", p["low"], "{:.3f}"), number(key + ".high", p["high"], "{:.3f}"))};
+    const auto& p = designs[d].at("pass_probability");
+    std::vector<HtmlCell> cells = {fmt::format("{}", d + 1), number(key + ".estimate", p.at("estimate"), "{:.3f}"),
+                                   fmt::format("{} to {}", number(key + ".low", p.at("low"), "{:.3f}"), number(key + ".high", p.at("high"), "{:.3f}"))};
     if (d == 0) {
       cells.insert(cells.end(), {"&mdash;", "", ""});
     } else {
       const std::string dk = fmt::format("differences.{}", d - 1);
-      const auto& v = c["differences"][d - 1];
-      cells.insert(cells.end(), {number(dk + ".pass_probability.mean", v["pass_probability"]["mean"], "{:+.3f}"),
-                                 fmt::format("{} to {}", number(dk + ".pass_probability.low", v["pass_probability"]["low"], "{:+.3f}"),
-                                             number(dk + ".pass_probability.high", v["pass_probability"]["high"], "{:+.3f}")),
-                                 number(dk + ".independent_runs_pass_half_width", v["independent_runs_pass_half_width"], "{:.3f}")});
+      const auto& v = c.at("differences")[d - 1];
+      cells.insert(cells.end(), {number(dk + ".pass_probability.mean", v.at("pass_probability").at("mean"), "{:+.3f}"),
+                                 fmt::format("{} to {}", number(dk + ".pass_probability.low", v.at("pass_probability").at("low"), "{:+.3f}"),
+                                             number(dk + ".pass_probability.high", v.at("pass_probability").at("high"), "{:+.3f}")),
+                                 number(dk + ".independent_runs_pass_half_width", v.at("independent_runs_pass_half_width"), "{:.3f}")});
     }
     pass.row(cells);
   }
   o += pass.html();
   // How many replicates differ at all: a zero-wide interval below means none did.
   for (std::size_t d = 1; d < designs.size(); ++d) {
-    const auto& v = c["differences"][d - 1];
+    const auto& v = c.at("differences")[d - 1];
     if (!v.contains("replicates_differing")) continue;
     const std::string dk = fmt::format("differences.{}", d - 1);
-    o += v["replicates_differing"].get<std::uint64_t>() == 0
+    o += v.at("replicates_differing").get<std::uint64_t>() == 0
              ? fmt::format("<p>Design {}: no replicate differs from design 1 in any share or its verdict, so its shares' paired "
                            "intervals are zero-wide; the share of replicates that could differ is at most {} (95 %). (P(pass)'s "
                            "difference has Newcombe's paired interval, which says how large a difference the run could have missed.)</p>\n",
-                           d + 1, number(dk + ".differing_at_most", v["differing_at_most"], "{:.2g}"))
+                           d + 1, number(dk + ".differing_at_most", v.at("differing_at_most"), "{:.2g}"))
              : fmt::format("<p>Design {}: {} of {} replicates differ from design 1 in a share or the verdict.</p>\n", d + 1,
-                           number(dk + ".replicates_differing", v["replicates_differing"], "{}"), c["replicates"].get<std::uint64_t>());
+                           number(dk + ".replicates_differing", v.at("replicates_differing"), "{}"), c.at("replicates").get<std::uint64_t>());
   }
   // Each criterion: a table row per design and a chart with the limit.
   for (int k = 0; k < 4; ++k) {
@@ -248,27 +248,27 @@ std::string comparison_body_html(const json& c, const std::string& prefix) {
     std::vector<double> x, y, lo, hi;
     for (std::size_t d = 0; d < designs.size(); ++d) {
       const std::string key = fmt::format("designs.{}.criteria.{}.share", d, k);
-      const auto& s = designs[d]["criteria"][k]["share"];
+      const auto& s = designs[d].at("criteria")[k].at("share");
       x.push_back(static_cast<double>(d + 1));
-      y.push_back(100 * s["mean"].get<double>());
-      lo.push_back(100 * s["low"].get<double>());
-      hi.push_back(100 * s["high"].get<double>());
-      std::vector<HtmlCell> cells = {fmt::format("{}", d + 1), number(key + ".mean", s["mean"], "{:.3f}", 100) + " %",
-                                     fmt::format("{} to {} %", number(key + ".low", s["low"], "{:.3f}", 100), number(key + ".high", s["high"], "{:.3f}", 100))};
+      y.push_back(100 * s.at("mean").get<double>());
+      lo.push_back(100 * s.at("low").get<double>());
+      hi.push_back(100 * s.at("high").get<double>());
+      std::vector<HtmlCell> cells = {fmt::format("{}", d + 1), number(key + ".mean", s.at("mean"), "{:.3f}", 100) + " %",
+                                     fmt::format("{} to {} %", number(key + ".low", s.at("low"), "{:.3f}", 100), number(key + ".high", s.at("high"), "{:.3f}", 100))};
       if (d == 0) {
         cells.insert(cells.end(), {"&mdash;", "", ""});
       } else {
         const std::string dk = fmt::format("differences.{}.criteria.{}", d - 1, k);
-        const auto& v = c["differences"][d - 1]["criteria"][k];
-        cells.insert(cells.end(), {number(dk + ".difference.mean", v["difference"]["mean"], "{:+.3f}", 100) + " %",
-                                   fmt::format("{} to {} %", number(dk + ".difference.low", v["difference"]["low"], "{:+.3f}", 100),
-                                               number(dk + ".difference.high", v["difference"]["high"], "{:+.3f}", 100)),
-                                   number(dk + ".independent_runs_half_width", v["independent_runs_half_width"], "{:.3f}", 100) + " %"});
+        const auto& v = c.at("differences")[d - 1].at("criteria")[k];
+        cells.insert(cells.end(), {number(dk + ".difference.mean", v.at("difference").at("mean"), "{:+.3f}", 100) + " %",
+                                   fmt::format("{} to {} %", number(dk + ".difference.low", v.at("difference").at("low"), "{:+.3f}", 100),
+                                               number(dk + ".difference.high", v.at("difference").at("high"), "{:+.3f}", 100)),
+                                   number(dk + ".independent_runs_half_width", v.at("independent_runs_half_width"), "{:.3f}", 100) + " %"});
       }
       shares.row(cells);
     }
     o += shares.html();
-    const double limit = 100 * designs[0]["criteria"][k]["limit"].get<double>();
+    const double limit = 100 * designs[0].at("criteria")[k].at("limit").get<double>();
     chart.x_range(0.5, static_cast<double>(designs.size()) + 0.5);
     std::vector<double> ticks;
     for (std::size_t d = 0; d < designs.size(); ++d) ticks.push_back(static_cast<double>(d + 1));

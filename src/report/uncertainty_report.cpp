@@ -215,28 +215,28 @@ namespace {
 // deck acceptable (a field).
 std::string robust_verdict_html(const json& j, bool field) {
   std::string o;
-  const double passing = j["share_of_draws_passing"].get<double>();
+  const double passing = j.at("share_of_draws_passing").get<double>();
   const char* verdict_class = passing == 1.0 ? "pass" : passing == 0.0 ? "fail" : "invalid";
   if (field)
     o += fmt::format(
         "<p class=\"verdict {}\"><strong>Robust verdict: {}</strong> &mdash; hazardous impacts (a person's) stay below one per {} m&sup2; "
         "in every cell of the ground tallied beyond the deck in {} % of {} assessments drawn over the inputs' ranges.</p>\n",
-        verdict_class, escape(j["robust_verdict"].get<std::string>()), number("acceptable_area_m2", j["acceptable_area_m2"], "{:.4g}"),
-        number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
+        verdict_class, escape(j.at("robust_verdict").get<std::string>()), number("acceptable_area_m2", j.at("acceptable_area_m2"), "{:.4g}"),
+        number("share_of_draws_passing", j.at("share_of_draws_passing"), "{:.1f}", 100), number("assessments", j.at("assessments"), "{}"));
   else
     o += fmt::format(
         "<p class=\"verdict {}\"><strong>Robust verdict: the mower {}</strong> &mdash; it passes (P(pass) at least {}) in "
         "{} % of {} assessments drawn over the inputs' ranges.</p>\n",
-        verdict_class, escape(j["robust_verdict"].get<std::string>()), number("required_pass_probability", j["required_pass_probability"], "{:g}"),
-        number("share_of_draws_passing", j["share_of_draws_passing"], "{:.1f}", 100), number("assessments", j["assessments"], "{}"));
+        verdict_class, escape(j.at("robust_verdict").get<std::string>()), number("required_pass_probability", j.at("required_pass_probability"), "{:g}"),
+        number("share_of_draws_passing", j.at("share_of_draws_passing"), "{:.1f}", 100), number("assessments", j.at("assessments"), "{}"));
   return o;
 }
 
 // The study's warnings: how many, the first few, the rest folded.
 std::string warnings_html(const json& j) {
   std::string o;
-  if (j.contains("warnings") && !j["warnings"].empty()) {
-    const auto& w = j["warnings"];
+  if (j.contains("warnings") && !j.at("warnings").empty()) {
+    const auto& w = j.at("warnings");
     constexpr std::size_t kShown = 3;
     o += fmt::format("<section class=\"warnings\"><p><strong>Before trusting every draw, note ({} warning{}):</strong></p>\n<ul class=\"warnings\">\n",
                      w.size(), w.size() == 1 ? "" : "s");
@@ -258,38 +258,38 @@ std::string inputs_html(const json& j, bool field) {
   o += fmt::format(
       "<p>{} assessments of {} each (Saltelli scheme, {} base draws{}; common random numbers, seed {}). "
       "Inputs{}:</p>\n",
-      number("assessments", j["assessments"], "{}"),
-      field ? number("objects_per_assessment", j["objects_per_assessment"], "{}") + " objects"
-            : number("replicates_per_assessment", j["replicates_per_assessment"], "{}") + " replicates",
-      number("base_draws", j["base_draws"], "{}"),
-      j["base_draws"].get<std::size_t>() < j["base_draws_default"].get<std::size_t>()
-          ? fmt::format(", fewer than the default {}, as the scenario asks", j["base_draws_default"].get<std::size_t>())
+      number("assessments", j.at("assessments"), "{}"),
+      field ? number("objects_per_assessment", j.at("objects_per_assessment"), "{}") + " objects"
+            : number("replicates_per_assessment", j.at("replicates_per_assessment"), "{}") + " replicates",
+      number("base_draws", j.at("base_draws"), "{}"),
+      j.at("base_draws").get<std::size_t>() < j.at("base_draws_default").get<std::size_t>()
+          ? fmt::format(", fewer than the default {}, as the scenario asks", j.at("base_draws_default").get<std::size_t>())
           : "",
-      number("seed", j["seed"], "{}"),
-      j["default_inputs"].get<bool>() ? (field ? " (j232's default set of a field's estimated inputs: the scenario has no [uncertainty])"
+      number("seed", j.at("seed"), "{}"),
+      j.at("default_inputs").get<bool>() ? (field ? " (j232's default set of a field's estimated inputs: the scenario has no [uncertainty])"
                                                 : " (j232's default set of estimated inputs: the scenario has no [uncertainty])")
                                       : "");
-  const auto& inputs = j["inputs"];
+  const auto& inputs = j.at("inputs");
   HtmlTable table("", {"#", "input", "from", "to", "distribution", "basis of the range"});
   for (std::size_t i = 0; i < inputs.size(); ++i)
-    table.row({std::to_string(i + 1), escape(inputs[i]["parameter"].get<std::string>()), escape(inputs[i]["low"].get<std::string>()),
-               escape(inputs[i]["high"].get<std::string>()), escape(inputs[i]["distribution"].get<std::string>()),
-               escape(inputs[i]["basis"].get<std::string>())});
+    table.row({std::to_string(i + 1), escape(inputs[i].at("parameter").get<std::string>()), escape(inputs[i].at("low").get<std::string>()),
+               escape(inputs[i].at("high").get<std::string>()), escape(inputs[i].at("distribution").get<std::string>()),
+               escape(inputs[i].at("basis").get<std::string>())});
   return o + table.html();
 }
 
 // Each output's mean, quantiles and range over the draws.
 std::string outputs_html(const json& j, bool field) {
   HtmlTable table("numbers", {"output", "mean", "5 %", "median", "95 %", "min", "max"});
-  const auto& listed = j["output_list"];
+  const auto& listed = j.at("output_list");
   for (std::size_t k = 0; k + 1 < listed.size(); ++k) {  // the verdict's share of draws is above
-    const std::string name = listed[k]["name"], scale_of = listed[k]["scale"];
-    const auto& x = j["outputs"][name];
+    const std::string name = listed[k].at("name"), scale_of = listed[k].at("scale");
+    const auto& x = j.at("outputs")[name];
     const double scale = scale_of == "share" ? 100.0 : 1.0;
     // A field's probabilities of being struck are small: shown to three significant digits.
     const char* f = scale_of == "probability" ? (field ? "{:.3g}" : "{:.3f}") : scale_of == "share" ? "{:.2f}" : "{:.4g}";
-    const std::string unit = scale_of == "share" ? " %" : listed[k]["unit"].get<std::string>();
-    std::vector<HtmlCell> cells = {escape(listed[k]["words"].get<std::string>())};
+    const std::string unit = scale_of == "share" ? " %" : listed[k].at("unit").get<std::string>();
+    std::vector<HtmlCell> cells = {escape(listed[k].at("words").get<std::string>())};
     for (const char* q : {"mean", "q05", "q50", "q95", "min", "max"})
       cells.emplace_back(number(fmt::format("outputs.{}.{}", name, q), x[q], f, scale) + escape(unit));
     table.row(cells);
@@ -301,71 +301,71 @@ std::string outputs_html(const json& j, bool field) {
 // convergence from half the draws, and the chart.
 std::string sobol_html(const json& j, const json& output) {
   std::string o;
-  const std::string name = output["name"], words = escape(output["words"].get<std::string>());
-  const auto& s = j["sensitivity"][name];
-  if (s["variance"].get<double>() <= 0) {
+  const std::string name = output.at("name"), words = escape(output.at("words").get<std::string>());
+  const auto& s = j.at("sensitivity")[name];
+  if (s.at("variance").get<double>() <= 0) {
     // The variance is over the base draws (A and B); the table's range is over every draw.
-    const auto& x = j["outputs"][name];
-    if (x["min"].get<double>() == x["max"].get<double>())
+    const auto& x = j.at("outputs")[name];
+    if (x.at("min").get<double>() == x.at("max").get<double>())
       o += fmt::format("<p>{}: the same at every draw (no variance to attribute).</p>\n", words);
     else
       o += fmt::format(
           "<p>{}: the same at every base draw (A and B), so there is no variance to attribute, though it moves at "
           "some of the mixed draws (from {} to {} over all of them): more base draws are needed to apportion it.</p>\n",
-          words, x["min"].get<double>(), x["max"].get<double>());
+          words, x.at("min").get<double>(), x.at("max").get<double>());
     return o;
   }
-  Chart chart(fmt::format("Sobol' indices: {}", output["words"].get<std::string>()), "input (numbered as in the table above)", "index", 640, 300);
+  Chart chart(fmt::format("Sobol' indices: {}", output.at("words").get<std::string>()), "input (numbered as in the table above)", "index", 640, 300);
   std::vector<double> x1, y1, l1, h1, x2, y2, l2, h2;
-  const bool half = !s["largest_change_from_half_the_draws"].is_null();
+  const bool half = !s.at("largest_change_from_half_the_draws").is_null();
   bool any_flagged = false;
-  for (const auto& row : s["indices"]) any_flagged = any_flagged || row["flagged"].get<bool>();
+  for (const auto& row : s.at("indices")) any_flagged = any_flagged || row.at("flagged").get<bool>();
   std::vector<HtmlCell> header = {words, "first order", "95 %", "total", "95 %"};
-  if (half) header.emplace_back(fmt::format("first / total at N = {}", j["base_draws"].get<std::size_t>() / 2));
+  if (half) header.emplace_back(fmt::format("first / total at N = {}", j.at("base_draws").get<std::size_t>() / 2));
   header.emplace_back("");
   HtmlTable table("numbers", header);
-  for (std::size_t i = 0; i < s["indices"].size(); ++i) {
-    const auto& row = s["indices"][i];
+  for (std::size_t i = 0; i < s.at("indices").size(); ++i) {
+    const auto& row = s.at("indices")[i];
     const std::string key = fmt::format("sensitivity.{}.indices.{}", name, i);
-    x1.push_back(static_cast<double>(i + 1) - 0.12), y1.push_back(row["first_order"]["estimate"]),
-        l1.push_back(row["first_order"]["low"]), h1.push_back(row["first_order"]["high"]);
-    x2.push_back(static_cast<double>(i + 1) + 0.12), y2.push_back(row["total"]["estimate"]), l2.push_back(row["total"]["low"]),
-        h2.push_back(row["total"]["high"]);
+    x1.push_back(static_cast<double>(i + 1) - 0.12), y1.push_back(row.at("first_order").at("estimate")),
+        l1.push_back(row.at("first_order").at("low")), h1.push_back(row.at("first_order").at("high"));
+    x2.push_back(static_cast<double>(i + 1) + 0.12), y2.push_back(row.at("total").at("estimate")), l2.push_back(row.at("total").at("low")),
+        h2.push_back(row.at("total").at("high"));
     std::vector<HtmlCell> cells = {
-        fmt::format("{} {}", i + 1, escape(row["input"].get<std::string>())),
-        number(key + ".first_order.estimate", row["first_order"]["estimate"], "{:.3f}"),
-        fmt::format("{} to {}", number(key + ".first_order.low", row["first_order"]["low"], "{:.3f}"),
-                    number(key + ".first_order.high", row["first_order"]["high"], "{:.3f}")),
-        number(key + ".total.estimate", row["total"]["estimate"], "{:.3f}"),
-        fmt::format("{} to {}", number(key + ".total.low", row["total"]["low"], "{:.3f}"), number(key + ".total.high", row["total"]["high"], "{:.3f}"))};
+        fmt::format("{} {}", i + 1, escape(row.at("input").get<std::string>())),
+        number(key + ".first_order.estimate", row.at("first_order").at("estimate"), "{:.3f}"),
+        fmt::format("{} to {}", number(key + ".first_order.low", row.at("first_order").at("low"), "{:.3f}"),
+                    number(key + ".first_order.high", row.at("first_order").at("high"), "{:.3f}")),
+        number(key + ".total.estimate", row.at("total").at("estimate"), "{:.3f}"),
+        fmt::format("{} to {}", number(key + ".total.low", row.at("total").at("low"), "{:.3f}"), number(key + ".total.high", row.at("total").at("high"), "{:.3f}"))};
     if (half)
-      cells.emplace_back(fmt::format("{} / {}", number(key + ".at_half_the_draws.first_order", row["at_half_the_draws"]["first_order"], "{:.3f}"),
-                                     number(key + ".at_half_the_draws.total", row["at_half_the_draws"]["total"], "{:.3f}")));
-    cells.emplace_back(row["flagged"].get<bool>() ? "&#9873; interval leaves [0, 1] by more than 0.05" : "");
+      cells.emplace_back(fmt::format("{} / {}", number(key + ".at_half_the_draws.first_order", row.at("at_half_the_draws").at("first_order"), "{:.3f}"),
+                                     number(key + ".at_half_the_draws.total", row.at("at_half_the_draws").at("total"), "{:.3f}")));
+    cells.emplace_back(row.at("flagged").get<bool>() ? "&#9873; interval leaves [0, 1] by more than 0.05" : "");
     table.row(cells);
   }
   o += table.html();
-  if (!s["noise_share"].is_null() && s["noise_share"].get<double>() >= 0.25)
+  if (!s.at("noise_share").is_null() && s.at("noise_share").get<double>() >= 0.25)
     o += fmt::format(
         "<p class=\"warning\">Mostly chance: Monte Carlo noise alone would give {} % of this output's variance over the draws "
         "(binomial, as if each draw met new nails; common random numbers make it less). Its marks are rare, and a change of any "
         "input sends the few nails that make them elsewhere: a total index near or above 1 here says that, not that the input "
         "decides it. Read the inputs' effect on it from P(pass) from every nail, or run more replicates per draw.</p>\n",
-        number(fmt::format("sensitivity.{}.noise_share", name), s["noise_share"], "{:.0f}", 100));
+        number(fmt::format("sensitivity.{}.noise_share", name), s.at("noise_share"), "{:.0f}", 100));
   if (any_flagged)
     o += fmt::format(
         "<p>&#9873; An index lies between 0 and 1; an interval that leaves [0, 1] by more than 0.05 says that at N = {} base draws the estimate is "
         "as much the estimator's noise as the input's effect: read it as no more precise than its interval, or run more base "
         "draws ([uncertainty] base_draws).</p>\n",
-        j["base_draws"].get<std::size_t>());
+        j.at("base_draws").get<std::size_t>());
   if (half)
     o += fmt::format("<p>Convergence: from N = {} to N = {} base draws the indices moved by at most {}{}.</p>\n",
-                     j["base_draws"].get<std::size_t>() / 2, number("base_draws", j["base_draws"], "{}"),
-                     number(fmt::format("sensitivity.{}.largest_change_from_half_the_draws", name), s["largest_change_from_half_the_draws"], "{:.3f}"),
-                     s["largest_change_from_half_the_draws"].get<double>() > 0.05 ? " (more than 0.05: more base draws would still move them)"
+                     j.at("base_draws").get<std::size_t>() / 2, number("base_draws", j.at("base_draws"), "{}"),
+                     number(fmt::format("sensitivity.{}.largest_change_from_half_the_draws", name), s.at("largest_change_from_half_the_draws"), "{:.3f}"),
+                     s.at("largest_change_from_half_the_draws").get<double>() > 0.05 ? " (more than 0.05: more base draws would still move them)"
                                                                                  : "");
   std::vector<double> ticks;
-  for (std::size_t i = 0; i < s["indices"].size(); ++i) ticks.push_back(static_cast<double>(i + 1));
+  for (std::size_t i = 0; i < s.at("indices").size(); ++i) ticks.push_back(static_cast<double>(i + 1));
   chart.x_range(0.5, static_cast<double>(ticks.size()) + 0.5);
   chart.x_ticks(ticks);
   double lo = 0, hi = 1;
@@ -383,10 +383,10 @@ std::string sobol_html(const json& j, const json& output) {
 }  // namespace
 
 std::string uncertainty_html(const json& j) {
-  std::string o = page_head("j232 uncertainty study: " + j["title"].get<std::string>());
-  o += fmt::format("<h1>How much the verdict rests on uncertain inputs</h1>\n<p>{} ({})</p>\n", escape(j["title"].get<std::string>()),
-                   escape(j["scenario"].get<std::string>()));
-  const bool field = j["kind"] == "field";
+  std::string o = page_head("j232 uncertainty study: " + j.at("title").get<std::string>());
+  o += fmt::format("<h1>How much the verdict rests on uncertain inputs</h1>\n<p>{} ({})</p>\n", escape(j.at("title").get<std::string>()),
+                   escape(j.at("scenario").get<std::string>()));
+  const bool field = j.at("kind") == "field";
   o += robust_verdict_html(j, field);
   o += warnings_html(j);  // after the verdict, before the inputs
   o += inputs_html(j, field);
@@ -394,7 +394,7 @@ std::string uncertainty_html(const json& j) {
   o += "<h2>Which input drives what: Sobol' indices</h2>\n<p>First order: the share of the output's variance "
        "an input causes alone; total: alone and with all its interactions. An input with both near 0 does not matter over its "
        "range. Bars: 95 % bootstrap intervals.</p>\n";
-  for (const auto& output : j["output_list"]) o += sobol_html(j, output);
+  for (const auto& output : j.at("output_list")) o += sobol_html(j, output);
   o += page_foot();
   return o;
 }
@@ -429,41 +429,41 @@ json uncertainty_summary_json(const json& study) {
 
 std::string uncertainty_summary_text(const json& s) {
   std::string o = fmt::format("  Uncertainty study ({} inputs, {} assessments): {}; {:.1f} % of the inputs' draws pass\n",
-                              s["inputs"].get<std::size_t>(), s["assessments"].get<std::size_t>(), s["robust_verdict"].get<std::string>(),
-                              100 * s["share_of_draws_passing"].get<double>());
-  if (s["p_pass_variance"].get<double>() > 0 && !s["drivers_of_p_pass"].empty()) {
-    const auto& top = s["drivers_of_p_pass"][0];
-    o += fmt::format("  What drives the verdict most: {} (total Sobol' index {:.2f})\n", terminal_safe(top["input"].get<std::string>()),
-                     top["total"]["estimate"].get<double>());
+                              s.at("inputs").get<std::size_t>(), s.at("assessments").get<std::size_t>(), s.at("robust_verdict").get<std::string>(),
+                              100 * s.at("share_of_draws_passing").get<double>());
+  if (s.at("p_pass_variance").get<double>() > 0 && !s.at("drivers_of_p_pass").empty()) {
+    const auto& top = s.at("drivers_of_p_pass")[0];
+    o += fmt::format("  What drives the verdict most: {} (total Sobol' index {:.2f})\n", terminal_safe(top.at("input").get<std::string>()),
+                     top.at("total").at("estimate").get<double>());
   }
   return o;
 }
 
 std::string uncertainty_summary_html(const json& r) {
-  const json& s = r["uncertainty"];
+  const json& s = r.at("uncertainty");
   std::string o = "<section id=\"uncertainty\">\n<h2>How much the verdict rests on estimated inputs</h2>\n";
   o += fmt::format(
       "<p>The uncertain inputs ({}{}) were drawn together, {} assessments of {} replicates each with common random numbers "
       "(<a href=\"uq.html\">the study</a>). <strong>Robust verdict: {}</strong>: the mower passes in {} % of the draws; "
       "P(pass) over the inputs has median {} and 5–95 % range {} to {}.</p>\n",
-      number("uncertainty.inputs", s["inputs"], "{}"),
-      s["default_inputs"].get<bool>() ? ", j232's default set of estimated inputs" : ", the scenario's [uncertainty]",
-      number("uncertainty.assessments", s["assessments"], "{}"),
-      number("uncertainty.replicates_per_assessment", s["replicates_per_assessment"], "{}"), escape(s["robust_verdict"].get<std::string>()),
-      number("uncertainty.share_of_draws_passing", s["share_of_draws_passing"], "{:.1f}", 100),
-      number("uncertainty.p_pass.q50", s["p_pass"]["q50"], "{:.3f}"), number("uncertainty.p_pass.q05", s["p_pass"]["q05"], "{:.3f}"),
-      number("uncertainty.p_pass.q95", s["p_pass"]["q95"], "{:.3f}"));
-  if (s["p_pass_variance"].get<double>() > 0) {
+      number("uncertainty.inputs", s.at("inputs"), "{}"),
+      s.at("default_inputs").get<bool>() ? ", j232's default set of estimated inputs" : ", the scenario's [uncertainty]",
+      number("uncertainty.assessments", s.at("assessments"), "{}"),
+      number("uncertainty.replicates_per_assessment", s.at("replicates_per_assessment"), "{}"), escape(s.at("robust_verdict").get<std::string>()),
+      number("uncertainty.share_of_draws_passing", s.at("share_of_draws_passing"), "{:.1f}", 100),
+      number("uncertainty.p_pass.q50", s.at("p_pass").at("q50"), "{:.3f}"), number("uncertainty.p_pass.q05", s.at("p_pass").at("q05"), "{:.3f}"),
+      number("uncertainty.p_pass.q95", s.at("p_pass").at("q95"), "{:.3f}"));
+  if (s.at("p_pass_variance").get<double>() > 0) {
     HtmlTable table("numbers", {"input", "total Sobol' index for P(pass) from every nail", "95 % interval"});
-    for (std::size_t i = 0; i < s["drivers_of_p_pass"].size(); ++i) {
-      const auto& d = s["drivers_of_p_pass"][i];
+    for (std::size_t i = 0; i < s.at("drivers_of_p_pass").size(); ++i) {
+      const auto& d = s.at("drivers_of_p_pass")[i];
       const std::string key = fmt::format("uncertainty.drivers_of_p_pass.{}.total", i);
-      table.row({escape(d["input"].get<std::string>()), number(key + ".estimate", d["total"]["estimate"], "{:.3f}"),
-                 fmt::format("{} to {}", number(key + ".low", d["total"]["low"], "{:.3f}"), number(key + ".high", d["total"]["high"], "{:.3f}"))});
+      table.row({escape(d.at("input").get<std::string>()), number(key + ".estimate", d.at("total").at("estimate"), "{:.3f}"),
+                 fmt::format("{} to {}", number(key + ".low", d.at("total").at("low"), "{:.3f}"), number(key + ".high", d.at("total").at("high"), "{:.3f}"))});
     }
     o += table.html();
   } else {
-    o += s["p_pass_exact"]["min"].get<double>() == s["p_pass_exact"]["max"].get<double>()
+    o += s.at("p_pass_exact").at("min").get<double>() == s.at("p_pass_exact").at("max").get<double>()
              ? "<p>P(pass) is the same at every draw: no input moves the verdict over its range.</p>\n"
              : "<p>P(pass) from every nail is the same at every base draw: the study's draws are too few to say which input "
                "moves it.</p>\n";

@@ -3,6 +3,8 @@
 
 #include "scene/ray_triangle.hpp"
 #include "scene/box_tree.hpp"
+
+#include <utility>
 #ifdef J232_HAVE_EMBREE
 #include "scene/embree_index.hpp"
 #endif
@@ -171,22 +173,29 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
 }
 
 Scene::~Scene() = default;
-Scene::Scene(Scene&&) noexcept = default;
-Scene& Scene::operator=(Scene&&) noexcept = default;
+Scene::Scene(Scene&& o) noexcept : impl_(std::move(o.impl_)), faces_(std::exchange(o.faces_, {})) {}
+Scene& Scene::operator=(Scene&& o) noexcept {
+  impl_ = std::move(o.impl_), faces_ = std::exchange(o.faces_, {});
+  return *this;
+}
 
 namespace {
 // The faces met, kept in increasing face order (the search's results must not depend on
-// the order a tree visits them in).
+// the order a tree visits them in); beyond `capacity`, the lowest-numbered ones, so that
+// what is kept does not depend on it either.
 struct BoxCollector {
   std::uint32_t* out;
   std::size_t capacity, count = 0;
   void operator()(std::uint32_t f) {
-    if (count < capacity) {
-      std::size_t i = count;  // insertion keeps the order (the lists are short)
-      while (i > 0 && out[i - 1] > f) out[i] = out[i - 1], --i;
-      out[i] = f;
-    }
     ++count;
+    if (capacity == 0) return;
+    std::size_t i = count - 1;  // insertion keeps the order (the lists are short)
+    if (i >= capacity) {        // full: f takes the highest one's place if it is lower
+      if (out[capacity - 1] < f) return;
+      i = capacity - 1;
+    }
+    while (i > 0 && out[i - 1] > f) out[i] = out[i - 1], --i;
+    out[i] = f;
   }
 };
 }  // namespace

@@ -61,8 +61,8 @@ class Scene {
   // The faces whose bounding boxes meet the box [lo, hi] (the broad phase of the capsule's
   // contact search, flight/face_touch.hpp), in increasing face order, decided exactly in
   // double precision so that both engines give the same list. Writes at most `capacity`
-  // of them to `out` and returns how many there are (more than `capacity`: the caller asks
-  // again over a smaller box). Allocation-free.
+  // of them to `out` (the lowest-numbered, when there are more) and returns how many there
+  // are (more than `capacity`: the caller asks again over a smaller box). Allocation-free.
   std::size_t faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* out, std::size_t capacity) const;
   // Face f as its first corner and two edges from it, and its unit normal (either side).
   // (These four are inline: the contact search reads them millions of times a second.)

@@ -14,7 +14,7 @@ for json in "$repo"/reports/*/hazard.json "$repo"/reports/*/compare.json "$repo"
   cmp "$out/$folder-$page" "$(dirname "$json")/$page"
   pages=$((pages + 1))
 done
-[ "$pages" -ge 4 ] || { echo "redraw_check: only $pages shipped pages found" >&2; exit 1; }
+[ "$pages" -eq 6 ] || { echo "redraw_check: $pages shipped pages found, expected 6" >&2; exit 1; }
 # In US units: the lawn's field at a small sample, drawn by j232 hazard --units us and redrawn
 # from the SI run's hazard.json (the same run: only the provenance's date and time differ).
 field="$repo/scenarios/field/deck-72in-lawn-stones.toml"
@@ -24,4 +24,18 @@ field="$repo/scenarios/field/deck-72in-lawn-stones.toml"
 strip() { sed 's/<section id="provenance">.*<\/section>//' "$1"; }
 diff <(strip "$out/redrawn-us.html") <(strip "$out/us/hazard.html")
 grep -q "ft-lb" "$out/redrawn-us.html"
-echo "redraw_check: $pages shipped pages redrawn as shipped; a field's page redrawn in US units"
+# Without --out, a page in US units goes beside the file under a name of its own.
+"$j232" redraw "$out/si/hazard.json" --units us >/dev/null
+cmp "$out/si/hazard-us.html" "$out/redrawn-us.html"
+# A saved file that lacks a key its page draws is refused, naming the key (exit 2), never a crash.
+for lacking in uq-raised-skirt/uq.json:outputs compare-raised-skirt-chains/compare.json:differences hazard-deck-72in-lawn-stones/hazard.json:plan_views; do
+  json=reports/${lacking%%:*} key=${lacking##*:}
+  python3 -c "import json, sys; j = json.load(open(sys.argv[1])); del j[sys.argv[3]]; json.dump(j, open(sys.argv[2], 'w'))" \
+    "$repo/$json" "$out/lacking.json" "$key"
+  code=0
+  "$j232" redraw "$out/lacking.json" --out "$out/lacking.html" 2>"$out/lacking.txt" || code=$?
+  [ "$code" = 2 ] || { echo "redraw_check: $json without a key: exit $code, expected 2" >&2; exit 1; }
+  grep -q "lacking.json: lacks what .* draws.*key '$key' not found" "$out/lacking.txt"
+  [ ! -e "$out/lacking.html" ]
+done
+echo "redraw_check: $pages shipped pages redrawn as shipped; a field's page redrawn in US units; files lacking a key refused"
