@@ -949,7 +949,7 @@ TEST_CASE("contact search: a stone turning with the arm just ahead of it is sear
     const double r = u(0.25, sp.reach - 0.02), phase = u(0, 2 * units::pi);
     const double x = (0.5 * d + 1e-4) / (0.75 * r), window = x / std::sqrt(1 - x * x) + strike::kCoarseAtan2Error;
     const double ahead = window + std::pow(10.0, u(-7, -3));
-    const double az = phase + sp.sense * (sp.edges[0].azimuth + ahead);  // (at t = 0)
+    const double az = phase + sp.edges[0].azimuth + sp.sense * ahead;  // (at t = 0, as the search measures it)
     const Vec3 radial(std::cos(az), std::sin(az), 0), along = sp.sense * Vec3::UnitZ().cross(radial);
     strike::Motion m;
     m.p0 = Vec3(sp.centre.x(), sp.centre.y(), 0) + r * radial + Vec3(0, 0, sp.height + u(-0.01, 0.01));

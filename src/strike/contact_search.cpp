@@ -132,7 +132,8 @@ class EdgeSearch {
     double t = m_.t0, t_safe = m_.t0;
     bool known_apart = false;  // at t_safe the capsule overlapped the section by less than the tolerance
     double d_safe = HUGE_VAL;  // the distance there, when a probe measured it (else HUGE_VAL)
-    int short_steps = 0;       // window steps shorter than kShortStep in a row
+    int shrinking = 0;         // window steps in a row each shorter than the one before
+    double last_far = HUGE_VAL;
     for (int step = 0; step < kMaxSearchSteps; ++step, ++stats.steps) {
       if (t > t1) return std::nullopt;
       const Vec3 c = m_.centre(t), v = m_.velocity(t);
@@ -143,13 +144,16 @@ class EdgeSearch {
         // The window's bounds assume the arm closes at its full rate. A body turning with the
         // arm (a stone the knife just pushed, moving at the knife's speed just ahead of it)
         // closes far slower, so each step ends short of the window by nearly what it began,
-        // and the steps shrink geometrically without end. After kStallSteps such short steps
-        // in a row, the exact distance's bound is taken too (both are lower bounds on the
-        // time to a touch, so the larger is).
+        // and the steps shrink geometrically without end (by a factor as near 1 as the arm is
+        // slow to gain on it, so at any scale). After kStallSteps window steps in a row, each
+        // shorter than the one before, the exact distance's step is taken too, as the probe
+        // path takes it (a lower bound on the time to a touch but for its kMinStep floor, a
+        // step landing in the section being bisected back from t_safe as there).
         double ahead = std::max(far, 1e-10);
         d_safe = HUGE_VAL;
-        short_steps = far < kShortStep ? short_steps + 1 : 0;
-        if (short_steps >= kStallSteps) {
+        shrinking = far < last_far ? shrinking + 1 : 0;
+        last_far = far;
+        if (shrinking >= kStallSteps) {
           const Probe p = probe(t);
           if (!p.off_arm && p.distance > kContactTolerance) ahead = std::max(ahead, clear_step(p, c, v)), d_safe = p.distance;
         }
@@ -157,7 +161,7 @@ class EdgeSearch {
         t += ahead;
         continue;
       }
-      short_steps = 0;
+      shrinking = 0, last_far = HUGE_VAL;
       // Near the arm: the distance between the capsule and the section.
       Probe p = probe(t);
       if (p.off_arm) {
