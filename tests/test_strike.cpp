@@ -928,3 +928,43 @@ TEST_CASE("contact search: nails crossing the tip circle, spinning, agree with t
   CHECK(found > 30);
   CHECK(agree >= total - 2);  // a grazing touch within the search's 0.2 mm floor may differ
 }
+
+TEST_CASE("contact search: a stone turning with the arm just ahead of it is searched to its end, as the reference finds", "[strike][search]") {
+  // A cobble the knife has just pushed moves on at the knife's speed just ahead of it: the
+  // arm closes on the window about it far slower than its bound on the arm's rate, so the
+  // window's steps shrink geometrically. On the shipped chained shoulder such a search ran to
+  // its step cap and cut the stone off (object 4991); the exact distance's bound now carries
+  // it on. Stones of 60-100 mm at the blade's height, just beyond the search's window ahead
+  // of an arm (by 1e-7 to 1e-3 rad past its half-angle, the bound the search draws it with),
+  // moving along the arm's direction at 97-100 % of its speed there, give the reference's
+  // answer.
+  const auto s = bar_scenario();
+  const auto sp = spindle(s);
+  std::mt19937_64 rng(97);
+  const auto u = [&](double lo, double hi) { return test::uniform(rng, lo, hi); };
+  int agree = 0, total = 0, found = 0;
+  for (int i = 0; i < 60; ++i) {
+    const double d = u(0.06, 0.1);
+    const auto stone = projectile::Projectile::sphere(d, 2650 * units::pi / 6 * d * d * d);
+    const double r = u(0.25, sp.reach - 0.02), phase = u(0, 2 * units::pi);
+    const double x = (0.5 * d + 1e-4) / (0.75 * r), window = x / std::sqrt(1 - x * x) + strike::kCoarseAtan2Error;
+    const double ahead = window + std::pow(10.0, u(-7, -3));
+    const double az = phase + sp.edges[0].azimuth + sp.sense * ahead;  // (at t = 0, as the search measures it)
+    const Vec3 radial(std::cos(az), std::sin(az), 0), along = sp.sense * Vec3::UnitZ().cross(radial);
+    strike::Motion m;
+    m.p0 = Vec3(sp.centre.x(), sp.centre.y(), 0) + r * radial + Vec3(0, 0, sp.height + u(-0.01, 0.01));
+    m.v0 = sp.omega() * r * u(0.97, 1.0) * along + u(-2, 2) * radial;
+    m.a = {0, 0, -feed::kGravity};
+    m.axis0 = Vec3::UnitZ();
+    strike::SearchStats stats, ref_stats;
+    const auto c = strike::first_contact(sp, phase, stone, m, 0.01, stats);
+    const auto ref = strike::first_contact(sp, phase, stone, m, 0.01, ref_stats, strike::SearchMethod::FixedSteps);
+    INFO("stone " << i << ": search " << (c ? c->time : -1.0) << ", reference " << (ref ? ref->time : -1.0) << ", steps " << stats.steps);
+    CHECK_FALSE(stats.gave_up);
+    ++total;
+    found += ref.has_value();
+    agree += c.has_value() == ref.has_value() && (!c || (c->edge == ref->edge && std::abs(c->time - ref->time) < 2e-6));
+  }
+  CHECK(found > 5);
+  CHECK(agree >= total - 2);
+}

@@ -128,10 +128,12 @@ class EdgeSearch {
   std::optional<Contact> run(double t1, SearchStats& stats) {
     const BladeSection& sec = sp_.section;
     const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
-    const double omega = sp_.omega(), spin_rate = m_.spin.norm(), accel = m_.a.norm();
+    const double omega = sp_.omega(), spin_rate = m_.spin.norm();
     double t = m_.t0, t_safe = m_.t0;
     bool known_apart = false;  // at t_safe the capsule overlapped the section by less than the tolerance
     double d_safe = HUGE_VAL;  // the distance there, when a probe measured it (else HUGE_VAL)
+    int shrinking = 0;         // window steps in a row each shorter than the one before
+    double last_far = HUGE_VAL;
     for (int step = 0; step < kMaxSearchSteps; ++step, ++stats.steps) {
       if (t > t1) return std::nullopt;
       const Vec3 c = m_.centre(t), v = m_.velocity(t);
@@ -139,10 +141,27 @@ class EdgeSearch {
       const double far = look.far(e_);
       if (far > t1 - t) return std::nullopt;
       if (far > 0) {
-        t_safe = t, known_apart = true, d_safe = HUGE_VAL;
-        t += std::max(far, 1e-10);
+        // The window's bounds assume the arm closes at its full rate. A body turning with the
+        // arm (a stone the knife just pushed, moving at the knife's speed just ahead of it)
+        // closes far slower, so each step ends short of the window by nearly what it began,
+        // and the steps shrink geometrically without end (by a factor as near 1 as the arm is
+        // slow to gain on it, so at any scale). After kStallSteps window steps in a row, each
+        // shorter than the one before, the exact distance's step is taken too, as the probe
+        // path takes it (a lower bound on the time to a touch but for its kMinStep floor, a
+        // step landing in the section being bisected back from t_safe as there).
+        double ahead = std::max(far, 1e-10);
+        d_safe = HUGE_VAL;
+        shrinking = far < last_far ? shrinking + 1 : 0;
+        last_far = far;
+        if (shrinking >= kStallSteps) {
+          const Probe p = probe(t);
+          if (!p.off_arm && p.distance > kContactTolerance) ahead = std::max(ahead, clear_step(p, c, v)), d_safe = p.distance;
+        }
+        t_safe = t, known_apart = true;
+        t += ahead;
         continue;
       }
+      shrinking = 0, last_far = HUGE_VAL;
       // Near the arm: the distance between the capsule and the section.
       Probe p = probe(t);
       if (p.off_arm) {
@@ -155,57 +174,8 @@ class EdgeSearch {
         continue;
       }
       if (p.distance > kContactTolerance) {
-        // The line through the section's nearest point, across the normal, separates the
-        // two (the section is convex): the core's distance past it is a lower bound on the
-        // distance, and it shrinks no faster than the centre's motion toward it (in the
-        // blade's frame, projected on the section) plus the turn of the core about its
-        // centre, (spin + omega) half-length, plus the curvature of the centre's path in
-        // the turning frame. Steps are at least kMinStep of that: one that lands in the
-        // plate is bisected back to the touch, and a touch that began and ended within one
-        // is shallower than that.
-        const Vec3 q(c.x() - C.x(), c.y() - C.y(), 0.0);
-        const double x_c = q.dot(p.radial), u_c = q.dot(p.forward);
-        const double u_rate = v.dot(p.forward) - omega * x_c, w_rate = v.z();
-        const double c2 = accel + 2 * omega * std::sqrt(v.x() * v.x() + v.y() * v.y()) + omega * omega * (std::abs(u_c) + hs_);
-        // Each part of the section (plate, sail) has its own separating line: the step is
-        // the least any of them allows.
-        double step_time = HUGE_VAL;
-        const auto bound_by = [&](const SectionApproach& part) {
-          const double toward = -(part.normal.x() * u_rate + part.normal.y() * w_rate);
-          const double c1 = std::max(toward, 0.0) + (omega + spin_rate) * hs_ + 1e-9;
-          const double gap = std::max(part.distance - rad_, kMinStep);
-          step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2 * gap)));
-        };
-        for (int k = 0; k < sec.parts(); ++k) bound_by(p.parts[static_cast<std::size_t>(k)]);
-        // A core reaching beyond the tip: its outer part may come over the arm within the
-        // step. The arm lies within the wedge behind both the part's separating line and
-        // the tip's plane (x <= reach), so no point of the core can reach it before it has
-        // closed the larger of its two gaps to them; each gap closes no faster than the
-        // point's motion along that line's normal (for the tip's plane, radially in the
-        // blade's frame: v . radial + omega u) plus the core's turn, and the centre's path
-        // curves at most as much as the section's case allows with the radius for u.
-        if (p.a_at_tip || p.b_at_tip) {
-          const double radial_rate = v.dot(p.radial) + omega * u_c;
-          const double r = std::sqrt(q.x() * q.x() + q.y() * q.y());
-          const double c2_wedge = accel + 2 * omega * std::sqrt(v.x() * v.x() + v.y() * v.y()) + omega * omega * (r + hs_);
-          const Vec3 end_a = p.centre - hs_ * p.axis, end_b = p.centre + hs_ * p.axis;
-          const double reach = sp_.edges[e_].reach;
-          const double x_a = (end_a - C).dot(p.radial) - reach, x_b = (end_b - C).dot(p.radial) - reach;
-          for (int k = 0; k < sec.parts(); ++k) {
-            const SectionApproach& part = p.parts[static_cast<std::size_t>(k)];
-            const double l_a = part.normal.dot(p.whole_a - part.on_section), l_b = part.normal.dot(p.whole_b - part.on_section);
-            const double gap = std::max(wedge_clearance(x_a, l_a, x_b, l_b) - rad_, kMinStep);
-            const double toward = std::max({-(part.normal.x() * u_rate + part.normal.y() * w_rate), -radial_rate, 0.0});
-            const double c1 = toward + (omega + spin_rate) * hs_ + 1e-9;
-            step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2_wedge * gap)));
-          }
-        }
-        // The ends' own clearances, to second order, allow far longer steps to a nail that
-        // tumbles fast (spin x half-length is a loose bound on how fast its ends close on
-        // the plate when they swing across the normal).
-        step_time = std::max(step_time, ends_step(p, c, v, omega, spin_rate, accel));
         t_safe = t, known_apart = true, d_safe = p.distance;
-        t += step_time;
+        t += clear_step(p, c, v);
         continue;
       }
       if (p.distance < -kContactTolerance && known_apart) {
@@ -248,6 +218,65 @@ class EdgeSearch {
     }
     stats.gave_up = true;
     return std::nullopt;
+  }
+
+  // A step the capsule, clear of the section by more than the tolerance at the probe `p` (its
+  // centre c moving at v), surely takes before touching it (to within kMinStep: a step that
+  // lands in the plate is bisected back).
+  double clear_step(const Probe& p, const Vec3& c, const Vec3& v) const {
+    const BladeSection& sec = sp_.section;
+    const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
+    const double omega = sp_.omega(), spin_rate = m_.spin.norm(), accel = m_.a.norm();
+    // The line through the section's nearest point, across the normal, separates the
+    // two (the section is convex): the core's distance past it is a lower bound on the
+    // distance, and it shrinks no faster than the centre's motion toward it (in the
+    // blade's frame, projected on the section) plus the turn of the core about its
+    // centre, (spin + omega) half-length, plus the curvature of the centre's path in
+    // the turning frame. Steps are at least kMinStep of that: one that lands in the
+    // plate is bisected back to the touch, and a touch that began and ended within one
+    // is shallower than that.
+    const Vec3 q(c.x() - C.x(), c.y() - C.y(), 0.0);
+    const double x_c = q.dot(p.radial), u_c = q.dot(p.forward);
+    const double u_rate = v.dot(p.forward) - omega * x_c, w_rate = v.z();
+    const double c2 = accel + 2 * omega * std::sqrt(v.x() * v.x() + v.y() * v.y()) + omega * omega * (std::abs(u_c) + hs_);
+    // Each part of the section (plate, sail) has its own separating line: the step is
+    // the least any of them allows.
+    double step_time = HUGE_VAL;
+    const auto bound_by = [&](const SectionApproach& part) {
+      const double toward = -(part.normal.x() * u_rate + part.normal.y() * w_rate);
+      const double c1 = std::max(toward, 0.0) + (omega + spin_rate) * hs_ + 1e-9;
+      const double gap = std::max(part.distance - rad_, kMinStep);
+      step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2 * gap)));
+    };
+    for (int k = 0; k < sec.parts(); ++k) bound_by(p.parts[static_cast<std::size_t>(k)]);
+    // A core reaching beyond the tip: its outer part may come over the arm within the
+    // step. The arm lies within the wedge behind both the part's separating line and
+    // the tip's plane (x <= reach), so no point of the core can reach it before it has
+    // closed the larger of its two gaps to them; each gap closes no faster than the
+    // point's motion along that line's normal (for the tip's plane, radially in the
+    // blade's frame: v . radial + omega u) plus the core's turn, and the centre's path
+    // curves at most as much as the section's case allows with the radius for u.
+    if (p.a_at_tip || p.b_at_tip) {
+      const double radial_rate = v.dot(p.radial) + omega * u_c;
+      const double r = std::sqrt(q.x() * q.x() + q.y() * q.y());
+      const double c2_wedge = accel + 2 * omega * std::sqrt(v.x() * v.x() + v.y() * v.y()) + omega * omega * (r + hs_);
+      const Vec3 end_a = p.centre - hs_ * p.axis, end_b = p.centre + hs_ * p.axis;
+      const double reach = sp_.edges[e_].reach;
+      const double x_a = (end_a - C).dot(p.radial) - reach, x_b = (end_b - C).dot(p.radial) - reach;
+      for (int k = 0; k < sec.parts(); ++k) {
+        const SectionApproach& part = p.parts[static_cast<std::size_t>(k)];
+        const double l_a = part.normal.dot(p.whole_a - part.on_section), l_b = part.normal.dot(p.whole_b - part.on_section);
+        const double gap = std::max(wedge_clearance(x_a, l_a, x_b, l_b) - rad_, kMinStep);
+        const double toward = std::max({-(part.normal.x() * u_rate + part.normal.y() * w_rate), -radial_rate, 0.0});
+        const double c1 = toward + (omega + spin_rate) * hs_ + 1e-9;
+        step_time = std::min(step_time, 2 * gap / (c1 + std::sqrt(c1 * c1 + 2 * c2_wedge * gap)));
+      }
+    }
+    // The ends' own clearances, to second order, allow far longer steps to a nail that
+    // tumbles fast (spin x half-length is a loose bound on how fast its ends close on
+    // the plate when they swing across the normal).
+    step_time = std::max(step_time, ends_step(p, c, v, omega, spin_rate, accel));
+    return step_time;
   }
 
  public:

@@ -77,6 +77,9 @@ struct SearchStats {
 inline constexpr double kContactTolerance = 2e-6;  // m: a capsule this close to the section touches it
 inline constexpr double kMinStep = 2e-4;            // m: the least travel of a step near the blade (a tenth of a nail's diameter)
 inline constexpr int kMaxSearchSteps = 4000;        // per edge and search
+// A body turning with an arm just outside its window: kStallSteps window steps in a row,
+// each shorter than the one before, bring in the exact distance's bound.
+inline constexpr int kStallSteps = 32;
 // m/s: at a search's start (just after an impulse), a touch approaching slower is no new contact
 inline constexpr double kSameInstantApproach = 1e-6;
 inline constexpr double kCoarseAtan2Error = 2e-5;   // rad: coarse_atan2's bound, with a margin
