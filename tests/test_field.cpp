@@ -61,11 +61,13 @@ TEST_CASE("field: the [field] form, with its defaults", "[field][input]") {
   CHECK_FALSE(s.run.time_limit);  // not written: derived
   CHECK(s.time_limit() == Approx(20.0));  // a field's flights last seconds
   // A stone trapped in a chained deck rattles for seconds before it leaves: ten times a
-  // nail's limits; a nail's stay 400 and 500; a written limit is kept.
+  // nail's bounces; strikes: one whole push along a knife (max_contacts_per_pass) and 5 000
+  // besides (a nail: 500); a written limit is kept.
   CHECK(s.max_bounces() == 4000);
-  CHECK(s.max_strikes() == 5000);
+  CHECK(s.max_strikes() == 20000 + 5000);
   CHECK(read(kMower).max_bounces() == 400);
-  CHECK(read(kMower).max_strikes() == 500);
+  CHECK(read(kMower).max_strikes() == 20000 + 500);
+  CHECK(read(kMower + "[run]\nmax_contacts_per_pass = 300\n").max_strikes() == 300 + 500);
   CHECK(read(kMower + "[run]\nmax_bounces = 50\nmax_strikes = 60\n" + kStones).max_bounces() == 50);
   CHECK(read(kMower + "[run]\nmax_bounces = 50\nmax_strikes = 60\n" + kStones).max_strikes() == 60);
   CHECK(s.field.person_energy == Approx(79));

@@ -100,7 +100,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       c.launch_elevation.add(o.launch_elevation / units::degree);
       for (std::size_t k = 0; k < o.flight.passes_by_contacts.size(); ++k)
         for (int p = 0; p < o.flight.passes_by_contacts[k]; ++p) c.contacts_per_pass.add(static_cast<double>(k + 1));
-      c.most_contacts_in_pass.add(o.flight.most_contacts_in_pass);
+      c.most_contacts_in_pass.add(static_cast<std::uint64_t>(o.flight.most_contacts_in_pass));
       c.contact_radius.add(o.contact_radius);
       c.strikes.add(o.flight.strikes);
       c.exits.add(o.flight);

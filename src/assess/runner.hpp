@@ -71,7 +71,7 @@ struct NailRecords {
   Histogram exit_speed{0.5, 1200};           // m/s as the nail leaves the blade, 0.5 m/s bins to 600 m/s (beyond any blade)
   Histogram launch_elevation{1, 180, -90};   // deg, its elevation then, 1 deg bins from -90 to 90
   Histogram contacts_per_pass{1, 33};        // blade contacts in each pass: bin k holds k contacts (32: 32 or more)
-  Histogram most_contacts_in_pass{1, 402};   // per struck nail, its pass of most contacts
+  Largest most_contacts_in_pass;             // the pass of most contacts of any struck nail
   Histogram mark_energy{0.05, 600};          // J, 0.05 J bins to 30 J: marks only
   Histogram board_energy{0.05, 600};         // J: every first arrival at the board, marked or not
   Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
@@ -88,7 +88,7 @@ struct NailRecords {
   // Every record of two in step, once: merge, pack and unpack (MPI) go through it, so none
   // of them can miss a record another has; a new record is added here and in the struct
   // alone. `f(a, b)` is called with each record of `a` and the same record of `b`: a
-  // Histogram, the ExitTable, the StationOutcomes or a count.
+  // Histogram, the Largest, the ExitTable, the StationOutcomes or a count.
   template <class A, class B, class F>
   static void zip(A& a, B& b, F&& f) {
     f(a.exit_speed, b.exit_speed);

@@ -49,4 +49,13 @@ struct Histogram {
   double quantile(double p) const;  // bin midpoint interpolation
 };
 
+// The largest of whole counts seen (a nail's pass of most contacts): merged by taking the
+// larger, so it too is exact and order-free, and unlike a histogram's last bin it has no
+// ceiling.
+struct Largest {
+  std::uint64_t value = 0;
+  void add(std::uint64_t v) { value = v > value ? v : value; }
+  void merge(const Largest& o) { add(o.value); }
+};
+
 }  // namespace j232::assess

@@ -16,6 +16,8 @@ void get(ByteReader& r, Histogram& h) {
   h.bin_width = r.value<double>(), h.origin = r.value<double>(), r.list(h.counts), h.total = r.value<std::uint64_t>(),
   h.sum = r.value<double>();
 }
+void put(ByteWriter& w, const Largest& l) { w.value(l.value); }
+void get(ByteReader& r, Largest& l) { l.value = r.value<std::uint64_t>(); }
 void put(ByteWriter& w, const ExitTable& e) {
   w.map(e.nails), w.map(e.marks), w.value(e.marks_by_strikes), w.value(e.marks_by_first_touch);
 }

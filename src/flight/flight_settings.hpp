@@ -17,8 +17,8 @@ struct FlightSettings {
   double time_limit = 3.0;         // s of flight per nail
   int max_bounces = 400;             // bounces: contacts approaching at least sqrt(2 g D)
   int max_gentle_contacts = 100000;  // gentle contacts: slower (a sustained contact's micro-impacts)
-  int max_strikes = 500;            // blade strikes of one nail (scenario::RunSpec)
-  int max_contacts_per_pass = 400;  // contacts of one pass of an edge
+  int max_strikes = 20500;            // blade strikes of one nail (scenario::Scenario::max_strikes)
+  int max_contacts_per_pass = 20000;  // contacts of one pass of an edge (scenario::RunSpec)
   double rest_speed = 0.3;  // m/s: slower after a bounce (and turning slower at its ends) is at rest
   scenario::RestitutionLaw law = scenario::RestitutionLaw::Energetic;  // how a bounce's restitution is read
   scenario::ContactModel contacts = scenario::ContactModel::Sequential;  // contacts at one instant: one after the other, or together

@@ -258,13 +258,15 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
       {"launch_elevation_deg", histogram_json(a.launch_elevation, "deg")},
       {"contacts_per_pass",
        {{"mean", a.contacts_per_pass.mean()},
-        {"most", most_in(a.most_contacts_in_pass)},
+        {"most", a.most_contacts_in_pass.value},
         {"passes", a.contacts_per_pass.total},
         {"passes_by_contacts_from_1",
          std::vector<std::uint64_t>(a.contacts_per_pass.counts.begin() + 1,
                                     a.contacts_per_pass.counts.begin() + std::max(most_in(a.contacts_per_pass), 1) + 1)},
-        {"note", "a pass: the contacts of one blade edge with the nail until they part (a nail rolling along a face touches it many "
-                 "times); the last count holds 32 or more; a pass of more than 400 cuts the nail off"}}},
+        {"note", fmt::format("a pass: the contacts of one blade edge with the nail until they part (a nail pushed along a face "
+                             "touches it many times); the last count holds 32 or more; a pass of more than {} "
+                             "(run.max_contacts_per_pass) cuts the nail off",
+                             s.run.max_contacts_per_pass)}}},
       {"mark_energy", histogram_json(a.mark_energy, "J")},
       {"contact_radius", histogram_json(a.contact_radius, "m")},
       {"strikes_per_struck_nail", strikes_json(a.strikes)},

@@ -282,11 +282,14 @@ struct RunSpec {
   // longer moves on.
   int max_gentle_contacts = 100000;
   // Blade strikes of one nail, and contacts of one pass of an edge, beyond which a nail is cut
-  // off (counted, never silent): a nail caught between blades, or between a blade and the
-  // deck; a nail rolling along an edge touches it many times (a few hundred at most were seen
-  // in 15 000 nails of the 72-in deck). As written; none: Scenario::max_strikes.
+  // off (counted, never silent): guards against a flight that no longer moves on. A knife
+  // pushing a nail or a stone along its face touches it again every few to few tens of µs
+  // until the body slides off its tip, which takes under one turn (docs/model.md §5.1): a
+  // 97 mm cobble pushed 0.61 -> 0.74 m out along a 990 rpm knife took 604 contacts 12 µs
+  // apart. 20 000 contacts cover a push of half a turn at 990 rpm down to 1.5 µs apart.
+  // max_strikes as written; none: Scenario::max_strikes.
   std::optional<int> max_strikes;
-  int max_contacts_per_pass = 400;
+  int max_contacts_per_pass = 20000;
   double rest_speed = 0.3;  // m/s: slower after a bounce is at rest
   // How blade contacts are searched: conservative advancement, or the fixed-step reference
   // it is validated against (about 300 times slower; docs/validation.md).
@@ -440,13 +443,14 @@ struct Scenario {
   // A flight's time limit: run.time_limit as written, else 3 s a nail, 20 s a field's object.
   double time_limit() const { return run.time_limit.value_or(field.present ? 20.0 : 3.0); }
   // A flight's bounces and blade strikes at most: run.max_bounces and run.max_strikes as
-  // written, else 400 and 500 a nail and ten times that a field's object. A stone too large
-  // for the gap under a chained deck rattles inside for seconds, struck again and again,
-  // before it leaves through the chains (a cobble on the shipped shoulder: 400 bounces in
-  // 3.5 s of its 20 s); the limits are a guard against a flight that no longer moves on, and
-  // the time limit bounds a field's flight.
+  // written, else 400 bounces a nail and ten times that a field's object, and as many strikes
+  // as one whole push along a knife takes (run.max_contacts_per_pass) and 500 besides (a
+  // field's object: 5 000). A stone too large for the gap under a chained deck rattles inside
+  // for seconds, struck again and again, before it leaves through the chains (a cobble on
+  // the shipped shoulder: 400 bounces in 3.5 s of its 20 s); the limits are a guard against a
+  // flight that no longer moves on, and the time limit bounds a field's flight.
   int max_bounces() const { return run.max_bounces.value_or(field.present ? 4000 : 400); }
-  int max_strikes() const { return run.max_strikes.value_or(field.present ? 5000 : 500); }
+  int max_strikes() const { return run.max_strikes.value_or(run.max_contacts_per_pass + (field.present ? 5000 : 500)); }
   // The target board's top: target.top as written, else 0.610 m above the blades' plane.
   double target_top() const { return target.top.value_or(blade_plane() + 0.610); }
   // The feed stations (feed.stations as written, else one per spindle, 2 in inside its tip
