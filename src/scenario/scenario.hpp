@@ -284,9 +284,10 @@ struct RunSpec {
   // Blade strikes of one nail, and contacts of one pass of an edge, beyond which a nail is cut
   // off (counted, never silent): guards against a flight that no longer moves on. A knife
   // pushing a nail or a stone along its face touches it again every few to few tens of µs
-  // until the body slides off its tip, which takes under one turn (docs/model.md §5.1): a
-  // 97 mm cobble pushed 0.61 -> 0.74 m out along a 990 rpm knife took 604 contacts 12 µs
-  // apart. 20 000 contacts cover a push of half a turn at 990 rpm down to 1.5 µs apart.
+  // until the body slides off its tip, within about a turn (docs/model.md §5.1): a 97 mm
+  // cobble pushed 0.61 -> 0.74 m out along a 990 rpm knife took 405 contacts about 11 µs
+  // apart; the shipped J232 runs' longest passes take 608 and 956. 20 000 contacts cover a
+  // whole turn at 990 rpm (61 ms) with contacts 3 µs apart.
   // max_strikes as written; none: Scenario::max_strikes.
   std::optional<int> max_strikes;
   int max_contacts_per_pass = 20000;
