@@ -127,7 +127,6 @@ class EdgeSearch {
 
   std::optional<Contact> run(double t1, SearchStats& stats) {
     const BladeSection& sec = sp_.section;
-    const Vec3 C(sp_.centre.x(), sp_.centre.y(), sp_.height);
     const double omega = sp_.omega(), spin_rate = m_.spin.norm();
     double t = m_.t0, t_safe = m_.t0;
     bool known_apart = false;  // at t_safe the capsule overlapped the section by less than the tolerance
