@@ -968,3 +968,57 @@ TEST_CASE("contact search: a stone turning with the arm just ahead of it is sear
   CHECK(found > 5);
   CHECK(agree >= total - 2);
 }
+
+TEST_CASE("contact search: a body just beyond the tip, turning with the arm or passing along the tip circle, is searched to its end", "[strike][search]") {
+  // The search's window stalls in two more ways, each with the probe finding the body wholly
+  // beyond the tip, where the exact distance's step is not taken but the off-arm one is:
+  // (1) a stone just struck, flying on at the knife tip's speed just beyond the tip and just
+  // ahead of the window (the chained shoulder's object 49763 was cut off so); (2) a nail
+  // passing the tip circle almost along it, its radial gap closing far slower than its whole
+  // speed, the bound's rate (the front-mount deck's replicate 1413, nail 21). Each search
+  // must run to its end and give the fixed-step reference's answer.
+  const auto s = bar_scenario();
+  const auto sp = spindle(s);
+  std::mt19937_64 rng(149);
+  const auto u = [&](double lo, double hi) { return test::uniform(rng, lo, hi); };
+  int agree = 0, total = 0;
+  for (int i = 0; i < 80; ++i) {
+    const bool along_tip = i % 2 == 1;
+    const auto body = along_tip ? projectile::Projectile::capsule(0.051, 0.0029, 0.0027)
+                                : projectile::Projectile::sphere(u(0.02, 0.04), 0.03);
+    const double rho = body.half_segment() + body.radius(), phase = u(0, 2 * units::pi);
+    strike::Motion m;
+    m.a = {0, 0, -feed::kGravity};
+    m.axis0 = Vec3(u(-0.1, 0.1), u(-0.1, 0.1), 1).normalized();
+    if (!along_tip) {
+      // Its centre beyond the tip by less than its radius (within the tip circle's reach, as
+      // the window's radial bound sees it), 1e-7 to 1e-3 rad ahead of the window, at 97-103 %
+      // of the tip's speed there along the arm's direction.
+      const double r = sp.reach + u(1e-4, rho);
+      const double x = (rho + 1e-4) / (0.75 * r), window = x / std::sqrt(1 - x * x) + strike::kCoarseAtan2Error;
+      const double az = phase + sp.edges[0].azimuth + sp.sense * (window + std::pow(10.0, u(-7, -3)));
+      const Vec3 radial(std::cos(az), std::sin(az), 0), along = sp.sense * Vec3::UnitZ().cross(radial);
+      m.p0 = Vec3(sp.centre.x(), sp.centre.y(), sp.height + u(-0.005, 0.005)) + r * radial;
+      m.v0 = sp.omega() * r * u(0.97, 1.03) * along;
+    } else {
+      // Straight along a line whose nearest point to the axis is 1e-7 to 1e-4 m beyond the
+      // reach plus the nail's, that point a few microseconds ahead, at 5-20 m/s, inside the
+      // arm's window (at its azimuth, the arm just behind it).
+      const double r_min = sp.reach + rho + std::pow(10.0, u(-7, -4)), speed = u(5, 20);
+      const double az = phase + sp.edges[0].azimuth + sp.sense * u(0.0, 0.02);
+      const Vec3 radial(std::cos(az), std::sin(az), 0), along = (u(0, 1) < 0.5 ? 1.0 : -1.0) * Vec3::UnitZ().cross(radial);
+      m.p0 = Vec3(sp.centre.x(), sp.centre.y(), sp.height + u(-0.005, 0.005)) + r_min * radial - speed * u(1e-6, 1e-4) * along;
+      m.v0 = speed * along;
+      m.a = Vec3::Zero();  // (a straight line: its nearest approach is where it was put)
+    }
+    strike::SearchStats stats, ref_stats;
+    const auto c = strike::first_contact(sp, phase, body, m, 0.01, stats);
+    const auto ref = strike::first_contact(sp, phase, body, m, 0.01, ref_stats, strike::SearchMethod::FixedSteps);
+    INFO((along_tip ? "nail " : "stone ") << i << ": search " << (c ? c->time : -1.0) << ", reference " << (ref ? ref->time : -1.0)
+                                          << ", steps " << stats.steps);
+    CHECK_FALSE(stats.gave_up);
+    ++total;
+    agree += c.has_value() == ref.has_value() && (!c || (c->edge == ref->edge && std::abs(c->time - ref->time) < 2e-6));
+  }
+  CHECK(agree >= total - 2);
+}

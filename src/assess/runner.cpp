@@ -103,6 +103,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       c.most_contacts_in_pass.add(static_cast<std::uint64_t>(o.flight.most_contacts_in_pass));
       c.contact_radius.add(o.contact_radius);
       c.strikes.add(o.flight.strikes);
+      c.most_strikes.add(static_cast<std::uint64_t>(o.flight.strikes));
       c.exits.add(o.flight);
       if (o.flight.board_energy >= 0) {
         c.board_energy.add(o.flight.board_energy);

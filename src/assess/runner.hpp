@@ -76,7 +76,8 @@ struct NailRecords {
   Histogram board_energy{0.05, 600};         // J: every first arrival at the board, marked or not
   Histogram board_energy_per_width{5, 400};  // J/m, 5 J/m bins to 2000 J/m
   Histogram contact_radius{0.005, 400};      // m
-  Histogram strikes{1, 52};                  // blade strikes per struck nail: bin k holds k strikes
+  Histogram strikes{1, 52};                  // blade strikes per struck nail: bin k holds k strikes (51: 51 or more)
+  Largest most_strikes;                      // the most strikes of any struck nail
   Histogram cut_off_by{1, flight::kCutOffReasons};  // cut-off nails by the limit that cut them off: bin k holds flight::CutOff(k)
   ExitTable exits;
   StationOutcomes outcomes;  // every nail fed: its counted marks by category, by feed station (the exact P(pass))
@@ -100,6 +101,7 @@ struct NailRecords {
     f(a.board_energy_per_width, b.board_energy_per_width);
     f(a.contact_radius, b.contact_radius);
     f(a.strikes, b.strikes);
+    f(a.most_strikes, b.most_strikes);
     f(a.cut_off_by, b.cut_off_by);
     f(a.exits, b.exits);
     f(a.outcomes, b.outcomes);

@@ -150,6 +150,20 @@ std::string find_kind_names() {
   return names;
 }
 
+// --find cut-off:REASON: a cut-off by that limit ("cut-off:wedged"); nullopt when the kind is
+// not of that form; a clear error when REASON names no limit.
+std::optional<flight::CutOff> cut_off_reason(const std::string& find) {
+  const std::string prefix = "cut-off:";
+  if (find.rfind(prefix, 0) != 0) return std::nullopt;
+  std::string names;
+  for (int c = 1; c < flight::kCutOffReasons; ++c) {
+    const auto reason = static_cast<flight::CutOff>(c);
+    if (find.substr(prefix.size()) == flight::cut_off_name(reason)) return reason;
+    names += (names.empty() ? "" : ", ") + std::string(flight::cut_off_name(reason));
+  }
+  throw scenario::InputError("", std::nullopt, "--find", find, "expected cut-off:REASON with REASON one of " + names);
+}
+
 std::string vec(const flight::Vec3& v, int digits = 3) { return fmt::format("({:.{}f}, {:.{}f}, {:.{}f})", v.x(), digits, v.y(), digits, v.z(), digits); }
 
 std::string detail(const flight::FlightEvent& e) {
@@ -224,8 +238,10 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
                                                  : "expected plane:NAME with NAME one of the scenario's planes: " + names);
     }
     const bool hazardous = o.find == "hazardous";
+    const std::optional<flight::CutOff> reason = cut_off_reason(o.find);
     auto matches = [&](const field::ObjectOutcome& out) {
       if (o.find == "cut-off") return out.fate == field::ObjectFate::CutOff;
+      if (reason) return out.fate == field::ObjectFate::CutOff && out.flight.cut_off == *reason;
       if (o.find == "restruck") return out.fate == field::ObjectFate::Thrown && out.flight.strikes > 1;
       if (o.find == "contained") return out.flight.fate == flight::Fate::Contained;
       if (o.find == "thrown") return out.fate == field::ObjectFate::Thrown;
@@ -236,7 +252,7 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
         return any;
       }
       throw scenario::InputError("", std::nullopt, "--find", o.find,
-                                 "expected, for a field scenario, one of cut-off, restruck, contained, thrown, hazardous, plane:NAME");
+                                 "expected, for a field scenario, one of cut-off, cut-off:REASON, restruck, contained, thrown, hazardous, plane:NAME");
     };
     bool found = false;
     for (std::uint64_t i = 0; i < static_cast<std::uint64_t>(s.field.objects_simulated) && !found; ++i) {
@@ -291,7 +307,9 @@ int run(const TraceOptions& o) {
   const FindKind* find = nullptr;
   for (const auto& k : kFindKinds)
     if (o.find == k.name) find = &k;
-  if (!o.find.empty() && !find) throw scenario::InputError("", std::nullopt, "--find", o.find, "expected one of " + find_kind_names());
+  const std::optional<flight::CutOff> reason = cut_off_reason(o.find);
+  if (!o.find.empty() && !find && !reason)
+    throw scenario::InputError("", std::nullopt, "--find", o.find, "expected one of " + find_kind_names() + ", cut-off:REASON");
   scenario::Scenario s = scenario::read_scenario(o.scenario);
   if (o.seed) s.run.seed = *o.seed;
   if (o.nail < 0 || o.nail >= s.feed.nails)
@@ -299,12 +317,15 @@ int run(const TraceOptions& o) {
   const assess::Simulator sim(s);
   std::uint64_t replicate = o.replicate;
   int nail = o.nail;
-  if (find) {
+  if (find || reason) {
     // The first such nail in the order of the run (replicate, then nail).
+    auto matches = [&](const assess::NailOutcome& out) {
+      return find ? find->matches(out) : out.flight.fate == flight::Fate::CutOff && out.flight.cut_off == *reason;
+    };
     bool found = false;
     for (std::uint64_t r = 0; r < static_cast<std::uint64_t>(s.run.replicates) && !found; ++r)
       for (int n = 0; n < s.feed.nails && !found; ++n)
-        if (find->matches(sim.simulate(r, n))) replicate = r, nail = n, found = true;
+        if (matches(sim.simulate(r, n))) replicate = r, nail = n, found = true;
     if (!found) {
       fmt::print("no nail of the {} replicates of \"{}\" (seed {}) is of the kind {}\n", s.run.replicates, s.title, s.run.seed, o.find);
       return kOk;
@@ -361,7 +382,8 @@ Runner add_trace_command(CLI::App& app) {
   cmd->add_option("--nail", o->nail, "Nail within the replicate (0-based, as marks.csv numbers them)");
   add_unsigned_option(*cmd, "--object", o->object, "A field scenario's object (0-based, as j232 hazard numbers them)");
   cmd->add_option("--find", o->find, "Replay the first nail of the run of this kind instead: " + find_kind_names() +
-                                         " (a field scenario: cut-off, restruck, contained, thrown, hazardous, plane:NAME)");
+                                         ", cut-off:REASON (a limit as result.json names it: cut-off:wedged)"
+                                         " (a field scenario: cut-off, cut-off:REASON, restruck, contained, thrown, hazardous, plane:NAME)");
   add_unsigned_option(*cmd, "--seed", o->seed, "Random seed (overrides the scenario's [run] seed)");
   cmd->add_option("--json", o->json, "Also write the trail as JSON to this file");
   cmd->add_flag("--check", o->check,

@@ -70,16 +70,17 @@ json outcomes_json(const assess::StationOutcomes& o) {
 }
 
 // Blade strikes per struck nail: the first (the feed's) and every strike after it.
-json strikes_json(const assess::Histogram& h) {
+// The histogram's last bin collects every count beyond it, so the largest comes from `most`.
+json strikes_json(const assess::Histogram& h, const assess::Largest& most_strikes) {
   const std::uint64_t once = h.counts.size() > 1 ? h.counts[1] : 0;
-  std::size_t most = 0;
+  std::size_t last_bin = 0;  // the last bin holding any nail (the histogram's last also holds those beyond it)
   for (std::size_t k = 0; k < h.counts.size(); ++k)
-    if (h.counts[k] > 0) most = k;
+    if (h.counts[k] > 0) last_bin = k;
   std::vector<std::uint64_t> counts(h.counts.begin() + 1,
-                                    h.counts.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(most, 1)) + 1);
+                                    h.counts.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(last_bin, 1)) + 1);
   return {{"mean", h.mean()},
           {"share_struck_again", h.total ? static_cast<double>(h.total - once) / static_cast<double>(h.total) : 0.0},
-          {"most", most},
+          {"most", most_strikes.value},
           {"nails_by_strikes_from_1", counts}};
 }
 
@@ -269,7 +270,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
                              s.run.max_contacts_per_pass)}}},
       {"mark_energy", histogram_json(a.mark_energy, "J")},
       {"contact_radius", histogram_json(a.contact_radius, "m")},
-      {"strikes_per_struck_nail", strikes_json(a.strikes)},
+      {"strikes_per_struck_nail", strikes_json(a.strikes, a.most_strikes)},
       {"how_nails_leave", exits_json(a)},
       {"mark_examples", mark_examples_json(a)},
       {"board_energy", histogram_json(a.board_energy, "J")},

@@ -126,7 +126,6 @@ class EdgeSearch {
       : sp_(sp), e_(e), phase_(phase), m_(m), turning_(m.turning()), hs_(nail.half_segment()), rad_(nail.radius()), rho_(hs_ + rad_) {}
 
   std::optional<Contact> run(double t1, SearchStats& stats) {
-    const BladeSection& sec = sp_.section;
     const double omega = sp_.omega(), spin_rate = m_.spin.norm();
     double t = m_.t0, t_safe = m_.t0;
     bool known_apart = false;  // at t_safe the capsule overlapped the section by less than the tolerance
@@ -152,9 +151,15 @@ class EdgeSearch {
         d_safe = HUGE_VAL;
         shrinking = far < last_far ? shrinking + 1 : 0;
         last_far = far;
+        // The same stall comes at the radial bound: a nail passing the tip circle nearly along
+        // it closes that gap far slower than its whole speed, the bound's rate. Either way the
+        // probe may find it wholly beyond the tip, and then it takes the off-arm step.
         if (shrinking >= kStallSteps) {
           const Probe p = probe(t);
-          if (!p.off_arm && p.distance > kContactTolerance) ahead = std::max(ahead, clear_step(p, c, v)), d_safe = p.distance;
+          if (p.off_arm)
+            ahead = std::max(ahead, off_arm_step(p, v, look));
+          else if (p.distance > kContactTolerance)
+            ahead = std::max(ahead, clear_step(p, c, v)), d_safe = p.distance;
         }
         t_safe = t, known_apart = true;
         t += ahead;
@@ -164,12 +169,8 @@ class EdgeSearch {
       // Near the arm: the distance between the capsule and the section.
       Probe p = probe(t);
       if (p.off_arm) {
-        // Wholly beyond the tip (or behind the axis): its ends must cross the tip radius
-        // first, which they do no faster than this. A nail hovering at the tip radius is
-        // looked at 64 times a pass (a step into the plate is bisected back).
-        const double radial_rate = v.norm() + spin_rate * hs_ + omega * (rho_ - sec.back()) + 1e-9;
         t_safe = t, known_apart = true, d_safe = HUGE_VAL;
-        t += std::max(p.distance / radial_rate, (look.alpha_f + look.alpha_b) / (64 * omega));
+        t += off_arm_step(p, v, look);
         continue;
       }
       if (p.distance > kContactTolerance) {
@@ -217,6 +218,16 @@ class EdgeSearch {
     }
     stats.gave_up = true;
     return std::nullopt;
+  }
+
+  // A step from a probe `p` that found the capsule wholly beyond the tip (or behind the axis),
+  // its centre moving at v: its ends must cross the tip radius first, which they do no faster
+  // than this. A nail hovering at the tip radius is looked at 64 times a pass (a step into
+  // the plate is bisected back).
+  double off_arm_step(const Probe& p, const Vec3& v, const Outlook& look) const {
+    const double omega = sp_.omega();
+    const double radial_rate = v.norm() + m_.spin.norm() * hs_ + omega * (rho_ - sp_.section.back()) + 1e-9;
+    return std::max(p.distance / radial_rate, (look.alpha_f + look.alpha_b) / (64 * omega));
   }
 
   // A step the capsule, clear of the section by more than the tolerance at the probe `p` (its
