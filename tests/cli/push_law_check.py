@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""A knife's push, followed contact by contact, against Coulomb sliding along the arm.
+
+A body pressed on a knife turning at w slides out along it (in the knife's frame: the
+centrifugal force drives it out, the Coriolis force 2 m w r' presses it on the face, and
+Coulomb friction mu times that holds it back): r'' = w^2 r - 2 mu w r'. From r0 and r'0 at
+the push's first contact, r(t) = A e^(l1 t) + B e^(l2 t) with l = w (-mu +- sqrt(1 + mu^2)).
+j232 does not integrate this law: it resolves the push as hundreds of separate impacts, each
+with Coulomb friction in its impulse. This check replays one such push (`j232 trace --json`),
+takes the radius of the body's centre from the spindle's axis at each contact of its longest
+run of blade contacts, fits mu of the law above to it, and asks that the fitted mu be the
+blade's to within 0.05, with the law fitting to within 0.5 mm while mu = 0 and mu doubled do
+not (so the check tells the law apart).
+
+usage: push_law_check.py J232 SCENARIO OBJECT SPINDLE_X SPINDLE_Y RPM MU WORKDIR
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+
+
+def main():
+    exe, scenario, obj = sys.argv[1], sys.argv[2], sys.argv[3]
+    cx, cy, rpm, mu_blade = (float(a) for a in sys.argv[4:8])
+    work = sys.argv[8]
+    os.makedirs(work, exist_ok=True)
+    trail = os.path.join(work, "push.json")
+    subprocess.run([exe, "trace", scenario, "--object", obj, "--json", trail], check=True, stdout=subprocess.DEVNULL)
+    events = json.load(open(trail))["events"]
+    strikes = [e for e in events if e["event"] == "strike"]
+    runs, run = [], strikes[:1]
+    for a, b in zip(strikes, strikes[1:]):
+        if b["time_s"] - a["time_s"] < 1e-4:
+            run.append(b)
+        else:
+            runs.append(run)
+            run = [b]
+    runs.append(run)
+    push = max(runs, key=len)
+    if len(push) < 100:
+        print(f"FAILED: the longest run of blade contacts has {len(push)}; expected a push of at least 100")
+        return 1
+    w = rpm * 2 * math.pi / 60
+    t0 = push[0]["time_s"]
+    ts, rs, rds = [], [], []
+    for e in push:
+        x, y = e["centre_m"][0] - cx, e["centre_m"][1] - cy
+        vx, vy = e["velocity_m_s"][0], e["velocity_m_s"][1]
+        r = math.hypot(x, y)
+        ts.append(e["time_s"] - t0)
+        rs.append(r)
+        rds.append((x * vx + y * vy) / r)
+
+    def law(mu, t):
+        s = math.sqrt(1 + mu * mu)
+        l1, l2 = w * (-mu + s), w * (-mu - s)
+        a = (rds[0] - l2 * rs[0]) / (l1 - l2)
+        return a * math.exp(l1 * t) + (rs[0] - a) * math.exp(l2 * t)
+
+    def rms(mu):
+        return math.sqrt(sum((law(mu, t) - r) ** 2 for t, r in zip(ts, rs)) / len(ts))
+
+    fit_rms, fit_mu = min((rms(k / 1000), k / 1000) for k in range(0, 2001))
+    print(f"push: {len(push)} contacts over {1e3 * ts[-1]:.2f} ms, {rs[0]:.4f} -> {rs[-1]:.4f} m from the axis")
+    print(f"Coulomb sliding law fitted: mu {fit_mu:.3f} (the blade's {mu_blade}), rms {1e3 * fit_rms:.3f} mm; "
+          f"mu 0: {1e3 * rms(0):.2f} mm, mu {2 * mu_blade}: {1e3 * rms(2 * mu_blade):.2f} mm")
+    ok = abs(fit_mu - mu_blade) <= 0.05 and fit_rms < 5e-4 and rms(0) > 4 * 5e-4 and rms(2 * mu_blade) > 4 * 5e-4
+    print("passed" if ok else "FAILED")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
