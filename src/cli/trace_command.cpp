@@ -347,9 +347,9 @@ int run(const TraceOptions& o) {
     print_trail(r.events);
   }
   const auto& f = r.outcome.flight;
-  fmt::print("fate: {}; {} strike(s) ({} in its longest pass), {} bounce(s), {} gentle contact(s), {} counted mark(s) (hits {} / "
+  fmt::print("fate: {}{}; {} strike(s) ({} in its longest pass), {} bounce(s), {} gentle contact(s), {} counted mark(s) (hits {} / "
              "punctures {} in the zone, hits {} / punctures {} outside)\n",
-             flight::fate_name(f.fate), f.strikes, f.strikes ? f.most_contacts_in_pass : 0, f.bounces, f.gentle_contacts, f.mark_count - f.uncounted_marks, f.hits_zone, f.punctures_zone,
+             flight::fate_name(f.fate), f.fate == flight::Fate::CutOff ? fmt::format(" ({})", flight::cut_off_name(f.cut_off)) : "", f.strikes, f.strikes ? f.most_contacts_in_pass : 0, f.bounces, f.gentle_contacts, f.mark_count - f.uncounted_marks, f.hits_zone, f.punctures_zone,
              f.hits_outside, f.punctures_outside);
   if (f.trace.exit != flight::Exit::Inside) fmt::print("left the deck: {}\n", sim.exit_name(f.trace.exit, f.trace.exit_index));
   if (f.trace.first_exit != flight::Exit::Inside &&

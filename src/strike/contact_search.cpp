@@ -145,8 +145,9 @@ class EdgeSearch {
         // and the steps shrink geometrically without end (by a factor as near 1 as the arm is
         // slow to gain on it, so at any scale). After kStallSteps window steps in a row, each
         // shorter than the one before, the exact distance's step is taken too, as the probe
-        // path takes it (a lower bound on the time to a touch but for its kMinStep floor, a
-        // step landing in the section being bisected back from t_safe as there).
+        // path takes it (a lower bound on the time to a touch but for its kMinStep floor, or
+        // the off-arm step's floor of 1/64 of the window; a step landing in the section is
+        // bisected back from t_safe as there).
         double ahead = std::max(far, 1e-10);
         d_safe = HUGE_VAL;
         shrinking = far < last_far ? shrinking + 1 : 0;

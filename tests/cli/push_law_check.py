@@ -10,7 +10,10 @@ with Coulomb friction in its impulse. This check replays one such push (`j232 tr
 takes the radius of the body's centre from the spindle's axis at each contact of its longest
 run of blade contacts, fits mu of the law above to it, and asks that the fitted mu be the
 blade's to within 0.05, with the law fitting to within 0.5 mm while mu = 0 and mu doubled do
-not (so the check tells the law apart).
+not (so the check tells the law apart). The law treats the body as a point on a face through
+the axis; a cobble's centre sits its radius ahead of the face, so the centrifugal force also
+pulls it off the face (about -0.03 in the fitted mu), and the bevel's tilted normal acts the
+other way: hence 0.05, not closer.
 
 usage: push_law_check.py J232 SCENARIO OBJECT SPINDLE_X SPINDLE_Y RPM MU WORKDIR
 """
