@@ -53,6 +53,13 @@ blade::Blade pivoted_blade() {
 
 strike::Spindle spindle(const scenario::Scenario& s) { return strike::Spindle(s.spindles[0].blade, s.spindles[0].geometry, s.restitution); }
 
+// The half-angle ahead of an arm within which the search's window draws a body of reach
+// `reach` whose centre is `r` from the axis (as the search bounds it, at 3/4 of r).
+double search_window(double reach, double r) {
+  const double x = (reach + 1e-4) / (0.75 * r);
+  return x / std::sqrt(1 - x * x) + strike::kCoarseAtan2Error;
+}
+
 // An upright nail falling past the blade at (0.5, 0), its tip `depth` below the top face
 // when the leading edge (phase -0.2 rad ahead of it... behind it) is about to reach it.
 strike::Motion upright_nail(double tip_below_top, const strike::Spindle& sp, const projectile::Projectile& nail) {
@@ -947,8 +954,7 @@ TEST_CASE("contact search: a stone turning with the arm just ahead of it is sear
     const double d = u(0.06, 0.1);
     const auto stone = projectile::Projectile::sphere(d, 2650 * units::pi / 6 * d * d * d);
     const double r = u(0.25, sp.reach - 0.02), phase = u(0, 2 * units::pi);
-    const double x = (0.5 * d + 1e-4) / (0.75 * r), window = x / std::sqrt(1 - x * x) + strike::kCoarseAtan2Error;
-    const double ahead = window + std::pow(10.0, u(-7, -3));
+    const double ahead = search_window(0.5 * d, r) + std::pow(10.0, u(-7, -3));
     const double az = phase + sp.edges[0].azimuth + sp.sense * ahead;  // (at t = 0, as the search measures it)
     const Vec3 radial(std::cos(az), std::sin(az), 0), along = sp.sense * Vec3::UnitZ().cross(radial);
     strike::Motion m;
@@ -1000,8 +1006,7 @@ TEST_CASE("contact search: a body just beyond the tip, turning with the arm or p
       // the window's radial bound sees it), 1e-7 to 1e-3 rad ahead of the window, at 97-103 %
       // of the tip's speed there along the arm's direction.
       const double r = sp.reach + u(1e-4, rho);
-      const double x = (rho + 1e-4) / (0.75 * r), window = x / std::sqrt(1 - x * x) + strike::kCoarseAtan2Error;
-      const double az = phase + sp.edges[0].azimuth + sp.sense * (window + std::pow(10.0, u(-7, -3)));
+      const double az = phase + sp.edges[0].azimuth + sp.sense * (search_window(rho, r) + std::pow(10.0, u(-7, -3)));
       const Vec3 radial(std::cos(az), std::sin(az), 0), along = sp.sense * Vec3::UnitZ().cross(radial);
       m.p0 = Vec3(sp.centre.x(), sp.centre.y(), sp.height + u(-0.005, 0.005)) + r * radial;
       m.v0 = sp.omega() * r * u(0.97, 1.03) * along;

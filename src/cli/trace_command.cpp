@@ -164,6 +164,12 @@ std::optional<flight::CutOff> cut_off_reason(const std::string& find) {
   throw scenario::InputError("", std::nullopt, "--find", find, "expected cut-off:REASON with REASON one of " + names);
 }
 
+// After a fate on the trace's last line: the limit that cut the flight off, " (wedged)", or
+// nothing.
+std::string cut_off_suffix(const flight::FlightResult& f) {
+  return f.fate == flight::Fate::CutOff ? fmt::format(" ({})", flight::cut_off_name(f.cut_off)) : std::string();
+}
+
 std::string vec(const flight::Vec3& v, int digits = 3) { return fmt::format("({:.{}f}, {:.{}f}, {:.{}f})", v.x(), digits, v.y(), digits, v.z(), digits); }
 
 std::string detail(const flight::FlightEvent& e) {
@@ -280,7 +286,7 @@ int trace_object(const TraceOptions& o, const scenario::Scenario& s) {
   print_trail(events);
   const auto& f = out.flight;
   fmt::print("fate: {}{}; {} strike(s) ({} in its longest pass), {} bounce(s), {} gentle contact(s)\n", flight::fate_name(f.fate),
-             f.fate == flight::Fate::CutOff ? fmt::format(" ({})", flight::cut_off_name(f.cut_off)) : "", f.strikes,
+             cut_off_suffix(f), f.strikes,
              f.strikes ? f.most_contacts_in_pass : 0, f.bounces, f.gentle_contacts);
   if (!o.json.empty()) {
     nlohmann::json j{{"program", "j232 trace"}, {"scenario", s.title}, {"seed", s.run.seed}, {"object", index},
@@ -349,7 +355,7 @@ int run(const TraceOptions& o) {
   const auto& f = r.outcome.flight;
   fmt::print("fate: {}{}; {} strike(s) ({} in its longest pass), {} bounce(s), {} gentle contact(s), {} counted mark(s) (hits {} / "
              "punctures {} in the zone, hits {} / punctures {} outside)\n",
-             flight::fate_name(f.fate), f.fate == flight::Fate::CutOff ? fmt::format(" ({})", flight::cut_off_name(f.cut_off)) : "", f.strikes, f.strikes ? f.most_contacts_in_pass : 0, f.bounces, f.gentle_contacts, f.mark_count - f.uncounted_marks, f.hits_zone, f.punctures_zone,
+             flight::fate_name(f.fate), cut_off_suffix(f), f.strikes, f.strikes ? f.most_contacts_in_pass : 0, f.bounces, f.gentle_contacts, f.mark_count - f.uncounted_marks, f.hits_zone, f.punctures_zone,
              f.hits_outside, f.punctures_outside);
   if (f.trace.exit != flight::Exit::Inside) fmt::print("left the deck: {}\n", sim.exit_name(f.trace.exit, f.trace.exit_index));
   if (f.trace.first_exit != flight::Exit::Inside &&
