@@ -141,7 +141,7 @@ struct FlightResult {
   CutOff cut_off = CutOff::None;          // what cut it off (fate CutOff), the first limit reached
   int queries = 0;                        // scene ray queries (for the benchmark)
   // A field's objects (whose ground takes strikes: flight::SurfaceMaterial::takes_strikes): strikes after which a knife
-  // rode over the object pressed into the soil, and passes resolved as a sustained push.
+  // rode over the object pressed into the soil, and passes of more than 64 contacts (a push).
   int ridden_over = 0, pushed_along = 0;
   double flight_time = 0;
   Vec3 end_position = Vec3::Zero();
