@@ -176,6 +176,7 @@ std::string detail(const flight::FlightEvent& e) {
   using Kind = flight::FlightEvent::Kind;
   switch (e.kind) {
     case Kind::Strike: return fmt::format("spindle {} edge {}", e.spindle + 1, e.edge + 1);
+    case Kind::Push: return fmt::format("held on spindle {} edge {}, pressed at {:.0f} m/s2", e.spindle + 1, e.edge + 1, e.pressed);
     case Kind::Bounce:
     case Kind::GuardPass: {
       std::string what(scene::name(e.surface));
@@ -203,7 +204,8 @@ nlohmann::json event_json(const flight::FlightEvent& e) {
   if (e.kind == Kind::Strike || e.kind == Kind::Bounce || e.kind == Kind::Board || e.kind == Kind::GuardPass)
     j["point_m"] = v(e.point), j["normal"] = v(e.normal);
   if (e.kind == Kind::Bounce || e.kind == Kind::Board || e.kind == Kind::GuardPass) j["surface"] = scene::name(e.surface), j["face"] = e.face + 1;
-  if (e.kind == Kind::Strike) j["spindle"] = e.spindle + 1, j["edge"] = e.edge + 1;
+  if (e.kind == Kind::Strike || e.kind == Kind::Push) j["spindle"] = e.spindle + 1, j["edge"] = e.edge + 1;
+  if (e.kind == Kind::Push) j["pressed_m_s2"] = e.pressed;
   if (e.kind == Kind::Bounce && e.together > 1) j["points_together"] = e.together;
   if (e.kind == Kind::Board)
     j["energy_J"] = e.energy, j["presented_width_m"] = e.width, j["mark"] = e.mark == 2 ? "puncture" : e.mark == 1 ? "hit" : "none";

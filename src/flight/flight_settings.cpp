@@ -12,6 +12,7 @@ FlightSettings::FlightSettings(const scenario::Scenario& s, const std::vector<sc
       rest_speed(s.run.rest_speed),
       law(s.run.restitution_law),
       contacts(s.run.contact_model),
+      blade_push(s.run.blade_push),
       board(s.board),
       materials(s, guards) {
   for (const auto& o : s.housing.openings) openings.push_back({o.azimuth, s.housing.opening_top(o)});

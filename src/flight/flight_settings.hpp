@@ -22,6 +22,7 @@ struct FlightSettings {
   double rest_speed = 0.3;  // m/s: slower after a bounce (and turning slower at its ends) is at rest
   scenario::RestitutionLaw law = scenario::RestitutionLaw::Energetic;  // how a bounce's restitution is read
   scenario::ContactModel contacts = scenario::ContactModel::Sequential;  // contacts at one instant: one after the other, or together
+  scenario::BladePush blade_push = scenario::BladePush::Held;           // a knife's push on a sphere: held on the face, or contact by contact
   scenario::BoardSpec board;
   // The generated deck's discharge openings, for naming the way out.
   struct Opening {

@@ -84,6 +84,7 @@ const char* touch_name(Touch t) {
 const char* event_name(FlightEvent::Kind k) {
   switch (k) {
     case FlightEvent::Kind::Strike: return "strike";
+    case FlightEvent::Kind::Push: return "push";
     case FlightEvent::Kind::Bounce: return "bounce";
     case FlightEvent::Kind::GuardPass: return "guard-pass";
     case FlightEvent::Kind::Slide: return "slide";
@@ -120,6 +121,13 @@ constexpr double kSinksDeeper = 2.0;   // shank diameters: a nail sunk deeper st
 // meets fewer faces: 0.15 m runs 13-17 % more nails a second than 0.5 m on the shipped J232
 // decks and the same on the fields (docs/validation.md §4).
 constexpr double kMaxChord = 0.15;
+// A sphere held on a knife's face ([contacts] blade_push = "held"): each step of its slide
+// turns the knife this far (at 990 rpm, 96 us: a push of a few ms takes a few dozen steps,
+// each an RK4 step of the slide with the face put back exactly at its end), and it is let go
+// when the face's clearance from it, measured on the real section, is more than this (it
+// slid past the face's edge, or the face's plane no longer stands for the section there).
+constexpr double kHeldTurn = 0.01;        // rad
+constexpr double kHeldSlack = 5e-6;       // m
 // A lying nail slides with its lowest point this far above the ground (clear of its faces by
 // more than the touch tolerance, so that sliding along them is no touch).
 constexpr double kLyingGap = 5 * kFaceTolerance;
@@ -260,6 +268,25 @@ struct NailFlight {
   bool carried();
   void observe(const Chord& c, const NextEvent& e) const;
   Chord event_advance(double t_end);
+  // A sphere held on a knife's face ([contacts] blade_push = "held", docs/model.md §9.1): the
+  // face is fixed in the blade's frame, so it is its normal when caught and the centre's
+  // distance along it from the spindle's axis, turned with the blade. Held, the body slides on
+  // the face under the knife's push, Coulomb friction against its slip there, gravity and
+  // drag, until the push would pull (it lifts off), the real section no longer touches it
+  // (past the face's edge or the arm's tip) or anything else is met. It skids: its spin is
+  // not followed while held (a ball's spin-up on the knife is left out).
+  struct Held {
+    std::size_t spindle = 0, edge = 0;
+    double t0 = 0;
+    Vec3 normal0 = Vec3::UnitY();  // from the knife into the body, at t0
+    double offset = 0;             // normal · (centre - the spindle's axis point at ground level)
+  };
+  std::optional<Held> held{};
+  Vec3 held_normal(const Held& h, double t) const;
+  Vec3 held_acceleration(const Held& h, const DragOverStep& over, const Vec3& c, const Vec3& v, double t, double& pressed) const;
+  void hold(const strike::Contact& k);
+  Chord held_chord(double t_end);
+  void held_moved();
   Chord chord_from(const Body& from, double dt, const DragOverStep& drag, const Vec3& accel) const;
   std::size_t gather(const strike::Motion& m, double from, double until, bool counted = true);
   // The faces about the nail where it is now, at rest (not counted as a chord's query).
@@ -445,6 +472,7 @@ std::optional<strike::Contact> NailFlight::blade_contact(const strike::Motion& m
   if (!ctx.spindles) return best;
   strike::SearchStats stats;
   for (std::size_t k = 0; k < ctx.spindles->size(); ++k) {
+    if (held && k == held->spindle) continue;  // the body is on its face: the hold follows that contact
     const strike::Spindle& sp = (*ctx.spindles)[k];
     const auto method = sp.reference_search ? strike::SearchMethod::FixedSteps : strike::SearchMethod::Advancement;
     auto c = strike::first_contact(sp, phases.at_zero[k], nail, m, best ? best->time : until, stats, method);
@@ -489,7 +517,9 @@ void NailFlight::restrike(const strike::Contact& k) {
   // A field's object pushed along by the blade: each contact is resolved as it comes (a chain
   // of impacts, each with Coulomb friction in its impulse, is the sliding along the arm that
   // tests/cli/push_law_check.py fits); the report counts the objects so pushed.
-  if (set.materials.ground().takes_strikes && pass_contacts == kPushedAlongContacts + 1) ++r.pushed_along;
+  // (Held pushes, [contacts] blade_push = "held", are counted as each is caught.)
+  if (set.materials.ground().takes_strikes && set.blade_push == scenario::BladePush::Impacts && pass_contacts == kPushedAlongContacts + 1)
+    ++r.pushed_along;
   pass_spindle = k.spindle, pass_edge = k.edge, last_contact = k.time, last_event = k.time;
   const double speed_in = ctx.events ? b.velocity.norm() : 0.0;  // for a replay's trail only
   const SurfaceMaterial& ground = set.materials.ground();
@@ -507,6 +537,97 @@ void NailFlight::restrike(const strike::Contact& k) {
   last_contact_guard = false;
   if (FlightEvent* e = log(FlightEvent::Kind::Strike, k.point, k.normal, speed_in))
     e->spindle = static_cast<std::uint16_t>(k.spindle), e->edge = static_cast<std::uint16_t>(k.edge);
+  hold(k);
+}
+
+// The held face's normal at t: the normal when caught, turned with the blade.
+Vec3 NailFlight::held_normal(const Held& h, double t) const {
+  const strike::Spindle& sp = (*ctx.spindles)[h.spindle];
+  const units::SinCos sc = units::sin_cos(sp.sense * sp.omega() * (t - h.t0));
+  const Vec3& n = h.normal0;
+  return {sc.cos * n.x() - sc.sin * n.y(), sc.sin * n.x() + sc.cos * n.y(), n.z()};
+}
+
+// The held body's acceleration with its centre at c moving at v at time t: gravity and drag,
+// the face's push `pressed` (per unit mass) along its normal n, and Coulomb friction mu times
+// that against the slip. The push keeps n(t) . (c - o) fixed to second order (o on the
+// spindle's axis, the blade turning at W): n . a + 2 (W x n) . v + (W x (W x n)) . (c - o) = 0.
+Vec3 NailFlight::held_acceleration(const Held& h, const DragOverStep& over, const Vec3& c, const Vec3& v, double t, double& pressed) const {
+  const strike::Spindle& sp = (*ctx.spindles)[h.spindle];
+  const Vec3 n = held_normal(h, t), w(0.0, 0.0, sp.sense * sp.omega()), o(sp.centre.x(), sp.centre.y(), 0.0);
+  const Vec3 free = over.acceleration(v, b.axis), wn = w.cross(n);
+  pressed = -n.dot(free) - 2.0 * wn.dot(v) - w.cross(wn).dot(c - o);
+  // The slip: the body's velocity against the face's where they touch, across the normal.
+  Vec3 slip = v - w.cross(c - nail.radius() * n - o);
+  slip -= slip.dot(n) * n;
+  const double slipping = slip.norm();
+  Vec3 a = free + pressed * n;
+  if (slipping > 0) a -= sp.friction * pressed / slipping * slip;
+  return a;
+}
+
+// Just struck: a sphere the knife would catch again before it could part from the face by
+// the touch tolerance (its speed away from the face u with u^2 < 2 A delta, A the face's push
+// toward it) is held there.
+void NailFlight::hold(const strike::Contact& k) {
+  if (set.blade_push != scenario::BladePush::Held || nail.half_segment() != 0 || held || cut_off) return;
+  const strike::Spindle& sp = (*ctx.spindles)[k.spindle];
+  Held h;
+  h.spindle = k.spindle, h.edge = k.edge, h.t0 = k.time, h.normal0 = k.normal;
+  const Vec3 o(sp.centre.x(), sp.centre.y(), 0.0), w(0.0, 0.0, sp.sense * sp.omega());
+  h.offset = k.normal.dot(b.position - o);
+  double pressed = 0;
+  held_acceleration(h, DragOverStep(drag, b), b.position, b.velocity, b.time, pressed);
+  const double parting = k.normal.dot(b.velocity) + w.cross(k.normal).dot(b.position - o);
+  if (!(pressed > 0) || parting * parting >= 2.0 * pressed * strike::kContactTolerance) return;
+  held = h;
+  b.velocity -= parting * k.normal;  // on the face (its kinetic energy at most m A delta)
+  b.spin = Vec3::Zero();
+  ++r.pushed_along;
+}
+
+// The next step of a held body's slide: RK4 of its motion on the face, put back on the face
+// at the step's end (position and normal velocity), and the chord the searches follow
+// (through both ends, as a free chord's).
+NailFlight::Chord NailFlight::held_chord(double t_end) {
+  const Held& h = *held;
+  const strike::Spindle& sp = (*ctx.spindles)[h.spindle];
+  const DragOverStep over(drag, b);
+  const double dt = std::min(kHeldTurn / sp.omega(), t_end - b.time), t = b.time;
+  double pressed = 0;
+  const auto f = [&](const Vec3& c, const Vec3& v, double at) { return held_acceleration(h, over, c, v, at, pressed); };
+  const Vec3 k1v = f(b.position, b.velocity, t), k1x = b.velocity;
+  const Vec3 k2x = b.velocity + 0.5 * dt * k1v, k2v = f(b.position + 0.5 * dt * k1x, k2x, t + 0.5 * dt);
+  const Vec3 k3x = b.velocity + 0.5 * dt * k2v, k3v = f(b.position + 0.5 * dt * k2x, k3x, t + 0.5 * dt);
+  const Vec3 k4x = b.velocity + dt * k3v, k4v = f(b.position + dt * k3x, k4x, t + dt);
+  Body next = b;
+  next.time = t + dt;
+  next.position = b.position + dt / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
+  next.velocity = b.velocity + dt / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+  const Vec3 n = held_normal(h, next.time), w(0.0, 0.0, sp.sense * sp.omega()), o(sp.centre.x(), sp.centre.y(), 0.0);
+  next.position += (h.offset - n.dot(next.position - o)) * n;
+  next.velocity -= (n.dot(next.velocity) + w.cross(n).dot(next.position - o)) * n;
+  strike::Motion motion = chord_motion(b, k1v);
+  if (dt > 0) motion.a = 2.0 * (next.position - b.position - b.velocity * dt) / (dt * dt);
+  return {over, k1v, dt, next, next.position - b.position, (next.position - b.position).norm(), motion};
+}
+
+// A held step ended: logged, and let go when the push would pull, the real section no longer
+// touches the body (past the face's edge, or beyond the arm's tip) or a quarter turn has gone.
+void NailFlight::held_moved() {
+  const Held& h = *held;
+  const strike::Spindle& sp = (*ctx.spindles)[h.spindle];
+  double pressed = 0;
+  held_acceleration(h, DragOverStep(drag, b), b.position, b.velocity, b.time, pressed);
+  const Vec3 n = held_normal(h, b.time);
+  if (FlightEvent* e = log(FlightEvent::Kind::Push, b.position - nail.radius() * n, n)) {
+    e->spindle = static_cast<std::uint16_t>(h.spindle), e->edge = static_cast<std::uint16_t>(h.edge), e->pressed = pressed;
+  }
+  const strike::Clearance gap = strike::clearance(sp, h.edge, phases.at_zero[h.spindle], nail, chord_motion(b, Vec3::Zero()), b.time);
+  if (!(pressed > 0) || gap.off_arm || !(std::abs(gap.distance) <= kHeldSlack) || sp.omega() * (b.time - h.t0) > 0.5 * units::pi) {
+    held.reset();
+    last_contact = b.time, last_event = b.time;
+  }
 }
 
 void NailFlight::record_mark(const Vec3& point, double energy, bool zone, bool puncture) {
@@ -1218,6 +1339,11 @@ FaceFilter NailFlight::filter() {
 // the contact searches follow along it; and the faces it may meet (a chord that sweeps more
 // faces than the search keeps is halved).
 NailFlight::Chord NailFlight::event_advance(double t_end) {
+  if (held) {
+    Chord c = held_chord(t_end);
+    if (gather(c.motion, b.time, b.time + c.dt) <= candidates.size()) return c;
+    held.reset();  // too many faces about it for one step: let go, and step freely
+  }
   const DragOverStep step_drag(drag, b);
   const Vec3 accel = step_drag.acceleration(b.velocity, b.axis);
   double dt = std::min(chord_step(b, accel, set.chord_tolerance, kMaxChord, step_drag), t_end - b.time);
@@ -1275,8 +1401,10 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
     case NextEvent::Kind::ChordEnd:
       moved(b.position, c.next.position);
       b = c.next;
+      if (held) held_moved();
       return true;
     case NextEvent::Kind::Blade: {
+      held.reset();  // another knife meets it: let go, and struck
       const Vec3 from = b.position;
       b.position = e.contact->centre;
       b.velocity = c.motion.velocity(e.contact->time);
@@ -1289,6 +1417,7 @@ bool NailFlight::event_collide(const Chord& c, const NextEvent& e) {
     }
     case NextEvent::Kind::Surface: break;
   }
+  held.reset();  // it meets a face of the scene: let go there
   const FaceTouch& at = *e.touch;
   const scene::Hit hit = face_hit(at);
   touched_scene();

@@ -151,7 +151,8 @@ struct FlightResult {
 // One event of a nail's flight, for replaying a nail (`j232 trace`): what happened, when
 // and where, and the nail's state just after it. Recorded only when the context asks.
 struct FlightEvent {
-  enum class Kind : std::uint8_t { Strike, Bounce, GuardPass, Slide, Rest, Board, LeftDeck, End };
+  // Push: a sphere held on a knife's face ([contacts] blade_push = "held"), logged at each step of its slide.
+  enum class Kind : std::uint8_t { Strike, Bounce, GuardPass, Slide, Rest, Board, LeftDeck, End, Push };
   Kind kind = Kind::End;
   double time = 0;  // s on the blades' clock
   Vec3 centre = Vec3::Zero(), velocity = Vec3::Zero(), spin = Vec3::Zero(), axis = Vec3::UnitZ();  // after it
@@ -161,8 +162,9 @@ struct FlightEvent {
   scene::Surface surface = scene::Surface::Ground;
   std::uint32_t face = 0;
   std::uint16_t guard = 0;
-  std::uint16_t spindle = 0, edge = 0;  // Strike
+  std::uint16_t spindle = 0, edge = 0;  // Strike, Push
   double energy = 0, width = 0;         // Board: what the board model judged
+  double pressed = 0;                   // Push: the face's push on the body per unit of its mass, m/s^2
   // Bounce, Slide: the nail's mechanical energy (kinetic, translational and rotational, and
   // potential) just before and just after (a bounce or the fall flat must not create any).
   double energy_before = 0, energy_after = 0;
@@ -171,7 +173,7 @@ struct FlightEvent {
   int mark = 0;                         // Board: 0 none, 1 hit, 2 puncture
   Fate fate = Fate::OverBoard;          // End
 };
-const char* event_name(FlightEvent::Kind k);  // "strike", "bounce", "guard-pass", "slide", "rest", "board", "left-deck", "end"
+const char* event_name(FlightEvent::Kind k);  // "strike", "bounce", "guard-pass", "slide", "rest", "board", "left-deck", "end", "push"
 
 // One stretch of a flight between events: the capsule moved as `motion` over [from, until]
 // (free flight along a chord, or sliding on the ground). Recorded for the audit of a replay

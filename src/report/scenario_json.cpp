@@ -212,7 +212,8 @@ json run_json(const scenario::Scenario& s) {
           {"rest_speed_m_s", r.rest_speed},
           {"contact_search", r.reference_contact_search ? "fixed_steps" : "advancement"},
           {"restitution_law", r.restitution_law == scenario::RestitutionLaw::Poisson ? "poisson" : "energetic"},
-          {"contacts", r.contact_model == scenario::ContactModel::Simultaneous ? "simultaneous" : "sequential"}};
+          {"contacts", r.contact_model == scenario::ContactModel::Simultaneous ? "simultaneous" : "sequential"},
+          {"blade_push", r.blade_push == scenario::BladePush::Held ? "held" : "impacts"}};
 }
 
 }  // namespace

@@ -256,6 +256,14 @@ enum class RestitutionLaw { Energetic, Poisson };
 // once with Newton's restitution at each and Coulomb friction).
 enum class ContactModel { Sequential, Simultaneous };
 
+// How a knife's push on a sphere is followed (docs/model.md §9.1): once the body would be
+// caught again before it could part from the face by the touch tolerance, held on the face
+// and slid along it under the knife's push and Coulomb friction until it lifts off or leaves
+// the face (the default); or contact by contact, each an impulse with Coulomb friction, as
+// any blade contact (the chain of impacts the held slide replaces, to compare against).
+// A capsule (a nail) is always followed contact by contact.
+enum class BladePush { Held, Impacts };
+
 struct RunSpec {
   long long replicates = 1000;
   unsigned long long seed = 1;
@@ -300,6 +308,7 @@ struct RunSpec {
   // compare against.
   RestitutionLaw restitution_law = RestitutionLaw::Energetic;
   ContactModel contact_model = ContactModel::Sequential;  // [contacts] model
+  BladePush blade_push = BladePush::Held;                 // [contacts] blade_push
 };
 
 // An uncertainty study of the scenario (`j232 uq`, docs/model.md §6b): inputs varied

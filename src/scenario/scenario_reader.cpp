@@ -1168,6 +1168,7 @@ Scenario read_scenario(const toml::table& document, const std::string& file) {
   if (auto c = root.table("contacts")) {
     s.run.contact_model = c->string_or("model", "sequential", {"sequential", "simultaneous"}) == "simultaneous" ? ContactModel::Simultaneous
                                                                                                              : ContactModel::Sequential;
+    s.run.blade_push = c->string_or("blade_push", "held", {"held", "impacts"}) == "impacts" ? BladePush::Impacts : BladePush::Held;
     c->refuse_unknown_keys();
   }
   if (auto f = root.table("field")) {
