@@ -70,8 +70,9 @@ class HazardTally {
   std::uint64_t hazardous_beyond_square = 0;  // hazardous ground impacts outside the square
   std::uint64_t overflow = 0;                 // objects with more hazardous impacts than an object's record holds
   // Objects a knife rode over (pressed into the soil) at least once (how much rests on that
-  // rule), and objects pushed along by an arm (a pass of more than 64 contacts, each
-  // resolved as it comes) at least once (docs/model.md §9.1).
+  // rule), and objects pushed along by an arm at least once: held on a knife's face, or,
+  // contact by contact ([contacts] blade_push = "impacts"), in a pass of more than 64 contacts
+  // (docs/model.md §9.1).
   std::uint64_t ridden_over = 0, pushed_along = 0;
   std::vector<std::uint64_t> landings;   // [cell]: objects first coming down there (outside the deck)
   std::vector<std::uint64_t> hazardous;  // [cell]: ground impacts with at least the person's energy

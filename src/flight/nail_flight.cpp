@@ -494,6 +494,7 @@ std::optional<strike::Contact> NailFlight::blade_contact(const strike::Motion& m
 
 // Struck again: the contact's impulse gives the new velocity and spin.
 void NailFlight::restrike(const strike::Contact& k) {
+  held.reset();  // struck: whatever held it before lets go (hold() below may hold it again)
   NailTrace& trace = r.trace;
   const strike::Spindle& sp = (*ctx.spindles)[k.spindle];
   const strike::StrikeOutcome out = strike::strike(sp, k, nail, b.velocity, b.spin);
@@ -561,8 +562,11 @@ Vec3 NailFlight::held_acceleration(const Held& h, const DragOverStep& over, cons
   Vec3 slip = v - w.cross(c - nail.radius() * n - o);
   slip -= slip.dot(n) * n;
   const double slipping = slip.norm();
-  Vec3 a = free + pressed * n;
-  if (slipping > 0) a -= sp.friction * pressed / slipping * slip;
+  // (Within a step the push may come out negative before the step's end lets the body go: a
+  // face never pulls, nor does its friction then act.)
+  const double push = std::max(pressed, 0.0);
+  Vec3 a = free + push * n;
+  if (slipping > 0) a -= sp.friction * push / slipping * slip;
   return a;
 }
 
@@ -570,7 +574,9 @@ Vec3 NailFlight::held_acceleration(const Held& h, const DragOverStep& over, cons
 // the touch tolerance (its speed away from the face u with u^2 < 2 A delta, A the face's push
 // toward it) is held there.
 void NailFlight::hold(const strike::Contact& k) {
-  if (set.blade_push != scenario::BladePush::Held || nail.half_segment() != 0 || held || cut_off) return;
+  if (set.blade_push != scenario::BladePush::Held || nail.half_segment() != 0 || cut_off) return;
+  // A knife that rides over the object (pressed into the soil) does not push it.
+  if (k.spindle == ridden_spindle && k.time < ridden_until) return;
   const strike::Spindle& sp = (*ctx.spindles)[k.spindle];
   Held h;
   h.spindle = k.spindle, h.edge = k.edge, h.t0 = k.time, h.normal0 = k.normal;
@@ -579,7 +585,8 @@ void NailFlight::hold(const strike::Contact& k) {
   double pressed = 0;
   held_acceleration(h, DragOverStep(drag, b), b.position, b.velocity, b.time, pressed);
   const double parting = k.normal.dot(b.velocity) + w.cross(k.normal).dot(b.position - o);
-  if (!(pressed > 0) || parting * parting >= 2.0 * pressed * strike::kContactTolerance) return;
+  // (Still approaching, parting < 0, the impulse left it: no hold, which would push it.)
+  if (!(pressed > 0) || parting < 0 || parting * parting >= 2.0 * pressed * strike::kContactTolerance) return;
   held = h;
   b.velocity -= parting * k.normal;  // on the face (its kinetic energy at most m A delta)
   b.spin = Vec3::Zero();
@@ -620,6 +627,10 @@ void NailFlight::held_moved() {
   double pressed = 0;
   held_acceleration(h, DragOverStep(drag, b), b.position, b.velocity, b.time, pressed);
   const Vec3 n = held_normal(h, b.time);
+  // The knife's contact goes on: what leaves it leaves at the held body's velocity.
+  r.trace.last_strike_speed = b.velocity.norm();
+  r.trace.last_strike_velocity = b.velocity;
+  if (on_blade) r.launch_velocity = b.velocity;
   if (FlightEvent* e = log(FlightEvent::Kind::Push, b.position - nail.radius() * n, n)) {
     e->spindle = static_cast<std::uint16_t>(h.spindle), e->edge = static_cast<std::uint16_t>(h.edge), e->pressed = pressed;
   }
@@ -981,6 +992,7 @@ bool NailFlight::sinks_in(const SurfaceMaterial& material, const Vec3& n, const 
 // On the ground after `hit` with too little rebound to fly: slides to rest, or into a wall
 // and on. Returns false when the flight has ended (at rest, stopped, cut off).
 bool NailFlight::slide(const scene::Hit& hit) {
+  held.reset();  // on the ground now (a nudge's slide from where it lies): no knife holds it
   Vec3 up = ctx.scene->face_normal(hit.face);
   if (up.dot(hit.normal) < 0) up = -up;
   const double friction_decel = set.materials.of(hit.surface, hit.guard).friction * -kGravity.z() * std::max(0.0, up.z());

@@ -141,7 +141,8 @@ struct FlightResult {
   CutOff cut_off = CutOff::None;          // what cut it off (fate CutOff), the first limit reached
   int queries = 0;                        // scene ray queries (for the benchmark)
   // A field's objects (whose ground takes strikes: flight::SurfaceMaterial::takes_strikes): strikes after which a knife
-  // rode over the object pressed into the soil, and passes of more than 64 contacts (a push).
+  // rode over the object pressed into the soil, and pushes along a knife (held on its face, or
+  // contact by contact passes of more than 64 contacts).
   int ridden_over = 0, pushed_along = 0;
   double flight_time = 0;
   Vec3 end_position = Vec3::Zero();

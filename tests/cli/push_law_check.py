@@ -71,6 +71,11 @@ def main():
     if len(push) < least:
         print(f"FAILED: the longest run of blade contacts has {len(push)}; expected a push of at least {least}")
         return 1
+    if held:  # the hold must have engaged: most of the run held steps, each pressed on the face
+        steps = [e for e in push if e["event"] == "push"]
+        if len(steps) < 20 or 2 * len(steps) < len(push) or not all(e["pressed_m_s2"] > 0 for e in steps):
+            print(f"FAILED: {len(steps)} held steps of {len(push)} in the push; expected at least 20 and most of it, each pressed")
+            return 1
     w = rpm * 2 * math.pi / 60
     t0 = push[0]["time_s"]
     ts, rs, rds = [], [], []
