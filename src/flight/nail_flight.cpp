@@ -541,6 +541,10 @@ void NailFlight::restrike(const strike::Contact& k) {
   hold(k);
 }
 
+// A spindle's turning as a vector (rad/s, about +z), and its axis's point at ground level.
+Vec3 spin_of(const strike::Spindle& sp) { return {0.0, 0.0, sp.sense * sp.omega()}; }
+Vec3 axis_point(const strike::Spindle& sp) { return {sp.centre.x(), sp.centre.y(), 0.0}; }
+
 // The held face's normal at t: the normal when caught, turned with the blade.
 Vec3 NailFlight::held_normal(const Held& h, double t) const {
   const strike::Spindle& sp = (*ctx.spindles)[h.spindle];
@@ -555,11 +559,11 @@ Vec3 NailFlight::held_normal(const Held& h, double t) const {
 // spindle's axis, the blade turning at W): n . a + 2 (W x n) . v + (W x (W x n)) . (c - o) = 0.
 Vec3 NailFlight::held_acceleration(const Held& h, const DragOverStep& over, const Vec3& c, const Vec3& v, double t, double& pressed) const {
   const strike::Spindle& sp = (*ctx.spindles)[h.spindle];
-  const Vec3 n = held_normal(h, t), w(0.0, 0.0, sp.sense * sp.omega()), o(sp.centre.x(), sp.centre.y(), 0.0);
+  const Vec3 n = held_normal(h, t), w = spin_of(sp);
   const Vec3 free = over.acceleration(v, b.axis), wn = w.cross(n);
-  pressed = -n.dot(free) - 2.0 * wn.dot(v) - w.cross(wn).dot(c - o);
+  pressed = -n.dot(free) - 2.0 * wn.dot(v) - w.cross(wn).dot(c - axis_point(sp));
   // The slip: the body's velocity against the face's where they touch, across the normal.
-  Vec3 slip = v - w.cross(c - nail.radius() * n - o);
+  Vec3 slip = v - sp.velocity_at(c - nail.radius() * n);
   slip -= slip.dot(n) * n;
   const double slipping = slip.norm();
   // (Within a step the push may come out negative before the step's end lets the body go: a
@@ -580,7 +584,7 @@ void NailFlight::hold(const strike::Contact& k) {
   const strike::Spindle& sp = (*ctx.spindles)[k.spindle];
   Held h;
   h.spindle = k.spindle, h.edge = k.edge, h.t0 = k.time, h.normal0 = k.normal;
-  const Vec3 o(sp.centre.x(), sp.centre.y(), 0.0), w(0.0, 0.0, sp.sense * sp.omega());
+  const Vec3 o = axis_point(sp), w = spin_of(sp);
   h.offset = k.normal.dot(b.position - o);
   double pressed = 0;
   held_acceleration(h, DragOverStep(drag, b), b.position, b.velocity, b.time, pressed);
@@ -611,7 +615,7 @@ NailFlight::Chord NailFlight::held_chord(double t_end) {
   next.time = t + dt;
   next.position = b.position + dt / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
   next.velocity = b.velocity + dt / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-  const Vec3 n = held_normal(h, next.time), w(0.0, 0.0, sp.sense * sp.omega()), o(sp.centre.x(), sp.centre.y(), 0.0);
+  const Vec3 n = held_normal(h, next.time), w = spin_of(sp), o = axis_point(sp);
   next.position += (h.offset - n.dot(next.position - o)) * n;
   next.velocity -= (n.dot(next.velocity) + w.cross(n).dot(next.position - o)) * n;
   strike::Motion motion = chord_motion(b, k1v);
