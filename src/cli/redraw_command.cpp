@@ -1,19 +1,20 @@
 // `j232 redraw`: a saved result's page drawn again from its JSON alone, without running
-// anything: a field's hazard.json or compare.json (in SI or US units), a J232 comparison's
-// compare.json, an uncertainty study's uq.json. Each page is drawn from the JSON as saved
-// (report::as_saved), so the page is that file's by construction; a J232 test's report.html
-// is still drawn from its run (result.json does not hold its hit map and histograms), so a
-// result.json is refused with what to do instead.
+// anything: a J232 test's result.json (its compliance report), a field's hazard.json or
+// compare.json (in SI or US units), a J232 comparison's compare.json, an uncertainty study's
+// uq.json. Each page is drawn from the JSON as saved (report::as_saved), so the page is that
+// file's by construction: `j232 run` draws its report.html the same way.
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "report/atomic_file.hpp"
 #include "report/comparison_report.hpp"
+#include "report/compliance_report.hpp"
 #include "report/display_units.hpp"
 #include "report/hazard_report.hpp"
 #include "report/result_files.hpp"
@@ -51,18 +52,15 @@ SavedKind kind_of(const json& j, const std::string& file) {
     return {"compare.html", true, [](const json& r, const report::DisplayUnits& u) { return report::hazard_comparison_html(r, u); }};
   if (program == "j232 compare") return {"compare.html", false, [](const json& r, const report::DisplayUnits&) { return report::comparison_html(r); }};
   if (program == "j232 uq") return {"uq.html", false, [](const json& r, const report::DisplayUnits&) { return report::uncertainty_html(r); }};
-  if (program == "j232 run")
-    throw InputError(file, std::nullopt, "program", "j232 run",
-                     "expected a hazard.json, compare.json or uq.json: a J232 test's report.html is drawn from its run, not from result.json "
-                     "(run the scenario again, with the seed and replicates in its provenance, to draw it)");
+  if (program == "j232 run") return {"report.html", false, [](const json& r, const report::DisplayUnits&) { return report::compliance_report_html(r); }};
   throw InputError(file, std::nullopt, kind.empty() ? "program" : "kind", kind.empty() ? program : kind,
-                   "expected a hazard.json, compare.json or uq.json as j232 hazard, compare or uq writes it");
+                   "expected a result.json, hazard.json, compare.json or uq.json as j232 run, hazard, compare or uq writes it");
 }
 
 int redraw(const RedrawOptions& o) {
   const report::DisplayUnits units = report::display_units(o.units);  // (a bad name refused before anything is read)
   std::ifstream in(o.file, std::ios::binary);
-  if (!in) throw InputError::file_problem(o.file, std::nullopt, "cannot be read (expected a hazard.json, compare.json or uq.json that j232 wrote)");
+  if (!in) throw InputError::file_problem(o.file, std::nullopt, "cannot be read (expected a result.json, hazard.json, compare.json or uq.json that j232 wrote)");
   std::stringstream text;
   text << in.rdbuf();
   const json j = json::parse(text.str(), nullptr, false);
@@ -77,6 +75,9 @@ int redraw(const RedrawOptions& o) {
     // A file written by another version, or edited: name what the page needed.
     throw InputError::file_problem(o.file, std::nullopt,
                                    fmt::format("lacks what {} draws, as this version of j232 writes it ({})", k.page, e.what()));
+  } catch (const std::out_of_range& e) {  // (a list shorter than another it goes with, a value out of its range)
+    throw InputError::file_problem(o.file, std::nullopt,
+                                   fmt::format("holds what {} cannot draw, as this version of j232 writes it ({})", k.page, e.what()));
   }
   // Beside the file by default: the page itself in SI, a page of its own in US units (the
   // SI page stays, as the JSON and CSV beside it are SI).
@@ -94,12 +95,12 @@ Runner add_redraw_command(CLI::App& app) {
   auto o = std::make_shared<RedrawOptions>();
   CLI::App* cmd = app.add_subcommand(
       "redraw", "Draw a saved result's page again from its JSON alone, running nothing (a field's page in other units, say)");
-  cmd->add_option("file", o->file, "A hazard.json, compare.json or uq.json that j232 wrote")->required();
+  cmd->add_option("file", o->file, "A result.json, hazard.json, compare.json or uq.json that j232 wrote")->required();
   cmd->add_option("--units", o->units,
                   "Units of a field's page (hazard.json, a field's compare.json): si (m, m/s, J, per km) or us (ft, mph, ft-lb, per mile)")
       ->capture_default_str();
   cmd->add_option("--out", o->out,
-                  "The page to write (default: hazard.html, compare.html or uq.html beside the file; hazard-us.html or compare-us.html in US units)");
+                  "The page to write (default: report.html, hazard.html, compare.html or uq.html beside the file; hazard-us.html or compare-us.html in US units)");
   return [o] { return redraw(*o); };
 }
 

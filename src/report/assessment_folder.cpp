@@ -16,6 +16,7 @@
 #include "assess/summary.hpp"
 #include "assess/trajectories.hpp"
 #include "report/atomic_file.hpp"
+#include "report/board_views.hpp"
 #include "report/output_folder.hpp"
 #include "report/terminal_progress.hpp"
 #include "report/compliance_report.hpp"
@@ -178,7 +179,10 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
     outcome.result["deciding_inputs"] = drivers_json(drivers, outcome.result["deciding_criterion"].get<std::string>());
     outcome.summary_text += drivers_text(outcome.result["deciding_inputs"]);
   }
-  const std::string html = compliance_report_html(s, a, sum, outcome.result, simulator.scene().soup());
+  // What the page's pictures need of the run and its scene goes into result.json, and the page
+  // is drawn from the file as saved: `j232 redraw result.json` draws the same page.
+  outcome.result["pictures"] = pictures_json(s, a, simulator.scene().soup());
+  const std::string html = compliance_report_html(as_saved(outcome.result));
   Fnv html_digest;
   html_digest.add(html);
   outcome.result["provenance"]["files"].push_back({{"name", "report.html"}, {"bytes", html.size()}, {"fnv1a64", html_digest.hex()}});

@@ -8,13 +8,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "assess/summary.hpp"
-#include "scene/soup.hpp"
-
 namespace j232::report {
 
-// `result` is result_json() of the same run; `soup` the scene the run used.
-std::string compliance_report_html(const scenario::Scenario& s, const assess::Assessment& a, const assess::Summary& sum,
-                                   const nlohmann::ordered_json& result, const scene::Soup& soup);
+// Drawn from a result.json as saved (report::as_saved) alone, "pictures" included: the page
+// `j232 run` writes and the one `j232 redraw` draws from the saved file are the same.
+std::string compliance_report_html(const nlohmann::ordered_json& result);
 
 }  // namespace j232::report

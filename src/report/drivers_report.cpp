@@ -39,62 +39,62 @@ json drivers_json(const study::Drivers& d, const std::string& criterion) {
 
 namespace {
 std::string end_words(const json& e) {
-  return fmt::format("{:+.2f} at {}", 100 * e["change"]["mean"].get<double>(), e["value"].get<std::string>());
+  return fmt::format("{:+.2f} at {}", 100 * e.at("change").at("mean").get<double>(), e.at("value").get<std::string>());
 }
 }  // namespace
 
 std::string drivers_text(const json& d) {
   std::string o = fmt::format("  What moves {} most (each input at its range's ends, {} paired replicates; change of its mean share, points):\n",
-                              d["criterion"].get<std::string>(), d["replicates"].get<std::uint64_t>());
-  if (d["ranked"].empty() || d["ranked"][0]["largest_change"].get<double>() == 0.0)
-    return o + fmt::format("    none of the {} inputs moves it at either end of its range, at these replicates\n", d["ranked"].size());
-  for (std::size_t i = 0; i < d["ranked"].size() && i < kDriversShown; ++i) {
-    const auto& r = d["ranked"][i];
+                              d.at("criterion").get<std::string>(), d.at("replicates").get<std::uint64_t>());
+  if (d.at("ranked").empty() || d.at("ranked")[0].at("largest_change").get<double>() == 0.0)
+    return o + fmt::format("    none of the {} inputs moves it at either end of its range, at these replicates\n", d.at("ranked").size());
+  for (std::size_t i = 0; i < d.at("ranked").size() && i < kDriversShown; ++i) {
+    const auto& r = d.at("ranked")[i];
     std::string ends;
-    for (const auto& e : r["ends"]) ends += (ends.empty() ? "" : ", ") + end_words(e);
-    o += fmt::format("    {}. {}: {}\n", i + 1, terminal_safe(r["input"].get<std::string>()), terminal_safe(ends));
+    for (const auto& e : r.at("ends")) ends += (ends.empty() ? "" : ", ") + end_words(e);
+    o += fmt::format("    {}. {}: {}\n", i + 1, terminal_safe(r.at("input").get<std::string>()), terminal_safe(ends));
   }
   return o;
 }
 
 std::string drivers_html(const json& r) {
   if (!r.contains("deciding_inputs")) return "";
-  const json& d = r["deciding_inputs"];
+  const json& d = r.at("deciding_inputs");
   std::string o = "<section id=\"drivers\">\n<h3>What moves the verdict</h3>\n";
   o += fmt::format(
       "<p>The deciding criterion, <strong>{}</strong>, with each uncertain input ({}) set to each end of its range and every other "
       "input as written: {} replicates each with the scenario's seed, so each change is paired replicate by replicate with the "
       "scenario as written (its share at these replicates: {} %; P(pass) from every nail {}).</p>\n",
-      escape(d["criterion"].get<std::string>()), escape(d["inputs_from"].get<std::string>()), number("deciding_inputs.replicates", d["replicates"], "{}"),
-      number("deciding_inputs.share_as_written", d["share_as_written"], "{:.2f}", 100),
-      number("deciding_inputs.p_pass_exact_as_written", d["p_pass_exact_as_written"], "{:.3f}"));
-  if (d["ranked"].empty() || d["ranked"][0]["largest_change"].get<double>() == 0.0)
+      escape(d.at("criterion").get<std::string>()), escape(d.at("inputs_from").get<std::string>()), number("deciding_inputs.replicates", d.at("replicates"), "{}"),
+      number("deciding_inputs.share_as_written", d.at("share_as_written"), "{:.2f}", 100),
+      number("deciding_inputs.p_pass_exact_as_written", d.at("p_pass_exact_as_written"), "{:.3f}"));
+  if (d.at("ranked").empty() || d.at("ranked")[0].at("largest_change").get<double>() == 0.0)
     return o + fmt::format("<p><strong>None of the {} inputs moves it</strong> at either end of its range, at these replicates: the verdict "
                            "does not rest on any one of them (result.json lists each end).</p>\n</section>\n",
-                           d["ranked"].size());
+                           d.at("ranked").size());
   HtmlTable table("numbers", {"input", "value", "share", "change, points (95 %, paired)", "P(pass) from every nail", "its own verdict",
                               "what the range rests on"});
-  for (std::size_t i = 0; i < d["ranked"].size() && i < kDriversShown; ++i) {
-    const auto& in = d["ranked"][i];
+  for (std::size_t i = 0; i < d.at("ranked").size() && i < kDriversShown; ++i) {
+    const auto& in = d.at("ranked")[i];
     const std::string key = fmt::format("deciding_inputs.ranked.{}", i);
-    for (std::size_t e = 0; e < in["ends"].size(); ++e) {
-      const auto& end = in["ends"][e];
+    for (std::size_t e = 0; e < in.at("ends").size(); ++e) {
+      const auto& end = in.at("ends")[e];
       const std::string k = fmt::format("{}.ends.{}", key, e);
       // The input's name and its range's basis span its ends' rows.
       std::vector<HtmlCell> cells;
-      if (e == 0) cells.push_back(HtmlCell::spanning_rows(in["ends"].size(), escape(in["input"].get<std::string>())));
+      if (e == 0) cells.push_back(HtmlCell::spanning_rows(in.at("ends").size(), escape(in.at("input").get<std::string>())));
       cells.insert(cells.end(),
-                   {escape(end["value"].get<std::string>()), number(k + ".share", end["share"], "{:.2f}", 100) + " %",
-                    fmt::format("{} ({} to {})", number(k + ".change.mean", end["change"]["mean"], "{:+.2f}", 100),
-                                number(k + ".change.low", end["change"]["low"], "{:+.2f}", 100),
-                                number(k + ".change.high", end["change"]["high"], "{:+.2f}", 100)),
-                    number(k + ".p_pass_exact", end["p_pass_exact"], "{:.3f}"), escape(end["verdict"].get<std::string>())});
-      if (e == 0) cells.push_back(HtmlCell::spanning_rows(in["ends"].size(), escape(in["basis"].get<std::string>())));
+                   {escape(end.at("value").get<std::string>()), number(k + ".share", end.at("share"), "{:.2f}", 100) + " %",
+                    fmt::format("{} ({} to {})", number(k + ".change.mean", end.at("change").at("mean"), "{:+.2f}", 100),
+                                number(k + ".change.low", end.at("change").at("low"), "{:+.2f}", 100),
+                                number(k + ".change.high", end.at("change").at("high"), "{:+.2f}", 100)),
+                    number(k + ".p_pass_exact", end.at("p_pass_exact"), "{:.3f}"), escape(end.at("verdict").get<std::string>())});
+      if (e == 0) cells.push_back(HtmlCell::spanning_rows(in.at("ends").size(), escape(in.at("basis").get<std::string>())));
       table.row(cells);
     }
   }
   std::size_t runs = 1;  // the scenario as written, and each end
-  for (const auto& in : d["ranked"]) runs += in["ends"].size();
+  for (const auto& in : d.at("ranked")) runs += in.at("ends").size();
   o += "<p>The three inputs that move it most:</p>\n" + table.html();
   o += fmt::format(
       "<p>Every input, ranked, is in result.json (<code>deciding_inputs</code>). One input at a time: what the "

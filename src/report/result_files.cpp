@@ -86,7 +86,8 @@ json strikes_json(const assess::Histogram& h, const assess::Largest& most_strike
 
 json histogram_json(const assess::Histogram& h, const char* unit) {
   return {{"unit", unit},           {"count", h.total},        {"mean", h.mean()},         {"q05", h.quantile(0.05)},
-          {"q50", h.quantile(0.5)}, {"q95", h.quantile(0.95)}, {"bin_width", h.bin_width}, {"counts", h.counts}};
+          {"q50", h.quantile(0.5)}, {"q95", h.quantile(0.95)}, {"bin_width", h.bin_width}, {"first_bin_from", h.origin},
+          {"counts", h.counts}};
 }
 // The largest value a histogram of whole counts (bin k holds k) recorded.
 int most_in(const assess::Histogram& h) {
@@ -299,7 +300,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
     for (const auto& t : a.trajectories) {
       json points = json::array();
       for (const auto& q : t.points)
-        points.push_back({std::round(q.x() * 1e4) / 1e4, std::round(q.y() * 1e4) / 1e4, std::round(q.z() * 1e4) / 1e4});
+        points.push_back({q.x(), q.y(), q.z()});
       paths.push_back(
           {{"replicate", t.replicate}, {"nail", t.nail}, {"why", t.why}, {"fate", flight::fate_name(t.fate)}, {"points_m", points}});
     }
@@ -308,7 +309,7 @@ json result_json(const scenario::Scenario& s, const assess::Assessment& a, const
         {"notable_not_kept", a.trajectories_not_kept},
         {"note",
          "whole paths of the first struck nails of replicate 0 and of every nail that marked the "
-         "operator zone or punctured (up to 100 of each, chosen at random), traced again after the run; points to 0.1 mm"},
+         "operator zone or punctured (up to 100 of each, chosen at random), traced again after the run"},
         {"paths", paths}};
   }
   require_finite(result);

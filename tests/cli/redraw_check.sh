@@ -1,20 +1,21 @@
 #!/usr/bin/env bash
-# redraw_check.sh J232 REPO OUT: `j232 redraw` draws every shipped page that has a JSON of its
-# own (reports/*/hazard.json, compare.json, uq.json) from that JSON alone, and the page is the
-# shipped one byte for byte (the writers draw them from the same JSON as saved); a field's
+# redraw_check.sh J232 REPO OUT: `j232 redraw` draws every shipped page from its JSON alone
+# (reports/*/result.json's report.html, hazard.json, compare.json, uq.json), and the page is
+# the shipped one byte for byte (the writers draw them from the same JSON as saved); a field's
 # page redrawn in US units is the page `j232 hazard --units us` wrote.
 set -euo pipefail
 j232=$1 repo=$2 out=$3
 rm -rf "$out" && mkdir -p "$out"
 pages=0
-for json in "$repo"/reports/*/hazard.json "$repo"/reports/*/compare.json "$repo"/reports/*/uq.json; do
+for json in "$repo"/reports/*/result.json "$repo"/reports/*/hazard.json "$repo"/reports/*/compare.json "$repo"/reports/*/uq.json; do
   [ -e "$json" ] || continue
   folder=$(basename "$(dirname "$json")") page=$(basename "$json" .json).html
+  [ "$page" != result.html ] || page=report.html
   "$j232" redraw "$json" --out "$out/$folder-$page" >/dev/null
   cmp "$out/$folder-$page" "$(dirname "$json")/$page"
   pages=$((pages + 1))
 done
-[ "$pages" -eq 6 ] || { echo "redraw_check: $pages shipped pages found, expected 6" >&2; exit 1; }
+[ "$pages" -eq 17 ] || { echo "redraw_check: $pages shipped pages found, expected 17 (11 J232 tests, 3 fields, 2 comparisons, 1 study)" >&2; exit 1; }
 # In US units: the lawn's field at a small sample, drawn by j232 hazard --units us and redrawn
 # from the SI run's hazard.json (the same run: only the provenance's date and time differ).
 field="$repo/scenarios/field/deck-72in-lawn-stones.toml"
@@ -28,7 +29,7 @@ grep -q "ft-lb" "$out/redrawn-us.html"
 "$j232" redraw "$out/si/hazard.json" --units us >/dev/null
 cmp "$out/si/hazard-us.html" "$out/redrawn-us.html"
 # A saved file that lacks a key its page draws is refused, naming the key (exit 2), never a crash.
-for lacking in uq-raised-skirt/uq.json:outputs compare-raised-skirt-chains/compare.json:differences hazard-deck-72in-lawn-stones/hazard.json:plan_views; do
+for lacking in highway-pivoted/result.json:pictures uq-raised-skirt/uq.json:outputs compare-raised-skirt-chains/compare.json:differences hazard-deck-72in-lawn-stones/hazard.json:plan_views; do
   json=reports/${lacking%%:*} key=${lacking##*:}
   python3 -c "import json, sys; j = json.load(open(sys.argv[1])); del j[sys.argv[3]]; json.dump(j, open(sys.argv[2], 'w'))" \
     "$repo/$json" "$out/lacking.json" "$key"
