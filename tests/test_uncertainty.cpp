@@ -515,7 +515,7 @@ TEST_CASE("uncertainty: keys a study cannot draw are refused with what to do ins
                     Contains("[uncertainty] objects"));
 }
 
-TEST_CASE("uncertainty: the default set draws the model's form (contact model, restitution law), each form one the reader accepts", "[uncertainty][input]") {
+TEST_CASE("uncertainty: the default set draws the model's form (contact model, restitution law, a field's knife push), each form one the reader accepts", "[uncertainty][input]") {
   for (const char* name : {"highway-pivoted.toml", "field/batwing-highway-shoulder.toml"}) {
     const std::string file = scenario_path(name);
     const toml::table base = scenario::parse_toml_file(file);
@@ -534,6 +534,7 @@ TEST_CASE("uncertainty: the default set draws the model's form (contact model, r
         if (in.parameter == "contacts.model")
           CHECK((s.run.contact_model == scenario::ContactModel::Simultaneous) == (v == "simultaneous"));
         if (in.parameter == "ground.kind") CHECK(s.ground.kind == v);
+        if (in.parameter == "contacts.blade_push") CHECK((s.run.blade_push == scenario::BladePush::Impacts) == (v == "impacts"));
       }
     }
     INFO(name);
@@ -543,6 +544,8 @@ TEST_CASE("uncertainty: the default set draws the model's form (contact model, r
     // never drawn beside it (they would override it).
     const bool field = std::string(name).rfind("field/", 0) == 0;
     CHECK(std::count(forms.begin(), forms.end(), "ground.kind") == (field ? 0 : 1));
+    // A knife's push is held only on a field's stones: drawn for a field alone.
+    CHECK(std::count(forms.begin(), forms.end(), "contacts.blade_push") == (field ? 1 : 0));
     if (!field)
       for (const auto& in : plan.inputs) CHECK((in.parameter != "ground.restitution" && in.parameter != "ground.max_restitution"));
   }

@@ -90,6 +90,28 @@ struct PairedSums {
       throw std::runtime_error("a message between ranks held paired sums of another shape");
   }
 
+  // The sums of `units` units, each filled by `fill(unit, y)` (y[design * figures + figure])
+  // and judged by `differs(unit, design, figure)` (after its fill), added in unit order into
+  // blocks of `block` units whose sums are then merged in order: the one way both comparisons
+  // add their units (a J232 comparison's replicates in one block; a field's objects in blocks
+  // of its runner's chunk, which a long run's rounding prefers). Deterministic.
+  template <class Fill, class Differs>
+  static PairedSums of_units(std::size_t designs, std::size_t figures, std::uint64_t units, std::uint64_t block, Fill&& fill,
+                             Differs&& differs) {
+    J232_CHECK(block >= 1);
+    PairedSums total(designs, figures), part;
+    std::vector<double> y(designs * figures);
+    for (std::uint64_t first = 0; first < units; first += block) {
+      part.zero(designs, figures);
+      for (std::uint64_t i = first; i < units && i < first + block; ++i) {
+        fill(i, y.data());
+        part.add(y.data(), [&](std::size_t d, std::size_t j) { return differs(i, d, j); });
+      }
+      total.merge(part);
+    }
+    return total;
+  }
+
   // Indexing: design d's figure j, and design d's (d >= 1) difference from the first.
   std::size_t own(std::size_t d, std::size_t j) const { return d * figures + j; }
   std::size_t versus_first(std::size_t d, std::size_t j) const {

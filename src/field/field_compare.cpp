@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <fmt/format.h>
 #include <memory>
 #include <numeric>
@@ -11,8 +10,6 @@
 #include <string>
 #include <tuple>
 
-#include "assess/bytes.hpp"
-#include "assess/chunk_runner.hpp"
 #include "assess/cluster.hpp"
 #include "assess/paired_sums.hpp"
 #include "scenario/input_error.hpp"
@@ -74,17 +71,10 @@ std::uint64_t events_of(const Figure& f, const HazardTally& t, const std::vector
   return 0;
 }
 
-// What one chunk fills: its sums (in the chunk's object order) and each design's tallies,
-// stratum by stratum (design d's stratum k at first[d] + k), each with its watch, which also keeps
-// the object's own counts for the paired differences.
-struct ChunkSlot {
-  assess::PairedSums sums;  // in the chunk's object order
-  WatchedTallies watched;
-};
-
 }  // namespace
 
-FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, int threads, assess::Progress* progress) {
+FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, int threads, assess::Progress* progress,
+                               const std::function<void(std::size_t, const scenario::Scenario&)>& on_design) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::unique_ptr<FieldSimulator>> sims;
   for (const auto& s : designs) {
@@ -123,76 +113,40 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   // Each design's weight per object of each stratum (per metre travelled).
   std::vector<std::vector<double>> weight;
   for (const auto& sim : sims) weight.push_back(weights_per_object(*sim, n));
-  if (progress) progress->total = static_cast<long long>(n), progress->done = 0;
-  std::vector<std::size_t> first(nd, 0);
-  for (std::size_t d = 1; d < nd; ++d) first[d] = first[d - 1] + sims[d - 1]->strata();
-  // Every design's whole run (whole counts), and the chunks' sums added in chunk order: the
-  // same totals on any number of threads or ranks (assess/chunk_runner.hpp).
-  std::vector<HazardRun> runs(nd);
-  for (std::size_t d = 0; d < nd; ++d)
-    for (std::size_t k = 0; k < sims[d]->strata(); ++k) runs[d].strata.emplace_back(HazardLayout::of(designs[d].field));
-  assess::PairedSums total(nd, figures);
-  std::deque<ChunkSlot> slots;
-  assess::ChunkWork work;
-  const std::uint64_t per_chunk = objects_per_chunk(n);
-  work.chunks = (n + per_chunk - 1) / per_chunk;
-  std::size_t bytes_per_slot = 0;
-  for (const auto& r : runs)
-    for (const auto& t : r.strata) bytes_per_slot += t.bytes();
-  work.most_slots = slots_per_wave(bytes_per_slot, assess::thread_count(threads));
-  work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * per_chunk) - chunk * per_chunk; };
-  work.run = [&](std::uint64_t c, std::size_t slot) {
-    ChunkSlot& at = slots[slot];
-    at.watched.clear();
-    at.sums.zero(nd, figures);
-    std::vector<double> y(nd * figures);
-    std::vector<std::uint64_t> raw(nd * figures);
-    const std::uint64_t last = std::min(n, (c + 1) * per_chunk);
-    for (std::uint64_t i = c * per_chunk; i < last; ++i) {
-      for (std::size_t d = 0; d < nd; ++d) {
-        ObjectWatch& watch = at.watched.watches[first[d] + static_cast<std::size_t>(i % sims[d]->strata())];
-        const ObjectOutcome o = sims[d]->simulate(i, &watch);
-        watch.finish(o);
-        const bool thrown = counted_thrown(o.fate);
-        const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->strata())];
-        for (std::size_t j = 0; j < figures; ++j) {
-          raw[d * figures + j] = thrown ? count_of(figure[j], watch, plane_of[d]) : 0;
-          y[d * figures + j] = 1000 * wk * static_cast<double>(raw[d * figures + j]);
-        }
-      }
-      // (An object differs where its own counts do: its values carry each design's weight.)
-      at.sums.add(y.data(), [&](std::size_t d, std::size_t j) { return raw[d * figures + j] != raw[j]; });
-    }
-  };
-  work.merge = [&](std::uint64_t, std::size_t slot) {
-    const ChunkSlot& c = slots[slot];
-    total.merge(c.sums);
-    for (std::size_t d = 0; d < nd; ++d)
-      for (std::size_t k = 0; k < sims[d]->strata(); ++k) runs[d].strata[k].merge(c.watched.tallies[first[d] + k]);
-  };
-  work.pack = [&](std::size_t count) {
-    assess::ByteWriter w;
-    for (std::size_t i = 0; i < count; ++i) slots[i].sums.pack(w);
-    std::string bytes = w.take();
-    for (std::size_t i = 0; i < count; ++i) slots[i].watched.pack_at(bytes);
-    return bytes;
-  };
-  work.unpack = [&](const std::string& bytes, std::size_t count) {
-    assess::ByteReader r(bytes);
-    for (std::size_t i = 0; i < count; ++i) slots[i].sums.unpack(r);
-    std::size_t at = r.position();
-    for (std::size_t i = 0; i < count; ++i) slots[i].watched.unpack_at(bytes, at);
-    if (at != bytes.size()) throw std::runtime_error("a message between ranks was longer than its contents");
-  };
-  work.progress = progress;
-  slots.resize(static_cast<std::size_t>(assess::wave_size(work)));
-  for (auto& slot : slots) {
-    slot.sums.zero(nd, figures);  // (the shape an unpacked message is read into)
-    for (std::size_t d = 0; d < nd; ++d)
-      for (std::size_t k = 0; k < sims[d]->strata(); ++k) slot.watched.add(HazardLayout::of(designs[d].field));
+  // Each design's run, on the one runner as j232 hazard runs it (its objects 0..n-1, each drawn
+  // from the same seed and index in every design), recording each thrown object's own count
+  // of every figure: object-major, `figures` to an object (whole counts, exact in a double).
+  std::vector<HazardRun> runs;
+  std::vector<std::vector<double>> counts(nd);
+  for (std::size_t d = 0; d < nd; ++d) {
+    if (progress) progress->done = 0;  // (each design's run counts its own objects)
+    if (on_design) on_design(d, designs[d]);
+    counts[d].assign(assess::cluster::is_writer() ? static_cast<std::size_t>(n) * figures : 0, 0.0);
+    ObjectRows rows;
+    rows.width = figures;
+    rows.count = [&](const ObjectOutcome& o, const ObjectWatch& watch, double* row) {
+      const bool thrown = counted_thrown(o.fate);
+      for (std::size_t j = 0; j < figures; ++j) row[j] = thrown ? static_cast<double>(count_of(figure[j], watch, plane_of[d])) : 0.0;
+    };
+    rows.sink = [&](std::uint64_t i, const double* row) { std::copy(row, row + figures, counts[d].begin() + static_cast<std::ptrdiff_t>(i * figures)); };
+    runs.push_back(run_hazard(*sims[d], threads, progress, &rows));
   }
-  assess::on_threads(threads, [&] { assess::run_chunks(work); });
-  J232_CHECK(total.units == n || !assess::cluster::is_writer());  // rank 0 merged every object once
+  // The paired sums, object by object in blocks of the runner's chunk: each value carries its
+  // design's weight per object of its stratum; an object differs where its own counts do.
+  assess::PairedSums total;
+  if (assess::cluster::is_writer())
+    total = assess::PairedSums::of_units(
+        nd, figures, n, objects_per_chunk(n),
+        [&](std::uint64_t i, double* y) {
+          for (std::size_t d = 0; d < nd; ++d) {
+            const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->strata())];
+            for (std::size_t j = 0; j < figures; ++j) y[d * figures + j] = 1000 * wk * counts[d][i * figures + j];
+          }
+        },
+        [&](std::uint64_t i, std::size_t d, std::size_t j) { return counts[d][i * figures + j] != counts[0][i * figures + j]; });
+  else
+    total.zero(nd, figures);
+  J232_CHECK(total.units == n || !assess::cluster::is_writer());  // rank 0 added every object once
   FieldComparison out;
   out.objects = n, out.seed = designs.front().run.seed;
   for (std::size_t d = 0; d < nd; ++d) {

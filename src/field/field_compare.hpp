@@ -6,6 +6,7 @@
 // runs would give. Figures per km mowed: objects thrown, objects first coming down outside
 // the deck, hazardous ground impacts, and each plane's crossings and hazardous crossings.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,13 @@ struct FieldComparison {
 };
 
 // Every design a field scenario; planes matched by name (each design must have the first's).
-// Runs the first design's field.objects_simulated objects in each. Deterministic for any
-// thread and MPI rank count; in an MPI job only rank 0's comparison holds the run (the
-// others' is empty: only rank 0 reports).
-FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, int threads, assess::Progress* progress = nullptr);
+// Runs the first design's field.objects_simulated objects in each, design after design on
+// the one runner (field::run_hazard, as j232 hazard runs it, each object's own counts kept),
+// then adds the objects' values in object order into one assess::PairedSums, as a J232
+// comparison adds its replicates. Deterministic for any thread and MPI rank count; in an MPI
+// job only rank 0's comparison holds the figures (the others' are empty: only rank 0
+// reports). `on_design` is told before each design's run.
+FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, int threads, assess::Progress* progress = nullptr,
+                               const std::function<void(std::size_t, const scenario::Scenario&)>& on_design = {});
 
 }  // namespace j232::field

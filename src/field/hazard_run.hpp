@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <deque>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,10 +23,20 @@ struct HazardRun {
   int threads = 1;
 };
 
+// What a paired comparison of designs (field::compare_fields) records of each object beside
+// the tallies: `width` numbers, filled by `count` as the object's flight ends (its outcome and
+// its watch's own counts), and handed to `sink` in object order (on rank 0 of an MPI job) as
+// the runner merges the chunks: a J232 run's replicate sink, for a field's objects.
+struct ObjectRows {
+  std::size_t width = 0;
+  std::function<void(const ObjectOutcome&, const ObjectWatch&, double* row)> count;
+  std::function<void(std::uint64_t object, const double* row)> sink;
+};
+
 // Simulates scenario.field.objects_simulated objects (0..N-1) on `threads` threads (0: all
 // cores), shared out among the ranks of an MPI job (every rank ends with the whole tally).
-// Bit-identical for any thread and rank count.
-HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress = nullptr);
+// Bit-identical for any thread and rank count. `rows`: each object's row for a comparison.
+HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress = nullptr, const ObjectRows* rows = nullptr);
 
 // A rate per metre travelled from the strata's per-object counts: the sum over strata of
 // w_k S_k / N_k (w_k: the stratum's objects met per metre that can reach a blade, N_k its

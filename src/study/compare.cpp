@@ -42,17 +42,19 @@ Moments versus_first(const assess::PairedSums& p, std::size_t d, std::size_t j) 
 constexpr std::size_t kFigures = assess::kCategories + 1;
 constexpr std::size_t kPass = assess::kCategories;
 
-// Every design's rows (`designs` of them, each `rows(d)`), replicate by replicate, in replicate order.
+// Every design's rows (`designs` of them, each `rows(d)`), replicate by replicate, in
+// replicate order (one block: a comparison's replicates are few); a replicate's figure
+// differs where its value does.
 template <class Rows>
 assess::PairedSums paired_sums(std::size_t designs, Rows&& rows) {
-  assess::PairedSums p(designs, kFigures);
-  std::vector<double> y(designs * kFigures);
-  for (std::size_t r = 0; r < rows(0).size(); ++r) {
-    for (std::size_t d = 0; d < designs; ++d)
-      for (std::size_t j = 0; j < kFigures; ++j) y[d * kFigures + j] = rows(d)[r][j];
-    p.add(y.data());
-  }
-  return p;
+  const std::uint64_t units = rows(0).size();
+  return assess::PairedSums::of_units(
+      designs, kFigures, units, std::max<std::uint64_t>(units, 1),
+      [&](std::uint64_t r, double* y) {
+        for (std::size_t d = 0; d < designs; ++d)
+          for (std::size_t j = 0; j < kFigures; ++j) y[d * kFigures + j] = rows(d)[r][j];
+      },
+      [&](std::uint64_t r, std::size_t d, std::size_t j) { return rows(d)[r][j] != rows(0)[r][j]; });
 }
 }  // namespace
 
