@@ -652,9 +652,27 @@ TEST_CASE("field: designs compared object by object, with common random numbers"
   const auto& b = c.designs[1].figures[1].per_km;
   const auto& x = c.designs[1].differences[1].per_km;
   CHECK(x.high - x.low < (a.high - a.low) + (b.high - b.low));
-  // The same on one thread.
+  // The same on one thread; and run a chunk at a time (segments of 64 objects, rounded up to
+  // whole chunks of 256), bit for bit: a long comparison holds one segment's counts.
   const auto one = field::compare_fields({without, with}, 1);
   for (std::size_t j = 0; j < one.designs[1].differences.size(); ++j) CHECK(one.designs[1].differences[j].per_km.value == c.designs[1].differences[j].per_km.value);
+  std::uint64_t segments = 0;
+  const auto pieces = field::compare_fields(
+      {without, with}, 2, nullptr, [&](std::size_t d, const scenario::Scenario&, std::uint64_t, std::uint64_t, std::uint64_t) { segments += d == 0; }, 64);
+  CHECK(segments == 12);  // 3000 objects in chunks of 256
+  for (std::size_t d = 0; d < 2; ++d)
+    for (std::size_t j = 0; j < one.designs[d].figures.size(); ++j) {
+      CHECK(pieces.designs[d].figures[j].per_km.value == one.designs[d].figures[j].per_km.value);
+      CHECK(pieces.designs[d].figures[j].per_km.low == one.designs[d].figures[j].per_km.low);
+      CHECK(pieces.designs[d].figures[j].per_km.high == one.designs[d].figures[j].per_km.high);
+      if (d == 1) {
+        CHECK(pieces.designs[d].differences[j].per_km.low == one.designs[d].differences[j].per_km.low);
+        CHECK(pieces.designs[d].differences[j].per_km.high == one.designs[d].differences[j].per_km.high);
+        CHECK(pieces.designs[d].differences[j].objects_differing == one.designs[d].differences[j].objects_differing);
+      }
+    }
+  for (std::size_t i = 0; i < one.designs[1].hazard.directions.size(); ++i)
+    CHECK(pieces.designs[1].hazard.directions[i].hazard_distance == one.designs[1].hazard.directions[i].hazard_distance);
   // Each design's own hazard is what j232 hazard gives for it over the same objects.
   with.field.objects_simulated = without.field.objects_simulated;
   with.run.seed = without.run.seed;

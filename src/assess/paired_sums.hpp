@@ -90,26 +90,26 @@ struct PairedSums {
       throw std::runtime_error("a message between ranks held paired sums of another shape");
   }
 
-  // The sums of `units` units, each filled by `fill(unit, y)` (y[design * figures + figure])
-  // and judged by `differs(unit, design, figure)` (after its fill), added in unit order into
-  // blocks of `block` units whose sums are then merged in order: the one way both comparisons
-  // add their units (a J232 comparison's replicates in one block; a field's objects in blocks
-  // of its runner's chunk, which a long run's rounding prefers). Deterministic.
+  // Units [first, first + count) after those added so far, each filled by `fill(unit, y)`
+  // (y[design * figures + figure]) and judged by `differs(unit, design, figure)` (after its
+  // fill): added in unit order into blocks of `block` units (unit u in block u / block; `first`
+  // a block's first unit) whose sums are merged into these in order. The one way both
+  // comparisons add their units (a J232 comparison's replicates in one block; a field's objects
+  // in blocks of its runner's chunk, which holds a long run's rounding down), and the same
+  // sums however the units are handed over (all at once, or a field's in segments).
   template <class Fill, class Differs>
-  static PairedSums of_units(std::size_t designs, std::size_t figures, std::uint64_t units, std::uint64_t block, Fill&& fill,
-                             Differs&& differs) {
-    J232_CHECK(block >= 1);
-    PairedSums total(designs, figures), part;
+  void add_units(std::uint64_t first, std::uint64_t count, std::uint64_t block, Fill&& fill, Differs&& differs) {
+    J232_CHECK(block >= 1 && first % block == 0);
+    PairedSums part(designs, figures);
     std::vector<double> y(designs * figures);
-    for (std::uint64_t first = 0; first < units; first += block) {
+    for (std::uint64_t start = first; start < first + count; start += block) {
       part.zero(designs, figures);
-      for (std::uint64_t i = first; i < units && i < first + block; ++i) {
+      for (std::uint64_t i = start; i < first + count && i < start + block; ++i) {
         fill(i, y.data());
         part.add(y.data(), [&](std::size_t d, std::size_t j) { return differs(i, d, j); });
       }
-      total.merge(part);
+      merge(part);
     }
-    return total;
   }
 
   // Indexing: design d's figure j, and design d's (d >= 1) difference from the first.

@@ -44,12 +44,12 @@ int compare_fields(const CompareOptions& o, std::vector<scenario::Scenario>& des
   field::FieldComparison c;
   {
     report::ProgressBar bar(progress);
-    c = field::compare_fields(designs, threads, &progress, [&](std::size_t d, const scenario::Scenario& s) {
-      progress.done = 0;
-      fmt::print("[{}/{}] {} ({} objects, seed {})\n", d + 1, designs.size(), terminal_safe(s.title), designs.front().field.objects_simulated,
-                 designs.front().run.seed);
-      std::fflush(stdout);
-    });
+    c = field::compare_fields(designs, threads, &progress,
+                              [&](std::size_t d, const scenario::Scenario& s, std::uint64_t first, std::uint64_t count, std::uint64_t objects) {
+                                fmt::print("[{}/{}] {} (objects {} to {} of {}, seed {})\n", d + 1, designs.size(), terminal_safe(s.title),
+                                           first + 1, first + count, objects, designs.front().run.seed);
+                                std::fflush(stdout);
+                              });
   }
   const auto j = report::hazard_comparison_json(c);
   report::write_atomically(out.staged("compare.csv"), report::hazard_comparison_csv(c));

@@ -42,12 +42,18 @@ struct FieldComparison {
 
 // Every design a field scenario; planes matched by name (each design must have the first's).
 // Runs the first design's field.objects_simulated objects in each, design after design on
-// the one runner (field::run_hazard, as j232 hazard runs it, each object's own counts kept),
-// then adds the objects' values in object order into one assess::PairedSums, as a J232
-// comparison adds its replicates. Deterministic for any thread and MPI rank count; in an MPI
-// job only rank 0's comparison holds the figures (the others' are empty: only rank 0
-// reports). `on_design` is told before each design's run.
-FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, int threads, assess::Progress* progress = nullptr,
-                               const std::function<void(std::size_t, const scenario::Scenario&)>& on_design = {});
+// the one runner (field::run_hazard_objects, as j232 hazard runs them, each object's own
+// counts kept), a segment of kSegmentObjects at a time (one for the shipped runs), and adds
+// the objects' values in object order into one assess::PairedSums, as a J232 comparison adds
+// its replicates. Deterministic for any thread and MPI rank count; in an MPI job only rank 0's
+// comparison holds the figures (the others' are empty: only rank 0 reports).
+// `on_design(d, design, first, count, objects)` is told before each design's run of objects
+// [first, first + count) of `objects`. (`segment_objects`: the segment, rounded to whole
+// chunks; the results are the same whatever it is, tested.)
+inline constexpr std::uint64_t kSegmentObjects = 262144;
+FieldComparison compare_fields(
+    const std::vector<scenario::Scenario>& designs, int threads, assess::Progress* progress = nullptr,
+    const std::function<void(std::size_t, const scenario::Scenario&, std::uint64_t, std::uint64_t, std::uint64_t)>& on_design = {},
+    std::uint64_t segment_objects = kSegmentObjects);
 
 }  // namespace j232::field

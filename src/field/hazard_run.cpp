@@ -4,6 +4,7 @@
 #include "assess/chunk_runner.hpp"
 #include "assess/cluster.hpp"
 #include "assess/summary.hpp"
+#include "invariant/check.hpp"
 
 #include <algorithm>
 #include <array>
@@ -29,14 +30,19 @@ std::uint64_t slots_per_wave(std::size_t bytes_per_slot, int threads) {
   return std::clamp<std::uint64_t>(fit, per_thread, 8 * per_thread);
 }
 
-HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress, const ObjectRows* rows) {
+HazardRun empty_run(const FieldSimulator& sim) {
   const HazardLayout layout = HazardLayout::of(sim.scenario().field);
-  const auto n = static_cast<std::uint64_t>(sim.scenario().field.objects_simulated);
-  const std::size_t strata_count = sim.strata();
   HazardRun run;
-  for (std::size_t k = 0; k < strata_count; ++k) run.strata.emplace_back(layout);
-  if (progress) progress->total = static_cast<long long>(n);
-  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < sim.strata(); ++k) run.strata.emplace_back(layout);
+  return run;
+}
+
+void run_hazard_objects(const FieldSimulator& sim, std::uint64_t objects, std::uint64_t first, std::uint64_t count, HazardRun& run,
+                        int threads, assess::Progress* progress, const ObjectRows* rows) {
+  const HazardLayout layout = HazardLayout::of(sim.scenario().field);
+  const std::size_t strata_count = sim.strata();
+  const std::uint64_t per_chunk = objects_per_chunk(objects), end = first + count;
+  J232_CHECK(run.strata.size() == strata_count && first % per_chunk == 0 && end <= objects);
   // One runner for every pipeline (assess/chunk_runner.hpp): chunks of objects, each into a
   // slot's tallies (and its objects' rows for a comparison), merged in chunk order (whole
   // counts: any order would give the same sums; the rows go to the sink in object order).
@@ -47,40 +53,39 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   const std::size_t width = rows ? rows->width : 0;
   std::deque<Slot> slots;
   assess::ChunkWork work;
-  const std::uint64_t per_chunk = objects_per_chunk(n);
-  work.chunks = (n + per_chunk - 1) / per_chunk;
+  work.chunks = (count + per_chunk - 1) / per_chunk;
   work.most_slots = slots_per_wave(strata_count * run.strata.front().bytes(), assess::thread_count(threads));
-  work.items = [&](std::uint64_t chunk) { return std::min(n, (chunk + 1) * per_chunk) - chunk * per_chunk; };
+  work.items = [&](std::uint64_t chunk) { return std::min(end, first + (chunk + 1) * per_chunk) - (first + chunk * per_chunk); };
   work.run = [&](std::uint64_t chunk, std::size_t slot) {
     Slot& s = slots[slot];
     s.watched.clear();
-    const std::uint64_t first = chunk * per_chunk, last = std::min(n, (chunk + 1) * per_chunk);
-    s.rows.assign(static_cast<std::size_t>(last - first) * width, 0.0);
-    for (std::uint64_t i = first; i < last; ++i) {
+    const std::uint64_t from = first + chunk * per_chunk, last = std::min(end, from + per_chunk);
+    s.rows.assign(static_cast<std::size_t>(last - from) * width, 0.0);
+    for (std::uint64_t i = from; i < last; ++i) {
       ObjectWatch& watch = s.watched.watches[static_cast<std::size_t>(i % strata_count)];
       const ObjectOutcome o = sim.simulate(i, &watch);
       watch.finish(o);
-      if (rows) rows->count(o, watch, &s.rows[static_cast<std::size_t>(i - first) * width]);
+      if (rows) rows->count(o, watch, &s.rows[static_cast<std::size_t>(i - from) * width]);
     }
   };
   work.merge = [&](std::uint64_t chunk, std::size_t slot) {
     const Slot& s = slots[slot];
     for (std::size_t k = 0; k < strata_count; ++k) run.strata[k].merge(s.watched.tallies[k]);
     if (rows && rows->sink)
-      for (std::size_t i = 0; i * width < s.rows.size(); ++i) rows->sink(chunk * per_chunk + i, &s.rows[i * width]);
+      for (std::size_t i = 0; i * width < s.rows.size(); ++i) rows->sink(first + chunk * per_chunk + i, &s.rows[i * width]);
   };
-  work.pack = [&](std::size_t count) {
+  work.pack = [&](std::size_t n) {
     assess::ByteWriter w;
-    for (std::size_t i = 0; i < count; ++i) w.list(slots[i].rows, slots[i].rows.size());
+    for (std::size_t i = 0; i < n; ++i) w.list(slots[i].rows, slots[i].rows.size());
     std::string bytes = w.take();
-    for (std::size_t i = 0; i < count; ++i) slots[i].watched.pack_at(bytes);
+    for (std::size_t i = 0; i < n; ++i) slots[i].watched.pack_at(bytes);
     return bytes;
   };
-  work.unpack = [&](const std::string& bytes, std::size_t count) {
+  work.unpack = [&](const std::string& bytes, std::size_t n) {
     assess::ByteReader r(bytes);
-    for (std::size_t i = 0; i < count; ++i) r.list(slots[i].rows);
+    for (std::size_t i = 0; i < n; ++i) r.list(slots[i].rows);
     std::size_t at = r.position();
-    for (std::size_t i = 0; i < count; ++i) slots[i].watched.unpack_at(bytes, at);
+    for (std::size_t i = 0; i < n; ++i) slots[i].watched.unpack_at(bytes, at);
     if (at != bytes.size()) throw std::runtime_error("hazard tallies: bytes of another layout from another rank");
   };
   work.progress = progress;
@@ -88,6 +93,14 @@ HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* p
   for (auto& slot : slots)
     for (std::size_t k = 0; k < strata_count; ++k) slot.watched.add(layout);
   run.threads = assess::on_threads(threads, [&] { assess::run_chunks(work); });
+}
+
+HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress, const ObjectRows* rows) {
+  const auto n = static_cast<std::uint64_t>(sim.scenario().field.objects_simulated);
+  HazardRun run = empty_run(sim);
+  if (progress) progress->total = static_cast<long long>(n);
+  const auto start = std::chrono::steady_clock::now();
+  run_hazard_objects(sim, n, 0, n, run, threads, progress, rows);
   if (assess::cluster::size() > 1) {
     // Every rank goes on from the whole run, as after a J232 assessment's.
     std::string whole;

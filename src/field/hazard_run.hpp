@@ -37,6 +37,15 @@ struct ObjectRows {
 // cores), shared out among the ranks of an MPI job (every rank ends with the whole tally).
 // Bit-identical for any thread and rank count. `rows`: each object's row for a comparison.
 HazardRun run_hazard(const FieldSimulator& sim, int threads, assess::Progress* progress = nullptr, const ObjectRows* rows = nullptr);
+// Objects [first, first + count) of a run of `objects` in all (`first` a multiple of
+// objects_per_chunk(objects), so the chunks are the whole run's), merged into `into`, which
+// holds objects [0, first) already: what run_hazard does over every object, but for the
+// whole-run tallies on every rank of an MPI job (here rank 0 alone holds them). A comparison
+// runs its designs' objects a segment at a time with it, holding one segment's rows.
+void run_hazard_objects(const FieldSimulator& sim, std::uint64_t objects, std::uint64_t first, std::uint64_t count, HazardRun& into,
+                        int threads, assess::Progress* progress = nullptr, const ObjectRows* rows = nullptr);
+// An empty run of the scenario's tallies (a tally per stratum), for run_hazard_objects.
+HazardRun empty_run(const FieldSimulator& sim);
 
 // A rate per metre travelled from the strata's per-object counts: the sum over strata of
 // w_k S_k / N_k (w_k: the stratum's objects met per metre that can reach a blade, N_k its

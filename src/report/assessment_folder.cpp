@@ -182,6 +182,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
   // What the page's pictures need of the run and its scene goes into result.json, and the page
   // is drawn from the file as saved: `j232 redraw result.json` draws the same page.
   outcome.result["pictures"] = pictures_json(s, a, simulator.scene().soup());
+  require_finite(outcome.result["pictures"], "pictures");
   const std::string html = compliance_report_html(as_saved(outcome.result));
   Fnv html_digest;
   html_digest.add(html);

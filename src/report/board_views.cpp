@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "flight/deck_outline.hpp"
+#include "report/html_page.hpp"
 #include "report/svg_chart.hpp"
 #include "scene/j232_setup.hpp"
 #include "units/quantity.hpp"
@@ -227,14 +228,22 @@ json board_side_json(const scenario::Scenario& s) {
 // The pictures, from result.json as saved.
 
 std::vector<double> numbers(const json& j) { return j.get<std::vector<double>>(); }
+// A flat list of coordinates in groups of `group` (x, y of a corner; x0, y0, x1, y1 of a segment).
+std::vector<double> grouped(const json& j, std::size_t group, const char* what) {
+  std::vector<double> v = numbers(j);
+  if (v.size() % group != 0) throw std::out_of_range(fmt::format("{}: {} numbers, expected a multiple of {}", what, v.size(), group));
+  return v;
+}
 
 void draw_board(Chart& chart, const json& board) {
   const double z0 = board.at("from_height_m").get<double>(), cell = board.at("cell_height_m").get<double>();
   bool labelled[3] = {false, false, false};
   for (const auto& run : board.at("runs")) {
-    const int r = run.at(0).get<int>(), c = run.at(1).get<int>(), e = run.at(2).get<int>();
-    const auto v = run.at(3).get<std::size_t>();
-    if (v != 1 && v != 2) throw std::out_of_range(fmt::format("pictures.board_unrolled.runs: a cell's kind is 1 or 2, not {}", v));
+    const char* what = "pictures.board_unrolled.runs";
+    if (run.size() != 4) throw std::out_of_range(fmt::format("{}: expected [row, first column, end column, kind], not {}", what, run.size()));
+    const int r = static_cast<int>(whole(run.at(0), what, 0, 100000)), c = static_cast<int>(whole(run.at(1), what, 0, BoardRaster::kCols - 1)),
+              e = static_cast<int>(whole(run.at(2), what, c + 1, BoardRaster::kCols));
+    const auto v = static_cast<std::size_t>(whole(run.at(3), what, 1, 2));
     const bool zone = v == 2;
     const std::string label = labelled[v] ? "" : (zone ? "operator zone" : "target board");
     labelled[v] = true;
@@ -250,6 +259,8 @@ void draw_marks(Chart& chart, const json& marks, bool plan) {
                                         my.size(), mz.size(), kind.size()));
   std::vector<double> hx, hy, px, py, ux, uy;
   for (std::size_t i = 0; i < kind.size(); ++i) {
+    if (kind[i] != 'h' && kind[i] != 'p' && kind[i] != 'u')
+      throw std::out_of_range(fmt::format("pictures.marks.kind: expected h, p or u for each mark, not '{}'", kind[i]));
     const double x = plan ? mx[i] : azimuth_deg(mx[i], my[i]);
     const double y = plan ? my[i] : mz[i];
     std::vector<double>* xs = kind[i] == 'u' ? &ux : kind[i] == 'p' ? &px : &hx;
@@ -262,8 +273,9 @@ void draw_marks(Chart& chart, const json& marks, bool plan) {
 }
 
 std::string sample_caption(const json& m) {
-  const auto shown = m.at("replicates_shown").get<std::uint64_t>(), replicates = m.at("replicates").get<std::uint64_t>();
-  const auto located = m.at("located_marks").get<std::uint64_t>();
+  const auto shown = count_of(m.at("replicates_shown"), "pictures.marks.replicates_shown"),
+             replicates = count_of(m.at("replicates"), "pictures.marks.replicates");
+  const auto located = count_of(m.at("located_marks"), "pictures.marks.located_marks");
   if (shown == replicates) return fmt::format("All {} located marks of {} replicates.", located, replicates);
   return fmt::format("Marks of the first {} of {} replicates ({} of {} located marks): a fair sample, replicates are independent.", shown,
                      replicates, m.at("kind").get<std::string>().size(), located);
@@ -276,7 +288,8 @@ void draw_mower_plan(Chart& chart, const json& pictures) {
   for (const PlanLayer& style : plan_layers()) {
     const auto it = std::find_if(plan.at("layers").begin(), plan.at("layers").end(), [&](const json& l) { return l.at("layer") == style.name; });
     if (it == plan.at("layers").end()) continue;
-    const std::vector<double> t = numbers((*it).at("triangles_xy_m")), s = numbers((*it).at("segments_xy_m"));
+    const std::vector<double> t = grouped((*it).at("triangles_xy_m"), 6, "pictures.plan.layers' triangles_xy_m"),
+                              s = grouped((*it).at("segments_xy_m"), 4, "pictures.plan.layers' segments_xy_m");
     std::vector<double> tx, ty, x0, y0, x1, y1;
     for (std::size_t i = 0; i + 1 < t.size(); i += 2) tx.push_back(t[i]), ty.push_back(t[i + 1]);
     for (std::size_t i = 0; i + 3 < s.size(); i += 4) x0.push_back(s[i]), y0.push_back(s[i + 1]), x1.push_back(s[i + 2]), y1.push_back(s[i + 3]);
@@ -303,11 +316,13 @@ std::string path_colour(const std::string& why) {
 
 // The plan view draws at most this many paths of each kind: more make a blot inside the deck.
 constexpr std::size_t kPlanPathsPerKind = 20;
+// The most corners of a deck's outline a saved file may give (a generated deck has 96).
+constexpr std::size_t kMostOutlineCorners = 4096;
 
 std::string paths_caption(const json& trajectories) {
   std::size_t n[3] = {0, 0, 0};
   for (const auto& t : trajectories.at("paths")) ++n[t.at("why") == "sample" ? 0 : t.at("why") == "operator zone" ? 1 : 2];
-  const auto not_kept = trajectories.at("notable_not_kept").get<std::uint64_t>();
+  const auto not_kept = count_of(trajectories.at("notable_not_kept"), "trajectories.notable_not_kept");
   return fmt::format(
       "{} sampled nails (the first struck in replicate 0), {} that marked the operator zone and {} that punctured the "
       "board elsewhere{}.",
@@ -397,7 +412,10 @@ std::string trajectories_plan_svg(const json& result) {
   // and from the last point inside the deck's outline on, bold, so that where nails go
   // out and what they reach can be read.
   std::vector<Eigen::Vector2d> corners;
-  const std::vector<double> outline = numbers(p.at("deck_outline_xy_m"));
+  const std::vector<double> outline = grouped(p.at("deck_outline_xy_m"), 2, "pictures.deck_outline_xy_m");
+  // (A deck's outline has tens of corners: a file's thousands would make each point's test slow.)
+  if (outline.size() > 2 * kMostOutlineCorners)
+    throw std::out_of_range(fmt::format("pictures.deck_outline_xy_m: {} corners, at most {}", outline.size() / 2, kMostOutlineCorners));
   for (std::size_t i = 0; i + 1 < outline.size(); i += 2) corners.emplace_back(outline[i], outline[i + 1]);
   const flight::DeckOutline deck(corners);
   std::set<std::string> labelled;
@@ -446,6 +464,8 @@ std::string trajectories_side_svg(const json& result) {
   const json& board = p.at("board_side");
   if (!board.is_null()) {
     const std::vector<double> d = numbers(board.at("distances_m"));
+    if (d.size() != 1 && d.size() != 2)
+      throw std::out_of_range(fmt::format("pictures.board_side.distances_m: {} values, expected a ring's one or a board's nearest and farthest", d.size()));
     const double bottom = board.at("bottom_m").get<double>(), top = board.at("top_m").get<double>();
     if (d.size() == 1)
       chart.segments({d[0]}, {bottom}, {d[0]}, {top}, kBoardColour, "target board", 3);

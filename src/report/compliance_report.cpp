@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include "assess/statistics.hpp"
 #include "report/board_views.hpp"
 #include "report/html_page.hpp"
@@ -24,8 +26,10 @@ Chart histogram_chart(const json& saved, const std::string& title, const std::st
                       const std::string& of_what, const std::string& colour) {
   // The histogram as the run had it (its mean from the saved one: the sum is not saved).
   assess::Histogram h(saved.at("bin_width").get<double>(), 0, saved.at("first_bin_from").get<double>());
-  h.counts = saved.at("counts").get<std::vector<std::uint64_t>>();
-  h.total = saved.at("count").get<std::uint64_t>();
+  for (const auto& c : saved.at("counts")) h.counts.push_back(count_of(c, "a histogram's counts"));
+  if (h.counts.empty()) throw std::out_of_range("a histogram's counts: expected at least one bin");
+  if (!(h.bin_width > 0)) throw std::out_of_range(fmt::format("a histogram's bin_width: expected above 0, not {}", h.bin_width));
+  h.total = count_of(saved.at("count"), "a histogram's count");
   h.sum = saved.at("mean").get<double>() * static_cast<double>(h.total);
   Chart chart(title, x_title, fmt::format("share of {} per {:g} {} bin (%)", of_what, h.bin_width, unit));
   // From the first bin (or, for a histogram below zero, the lowest recorded value's) to the
@@ -49,7 +53,7 @@ Chart histogram_chart(const json& saved, const std::string& title, const std::st
 }
 
 std::string verdict_section(const json& r) {
-  const int nails_per_test = r.at("scenario").at("feed").at("nails").get<int>();
+  const auto nails_per_test = whole(r.at("scenario").at("feed").at("nails"), "scenario.feed.nails", 1, 1000000000);
   const auto& p = r.at("pass_probability");
   if (r.at("verdict") == "invalid") {
     // No verdict for a test that did not really happen: say why, and nothing else.
@@ -104,7 +108,7 @@ std::string verdict_section(const json& r) {
                      stopped_by == "settled"             ? "settled"
                      : stopped_by == "target_half_width" ? "the interval as narrow as run.target_half_width"
                                                           : "<strong>not met</strong>: stopped at run.max_replicates",
-                     r.at("replicates").get<std::uint64_t>(), stop.at("looks").get<int>());
+                     count_of(r.at("replicates"), "replicates"), count_of(stop.at("looks"), "stop_rule.looks"));
   }
   if (!r.at("warnings").empty()) {
     o += "<p><strong>Before filing, note:</strong></p>\n<ul class=\"warnings\">\n";
@@ -215,9 +219,9 @@ std::string exits_section(const json& r) {
     std::uint64_t most = 0;
     for (std::size_t b = 0; b < e.at("by_exit_azimuth").size(); ++b) {
       const auto& row = e.at("by_exit_azimuth")[b];
-      if (row.at("marks").get<std::uint64_t>() > most) {
-        most = row.at("marks").get<std::uint64_t>();
-        band = fmt::format("{} to {} deg ({} marks)", row.at("from_deg").get<int>(), row.at("to_deg").get<int>(),
+      if (count_of(row.at("marks"), "how_nails_leave's marks") > most) {
+        most = count_of(row.at("marks"), "how_nails_leave's marks");
+        band = fmt::format("{} to {} deg ({} marks)", whole(row.at("from_deg"), "from_deg", -360, 360), whole(row.at("to_deg"), "to_deg", -360, 360),
                            number(fmt::format("{}.by_exit_azimuth.{}.marks", key, b), row.at("marks"), "{}"));
       }
     }
@@ -240,7 +244,7 @@ std::string exits_section(const json& r) {
   bool first = true;
   for (std::size_t i = 0; i < h.at("by_first_surface").size(); ++i) {
     const auto& f = h.at("by_first_surface")[i];
-    if (f.at("marks").get<std::uint64_t>() == 0) continue;
+    if (count_of(f.at("marks"), "how_nails_leave's marks") == 0) continue;
     o += fmt::format("{}{}: {} %", first ? "" : ", ", escape(f.at("first_surface").get<std::string>()),
                      number(fmt::format("how_nails_leave.by_first_surface.{}.share_of_marks", i), f.at("share_of_marks"), "{:.1f}", 100));
     first = false;

@@ -45,7 +45,7 @@ std::string end_words(const json& e) {
 
 std::string drivers_text(const json& d) {
   std::string o = fmt::format("  What moves {} most (each input at its range's ends, {} paired replicates; change of its mean share, points):\n",
-                              d.at("criterion").get<std::string>(), d.at("replicates").get<std::uint64_t>());
+                              d.at("criterion").get<std::string>(), count_of(d.at("replicates"), "deciding_inputs.replicates"));
   if (d.at("ranked").empty() || d.at("ranked")[0].at("largest_change").get<double>() == 0.0)
     return o + fmt::format("    none of the {} inputs moves it at either end of its range, at these replicates\n", d.at("ranked").size());
   for (std::size_t i = 0; i < d.at("ranked").size() && i < kDriversShown; ++i) {

@@ -1,6 +1,7 @@
 #include "report/html_page.hpp"
 
 #include <fmt/format.h>
+#include <stdexcept>
 #include <string_view>
 
 #include "report/svg_chart.hpp"
@@ -49,6 +50,17 @@ std::string page_head(const std::string& title) {
 std::string page_foot() {
   return "<footer>Written by j232, a Monte Carlo simulation of the SAE J232 thrown-object test built on the impact models of "
          "report 445-1. A simulated verdict supports, and does not replace, the physical test.</footer>\n</body>\n</html>\n";
+}
+
+long long whole(const nlohmann::ordered_json& value, const char* what, long long lowest, long long highest) {
+  if (value.is_number_unsigned() && value.get<std::uint64_t>() <= static_cast<std::uint64_t>(highest) && lowest <= highest) {
+    const auto v = static_cast<long long>(value.get<std::uint64_t>());
+    if (v >= lowest) return v;
+  } else if (value.is_number_integer() && !value.is_number_unsigned()) {
+    const auto v = value.get<long long>();
+    if (v >= lowest && v <= highest) return v;
+  }
+  throw std::out_of_range(fmt::format("{}: expected a whole number from {} to {}, not {}", what, lowest, highest, json_text(value, -1)));
 }
 
 std::string number(const std::string& key, const nlohmann::ordered_json& value, const char* format, double scale) {

@@ -48,13 +48,15 @@ constexpr std::size_t kPass = assess::kCategories;
 template <class Rows>
 assess::PairedSums paired_sums(std::size_t designs, Rows&& rows) {
   const std::uint64_t units = rows(0).size();
-  return assess::PairedSums::of_units(
-      designs, kFigures, units, std::max<std::uint64_t>(units, 1),
+  assess::PairedSums p(designs, kFigures);
+  p.add_units(
+      0, units, std::max<std::uint64_t>(units, 1),
       [&](std::uint64_t r, double* y) {
         for (std::size_t d = 0; d < designs; ++d)
           for (std::size_t j = 0; j < kFigures; ++j) y[d * kFigures + j] = rows(d)[r][j];
       },
       [&](std::uint64_t r, std::size_t d, std::size_t j) { return rows(d)[r][j] != rows(0)[r][j]; });
+  return p;
 }
 }  // namespace
 

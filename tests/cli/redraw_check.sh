@@ -39,4 +39,23 @@ for lacking in highway-pivoted/result.json:pictures uq-raised-skirt/uq.json:outp
   grep -q "lacking.json: lacks what .* draws.*key '$key' not found" "$out/lacking.txt"
   [ ! -e "$out/lacking.html" ]
 done
-echo "redraw_check: $pages shipped pages redrawn as shipped; a field's page redrawn in US units; files lacking a key refused"
+# A result.json whose pictures are garbled (a list too long or of odd length, a count that is not
+# a whole number, a mark of no kind, a huge outline) is refused naming what, never a crash.
+for garble in "board_side:p['board_side']['distances_m'] = [1.0, 2.0, 3.0]:pictures.board_side.distances_m" \
+              "count:r['exit_speed']['counts'][0] = 1e300:a histogram's counts" \
+              "run:p['board_unrolled']['runs'][0][0] = -1.5:pictures.board_unrolled.runs" \
+              "kind:p['marks']['kind'] = 'x' * len(p['marks']['kind']):pictures.marks.kind" \
+              "odd:p['plan']['layers'][0]['segments_xy_m'].append(1.0):segments_xy_m" \
+              "outline:p['deck_outline_xy_m'] = [0.0] * 20000:pictures.deck_outline_xy_m"; do
+  name=${garble%%:*} rest=${garble#*:} what=${garble##*:}
+  edit=${rest%:*}
+  python3 -c "import json, sys; r = json.load(open(sys.argv[1])); p = r['pictures']; $edit; json.dump(r, open(sys.argv[2], 'w'))" \
+    "$repo/reports/highway-pivoted/result.json" "$out/garbled.json"
+  code=0
+  "$j232" redraw "$out/garbled.json" --out "$out/garbled.html" 2>"$out/garbled.txt" || code=$?
+  [ "$code" = 2 ] || { echo "redraw_check: a result.json garbled ($name): exit $code, expected 2" >&2; exit 1; }
+  grep -qF "garbled.json: holds what report.html cannot draw" "$out/garbled.txt" && grep -qF "$what" "$out/garbled.txt" ||
+    { echo "redraw_check: a result.json garbled ($name) was not refused naming $what:" >&2; cat "$out/garbled.txt" >&2; exit 1; }
+  [ ! -e "$out/garbled.html" ]
+done
+echo "redraw_check: $pages shipped pages redrawn as shipped; a field's page redrawn in US units; files lacking a key or garbled refused"
