@@ -1,5 +1,7 @@
 // Comparing designs with common random numbers (study/compare.hpp).
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <vector>
 #include <string>
 
 #include "scenario/scenario.hpp"
@@ -7,6 +9,7 @@
 #include "assess/statistics.hpp"
 #include "random/stream.hpp"
 #include "assess/bytes.hpp"
+#include "assess/paired_runs.hpp"
 #include "assess/paired_sums.hpp"
 #include "study/compare.hpp"
 #include "report/version_comparison.hpp"
@@ -299,4 +302,56 @@ TEST_CASE("compare: paired sums merged chunk by chunk, or sent between ranks, eq
   assess::PairedSums other(2, figures);
   assess::ByteReader r(bytes);
   CHECK_THROWS(other.unpack(r));
+}
+
+TEST_CASE("compare: the one paired driver adds every design's units in order, in blocks, whatever the segment", "[compare]") {
+  // Three designs, two figures, 37 units: each unit's own figures a small whole count (so
+  // designs often agree), its value that count times a weight of its design.
+  constexpr std::size_t designs = 3, figures = 2;
+  constexpr std::uint64_t units = 37, block = 4;
+  const auto own = [](std::size_t d, std::uint64_t u, std::size_t j) {
+    random::Stream rng(11, u, static_cast<std::uint32_t>(d * figures + j), random::Purpose::Feed);
+    return std::floor(3 * rng.uniform());
+  };
+  const auto weight = [](std::size_t d) { return 0.1 * static_cast<double>(d + 1); };
+  // By hand: blocks of 4 units, each block's sums merged in order.
+  assess::PairedSums expected(designs, figures);
+  for (std::uint64_t start = 0; start < units; start += block) {
+    assess::PairedSums part(designs, figures);
+    for (std::uint64_t u = start; u < std::min(units, start + block); ++u) {
+      double y[designs * figures];
+      for (std::size_t d = 0; d < designs; ++d)
+        for (std::size_t j = 0; j < figures; ++j) y[d * figures + j] = weight(d) * own(d, u, j);
+      part.add(y, [&](std::size_t d, std::size_t j) { return own(d, u, j) != own(0, u, j); });
+    }
+    expected.merge(part);
+  }
+  for (const std::uint64_t segment : {std::uint64_t{4}, std::uint64_t{8}, std::uint64_t{40}}) {
+    INFO("segment " << segment);
+    std::vector<std::pair<std::size_t, std::uint64_t>> runs;  // (design, first) in the order run
+    assess::PairedRuns p;
+    p.designs = designs, p.figures = figures, p.units = units, p.block = block, p.segment = segment;
+    p.run = [&](std::size_t d, std::uint64_t first, std::uint64_t count, const assess::UnitSink& sink) {
+      runs.emplace_back(d, first);
+      for (std::uint64_t u = first; u < first + count; ++u) {
+        const double row[figures] = {own(d, u, 0), own(d, u, 1)};
+        sink(u, row);
+      }
+    };
+    p.value = [&](std::size_t d, std::uint64_t, std::size_t, double figure) { return weight(d) * figure; };
+    const assess::PairedSums got = assess::run_paired(p);
+    CHECK(got.units == units);
+    CHECK(got.sum == expected.sum);
+    CHECK(got.squares == expected.squares);
+    CHECK(got.diff == expected.diff);
+    CHECK(got.diff_squares == expected.diff_squares);
+    CHECK(got.differing == expected.differing);
+    CHECK(got.units_differing == expected.units_differing);
+    // Every design in turn over each segment, the segments in order.
+    REQUIRE(runs.size() == designs * ((units + segment - 1) / segment));
+    for (std::size_t k = 0; k < runs.size(); ++k) CHECK(runs[k] == std::make_pair(k % designs, (k / designs) * segment));
+  }
+  // Some units differ and some do not (the check above means something).
+  CHECK(expected.units_differing[0] > 0);
+  CHECK(expected.units_differing[0] < units);
 }

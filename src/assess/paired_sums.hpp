@@ -7,8 +7,9 @@
 // the units whose own figure differs from the first's (the paired estimate, its spread, and
 // what a run with none differing could have missed). Units are added in their order and
 // chunks merged in chunk order, so the sums are the same on any thread or rank count. Both
-// comparisons (study::compare_records, field::compare_fields, docs/model.md §6a and §9.2)
-// add to this one type; each turns the sums into its own intervals.
+// comparisons (assess::run_paired for study::compare_designs and field::compare_fields;
+// study::compare_records for a batch's designs run apart; docs/model.md §6a and §9.2) add to
+// this one type; each turns the sums into its own intervals.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>

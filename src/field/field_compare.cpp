@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "assess/cluster.hpp"
-#include "assess/paired_sums.hpp"
+#include "assess/paired_runs.hpp"
 #include "scenario/input_error.hpp"
 
 namespace j232::field {
@@ -114,47 +114,34 @@ FieldComparison compare_fields(const std::vector<scenario::Scenario>& designs, i
   // Each design's weight per object of each stratum (per metre travelled).
   std::vector<std::vector<double>> weight;
   for (const auto& sim : sims) weight.push_back(weights_per_object(*sim, n));
-  // Each design's run, on the one runner as j232 hazard runs it (its objects 0..n-1, each
-  // drawn from the same seed and index in every design), recording each thrown object's own
-  // count of every figure (whole counts, exact in a double). A segment of objects at a time,
-  // every design in turn, so that only a segment's counts are held: object-major, `figures`
-  // to an object.
+  // The one paired comparison (assess::run_paired): each design's objects run as j232 hazard
+  // runs them (objects 0..n-1, each drawn from the same seed and index in every design), a
+  // segment at a time, each thrown object's own count of every figure handed over in object
+  // order (whole counts, exact in a double); added in blocks of the runner's chunk, each count
+  // carrying its design's weight per object of its stratum.
   const std::uint64_t per_chunk = objects_per_chunk(n);
-  const std::uint64_t segment = std::max<std::uint64_t>(1, segment_objects / per_chunk) * per_chunk;
   std::vector<HazardRun> runs;
   for (const auto& sim : sims) runs.push_back(empty_run(*sim));
-  std::vector<std::vector<double>> counts(nd);
-  assess::PairedSums total(nd, figures);
-  for (std::uint64_t first = 0; first < n; first += segment) {
-    const std::uint64_t count = std::min(segment, n - first);
-    for (std::size_t d = 0; d < nd; ++d) {
-      if (progress) progress->total = static_cast<long long>(count), progress->done = 0;  // (each design's run counts its own)
-      if (on_design) on_design(d, designs[d], first, count, n);
-      counts[d].assign(assess::cluster::is_writer() ? static_cast<std::size_t>(count) * figures : 0, 0.0);
-      ObjectRows rows;
-      rows.width = figures;
-      rows.count = [&](const ObjectOutcome& o, const ObjectWatch& watch, double* row) {
-        const bool thrown = counted_thrown(o.fate);
-        for (std::size_t j = 0; j < figures; ++j) row[j] = thrown ? static_cast<double>(count_of(figure[j], watch, plane_of[d])) : 0.0;
-      };
-      rows.sink = [&](std::uint64_t i, const double* row) {
-        std::copy(row, row + figures, counts[d].begin() + static_cast<std::ptrdiff_t>((i - first) * figures));
-      };
-      run_hazard_objects(*sims[d], n, first, count, runs[d], threads, progress, &rows);
-    }
-    // The paired sums, object by object in blocks of the runner's chunk: each value carries its
-    // design's weight per object of its stratum; an object differs where its own counts do.
-    if (assess::cluster::is_writer())
-      total.add_units(
-          first, count, per_chunk,
-          [&](std::uint64_t i, double* y) {
-            for (std::size_t d = 0; d < nd; ++d) {
-              const double wk = weight[d][static_cast<std::size_t>(i % sims[d]->strata())];
-              for (std::size_t j = 0; j < figures; ++j) y[d * figures + j] = 1000 * wk * counts[d][(i - first) * figures + j];
-            }
-          },
-          [&](std::uint64_t i, std::size_t d, std::size_t j) { return counts[d][(i - first) * figures + j] != counts[0][(i - first) * figures + j]; });
-  }
+  assess::PairedRuns paired;
+  paired.designs = nd, paired.figures = figures, paired.units = n;
+  paired.block = per_chunk;
+  paired.segment = std::max<std::uint64_t>(1, segment_objects / per_chunk) * per_chunk;
+  paired.run = [&](std::size_t d, std::uint64_t first, std::uint64_t count, const assess::UnitSink& sink) {
+    if (progress) progress->total = static_cast<long long>(count), progress->done = 0;  // (each design's run counts its own)
+    if (on_design) on_design(d, designs[d], first, count, n);
+    ObjectRows rows;
+    rows.width = figures;
+    rows.count = [&](const ObjectOutcome& o, const ObjectWatch& watch, double* row) {
+      const bool thrown = counted_thrown(o.fate);
+      for (std::size_t j = 0; j < figures; ++j) row[j] = thrown ? static_cast<double>(count_of(figure[j], watch, plane_of[d])) : 0.0;
+    };
+    rows.sink = sink;
+    run_hazard_objects(*sims[d], n, first, count, runs[d], threads, progress, &rows);
+  };
+  paired.value = [&](std::size_t d, std::uint64_t i, std::size_t, double own) {
+    return 1000 * weight[d][static_cast<std::size_t>(i % sims[d]->strata())] * own;
+  };
+  const assess::PairedSums total = assess::run_paired(paired);
   J232_CHECK(total.units == n || !assess::cluster::is_writer());  // rank 0 added every object once
   FieldComparison out;
   out.objects = n, out.seed = designs.front().run.seed;

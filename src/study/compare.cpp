@@ -1,9 +1,14 @@
 #include "study/compare.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <memory>
 #include <cmath>
 #include <stdexcept>
 
+#include "assess/chunk_runner.hpp"
+#include "assess/cluster.hpp"
+#include "assess/paired_runs.hpp"
 #include "assess/paired_sums.hpp"
 #include "assess/summary.hpp"
 
@@ -110,16 +115,15 @@ DesignRecord DesignRecorder::finish(const scenario::Scenario& s, const assess::A
   return std::move(record);
 }
 
-Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned long long seed) {
-  if (designs.size() < 2) throw std::invalid_argument("a comparison needs at least two designs");
+namespace {
+// The comparison from every design's result and the paired sums of their replicates.
+// (`replicates`: the run's; in an MPI job only rank 0's sums hold them.)
+Comparison compared(const std::vector<DesignRecord>& designs, const assess::PairedSums& p, unsigned long long seed, std::uint64_t replicates) {
+  J232_CHECK(p.units == replicates || !assess::cluster::is_writer());
   Comparison c;
   c.seed = seed;
-  c.replicates = designs.front().per_replicate.size();
-  for (const auto& d : designs) {
-    if (d.per_replicate.size() != c.replicates) throw std::invalid_argument("designs compared must have run the same replicates");
-    c.designs.push_back(d.result);
-  }
-  const assess::PairedSums p = paired_sums(designs.size(), [&](std::size_t d) -> const auto& { return designs[d].per_replicate; });
+  c.replicates = replicates;
+  for (const auto& d : designs) c.designs.push_back(d.result);
   const double n = static_cast<double>(c.replicates);
   for (std::size_t d = 1; d < designs.size(); ++d) {
     Difference diff;
@@ -154,26 +158,58 @@ Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned lo
   }
   return c;
 }
+}  // namespace
+
+Comparison compare_records(const std::vector<DesignRecord>& designs, unsigned long long seed) {
+  if (designs.size() < 2) throw std::invalid_argument("a comparison needs at least two designs");
+  for (const auto& d : designs)
+    if (d.per_replicate.size() != designs.front().per_replicate.size())
+      throw std::invalid_argument("designs compared must have run the same replicates");
+  return compared(designs, paired_sums(designs.size(), [&](std::size_t d) -> const auto& { return designs[d].per_replicate; }), seed,
+                  designs.front().per_replicate.size());
+}
 
 Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads, assess::Progress* progress,
                            const std::function<void(std::size_t, const scenario::Scenario&)>& on_design) {
   if (designs.size() < 2) throw std::invalid_argument("a comparison needs at least two designs");
   const unsigned long long seed = designs.front().run.seed;
   const auto replicates = static_cast<std::uint64_t>(designs.front().run.replicates);
-  std::vector<DesignRecord> records;
-  for (std::size_t d = 0; d < designs.size(); ++d) {
-    scenario::Scenario& s = designs[d];
+  for (auto& s : designs) {
     s.run.seed = seed;
     s.run.replicates = static_cast<long long>(replicates);
     s.run.target_half_width.reset();
     s.run.until_settled = false;  // every design runs the same replicates, no stop rule
-    if (on_design) on_design(d, s);
-    DesignRecorder recorder(replicates);
-    const assess::Simulator sim(s);
-    const auto a = assess::run_assessment(sim, threads, progress, {}, recorder.sink());
-    records.push_back(std::move(recorder).finish(s, a));
   }
-  return compare_records(records, seed);
+  // The one paired comparison (assess::run_paired): each design's replicates run in turn as
+  // j232 run runs them, each replicate's four shares and pass handed over in replicate order
+  // (and kept, for each design's own result); a comparison's replicates are few, so one
+  // segment and one block.
+  const std::size_t nd = designs.size();
+  std::vector<std::unique_ptr<assess::Simulator>> sims(nd);
+  std::vector<assess::Assessment> runs(nd);
+  std::vector<DesignRecorder> recorders;
+  for (std::size_t d = 0; d < nd; ++d) recorders.emplace_back(replicates);
+  assess::PairedRuns paired;
+  paired.designs = nd, paired.figures = kFigures, paired.units = replicates;
+  paired.block = paired.segment = std::max<std::uint64_t>(replicates, 1);
+  paired.run = [&](std::size_t d, std::uint64_t first, std::uint64_t count, const assess::UnitSink& sink) {
+    if (on_design) on_design(d, designs[d]);
+    if (!sims[d]) sims[d] = std::make_unique<assess::Simulator>(designs[d]);
+    if (progress) progress->total = static_cast<long long>(count), progress->done = 0;
+    const assess::ReplicateSink keep = recorders[d].sink();
+    const auto start = std::chrono::steady_clock::now();
+    runs[d].threads = assess::on_threads(threads, [&] {
+      assess::run_replicates(*sims[d], first, count, runs[d], progress, {}, [&](std::uint64_t r, const assess::Judgement& j) {
+        keep(r, j);
+        sink(r, recorders[d].record.per_replicate[r].data());
+      });
+    });
+    runs[d].wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const assess::PairedSums sums = assess::run_paired(paired);
+  std::vector<DesignRecord> records;
+  for (std::size_t d = 0; d < nd; ++d) records.push_back(std::move(recorders[d]).finish(designs[d], runs[d]));
+  return compared(records, sums, seed, replicates);
 }
 
 }  // namespace j232::study
