@@ -23,6 +23,16 @@ using namespace j232;
 
 namespace {
 std::string scenario_path(const char* name) { return std::string(J232_SOURCE_DIR) + "/scenarios/" + name; }
+
+// Two paired sums equal, bit for bit, in every sum and count.
+void check_same_sums(const assess::PairedSums& a, const assess::PairedSums& b) {
+  CHECK(a.sum == b.sum);
+  CHECK(a.squares == b.squares);
+  CHECK(a.diff == b.diff);
+  CHECK(a.diff_squares == b.diff_squares);
+  CHECK(a.differing == b.differing);
+  CHECK(a.units_differing == b.units_differing);
+}
 }  // namespace
 
 TEST_CASE("compare: a design against itself differs by exactly nothing", "[compare]") {
@@ -279,12 +289,7 @@ TEST_CASE("compare: paired sums merged chunk by chunk, or sent between ranks, eq
     merged.merge(received);
   }
   CHECK(merged.units == 40);
-  CHECK(merged.sum == whole.sum);
-  CHECK(merged.squares == whole.squares);
-  CHECK(merged.diff == whole.diff);
-  CHECK(merged.diff_squares == whole.diff_squares);
-  CHECK(merged.differing == whole.differing);
-  CHECK(merged.units_differing == whole.units_differing);
+  check_same_sums(merged, whole);
   // Counted directly: the units where design 2's figure 1 differs from the first's, and where any does.
   std::uint64_t one = 0, any = 0;
   for (const auto& y : units) {
@@ -341,12 +346,7 @@ TEST_CASE("compare: the one paired driver adds every design's units in order, in
     p.value = [&](std::size_t d, std::uint64_t, std::size_t, double figure) { return weight(d) * figure; };
     const assess::PairedSums got = assess::run_paired(p);
     CHECK(got.units == units);
-    CHECK(got.sum == expected.sum);
-    CHECK(got.squares == expected.squares);
-    CHECK(got.diff == expected.diff);
-    CHECK(got.diff_squares == expected.diff_squares);
-    CHECK(got.differing == expected.differing);
-    CHECK(got.units_differing == expected.units_differing);
+    check_same_sums(got, expected);
     // Every design in turn over each segment, the segments in order.
     REQUIRE(runs.size() == designs * ((units + segment - 1) / segment));
     for (std::size_t k = 0; k < runs.size(); ++k) CHECK(runs[k] == std::make_pair(k % designs, (k / designs) * segment));
