@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "assess/paired_runs.hpp"  // assess::UnitSink
 #include "assess/runner.hpp"  // assess::Progress
 #include "field/field_simulator.hpp"
 #include "field/hazard_tally.hpp"
@@ -30,7 +31,7 @@ struct HazardRun {
 struct ObjectRows {
   std::size_t width = 0;
   std::function<void(const ObjectOutcome&, const ObjectWatch&, double* row)> count;
-  std::function<void(std::uint64_t object, const double* row)> sink;
+  assess::UnitSink sink;
 };
 
 // Simulates scenario.field.objects_simulated objects (0..N-1) on `threads` threads (0: all

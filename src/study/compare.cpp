@@ -1,8 +1,6 @@
 #include "study/compare.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <memory>
 #include <cmath>
 #include <stdexcept>
 
@@ -185,7 +183,6 @@ Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads,
   // (and kept, for each design's own result); a comparison's replicates are few, so one
   // segment and one block.
   const std::size_t nd = designs.size();
-  std::vector<std::unique_ptr<assess::Simulator>> sims(nd);
   std::vector<assess::Assessment> runs(nd);
   std::vector<DesignRecorder> recorders;
   for (std::size_t d = 0; d < nd; ++d) recorders.emplace_back(replicates);
@@ -193,18 +190,17 @@ Comparison compare_designs(std::vector<scenario::Scenario> designs, int threads,
   paired.designs = nd, paired.figures = kFigures, paired.units = replicates;
   paired.block = paired.segment = std::max<std::uint64_t>(replicates, 1);
   paired.run = [&](std::size_t d, std::uint64_t first, std::uint64_t count, const assess::UnitSink& sink) {
+    J232_CHECK(first == 0 && count == replicates);  // (one segment: each design runs once, whole)
     if (on_design) on_design(d, designs[d]);
-    if (!sims[d]) sims[d] = std::make_unique<assess::Simulator>(designs[d]);
+    const assess::Simulator sim(designs[d]);
     if (progress) progress->total = static_cast<long long>(count), progress->done = 0;
     const assess::ReplicateSink keep = recorders[d].sink();
-    const auto start = std::chrono::steady_clock::now();
-    runs[d].threads = assess::on_threads(threads, [&] {
-      assess::run_replicates(*sims[d], first, count, runs[d], progress, {}, [&](std::uint64_t r, const assess::Judgement& j) {
+    assess::on_threads(threads, [&] {
+      assess::run_replicates(sim, first, count, runs[d], progress, {}, [&](std::uint64_t r, const assess::Judgement& j) {
         keep(r, j);
         sink(r, recorders[d].record.per_replicate[r].data());
       });
     });
-    runs[d].wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   const assess::PairedSums sums = assess::run_paired(paired);
   std::vector<DesignRecord> records;
