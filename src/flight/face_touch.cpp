@@ -120,6 +120,72 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
   return best;
 }
 
+namespace {
+
+// Whether point x of the plane of triangle (a, a + e1, a + e2) lies in it, within `eps` of
+// its barycentric coordinates.
+bool in_triangle(const Vec3& x, const std::array<Vec3, 3>& tri, const scene::Scene::Gram& g, double eps) {
+  const Vec3 w = x - tri[0];
+  const double d20 = w.dot(tri[1]), d21 = w.dot(tri[2]);
+  const double v = (g.d11 * d20 - g.d01 * d21) / g.det, u = (g.d00 * d21 - g.d01 * d20) / g.det;
+  return v >= -eps && u >= -eps && u + v <= 1 + eps;
+}
+
+// The closest points of the segment p0-p1 and a flat convex quad. The segment crosses it
+// (distance 0) or not; if not, the closest pair has its point on the quad either inside it,
+// at the foot of one of the segment's ends (the distance from the plane is linear along the
+// segment, so least at an end; a segment parallel to the plane over the inside also passes
+// over an edge at that height), or on its boundary, against the segment.
+SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene::Quad& q) {
+  const scene::Scene::Gram& g = q.gram[0];
+  const Vec3& n = g.normal;
+  const Vec3& a = q.triangle[0][0];
+  const auto inside = [&](const Vec3& x, double eps) {
+    return in_triangle(x, q.triangle[0], q.gram[0], eps) || in_triangle(x, q.triangle[1], q.gram[1], eps);
+  };
+  SegmentTriangle best;
+  const double s0 = n.dot(p0 - a), s1 = n.dot(p1 - a);
+  if ((s0 > 0 && s1 > 0) || (s0 < 0 && s1 < 0)) {
+    // Both ends on one side: the nearer end's foot inside is the closest pair.
+    const bool first = std::abs(s0) <= std::abs(s1);
+    const Vec3& p = first ? p0 : p1;
+    const double sp = first ? s0 : s1;
+    const Vec3 foot = p - (sp / g.nn) * n;
+    if (inside(foot, 0.0)) {
+      best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(g.nn);
+      return best;
+    }
+  } else if (s0 != s1) {
+    // Crossing the plane: inside the quad there (with a rounding's margin), distance 0.
+    const Vec3 x = p0 + (s0 / (s0 - s1)) * (p1 - p0);
+    if (inside(x, 1e-12)) {
+      best.on_segment = x, best.on_triangle = x, best.distance = 0;
+      return best;
+    }
+  }
+  double d2 = HUGE_VAL;
+  const auto offer = [&](const Vec3& ps, const Vec3& pt) {
+    const double d = (ps - pt).squaredNorm();
+    if (d < d2) d2 = d, best.on_segment = ps, best.on_triangle = pt;
+  };
+  for (const auto& [p, sp] : {std::pair<const Vec3&, double>{p0, s0}, std::pair<const Vec3&, double>{p1, s1}}) {
+    const Vec3 foot = p - (sp / g.nn) * n;
+    if (inside(foot, 0.0)) offer(p, foot);
+  }
+  const Vec3 d = p1 - p0;
+  Vec3 cs, ct;
+  for (std::size_t i = 0; i < 4; ++i) nearest_segments(p0, d, q.corner[i], q.edge[i], cs, ct), offer(cs, ct);
+  best.distance = std::sqrt(d2);
+  return best;
+}
+
+}  // namespace
+
+SegmentTriangle segment_face(const Vec3& p0, const Vec3& p1, const scene::Scene& scene, std::uint32_t f) {
+  if (const scene::Scene::Quad* q = scene.face_quad(f)) return segment_quad(p0, p1, *q);
+  return segment_triangle(p0, p1, scene.face_edges(f), scene.face_gram(f));
+}
+
 bool FaceFilter::ignores(std::uint32_t f) const {
   if (ignored_guard < 0) return false;
   const auto& soup = scene->soup();
@@ -128,7 +194,7 @@ bool FaceFilter::ignores(std::uint32_t f) const {
 
 double face_clearance(const scene::Scene& scene, std::uint32_t f, const projectile::Projectile& nail, const Vec3& centre, const Vec3& axis) {
   const double h = nail.half_segment();
-  return segment_triangle(centre - h * axis, centre + h * axis, scene.face_edges(f), scene.face_gram(f)).distance - nail.radius();
+  return segment_face(centre - h * axis, centre + h * axis, scene, f).distance - nail.radius();
 }
 
 void swept_box(const strike::Motion& m, const projectile::Projectile& nail, double from, double until, Vec3& lo, Vec3& hi) {
@@ -188,7 +254,7 @@ struct Search {
 
   // The exact clearance of face f at pose p, with the closest points.
   double clearance(std::uint32_t f, const Pose& p, SegmentTriangle* st = nullptr) const {
-    const SegmentTriangle s = segment_triangle(p.centre - h * p.axis, p.centre + h * p.axis, scene.face_edges(f), scene.face_gram(f));
+    const SegmentTriangle s = segment_face(p.centre - h * p.axis, p.centre + h * p.axis, scene, f);
     if (st) *st = s;
     return s.distance - r;
   }
@@ -284,6 +350,30 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   }
   s.bound = std::max(m.velocity(from).norm(), m.velocity(until).norm()) + s.h * w + 1e-9;
 
+  // Whether the capsule meets face i at an edge or corner (`normal`, from that point toward the
+  // core, off the face's own normal) that another face in the same plane lies beyond: a face
+  // within tolerance of the capsule there whose closest point lies under the capsule (along
+  // that face's normal). The edge is then inside one flat surface built of several faces (a
+  // fan of triangles, a skirt of pieces), not an edge of the steel: the capsule moving along
+  // the surface meets the plane, which the face under it stands for, and not the edge. (Met as
+  // an edge, a nail or stone sliding over it was thrown off at the angle of its normal.)
+  const auto flat_edge = [&](std::size_t i, const Pose& p, const Vec3& normal) {
+    const std::uint32_t f = state[i].face;
+    const Vec3& fn = scene.face_normal(f);
+    if (std::abs(normal.dot(fn)) > 1 - 1e-9) return false;  // on the face's inside: its own plane
+    const Vec3& q = scene.face_edges(f)[0];
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::uint32_t g = state[j].face;
+      const Vec3& gn = scene.face_normal(g);
+      if (j == i || !(std::abs(gn.dot(fn)) > 1 - 1e-12) || !(std::abs(gn.dot(q - scene.face_edges(g)[0])) <= 1e-9)) continue;
+      SegmentTriangle under;
+      if (s.clearance(g, p, &under) > kFaceTolerance) continue;
+      const Vec3 gap = under.on_segment - under.on_triangle;
+      if (gap.norm() > 1e-12 && std::abs(gap.normalized().dot(gn)) > 1 - 1e-9) return true;
+    }
+    return false;
+  };
+
   // What touches at time t among the faces within reach (those whose safe time the last step
   // did not clear): the lowest approaching face, with the count of distinct touching planes;
   // the others within tolerance are marked leaving, the rest not.
@@ -312,7 +402,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
         continue;
       }
       Vec3 normal;
-      if (!s.approaching(fs.face, p, st, normal)) {
+      if (!s.approaching(fs.face, p, st, normal) || flat_edge(i, p, normal)) {
         // Left: it may sink kLeavingSlack into the face before it is looked at again. A
         // capsule that starts deep inside a face (a field's stone pressed into the soil, far
         // beyond what a touch of this search leaves) may sink no deeper than it is by the slack.
@@ -343,7 +433,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       for (const double end : {-s.h, s.h}) {
         const Vec3 tip = p.centre + end * p.axis;
         if ((tip - st.on_segment).norm() < s.r) continue;  // the closest point already
-        const SegmentTriangle e = segment_triangle(tip, tip, scene.face_edges(fs.face), scene.face_gram(fs.face));
+        const SegmentTriangle e = segment_face(tip, tip, scene, fs.face);
         if (e.distance - s.r > kFaceTolerance) continue;
         const Vec3 gap = e.on_segment - e.on_triangle;
         const Vec3 dir = gap.norm() > 1e-12 ? Vec3(gap.normalized()) : normal;

@@ -50,6 +50,10 @@ inline SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const st
   return segment_triangle(p0, p1, triangle, scene::Scene::Gram::of(triangle));
 }
 
+// The same for scene face f, a triangle or a quad (scene::Scene::face_quad): the exact
+// closest points of the segment and the face.
+SegmentTriangle segment_face(const Vec3& p0, const Vec3& p1, const scene::Scene& scene, std::uint32_t f);
+
 // One point where the capsule touches a face, its touching point moving into it.
 struct TouchPoint {
   Vec3 point = Vec3::Zero();   // on the face

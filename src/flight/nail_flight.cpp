@@ -959,8 +959,7 @@ void NailFlight::lie_down(const Vec3& up, const Vec3& on) {
     double worst = 0;
     Vec3 away = Vec3::Zero();
     for (std::size_t i = 0; i < candidate_count; ++i) {
-      const auto st = segment_triangle(b.position - nail.half_segment() * b.axis, b.position + nail.half_segment() * b.axis,
-                                       ctx.scene->face_edges(candidates[i]), ctx.scene->face_gram(candidates[i]));
+      const auto st = segment_face(b.position - nail.half_segment() * b.axis, b.position + nail.half_segment() * b.axis, *ctx.scene, candidates[i]);
       const double overlap = nail.radius() + kLyingGap - st.distance;
       Vec3 out = st.on_segment - st.on_triangle;
       out -= out.dot(up) * up;  // sideways only
@@ -1498,7 +1497,7 @@ std::optional<scene::Hit> NailFlight::lying_on_ground() {
   for (std::size_t i = 0; i < candidate_count; ++i) {
     const std::uint32_t f = candidates[i];
     if (ctx.scene->soup().labels[f] != scene::Surface::Ground) continue;
-    const SegmentTriangle st = segment_triangle(p0, p1, ctx.scene->face_edges(f), ctx.scene->face_gram(f));
+    const SegmentTriangle st = segment_face(p0, p1, *ctx.scene, f);
     const double clearance = st.distance - nail.radius();
     if (!(clearance <= deepest)) continue;
     deepest = clearance;

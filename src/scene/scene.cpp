@@ -105,6 +105,36 @@ struct ClosestHit {
   }
 };
 
+// Consecutive triangles t = (a, b, c), t + 1 = (a, c, d) that make one flat, convex
+// quadrilateral a-b-c-d with one label and one guard (Soup::add_quad's panels): each as a
+// Scene::Quad, with its first triangle's number. Flat: d within 1e-12 of the quad's size of
+// (a, b, c)'s plane and both normals alike; convex: every corner turns the same way.
+void find_quads(const Soup& soup, const std::vector<Vec3>& normals, const std::vector<TriangleEdges>& triangles,
+                const std::vector<Scene::Gram>& grams, std::vector<Scene::Quad>& quads, std::vector<std::uint32_t>& first) {
+  for (std::uint32_t t = 0; t + 1 < soup.triangles.size(); ++t) {
+    const auto &p = soup.triangles[t], &q = soup.triangles[t + 1];
+    if (!(q[0] == p[0] && q[1] == p[2])) continue;
+    if (soup.labels[t] != soup.labels[t + 1] || soup.guard_index[t] != soup.guard_index[t + 1]) continue;
+    const std::array<Vec3, 4> corner{soup.points[p[0]], soup.points[p[1]], soup.points[p[2]], soup.points[q[2]]};
+    const Vec3& n = normals[t];
+    double size = 0;
+    for (const Vec3& c : corner) size = std::max(size, (c - corner[0]).norm());
+    if (!(normals[t + 1].dot(n) > 1 - 1e-12) || !(std::abs(n.dot(corner[3] - corner[0])) <= 1e-12 * size)) continue;
+    Scene::Quad quad;
+    bool convex = true;
+    for (std::size_t i = 0; i < 4; ++i) {
+      quad.corner[i] = corner[i], quad.edge[i] = corner[(i + 1) % 4] - corner[i];
+      const Vec3 next = corner[(i + 2) % 4] - corner[(i + 1) % 4];
+      convex = convex && quad.edge[i].cross(next).dot(n) > 0;
+    }
+    if (!convex) continue;
+    quad.triangle = {triangles[t], triangles[t + 1]};
+    quad.gram = {grams[t], grams[t + 1]};
+    quads.push_back(quad), first.push_back(t);
+    ++t;  // the second triangle is taken
+  }
+}
+
 }  // namespace
 
 bool engine_available(Engine e) {
@@ -128,7 +158,11 @@ struct Scene::Impl {
   std::vector<Scene::Ball> balls;        // per soup triangle: a sphere holding it
   std::vector<Scene::Gram> grams;        // per soup triangle: its nearest-point constants
   std::vector<Box> boxes;                // per soup triangle: its box, from the corner and edges as the queries see it
-  std::unique_ptr<BoxTree> box_tree;     // over `boxes`: the broad phase
+  std::vector<Scene::Quad> quads;        // the quads found (two triangles each)
+  std::vector<const Scene::Quad*> quad_of;  // per soup triangle: its quad when it leads one, else null
+  std::vector<std::uint32_t> searched;   // the faces the broad phase lists: triangles alone and each quad's first
+  std::vector<Box> searched_boxes;       // their boxes (a quad's holds both triangles)
+  std::unique_ptr<BoxTree> box_tree;     // over `searched_boxes`: the broad phase
   std::unique_ptr<CgalIndex> cgal;
 #ifdef J232_HAVE_EMBREE
   std::unique_ptr<EmbreeIndex> embree;
@@ -161,8 +195,28 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     const Vec3 b = e[0] + e[1], c = e[0] + e[2];
     m.boxes.push_back({e[0].cwiseMin(b).cwiseMin(c), e[0].cwiseMax(b).cwiseMax(c)});
   }
-  m.box_tree = std::make_unique<BoxTree>(m.boxes);
-  faces_ = {m.triangles.data(), m.normals.data(), m.grams.data(), m.balls.data()};
+  std::vector<std::uint32_t> quad_first;  // each quad's first triangle
+  find_quads(m.soup, m.normals, m.triangles, m.grams, m.quads, quad_first);
+  m.quad_of.assign(m.soup.triangles.size(), nullptr);
+  std::vector<bool> second(m.soup.triangles.size(), false);
+  for (std::size_t i = 0; i < m.quads.size(); ++i) {
+    const std::uint32_t t = quad_first[i];
+    m.quad_of[t] = &m.quads[i], second[t + 1] = true;
+    // The quad's ball: about its corners' centroid, holding all four.
+    const Scene::Quad& q = m.quads[i];
+    const Vec3 centre = 0.25 * (q.corner[0] + q.corner[1] + q.corner[2] + q.corner[3]);
+    double radius = 0;
+    for (const Vec3& c : q.corner) radius = std::max(radius, (c - centre).norm());
+    m.balls[t] = {centre, radius * (1 + 1e-12) + 1e-15};
+  }
+  for (std::uint32_t t = 0; t < m.soup.triangles.size(); ++t) {
+    if (second[t]) continue;
+    Box box = m.boxes[t];
+    if (m.quad_of[t]) box.lo = box.lo.cwiseMin(m.boxes[t + 1].lo), box.hi = box.hi.cwiseMax(m.boxes[t + 1].hi);
+    m.searched.push_back(t), m.searched_boxes.push_back(box);
+  }
+  m.box_tree = std::make_unique<BoxTree>(m.searched_boxes);
+  faces_ = {m.triangles.data(), m.normals.data(), m.grams.data(), m.balls.data(), m.quad_of.data()};
 #ifdef J232_HAVE_EMBREE
   if (engine == Engine::Embree) {
     m.embree = std::make_unique<EmbreeIndex>(m.triangles);
@@ -205,7 +259,7 @@ struct BoxCollector {
 std::size_t Scene::faces_in_box(const Vec3& lo, const Vec3& hi, std::uint32_t* out, std::size_t capacity) const {
   const Impl& m = *impl_;
   BoxCollector collect{out, capacity};
-  m.box_tree->visit(m.boxes, lo, hi, collect);
+  m.box_tree->visit(m.searched_boxes, lo, hi, [&](std::uint32_t i) { collect(m.searched[i]); });
   return collect.count;
 }
 

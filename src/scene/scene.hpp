@@ -59,7 +59,7 @@ class Scene {
   std::optional<Hit> first_hit(const Vec3& from, const Vec3& dir, double max_distance, const Skip& skip = {}) const;
 
   // The faces whose bounding boxes meet the box [lo, hi] (the broad phase of the capsule's
-  // contact search, flight/face_touch.hpp), in increasing face order, decided exactly in
+  // contact search, flight/face_touch.hpp; a quad once, by its first triangle), in increasing face order, decided exactly in
   // double precision so that both engines give the same list. Writes at most `capacity`
   // of them to `out` (the lowest-numbered, when there are more) and returns how many there
   // are (more than `capacity`: the caller asks again over a smaller box). Allocation-free.
@@ -91,6 +91,18 @@ class Scene {
     double radius;
   };
   const Ball& face_ball(std::uint32_t f) const { return faces_.balls[f]; }
+  // Two triangles of one flat, convex quadrilateral (a panel the scene was built of, as
+  // Soup::add_quad gives it: (a, b, c) then (a, c, d), coplanar, one label, one guard) are
+  // one face to the contact search: its corners in order, the outer edges from each corner
+  // to the next, and the two triangles' own constants for the tests inside. The quad is
+  // numbered by its first triangle; the second is never listed by faces_in_box, and
+  // face_ball of the first holds both. Null for a face that is a triangle alone.
+  struct Quad {
+    std::array<Vec3, 4> corner, edge;
+    std::array<std::array<Vec3, 3>, 2> triangle;  // each as corner and two edges (face_edges)
+    std::array<Gram, 2> gram;
+  };
+  const Quad* face_quad(std::uint32_t f) const { return faces_.quads[f]; }
 
   const Soup& soup() const;
   std::size_t face_count() const;
@@ -105,6 +117,7 @@ class Scene {
     const Vec3* normals = nullptr;
     const Gram* grams = nullptr;
     const Ball* balls = nullptr;
+    const Quad* const* quads = nullptr;
   } faces_;
 };
 
