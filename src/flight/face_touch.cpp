@@ -122,26 +122,16 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
 
 namespace {
 
-// Whether point x of the plane of triangle (a, a + e1, a + e2) lies in it, within `eps` of
-// its barycentric coordinates.
-bool in_triangle(const Vec3& x, const std::array<Vec3, 3>& tri, const scene::Scene::Gram& g, double eps) {
-  const Vec3 w = x - tri[0];
-  const double d20 = w.dot(tri[1]), d21 = w.dot(tri[2]);
-  const double v = (g.d11 * d20 - g.d01 * d21) / g.det, u = (g.d00 * d21 - g.d01 * d20) / g.det;
-  return v >= -eps && u >= -eps && u + v <= 1 + eps;
-}
-
-// The closest points of the segment p0-p1 and a flat convex quad. The segment crosses it
-// (distance 0) or not; if not, the closest pair has its point on the quad either inside it,
-// at the foot of one of the segment's ends (the distance from the plane is linear along the
-// segment, so least at an end; a segment parallel to the plane over the inside also passes
-// over an edge at that height), or on its boundary, against the segment.
 SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene::Quad& q) {
-  const scene::Scene::Gram& g = q.gram[0];
-  const Vec3& n = g.normal;
-  const Vec3& a = q.triangle[0][0];
+  const Vec3& n = q.normal;
+  const Vec3& a = q.corner[0];
+  // Inside the quad: on the inner side of each of its four outer edges (never of the diagonal
+  // between its triangles, which a point within rounding of it could fail on both sides of),
+  // within `eps` metres.
   const auto inside = [&](const Vec3& x, double eps) {
-    return in_triangle(x, q.triangle[0], q.gram[0], eps) || in_triangle(x, q.triangle[1], q.gram[1], eps);
+    for (std::size_t i = 0; i < 4; ++i)
+      if (!(q.inward[i].dot(x - q.corner[i]) >= -eps)) return false;
+    return true;
   };
   SegmentTriangle best;
   const double s0 = n.dot(p0 - a), s1 = n.dot(p1 - a);
@@ -150,9 +140,9 @@ SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene:
     const bool first = std::abs(s0) <= std::abs(s1);
     const Vec3& p = first ? p0 : p1;
     const double sp = first ? s0 : s1;
-    const Vec3 foot = p - (sp / g.nn) * n;
+    const Vec3 foot = p - (sp / q.nn) * n;
     if (inside(foot, 0.0)) {
-      best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(g.nn);
+      best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(q.nn);
       return best;
     }
   } else if (s0 != s1) {
@@ -169,7 +159,7 @@ SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene:
     if (d < d2) d2 = d, best.on_segment = ps, best.on_triangle = pt;
   };
   for (const auto& [p, sp] : {std::pair<const Vec3&, double>{p0, s0}, std::pair<const Vec3&, double>{p1, s1}}) {
-    const Vec3 foot = p - (sp / g.nn) * n;
+    const Vec3 foot = p - (sp / q.nn) * n;
     if (inside(foot, 0.0)) offer(p, foot);
   }
   const Vec3 d = p1 - p0;
@@ -350,26 +340,39 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   }
   s.bound = std::max(m.velocity(from).norm(), m.velocity(until).norm()) + s.h * w + 1e-9;
 
-  // Whether the capsule meets face i at an edge or corner (`normal`, from that point toward the
-  // core, off the face's own normal) that another face in the same plane lies beyond: a face
-  // within tolerance of the capsule there whose closest point lies under the capsule (along
-  // that face's normal). The edge is then inside one flat surface built of several faces (a
-  // fan of triangles, a skirt of pieces), not an edge of the steel: the capsule moving along
-  // the surface meets the plane, which the face under it stands for, and not the edge. (Met as
-  // an edge, a nail or stone sliding over it was thrown off at the angle of its normal.)
-  const auto flat_edge = [&](std::size_t i, const Pose& p, const Vec3& normal) {
-    const std::uint32_t f = state[i].face;
+  // The faces within tolerance of the capsule at one instant, with their closest points, and
+  // whether the closest point lies under the capsule (along the face's own normal: the
+  // capsule on the face's inside, not at an edge or corner).
+  struct Near {
+    std::size_t i;
+    SegmentTriangle st;
+    double g;
+    bool under;
+  };
+  std::array<Near, kCapacity> near;  // NOLINT: filled as it is used
+  std::size_t near_count = 0;
+
+  // Whether the capsule meets near face e at an edge or corner (`normal`, from that point
+  // toward the core, off the face's own normal) inside one flat surface built of several faces
+  // (a fan of triangles, a mesh, pieces of a skirt): another face near the capsule, of the
+  // same material (label and guard), in the same plane at the touching point, has its closest
+  // point under the capsule. Such an edge is not an edge of the steel: a round body resting on
+  // a plane meets it along one line, and reaches a coplanar face's edge only when it has sunk
+  // into the surface (by a face being left's slack); it moves along the surface, which the
+  // face under it stands for. (Met as edges, a nail or stone sliding over them was thrown off
+  // at the edge's tilted normal.)
+  const auto flat_edge = [&](const Near& e, const Vec3& normal) {
+    const std::uint32_t f = state[e.i].face;
     const Vec3& fn = scene.face_normal(f);
     if (std::abs(normal.dot(fn)) > 1 - 1e-9) return false;  // on the face's inside: its own plane
-    const Vec3& q = scene.face_edges(f)[0];
-    for (std::size_t j = 0; j < n; ++j) {
-      const std::uint32_t g = state[j].face;
+    const auto& soup = scene.soup();
+    for (std::size_t k = 0; k < near_count; ++k) {
+      const Near& u = near[k];
+      if (&u == &e || !u.under) continue;
+      const std::uint32_t g = state[u.i].face;
       const Vec3& gn = scene.face_normal(g);
-      if (j == i || !(std::abs(gn.dot(fn)) > 1 - 1e-12) || !(std::abs(gn.dot(q - scene.face_edges(g)[0])) <= 1e-9)) continue;
-      SegmentTriangle under;
-      if (s.clearance(g, p, &under) > kFaceTolerance) continue;
-      const Vec3 gap = under.on_segment - under.on_triangle;
-      if (gap.norm() > 1e-12 && std::abs(gap.normalized().dot(gn)) > 1 - 1e-9) return true;
+      if (soup.labels[g] != soup.labels[f] || soup.guard_index[g] != soup.guard_index[f]) continue;
+      if (std::abs(gn.dot(fn)) > 1 - 1e-10 && std::abs(gn.dot(e.st.on_triangle - u.st.on_triangle)) <= 1e-7) return true;
     }
     return false;
   };
@@ -381,6 +384,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
     const Pose p = s.pose(t);
     std::array<Vec3, 4> normals;
     int distinct = 0;
+    near_count = 0;
     for (std::size_t i = 0; i < n; ++i) {
       FaceState& fs = state[i];
       // Clear of the face's plane (or of its ball), so of the face: nothing to settle.
@@ -394,15 +398,25 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
         fs.leaving = false;
         continue;
       }
-      SegmentTriangle st;
-      
-      const double g = s.clearance(fs.face, p, &st);
-      if (g > kFaceTolerance) {
+      Near& e = near[near_count];
+      e.i = i;
+      e.g = s.clearance(fs.face, p, &e.st);
+      if (e.g > kFaceTolerance) {
         fs.leaving = false;
         continue;
       }
+      const Vec3 gap = e.st.on_segment - e.st.on_triangle;
+      const double len = gap.norm();
+      e.under = len > 1e-12 && std::abs(gap.dot(fn)) > (1 - 1e-9) * len;
+      ++near_count;
+    }
+    for (std::size_t at = 0; at < near_count; ++at) {
+      const Near& here = near[at];
+      FaceState& fs = state[here.i];
+      const SegmentTriangle& st = here.st;
+      const double g = here.g;
       Vec3 normal;
-      if (!s.approaching(fs.face, p, st, normal) || flat_edge(i, p, normal)) {
+      if (!s.approaching(fs.face, p, st, normal) || flat_edge(here, normal)) {
         // Left: it may sink kLeavingSlack into the face before it is looked at again. A
         // capsule that starts deep inside a face (a field's stone pressed into the soil, far
         // beyond what a touch of this search leaves) may sink no deeper than it is by the slack.

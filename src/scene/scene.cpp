@@ -109,8 +109,7 @@ struct ClosestHit {
 // quadrilateral a-b-c-d with one label and one guard (Soup::add_quad's panels): each as a
 // Scene::Quad, with its first triangle's number. Flat: d within 1e-12 of the quad's size of
 // (a, b, c)'s plane and both normals alike; convex: every corner turns the same way.
-void find_quads(const Soup& soup, const std::vector<Vec3>& normals, const std::vector<TriangleEdges>& triangles,
-                const std::vector<Scene::Gram>& grams, std::vector<Scene::Quad>& quads, std::vector<std::uint32_t>& first) {
+void find_quads(const Soup& soup, const std::vector<Vec3>& normals, const std::vector<Scene::Gram>& grams, std::vector<Scene::Quad>& quads, std::vector<std::uint32_t>& first) {
   for (std::uint32_t t = 0; t + 1 < soup.triangles.size(); ++t) {
     const auto &p = soup.triangles[t], &q = soup.triangles[t + 1];
     if (!(q[0] == p[0] && q[1] == p[2])) continue;
@@ -126,10 +125,10 @@ void find_quads(const Soup& soup, const std::vector<Vec3>& normals, const std::v
       quad.corner[i] = corner[i], quad.edge[i] = corner[(i + 1) % 4] - corner[i];
       const Vec3 next = corner[(i + 2) % 4] - corner[(i + 1) % 4];
       convex = convex && quad.edge[i].cross(next).dot(n) > 0;
+      quad.inward[i] = n.cross(quad.edge[i]).normalized();  // (the corners run counterclockwise about n)
     }
     if (!convex) continue;
-    quad.triangle = {triangles[t], triangles[t + 1]};
-    quad.gram = {grams[t], grams[t + 1]};
+    quad.normal = grams[t].normal, quad.nn = grams[t].nn;
     quads.push_back(quad), first.push_back(t);
     ++t;  // the second triangle is taken
   }
@@ -196,7 +195,7 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     m.boxes.push_back({e[0].cwiseMin(b).cwiseMin(c), e[0].cwiseMax(b).cwiseMax(c)});
   }
   std::vector<std::uint32_t> quad_first;  // each quad's first triangle
-  find_quads(m.soup, m.normals, m.triangles, m.grams, m.quads, quad_first);
+  find_quads(m.soup, m.normals, m.grams, m.quads, quad_first);
   m.quad_of.assign(m.soup.triangles.size(), nullptr);
   std::vector<bool> second(m.soup.triangles.size(), false);
   for (std::size_t i = 0; i < m.quads.size(); ++i) {

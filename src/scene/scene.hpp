@@ -93,14 +93,16 @@ class Scene {
   const Ball& face_ball(std::uint32_t f) const { return faces_.balls[f]; }
   // Two triangles of one flat, convex quadrilateral (a panel the scene was built of, as
   // Soup::add_quad gives it: (a, b, c) then (a, c, d), coplanar, one label, one guard) are
-  // one face to the contact search: its corners in order, the outer edges from each corner
-  // to the next, and the two triangles' own constants for the tests inside. The quad is
-  // numbered by its first triangle; the second is never listed by faces_in_box, and
-  // face_ball of the first holds both. Null for a face that is a triangle alone.
+  // one face to the contact search: its corners in order (counterclockwise about `normal`),
+  // the outer edges from each corner to the next, each edge's unit normal in the plane
+  // pointing inside, and the first triangle's unnormalised normal (its Gram normal) with its
+  // squared length. The quad is numbered by its first triangle; the second is never listed
+  // by faces_in_box, and face_ball of the first holds both. Null for a face that is a
+  // triangle alone.
   struct Quad {
-    std::array<Vec3, 4> corner, edge;
-    std::array<std::array<Vec3, 3>, 2> triangle;  // each as corner and two edges (face_edges)
-    std::array<Gram, 2> gram;
+    std::array<Vec3, 4> corner, edge, inward;
+    Vec3 normal;
+    double nn;
   };
   const Quad* face_quad(std::uint32_t f) const { return faces_.quads[f]; }
 
