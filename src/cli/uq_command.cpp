@@ -231,7 +231,7 @@ int uq(const UqOptions& o) {
   if (reuse)  // (outside what the shipped reports' check compares)
     j["provenance"] = {{"reused_from", o.reuse}, {"assessments_run_again", reuse->rerun_count()}};
   report::write_atomically(out.staged("uq.csv"), report::uncertainty_csv(r));
-  report::write_atomically(out.staged("uq.html"), report::uncertainty_html(j));
+  report::write_atomically(out.staged("uq.html"), report::uncertainty_html(report::as_saved(j)));  // drawn from the file as saved, as redraw draws it
   report::write_atomically(out.staged("uq.json"), report::json_text(j) + "\n");
   out.commit();
   journal.remove();

@@ -163,7 +163,7 @@ RunOutcome assess_to_folder(const std::string& scenario_file, const RunOverrides
     }
     const auto uq = uncertainty_json(study);
     write_atomically(folder.staged("uq.csv"), uncertainty_csv(study));
-    write_atomically(folder.staged("uq.html"), uncertainty_html(uq));
+    write_atomically(folder.staged("uq.html"), uncertainty_html(as_saved(uq)));  // drawn from the file as saved, as redraw draws it
     write_atomically(folder.staged("uq.json"), json_text(uq) + "\n");
     outcome.result["uncertainty"] = uncertainty_summary_json(uq);
     outcome.summary_text += uncertainty_summary_text(outcome.result["uncertainty"]);
