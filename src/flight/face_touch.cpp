@@ -11,6 +11,16 @@ namespace j232::flight {
 
 namespace {
 
+// The closest pair offered so far (the first of equals kept), into `best`.
+struct Nearest {
+  SegmentTriangle& best;
+  double d2 = HUGE_VAL;
+  void offer(const Vec3& ps, const Vec3& pt) {
+    const double d = (ps - pt).squaredNorm();
+    if (d < d2) d2 = d, best.on_segment = ps, best.on_triangle = pt;
+  }
+};
+
 // The point of triangle (a, a + e1, a + e2) nearest p, by its Voronoi regions (corners,
 // edges, interior).
 Vec3 nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& ab, const Vec3& ac) {
@@ -102,11 +112,8 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
       }
     }
   }
-  double d2 = HUGE_VAL;
-  const auto offer = [&](const Vec3& ps, const Vec3& pt) {
-    const double d = (ps - pt).squaredNorm();
-    if (d < d2) d2 = d, best.on_segment = ps, best.on_triangle = pt;
-  };
+  Nearest nearest{best};
+  const auto offer = [&](const Vec3& ps, const Vec3& pt) { nearest.offer(ps, pt); };
   offer(p0, nearest_on_triangle(p0, a, e1, e2));
   if (p1 != p0) {
     offer(p1, nearest_on_triangle(p1, a, e1, e2));
@@ -116,7 +123,7 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
     nearest_segments(p0, d, a, e2, cs, ct), offer(cs, ct);
     nearest_segments(p0, d, a + e1, e2 - e1, cs, ct), offer(cs, ct);
   }
-  best.distance = std::sqrt(d2);
+  best.distance = std::sqrt(nearest.d2);
   return best;
 }
 
@@ -153,11 +160,8 @@ SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene:
       return best;
     }
   }
-  double d2 = HUGE_VAL;
-  const auto offer = [&](const Vec3& ps, const Vec3& pt) {
-    const double d = (ps - pt).squaredNorm();
-    if (d < d2) d2 = d, best.on_segment = ps, best.on_triangle = pt;
-  };
+  Nearest nearest{best};
+  const auto offer = [&](const Vec3& ps, const Vec3& pt) { nearest.offer(ps, pt); };
   for (const auto& [p, sp] : {std::pair<const Vec3&, double>{p0, s0}, std::pair<const Vec3&, double>{p1, s1}}) {
     const Vec3 foot = p - (sp / q.nn) * n;
     if (inside(foot, 0.0)) offer(p, foot);
@@ -165,7 +169,7 @@ SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene:
   const Vec3 d = p1 - p0;
   Vec3 cs, ct;
   for (std::size_t i = 0; i < 4; ++i) nearest_segments(p0, d, q.corner[i], q.edge[i], cs, ct), offer(cs, ct);
-  best.distance = std::sqrt(d2);
+  best.distance = std::sqrt(nearest.d2);
   return best;
 }
 
