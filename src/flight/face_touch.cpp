@@ -113,15 +113,14 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
     }
   }
   Nearest nearest{best};
-  const auto offer = [&](const Vec3& ps, const Vec3& pt) { nearest.offer(ps, pt); };
-  offer(p0, nearest_on_triangle(p0, a, e1, e2));
+  nearest.offer(p0, nearest_on_triangle(p0, a, e1, e2));
   if (p1 != p0) {
-    offer(p1, nearest_on_triangle(p1, a, e1, e2));
+    nearest.offer(p1, nearest_on_triangle(p1, a, e1, e2));
     const Vec3 d = p1 - p0;
     Vec3 cs, ct;
-    nearest_segments(p0, d, a, e1, cs, ct), offer(cs, ct);
-    nearest_segments(p0, d, a, e2, cs, ct), offer(cs, ct);
-    nearest_segments(p0, d, a + e1, e2 - e1, cs, ct), offer(cs, ct);
+    nearest_segments(p0, d, a, e1, cs, ct), nearest.offer(cs, ct);
+    nearest_segments(p0, d, a, e2, cs, ct), nearest.offer(cs, ct);
+    nearest_segments(p0, d, a + e1, e2 - e1, cs, ct), nearest.offer(cs, ct);
   }
   best.distance = std::sqrt(nearest.d2);
   return best;
@@ -161,14 +160,13 @@ SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene:
     }
   }
   Nearest nearest{best};
-  const auto offer = [&](const Vec3& ps, const Vec3& pt) { nearest.offer(ps, pt); };
   for (const auto& [p, sp] : {std::pair<const Vec3&, double>{p0, s0}, std::pair<const Vec3&, double>{p1, s1}}) {
     const Vec3 foot = p - (sp / q.nn) * n;
-    if (inside(foot, 0.0)) offer(p, foot);
+    if (inside(foot, 0.0)) nearest.offer(p, foot);
   }
   const Vec3 d = p1 - p0;
   Vec3 cs, ct;
-  for (std::size_t i = 0; i < 4; ++i) nearest_segments(p0, d, q.corner[i], q.edge[i], cs, ct), offer(cs, ct);
+  for (std::size_t i = 0; i < 4; ++i) nearest_segments(p0, d, q.corner[i], q.edge[i], cs, ct), nearest.offer(cs, ct);
   best.distance = std::sqrt(nearest.d2);
   return best;
 }
