@@ -69,6 +69,122 @@ TEST_CASE("face touch: the segment-triangle distance is CGAL's", "[flight][conta
   }
 }
 
+// A flat convex polygon of `corners` corners near the origin (on an ellipse in a random plane,
+// in order round it), fanned from an inner point (a random mean of its corners) as a deck's
+// plate is: triangles (c, p_k, p_k+1) round to p_0, their points shared or each its own.
+std::vector<Vec3> add_random_polygon(std::mt19937_64& rng, scene::Soup& soup, std::size_t corners, bool shared_points) {
+  const Vec3 c = random_vec(rng, 0.05), u = random_vec(rng, 1).normalized();
+  const Vec3 v = u.cross(random_vec(rng, 1)).normalized();
+  const double ra = uniform(rng, 0.01, 0.08), rb = uniform(rng, 0.01, 0.08);
+  std::vector<double> angle(corners);
+  for (double& a : angle) a = uniform(rng, 0, 2 * M_PI);
+  std::sort(angle.begin(), angle.end());
+  std::vector<Vec3> rim;
+  for (const double a : angle) rim.push_back(c + ra * std::cos(a) * u + rb * std::sin(a) * v);
+  Vec3 inner = Vec3::Zero();
+  double weights = 0;
+  for (const Vec3& p : rim) {
+    const double w = uniform(rng, 0.1, 1);
+    inner += w * p, weights += w;
+  }
+  inner /= weights;
+  const auto centre = soup.add_point(inner);
+  std::vector<std::uint32_t> id;
+  for (const Vec3& p : rim) id.push_back(soup.add_point(p));
+  for (std::size_t k = 0; k < corners; ++k) {
+    const std::size_t next = (k + 1) % corners;
+    if (shared_points) soup.add_triangle(centre, id[k], id[next], scene::Surface::Housing);
+    else soup.add_triangle(soup.add_point(inner), soup.add_point(rim[k]), soup.add_point(rim[next]), scene::Surface::Housing);
+  }
+  return rim;
+}
+
+TEST_CASE("face touch: a plate fanned from an inner point is one face, and its distance is CGAL's to its triangles", "[flight][contact]") {
+  std::mt19937_64 rng(61);
+  int merged = 0, trials = 0;
+  for (int trial = 0; trial < 6000; ++trial, ++trials) {
+    scene::Soup soup;
+    const std::size_t corners = trial % 3 == 0 ? 3 + static_cast<std::size_t>(trial % 9) : 9 + static_cast<std::size_t>(trial % 140);
+    const std::vector<Vec3> rim = add_random_polygon(rng, soup, corners, trial % 2 == 0);
+    const scene::Scene scene(soup, scene::Engine::Cgal);
+    // (Corners drawn very close together can make a sliver whose corner turns back by more than
+    // rounding: then triangles, each its own face, which the distance below checks the same.)
+    const bool one = scene.face_polygon(0) != nullptr;
+    merged += one;
+    std::array<std::uint32_t, 256> listed{};
+    const std::size_t n = scene.faces_in_box(Vec3::Constant(-1), Vec3::Constant(1), listed.data(), listed.size());
+    if (one) {
+      CHECK(n == 1);
+      CHECK(scene.face_polygon(0)->count == corners);
+      for (std::uint32_t f = 1; f < corners; ++f) CHECK(scene.face_polygon(f) == nullptr);
+    }
+    const Vec3 normal = (soup.points[1] - soup.points[0]).cross(soup.points[2] - soup.points[0]).normalized();
+    const Vec3& corner = rim[static_cast<std::size_t>(trial) % corners];
+    const Vec3 by_rim = corner + uniform(rng, 0, 1) * (rim[(static_cast<std::size_t>(trial) + 1) % corners] - corner);
+    Vec3 centre = random_vec(rng, 0.1), axis = random_vec(rng, 1).normalized();
+    const double h = trial % 7 == 0 ? 0.0 : uniform(rng, 0.001, 0.05);
+    switch (trial % 6) {
+      case 1:  // by the rim, tilted across the plane
+        centre = by_rim + random_vec(rng, 0.01), axis = (axis - axis.dot(normal) * normal + 0.3 * normal).normalized();
+        break;
+      case 2:  // parallel to the plane, over it or beside it
+        centre = by_rim + random_vec(rng, 0.03), axis = (axis - axis.dot(normal) * normal).normalized();
+        centre -= normal.dot(centre - by_rim) * normal - uniform(rng, -0.01, 0.01) * normal;
+        break;
+      case 3:  // in the plane
+        centre = by_rim + random_vec(rng, 0.05), centre -= normal.dot(centre - by_rim) * normal;
+        axis = (axis - axis.dot(normal) * normal).normalized();
+        break;
+      case 4:  // by a corner
+        centre = corner + random_vec(rng, 1e-3);
+        break;
+      default:
+        break;
+    }
+    const Vec3 p0 = centre - h * axis, p1 = centre + h * axis;
+    double ours = HUGE_VAL;
+    for (std::uint32_t f = 0; f < (one ? 1u : static_cast<std::uint32_t>(corners)); ++f) ours = std::min(ours, flight::segment_face(p0, p1, scene, f).distance);
+    INFO("trial " << trial << ", case " << trial % 6 << ", corners " << corners);
+    if (trial % 6 != 3) {
+      CHECK(ours == Approx(1.0 - scene::deepest_overlap(soup, centre, axis, h, 1.0).depth).margin(1e-12));
+    } else {  // in the plane: CGAL's distances from points along it (as for the quad)
+      double sampled = HUGE_VAL;
+      constexpr int kSamples = 400;
+      for (int k = 0; k <= kSamples; ++k)
+        sampled = std::min(sampled, 1.0 - scene::deepest_overlap(soup, p0 + (k / double(kSamples)) * (p1 - p0), axis, 0.0, 1.0).depth);
+      CHECK(ours <= sampled + 1e-12);
+      CHECK(ours >= sampled - 2 * h / kSamples - 1e-12);
+    }
+    if (one) {  // the closest points: on the segment, on the polygon, that far apart
+      const auto st = flight::segment_face(p0, p1, scene, 0);
+      CHECK((st.on_segment - st.on_triangle).norm() == Approx(st.distance).margin(1e-12));
+      CHECK(1.0 - scene::deepest_overlap(soup, st.on_triangle, axis, 0.0, 1.0).depth <= 1e-12);
+      const double along = h > 0 ? std::clamp((st.on_segment - p0).dot(p1 - p0) / (p1 - p0).squaredNorm(), 0.0, 1.0) : 0.0;
+      CHECK((p0 + along * (p1 - p0) - st.on_segment).norm() <= 1e-12);
+    }
+  }
+  CHECK(merged > 0.95 * trials);
+  // Not one face: a fan that does not close, one of two labels, or a rim that turns back.
+  const auto one_face = [](const std::vector<Vec3>& rim, bool close, scene::Surface last_label) {
+    scene::Soup soup;
+    const auto c = soup.add_point(Vec3::Zero());
+    std::vector<std::uint32_t> id;
+    for (const Vec3& p : rim) id.push_back(soup.add_point(p));
+    const std::size_t count = close ? rim.size() : rim.size() - 1;
+    for (std::size_t k = 0; k < count; ++k)
+      soup.add_triangle(c, id[k], id[(k + 1) % rim.size()], k + 1 == count ? last_label : scene::Surface::Housing);
+    return scene::Scene(soup, scene::Engine::Cgal).face_polygon(0) != nullptr;
+  };
+  std::vector<Vec3> hexagon;
+  for (int k = 0; k < 6; ++k) hexagon.emplace_back(0.1 * std::cos(k * M_PI / 3), 0.1 * std::sin(k * M_PI / 3), 0);
+  CHECK(one_face(hexagon, true, scene::Surface::Housing));
+  CHECK_FALSE(one_face(hexagon, false, scene::Surface::Housing));
+  CHECK_FALSE(one_face(hexagon, true, scene::Surface::Ground));
+  std::vector<Vec3> dented = hexagon;
+  dented[2] *= 0.3;  // a corner pushed in: a star, not convex
+  CHECK_FALSE(one_face(dented, true, scene::Surface::Housing));
+}
+
 TEST_CASE("face touch: a flat convex quad is one face, and its distance is CGAL's to its two triangles", "[flight][contact]") {
   std::mt19937_64 rng(6);
   int quads = 0;

@@ -171,10 +171,122 @@ SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene:
   return best;
 }
 
+// The closest points of a segment and a plate fanned from an inner point (scene::Scene::Polygon).
+// As a quad's, but with many corners: a point of the plane is placed in its wedge (between the
+// rays from the centre to two neighbouring corners) by its angle, and only the edges that can
+// hold the nearest point are measured. A point beyond the rim lies beyond the edge of its wedge,
+// and a convex polygon's nearest point to it lies on an edge whose inner side it is beyond (or
+// at a corner of two, one of them such), and those edges run on from its wedge's; the nearest
+// point of the segment's, where it is not a foot inside, is nearest some point of the segment
+// whose foot is beyond such an edge, and that edge is beyond a foot of one of its ends (the
+// side of an edge is linear along the segment). So the feet of the two ends decide which edges.
+class PolygonDistance {
+ public:
+  explicit PolygonDistance(const scene::Scene::Polygon& p) : p_(p) {}
+
+  // The edge of the wedge x's foot lies in (its first corner's number).
+  std::size_t wedge(const Vec3& x) const {
+    const Vec3 r = x - p_.centre;
+    const double a = std::atan2(r.dot(p_.v), r.dot(p_.u));
+    const double* begin = p_.angle;
+    const double* end = p_.angle + p_.count;
+    const std::size_t k = static_cast<std::size_t>(std::upper_bound(begin, end, a) - begin);  // corners at or below a
+    return (p_.first + (k == 0 ? p_.count - 1 : k - 1)) % p_.count;
+  }
+  // How far x is inside edge i (negative: beyond it).
+  double inside_edge(const Vec3& x, std::size_t i) const { return p_.inward[i].dot(x - p_.corner[i]); }
+  // Inside, within eps: inside its wedge's edge and the two beside it (an angle rounded across a
+  // corner's ray places it in the next wedge; inside the true wedge's edge it is inside).
+  bool inside(const Vec3& x, double eps) const {
+    if (p_.count <= kAllEdges) {
+      for (std::size_t i = 0; i < p_.count; ++i)
+        if (!(inside_edge(x, i) >= -eps)) return false;
+      return true;
+    }
+    const std::size_t w = wedge(x);
+    return inside_edge(x, w) >= -eps && inside_edge(x, (w + 1) % p_.count) >= -eps && inside_edge(x, (w + p_.count - 1) % p_.count) >= -eps;
+  }
+  // Every edge the foot x lies beyond (or within kSlack of), added to `edges` once; false when
+  // they do not fit (the caller then measures every edge).
+  template <std::size_t N>
+  bool edges_beyond(const Vec3& x, std::array<std::size_t, N>& edges, std::size_t& n) const {
+    const std::size_t K = p_.count, w = wedge(x);
+    const auto beyond = [&](std::size_t i) { return inside_edge(x, i) < kSlack; };
+    const auto add = [&](std::size_t i) {
+      for (std::size_t j = 0; j < n; ++j)
+        if (edges[j] == i) return true;
+      if (n == N) return false;
+      edges[n++] = i;
+      return true;
+    };
+    // From each of the wedge's edge and its two neighbours that x is beyond, on round the rim
+    // both ways while it stays beyond.
+    for (const std::size_t start : {(w + K - 1) % K, w, (w + 1) % K}) {
+      if (!beyond(start)) continue;
+      if (!add(start)) return false;
+      for (std::size_t i = (start + 1) % K, steps = 0; steps < K && beyond(i); i = (i + 1) % K, ++steps)
+        if (!add(i)) return false;
+      for (std::size_t i = (start + K - 1) % K, steps = 0; steps < K && beyond(i); i = (i + K - 1) % K, ++steps)
+        if (!add(i)) return false;
+    }
+    return true;
+  }
+
+  static constexpr std::size_t kAllEdges = 8;  // a polygon of so few corners has every edge measured
+  static constexpr double kSlack = 1e-9;       // m: an edge this close to beyond is measured too
+
+ private:
+  const scene::Scene::Polygon& p_;
+};
+
+SegmentTriangle segment_polygon(const Vec3& p0, const Vec3& p1, const scene::Scene::Polygon& poly) {
+  const PolygonDistance P(poly);
+  const Vec3& n = poly.normal;
+  const Vec3& a = poly.centre;
+  SegmentTriangle best;
+  const double s0 = n.dot(p0 - a), s1 = n.dot(p1 - a);
+  if ((s0 > 0 && s1 > 0) || (s0 < 0 && s1 < 0)) {
+    // Both ends on one side: the nearer end's foot inside is the closest pair.
+    const bool first = std::abs(s0) <= std::abs(s1);
+    const Vec3& p = first ? p0 : p1;
+    const double sp = first ? s0 : s1;
+    const Vec3 foot = p - (sp / poly.nn) * n;
+    if (P.inside(foot, 0.0)) {
+      best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(poly.nn);
+      return best;
+    }
+  } else if (s0 != s1) {
+    // Crossing the plane: inside the polygon there (with a rounding's margin), distance 0.
+    const Vec3 x = p0 + (s0 / (s0 - s1)) * (p1 - p0);
+    if (P.inside(x, 1e-12)) {
+      best.on_segment = x, best.on_triangle = x, best.distance = 0;
+      return best;
+    }
+  }
+  Nearest nearest{best};
+  const Vec3 foot0 = p0 - (s0 / poly.nn) * n, foot1 = p1 - (s1 / poly.nn) * n;
+  if (P.inside(foot0, 0.0)) nearest.offer(p0, foot0);
+  if (P.inside(foot1, 0.0)) nearest.offer(p1, foot1);
+  std::array<std::size_t, 32> edges;  // NOLINT: the first n are set
+  std::size_t count = 0;
+  const bool some = poly.count > PolygonDistance::kAllEdges && P.edges_beyond(foot0, edges, count) && P.edges_beyond(foot1, edges, count);
+  if (some) std::sort(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(count));  // (in the rim's order, whichever end found them)
+  const Vec3 d = p1 - p0;
+  Vec3 cs, ct;
+  const std::size_t measured = some ? count : poly.count;
+  for (std::size_t j = 0; j < measured; ++j) {
+    const std::size_t i = some ? edges[j] : j;
+    nearest_segments(p0, d, poly.corner[i], poly.edge[i], cs, ct), nearest.offer(cs, ct);
+  }
+  best.distance = std::sqrt(nearest.d2);
+  return best;
+}
+
 }  // namespace
 
 SegmentTriangle segment_face(const Vec3& p0, const Vec3& p1, const scene::Scene& scene, std::uint32_t f) {
   if (const scene::Scene::Quad* q = scene.face_quad(f)) return segment_quad(p0, p1, *q);
+  if (const scene::Scene::Polygon* poly = scene.face_polygon(f)) return segment_polygon(p0, p1, *poly);
   return segment_triangle(p0, p1, scene.face_edges(f), scene.face_gram(f));
 }
 

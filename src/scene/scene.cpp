@@ -4,6 +4,7 @@
 #include "scene/ray_triangle.hpp"
 #include "scene/box_tree.hpp"
 
+#include <cmath>
 #include <utility>
 #ifdef J232_HAVE_EMBREE
 #include "scene/embree_index.hpp"
@@ -109,8 +110,10 @@ struct ClosestHit {
 // quadrilateral a-b-c-d with one label and one guard (Soup::add_quad's panels): each as a
 // Scene::Quad, with its first triangle's number. Flat: d within 1e-12 of the quad's size of
 // (a, b, c)'s plane and both normals alike; convex: every corner turns the same way.
-void find_quads(const Soup& soup, const std::vector<Vec3>& normals, const std::vector<Scene::Gram>& grams, std::vector<Scene::Quad>& quads, std::vector<std::uint32_t>& first) {
+void find_quads(const Soup& soup, const std::vector<Vec3>& normals, const std::vector<Scene::Gram>& grams, const std::vector<bool>& taken,
+                std::vector<Scene::Quad>& quads, std::vector<std::uint32_t>& first) {
   for (std::uint32_t t = 0; t + 1 < soup.triangles.size(); ++t) {
+    if (taken[t] || taken[t + 1]) continue;
     const auto &p = soup.triangles[t], &q = soup.triangles[t + 1];
     if (!(q[0] == p[0] && q[1] == p[2])) continue;
     if (soup.labels[t] != soup.labels[t + 1] || soup.guard_index[t] != soup.guard_index[t + 1]) continue;
@@ -131,6 +134,70 @@ void find_quads(const Soup& soup, const std::vector<Vec3>& normals, const std::v
     quad.normal = grams[t].normal, quad.nn = grams[t].nn;
     quads.push_back(quad), first.push_back(t);
     ++t;  // the second triangle is taken
+  }
+}
+
+// Runs of consecutive triangles (c, p_0, p_1), (c, p_1, p_2), ..., (c, p_K-1, p_0), K >= 3,
+// fanned from one point c round a closed rim, one label and one guard (a deck's plate: a disc,
+// or an outline fanned from its centroid): each, when flat and convex, as a Scene::Polygon with
+// its first triangle's number and its count. Points are matched by position (an outline's
+// triangles each add their own corners). Flat: every triangle's normal the first's to 1e-12 and
+// every corner within 1e-12 of the rim's size of its plane (so c lies inside, every triangle
+// turning the same way); convex: no corner turns back beyond rounding; the corners' angles
+// about c then rise strictly round the rim.
+struct PolygonRun {
+  std::uint32_t first_triangle;
+  std::size_t count;
+  Vec3 centre, u, v;
+  std::size_t least;  // the corner of the least angle
+};
+void find_polygons(const Soup& soup, const std::vector<Vec3>& normals, std::vector<PolygonRun>& runs, std::vector<Vec3>& corners,
+                   std::vector<double>& angles) {
+  const auto point = [&](std::uint32_t t, int k) -> const Vec3& { return soup.points[soup.triangles[t][static_cast<std::size_t>(k)]]; };
+  const std::uint32_t n_tri = static_cast<std::uint32_t>(soup.triangles.size());
+  for (std::uint32_t t = 0; t < n_tri; ++t) {
+    const Vec3& c = point(t, 0);
+    std::uint32_t end = t + 1;  // one past the run's last triangle, once it closes
+    bool closed = false;
+    for (std::uint32_t k = t + 1; k < n_tri; ++k) {
+      if (!(point(k, 0) == c && point(k, 1) == point(k - 1, 2)) || soup.labels[k] != soup.labels[t] || soup.guard_index[k] != soup.guard_index[t]) break;
+      if (k - t + 1 >= 3 && point(k, 2) == point(t, 1)) {
+        end = k + 1, closed = true;
+        break;
+      }
+    }
+    if (!closed) continue;
+    const std::size_t K = end - t;
+    const Vec3& n = normals[t];
+    double size = 0;
+    for (std::uint32_t k = t; k < end; ++k) size = std::max(size, (point(k, 1) - c).norm());
+    bool flat = true;
+    for (std::uint32_t k = t; k < end && flat; ++k) flat = normals[k].dot(n) > 1 - 1e-12 && std::abs(n.dot(point(k, 1) - c)) <= 1e-12 * size;
+    if (!flat) continue;
+    bool convex = true;
+    for (std::size_t i = 0; i < K && convex; ++i) {
+      const Vec3& a = point(t + static_cast<std::uint32_t>(i), 1);
+      const Vec3& b = point(t + static_cast<std::uint32_t>((i + 1) % K), 1);
+      const Vec3& d = point(t + static_cast<std::uint32_t>((i + 2) % K), 1);
+      convex = (b - a).cross(d - b).dot(n) >= -1e-12 * (b - a).norm() * (d - b).norm();
+    }
+    if (!convex) continue;
+    PolygonRun run{t, K, c, Vec3::Zero(), Vec3::Zero(), 0};
+    const Vec3 first = point(t, 1) - c;
+    run.u = (first - n.dot(first) * n).normalized(), run.v = n.cross(run.u);
+    std::vector<double> angle(K);
+    for (std::size_t i = 0; i < K; ++i) {
+      const Vec3 r = point(t + static_cast<std::uint32_t>(i), 1) - c;
+      angle[i] = std::atan2(r.dot(run.v), r.dot(run.u));
+      if (angle[i] < angle[run.least]) run.least = i;
+    }
+    bool rising = true;
+    for (std::size_t k = 0; k + 1 < K && rising; ++k) rising = angle[(run.least + k) % K] < angle[(run.least + k + 1) % K];
+    if (!rising) continue;
+    for (std::size_t i = 0; i < K; ++i) corners.push_back(point(t + static_cast<std::uint32_t>(i), 1));
+    for (std::size_t k = 0; k < K; ++k) angles.push_back(angle[(run.least + k) % K]);
+    runs.push_back(run);
+    t = end - 1;  // the run's triangles are taken
   }
 }
 
@@ -159,7 +226,11 @@ struct Scene::Impl {
   std::vector<Box> boxes;                // per soup triangle: its box, from the corner and edges as the queries see it
   std::vector<Scene::Quad> quads;        // the quads found (two triangles each)
   std::vector<const Scene::Quad*> quad_of;  // per soup triangle: its quad when it leads one, else null
-  std::vector<std::uint32_t> searched;   // the faces the broad phase lists: triangles alone and each quad's first
+  std::vector<Scene::Polygon> polygons;  // the closed fans found (a plate)
+  std::vector<const Scene::Polygon*> polygon_of;  // per soup triangle: its polygon when it leads one, else null
+  std::vector<Vec3> polygon_corners, polygon_edges, polygon_inward;  // every polygon's, one after another
+  std::vector<double> polygon_angles;
+  std::vector<std::uint32_t> searched;   // the faces the broad phase lists: triangles alone and each quad's and polygon's first
   std::vector<Box> searched_boxes;       // their boxes (a quad's holds both triangles)
   std::unique_ptr<BoxTree> box_tree;     // over `searched_boxes`: the broad phase
   std::unique_ptr<CgalIndex> cgal;
@@ -194,10 +265,46 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     const Vec3 b = e[0] + e[1], c = e[0] + e[2];
     m.boxes.push_back({e[0].cwiseMin(b).cwiseMin(c), e[0].cwiseMax(b).cwiseMax(c)});
   }
+  // Closed fans first (their triangles, two at a time, would pass for quads), then quads of
+  // what is left.
+  std::vector<PolygonRun> runs;
+  find_polygons(m.soup, m.normals, runs, m.polygon_corners, m.polygon_angles);
+  std::vector<bool> second(m.soup.triangles.size(), false), taken(m.soup.triangles.size(), false);
+  m.polygon_of.assign(m.soup.triangles.size(), nullptr);
+  m.polygons.reserve(runs.size());
+  {
+    std::size_t offset = 0;
+    for (const PolygonRun& run : runs) {
+      const std::size_t K = run.count;
+      for (std::size_t i = 0; i < K; ++i) {
+        const Vec3 edge = m.polygon_corners[offset + (i + 1) % K] - m.polygon_corners[offset + i];
+        m.polygon_edges.push_back(edge);
+        m.polygon_inward.push_back(m.normals[run.first_triangle].cross(edge).normalized());
+      }
+      offset += K;
+    }
+    offset = 0;
+    for (const PolygonRun& run : runs) {
+      const std::uint32_t t = run.first_triangle;
+      Scene::Polygon poly{m.polygon_corners.data() + offset, m.polygon_edges.data() + offset, m.polygon_inward.data() + offset,
+                          m.polygon_angles.data() + offset, run.count, run.least, run.centre, run.u, run.v, m.grams[t].normal, m.grams[t].nn};
+      m.polygons.push_back(poly);
+      m.polygon_of[t] = &m.polygons.back();
+      // Its ball: about its corners' centroid, holding them all (so the whole polygon).
+      Vec3 centre = Vec3::Zero();
+      for (std::size_t i = 0; i < run.count; ++i) centre += poly.corner[i];
+      centre /= static_cast<double>(run.count);
+      double radius = 0;
+      for (std::size_t i = 0; i < run.count; ++i) radius = std::max(radius, (poly.corner[i] - centre).norm());
+      m.balls[t] = {centre, radius * (1 + 1e-12) + 1e-15};
+      for (std::size_t i = 0; i < run.count; ++i) taken[t + i] = true;
+      for (std::size_t i = 1; i < run.count; ++i) second[t + i] = true;
+      offset += run.count;
+    }
+  }
   std::vector<std::uint32_t> quad_first;  // each quad's first triangle
-  find_quads(m.soup, m.normals, m.grams, m.quads, quad_first);
+  find_quads(m.soup, m.normals, m.grams, taken, m.quads, quad_first);
   m.quad_of.assign(m.soup.triangles.size(), nullptr);
-  std::vector<bool> second(m.soup.triangles.size(), false);
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const std::uint32_t t = quad_first[i];
     m.quad_of[t] = &m.quads[i], second[t + 1] = true;
@@ -212,10 +319,12 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
     if (second[t]) continue;
     Box box = m.boxes[t];
     if (m.quad_of[t]) box.lo = box.lo.cwiseMin(m.boxes[t + 1].lo), box.hi = box.hi.cwiseMax(m.boxes[t + 1].hi);
+    if (const Scene::Polygon* poly = m.polygon_of[t])
+      for (std::size_t i = 1; i < poly->count; ++i) box.lo = box.lo.cwiseMin(m.boxes[t + i].lo), box.hi = box.hi.cwiseMax(m.boxes[t + i].hi);
     m.searched.push_back(t), m.searched_boxes.push_back(box);
   }
   m.box_tree = std::make_unique<BoxTree>(m.searched_boxes);
-  faces_ = {m.triangles.data(), m.normals.data(), m.grams.data(), m.balls.data(), m.quad_of.data()};
+  faces_ = {m.triangles.data(), m.normals.data(), m.grams.data(), m.balls.data(), m.quad_of.data(), m.polygon_of.data()};
 #ifdef J232_HAVE_EMBREE
   if (engine == Engine::Embree) {
     m.embree = std::make_unique<EmbreeIndex>(m.triangles);

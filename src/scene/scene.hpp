@@ -105,6 +105,25 @@ class Scene {
     double nn;
   };
   const Quad* face_quad(std::uint32_t f) const { return faces_.quads[f]; }
+  // A closed fan of triangles (c, p_k, p_k+1), k = 0..K-1, from one inner point c round a flat,
+  // convex rim back to p_0, one label and guard (a deck's plate: a disc, or an outline fanned
+  // from its centroid) is one face to the contact search likewise: its rim's corners in order
+  // (counterclockwise about `normal`), each outer edge to the next corner with its unit normal
+  // in the plane pointing inside, each corner's angle about c in the plane's basis (u, v) (from
+  // -pi, increasing), and the first triangle's unnormalised normal with its squared length.
+  // Numbered by its first triangle; the others are never listed by faces_in_box, and face_ball
+  // of the first holds the whole polygon. Null for a face that is no such fan.
+  struct Polygon {
+    const Vec3* corner;
+    const Vec3* edge;
+    const Vec3* inward;
+    const double* angle;  // sorted: the corners rotated so that the first has the least angle
+    std::size_t count;
+    std::size_t first;  // the corner of the least angle (angle[k] is corner[(first + k) % count]'s)
+    Vec3 centre, u, v, normal;
+    double nn;
+  };
+  const Polygon* face_polygon(std::uint32_t f) const { return faces_.polygons[f]; }
 
   const Soup& soup() const;
   std::size_t face_count() const;
@@ -120,6 +139,7 @@ class Scene {
     const Gram* grams = nullptr;
     const Ball* balls = nullptr;
     const Quad* const* quads = nullptr;
+    const Polygon* const* polygons = nullptr;
   } faces_;
 };
 
