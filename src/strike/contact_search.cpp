@@ -499,6 +499,21 @@ std::optional<Contact> first_contact(const Spindle& spindle, double phase, const
   if (r - rho > spindle.reach && time_to_close(r - rho - spindle.reach, std::sqrt(v.x() * v.x() + v.y() * v.y()), accel) > t1 - motion.t0)
     return best;
   if (method == SearchMethod::FixedSteps) return fixed_step_contact(spindle, phase, nail, motion, t1, stats);
+  // The whole blade's disc once more, over the centre's path in plan: every point of an arm
+  // lies within hypot(reach, back) of the axis (radially out to its reach, its section behind
+  // the leading edge back to `back`), and the centre's path in plan is its straight line from
+  // p0 at v0 within |a_h| T^2 / 2 of it. A nail riding round the skirt outside the tip circle
+  // moves across the radius, not along it, so the bound on the time to close above (at its
+  // whole horizontal speed) does not rule it out.
+  {
+    const double T = t1 - motion.t0;
+    const Eigen::Vector2d q(dx, dy), w(v.x() * T, v.y() * T);
+    const double ww = w.squaredNorm();
+    const double s = ww > 0 ? std::clamp(-q.dot(w) / ww, 0.0, 1.0) : 0.0;
+    const double a_h = std::sqrt(motion.a.x() * motion.a.x() + motion.a.y() * motion.a.y());
+    const double nearest = (q + s * w).norm() - 0.5 * a_h * T * T;
+    if (nearest - rho > std::hypot(spindle.reach, spindle.section.back()) + 10 * kContactTolerance) return best;
+  }
   // Then each edge's outlook from the start, worked out once for them all.
   const Outlook look(spindle, phase, motion, rho, c, v, motion.t0);
   for (std::size_t e = 0; e < spindle.edges.size(); ++e) {
