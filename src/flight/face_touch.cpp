@@ -329,6 +329,7 @@ struct FaceState {
   double left_at;  // a face being left: its clearance then (a touch when its point turns back into it is placed there)
   double safe;   // a time before which the capsule surely does not reach it (a face being left: sink past the slack)
   SegmentTriangle exact;  // the closest points where it was last checked
+  double exact_at;        // when (NaN: never in this search)
 };
 
 // Where the capsule is at one instant.
@@ -407,14 +408,18 @@ struct Search {
   // A time the capsule surely cannot touch face f before (slack: how far into it it may go).
   // `best`: the least such time of the faces before; nothing exact is computed when a cheap
   // bound already shows this face is farther. `known`: the exact closest points now, when
-  // the caller has them.
-  double safe_time(std::uint32_t f, const Pose& p, double slack, double best, const SegmentTriangle* known = nullptr) const {
+  // the caller has them; `try_ball`: whether the face's ball is tried first all the same (else
+  // only without them). `computed`: where the closest points are written when they are worked
+  // out here (returns with *computed_now true).
+  double safe_time(std::uint32_t f, const Pose& p, double slack, double best, const SegmentTriangle* known, bool try_ball,
+                   SegmentTriangle* computed, bool& computed_now) const {
+    computed_now = false;
     const Vec3& fn = scene.face_normal(f);
     const Vec3& q = scene.face_edges(f)[0];
     const Vec3 n = fn.dot(p.centre - q) >= 0 ? fn : Vec3(-fn);
     double safe = support_step(n, q, p, slack);
     if (safe >= best) return safe;
-    if (!known) {
+    if (try_ball) {
       // The face's ball: a cheap lower bound on the distance, from the core segment to its centre.
       const scene::Scene::Ball& ball = scene.face_ball(f);
       const Vec3 to = ball.centre - p.centre;
@@ -424,7 +429,7 @@ struct Search {
     }
     SegmentTriangle st;
     if (known) st = *known;
-    else clearance(f, p, &st);
+    else clearance(f, p, &st), *computed = st, computed_now = true;
     const double g = st.distance - r + slack;
     if (!(g > 0)) return safe;
     // Across the line of the closest points, through the face's closest point.
@@ -444,7 +449,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   std::array<FaceState, kCapacity> state;  // NOLINT: filled below for the first n
   std::size_t n = 0;
   for (std::size_t i = 0; i < count && n < kCapacity; ++i)
-    if (!filter.ignores(faces[i])) state[n].face = faces[i], state[n].leaving = false, state[n].slack = 0, state[n].left_at = 0, state[n].safe = 0, ++n;
+    if (!filter.ignores(faces[i])) state[n].face = faces[i], state[n].leaving = false, state[n].slack = 0, state[n].left_at = 0, state[n].safe = 0, state[n].exact_at = std::nan(""), ++n;
   if (n == 0 || !(until >= from)) return std::nullopt;
   const double w = m.spin.norm();
   Search s{scene, m, nail, m.turning(), nail.half_segment(), nail.radius(), w};
@@ -516,6 +521,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       Near& e = near[near_count];
       e.i = i;
       e.g = s.clearance(fs.face, p, &e.st);
+      fs.exact = e.st, fs.exact_at = t;  // (the bounds from here use them)
       if (e.g > kFaceTolerance) {
         fs.leaving = false;
         continue;
@@ -587,16 +593,23 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   const double min_step = kMinFaceStep / s.bound;
   // Each face's safe time is a bound over the whole motion, so it holds until that time: a
   // face is looked at again only when the search reaches it (most faces of a chord once).
-  const auto bound_from = [&](FaceState& fs, const Pose& p, double at, double best, const SegmentTriangle* known = nullptr) {
-    double safe = s.safe_time(fs.face, p, fs.leaving ? fs.slack : 0.0, best, known);
+  // (`known`: the face's closest points at `at` are fs.exact; `ball`: its ball is tried first.)
+  const auto bound_from = [&](FaceState& fs, const Pose& p, double at, double best, bool known, bool ball) {
+    bool computed_now = false;
+    const auto safe_time = [&](double slack) {
+      const double safe = s.safe_time(fs.face, p, slack, best, known ? &fs.exact : nullptr, ball, &fs.exact, computed_now);
+      if (computed_now) fs.exact_at = at, known = true;
+      return safe;
+    };
+    double safe = safe_time(fs.leaving ? fs.slack : 0.0);
     // A face being left that the capsule has entered by the slack without moving into it
     // (its touching point turning about the contact as it slides over the face): the slack
     // counts again from where it is (a nail or stone is never pushed out of a face by this;
     // the audit bounds what it adds up to).
     if (fs.leaving && !(safe > 0)) {
-      fs.left_at = known ? known->distance - s.r : s.clearance(fs.face, p);
+      fs.left_at = known ? fs.exact.distance - s.r : s.clearance(fs.face, p);
       fs.slack = kLeavingSlack - std::min(0.0, fs.left_at);
-      safe = s.safe_time(fs.face, p, fs.slack, best, known);
+      safe = safe_time(fs.slack);
       if (!(safe > 0)) safe = kLeavingSlack / s.bound;
     }
     // Not reached before the chord's end: this search need not look at it again (so nothing
@@ -606,7 +619,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   const auto bound_all = [&](const Pose& p, double at) {
     double best = until - at;
     for (std::size_t i = 0; i < n; ++i) {
-      bound_from(state[i], p, at, best);
+      bound_from(state[i], p, at, best, state[i].exact_at == at, true);
       if (!state[i].leaving) best = std::min(best, state[i].safe - at);
     }
   };
@@ -631,8 +644,10 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       FaceState& fs = state[i];
       if (fs.safe > next) continue;  // surely not reached within the step
       SegmentTriangle& st = fs.exact;
-      
+      // (Its clearance at the step's start, when known there: the root's bracket.)
+      const double distance_at_t = fs.exact_at == t ? fs.exact.distance : HUGE_VAL;
       const double g_next = s.clearance(fs.face, q, &st);
+      fs.exact_at = next;
       if (g_next > kFaceTolerance) continue;
       if (fs.leaving) {
         Vec3 normal;
@@ -652,7 +667,8 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       }
       // Regula falsi (Illinois) on clearance - tolerance, from t (clear: the face was surely
       // not reached before its safe time) to next.
-      double lo = t, hi = next, g_lo = s.clearance(fs.face, s.pose(t)) - kFaceTolerance, g_hi = g_next - kFaceTolerance;
+      double lo = t, hi = next, g_hi = g_next - kFaceTolerance;
+      double g_lo = (distance_at_t != HUGE_VAL ? distance_at_t - s.r : s.clearance(fs.face, s.pose(t))) - kFaceTolerance;
       if (g_lo <= 0) {  // within tolerance at t already (a face the step's start grazed): there
         first = std::min(first, t);
         continue;
@@ -667,7 +683,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       double best = until - next;
       for (std::size_t i = 0; i < n; ++i)
         if (state[i].safe <= next) {
-          bound_from(state[i], q, next, best, &state[i].exact);
+          bound_from(state[i], q, next, best, true, false);
           if (!state[i].leaving) best = std::min(best, state[i].safe - next);
         }
       t = next;
