@@ -128,6 +128,8 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
 
 namespace {
 
+constexpr double kEdgeSlack = 1e-9;  // m: an edge a foot is this close to being beyond is measured too
+
 SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene::Quad& q) {
   const Vec3& n = q.normal;
   const Vec3& a = q.corner[0];
@@ -160,13 +162,24 @@ SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene:
     }
   }
   Nearest nearest{best};
-  for (const auto& [p, sp] : {std::pair<const Vec3&, double>{p0, s0}, std::pair<const Vec3&, double>{p1, s1}}) {
-    const Vec3 foot = p - (sp / q.nn) * n;
-    if (inside(foot, 0.0)) nearest.offer(p, foot);
+  // Each end's foot inside is a candidate; an edge is, only where a foot lies beyond it (or
+  // within a nanometre of it): as for a plate's polygon (segment_polygon), the nearest point
+  // of a convex face to a point beyond its rim lies on an edge that point is beyond, and the
+  // side of an edge is linear along the segment.
+  const Vec3 foot0 = p0 - (s0 / q.nn) * n, foot1 = p1 - (s1 / q.nn) * n;
+  std::array<bool, 4> beyond{};
+  bool inside0 = true, inside1 = true;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double b0 = q.inward[i].dot(foot0 - q.corner[i]), b1 = q.inward[i].dot(foot1 - q.corner[i]);
+    inside0 = inside0 && b0 >= 0, inside1 = inside1 && b1 >= 0;
+    beyond[i] = !(b0 >= kEdgeSlack) || !(b1 >= kEdgeSlack);
   }
+  if (inside0) nearest.offer(p0, foot0);
+  if (inside1) nearest.offer(p1, foot1);
   const Vec3 d = p1 - p0;
   Vec3 cs, ct;
-  for (std::size_t i = 0; i < 4; ++i) nearest_segments(p0, d, q.corner[i], q.edge[i], cs, ct), nearest.offer(cs, ct);
+  for (std::size_t i = 0; i < 4; ++i)
+    if (beyond[i]) nearest_segments(p0, d, q.corner[i], q.edge[i], cs, ct), nearest.offer(cs, ct);
   best.distance = std::sqrt(nearest.d2);
   return best;
 }
@@ -211,7 +224,7 @@ class PolygonDistance {
   template <std::size_t N>
   bool edges_beyond(const Vec3& x, std::array<std::size_t, N>& edges, std::size_t& n) const {
     const std::size_t K = p_.count, w = wedge(x);
-    const auto beyond = [&](std::size_t i) { return inside_edge(x, i) < kSlack; };
+    const auto beyond = [&](std::size_t i) { return !(inside_edge(x, i) >= kEdgeSlack); };
     const auto add = [&](std::size_t i) {
       for (std::size_t j = 0; j < n; ++j)
         if (edges[j] == i) return true;
@@ -233,7 +246,6 @@ class PolygonDistance {
   }
 
   static constexpr std::size_t kAllEdges = 8;  // a polygon of so few corners has every edge measured
-  static constexpr double kSlack = 1e-9;       // m: an edge this close to beyond is measured too
 
  private:
   const scene::Scene::Polygon& p_;

@@ -179,7 +179,7 @@ ImpulseSolution solve_impulse_energetic(const Eigen::Matrix3d& K, const Vec3& v_
   // finds events exactly. Returns false when it did not step.
   constexpr double kFastTurn = 0.05;    // rad per step
   constexpr double kFastShrink = 0.25;  // of the slip's size per step
-  constexpr double kFastStiff = 0.2;    // the direction's growth or decay exponent per step
+  constexpr double kFastStiff = 0.5;    // the direction's growth or decay exponent per step (RK4 is then within 4e-4 of the exponential)
   // A slip within 1e-5 of the approach speed of zero has stopped (as a halt found within
   // that is): friction then holds the contact or the slip restarts along its own direction.
   const double u_stopped = 1e-5 * approach;
