@@ -219,7 +219,7 @@ class PolygonDistance {
     const std::size_t w = wedge(x);
     return inside_edge(x, w) >= -eps && inside_edge(x, (w + 1) % p_.count) >= -eps && inside_edge(x, (w + p_.count - 1) % p_.count) >= -eps;
   }
-  // Every edge the foot x lies beyond (or within kSlack of), added to `edges` once; false when
+  // Every edge the foot x lies beyond (or within kEdgeSlack of), added to `edges` once; false when
   // they do not fit (the caller then measures every edge).
   template <std::size_t N>
   bool edges_beyond(const Vec3& x, std::array<std::size_t, N>& edges, std::size_t& n) const {
