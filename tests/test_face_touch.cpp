@@ -69,6 +69,31 @@ TEST_CASE("face touch: the segment-triangle distance is CGAL's", "[flight][conta
   }
 }
 
+// A segment's centre and axis about `anchor` on a face's plane of unit normal `normal`: kind 2
+// parallel to the plane, over it or beside it; kind 3 in the plane.
+void pose_by_plane(std::mt19937_64& rng, int kind, const Vec3& anchor, const Vec3& normal, Vec3& centre, Vec3& axis) {
+  if (kind == 2) {
+    centre = anchor + random_vec(rng, 0.03) + uniform(rng, -0.01, 0.01) * normal, axis = (axis - axis.dot(normal) * normal).normalized();
+    centre -= normal.dot(centre - anchor) * normal - uniform(rng, -0.01, 0.01) * normal;
+  } else {
+    centre = anchor + random_vec(rng, 0.05), centre -= normal.dot(centre - anchor) * normal;
+    axis = (axis - axis.dot(normal) * normal).normalized();
+  }
+}
+
+// A segment in a face's plane: CGAL 5.5's segment-triangle distance takes it as crossing the
+// plane (rounding) and calls it 0 where it passes beside the face. The reference is then CGAL's
+// distance from points along it (exact for points), at least the true distance and at most a
+// step beyond it: `ours` is checked within that.
+void check_in_plane(const scene::Soup& soup, const Vec3& p0, const Vec3& p1, const Vec3& axis, double h, double ours) {
+  double sampled = HUGE_VAL;
+  constexpr int kSamples = 400;
+  for (int k = 0; k <= kSamples; ++k)
+    sampled = std::min(sampled, 1.0 - scene::deepest_overlap(soup, p0 + (k / double(kSamples)) * (p1 - p0), axis, 0.0, 1.0).depth);
+  CHECK(ours <= sampled + 1e-12);
+  CHECK(ours >= sampled - 2 * h / kSamples - 1e-12);
+}
+
 // A flat convex polygon of `corners` corners near the origin (on an ellipse in a random plane,
 // in order round it), fanned from an inner point (a random mean of its corners) as a deck's
 // plate is: triangles (c, p_k, p_k+1) round to p_0, their points shared or each its own.
@@ -132,12 +157,8 @@ TEST_CASE("face touch: a plate fanned from an inner point is one face, and its d
         if (trial % 18 == 7) centre = seam + random_vec(rng, 0.02);
         break;
       case 2:  // parallel to the plane, over it or beside it
-        centre = by_rim + random_vec(rng, 0.03), axis = (axis - axis.dot(normal) * normal).normalized();
-        centre -= normal.dot(centre - by_rim) * normal - uniform(rng, -0.01, 0.01) * normal;
-        break;
       case 3:  // in the plane
-        centre = by_rim + random_vec(rng, 0.05), centre -= normal.dot(centre - by_rim) * normal;
-        axis = (axis - axis.dot(normal) * normal).normalized();
+        pose_by_plane(rng, trial % 6, by_rim, normal, centre, axis);
         break;
       case 4:  // by a corner
         centre = corner + random_vec(rng, 1e-3);
@@ -152,13 +173,8 @@ TEST_CASE("face touch: a plate fanned from an inner point is one face, and its d
     if (trial % 6 != 3) {
       // (epsilon(0): Catch's Approx keeps a relative 1e-5 beside a margin unless told.)
       CHECK(ours == Approx(1.0 - scene::deepest_overlap(soup, centre, axis, h, 1.0).depth).epsilon(0).margin(1e-12));
-    } else {  // in the plane: CGAL's distances from points along it (as for the quad)
-      double sampled = HUGE_VAL;
-      constexpr int kSamples = 400;
-      for (int k = 0; k <= kSamples; ++k)
-        sampled = std::min(sampled, 1.0 - scene::deepest_overlap(soup, p0 + (k / double(kSamples)) * (p1 - p0), axis, 0.0, 1.0).depth);
-      CHECK(ours <= sampled + 1e-12);
-      CHECK(ours >= sampled - 2 * h / kSamples - 1e-12);
+    } else {
+      check_in_plane(soup, p0, p1, axis, h, ours);
     }
     if (one) {  // the closest points: on the segment, on the polygon, that far apart
       const auto st = flight::segment_face(p0, p1, scene, 0);
@@ -210,12 +226,8 @@ TEST_CASE("face touch: a flat convex quad is one face, and its distance is CGAL'
         centre += h * axis;
         break;
       case 2:  // parallel to the plane, over it or beside it
-        centre = on_diagonal + random_vec(rng, 0.03) + uniform(rng, -0.01, 0.01) * normal, axis = (axis - axis.dot(normal) * normal).normalized();
-        centre -= normal.dot(centre - on_diagonal) * normal - uniform(rng, -0.01, 0.01) * normal;
-        break;
       case 3:  // in the plane
-        centre = on_diagonal + random_vec(rng, 0.05), centre -= normal.dot(centre - on_diagonal) * normal;
-        axis = (axis - axis.dot(normal) * normal).normalized();
+        pose_by_plane(rng, trial % 6, on_diagonal, normal, centre, axis);
         break;
       case 4:  // by a corner
         centre = soup.points[static_cast<std::size_t>(trial % 4)] + random_vec(rng, 1e-3);
@@ -231,16 +243,7 @@ TEST_CASE("face touch: a flat convex quad is one face, and its distance is CGAL'
     if (trial % 6 != 3) {
       CHECK(ours == Approx(1.0 - cgal.depth).epsilon(0).margin(1e-12));
     } else {
-      // A segment in the plane: CGAL 5.5's segment-triangle distance takes it as crossing the
-      // plane (rounding) and calls it 0 where it passes beside the quad. The reference is then
-      // CGAL's distance from points along it (exact for points), at least the true distance
-      // and at most a step beyond it.
-      double sampled = HUGE_VAL;
-      constexpr int kSamples = 400;
-      for (int k = 0; k <= kSamples; ++k)
-        sampled = std::min(sampled, 1.0 - scene::deepest_overlap(soup, p0 + (k / double(kSamples)) * (p1 - p0), axis, 0.0, 1.0).depth);
-      CHECK(ours <= sampled + 1e-12);
-      CHECK(ours >= sampled - 2 * h / kSamples - 1e-12);
+      check_in_plane(soup, p0, p1, axis, h, ours);
     }
     // The closest points: on the segment, on the quad (CGAL's distance to it nil), that far apart.
     const auto st = flight::segment_face(p0, p1, scene, 0);

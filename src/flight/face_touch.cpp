@@ -130,17 +130,12 @@ namespace {
 
 constexpr double kEdgeSlack = 1e-9;  // m: an edge a foot is this close to being beyond is measured too
 
-SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene::Quad& q) {
-  const Vec3& n = q.normal;
-  const Vec3& a = q.corner[0];
-  // Inside the quad: on the inner side of each of its four outer edges (never of the diagonal
-  // between its triangles, which a point within rounding of it could fail on both sides of),
-  // within `eps` metres.
-  const auto inside = [&](const Vec3& x, double eps) {
-    for (std::size_t i = 0; i < 4; ++i)
-      if (!(q.inward[i].dot(x - q.corner[i]) >= -eps)) return false;
-    return true;
-  };
+// The closest points of a segment and a flat convex face (a quad, a plate's polygon: `Face`
+// tells whether a point of its plane is inside it, and offers the candidates beyond the plane's
+// own: each end's foot inside, and the edges that can hold the nearest point). n: the face's
+// unnormalised normal, nn its squared length, a a point of its plane.
+template <class Face>
+SegmentTriangle segment_convex(const Vec3& p0, const Vec3& p1, const Vec3& n, double nn, const Vec3& a, const Face& face) {
   SegmentTriangle best;
   const double s0 = n.dot(p0 - a), s1 = n.dot(p1 - a);
   if ((s0 > 0 && s1 > 0) || (s0 < 0 && s1 < 0)) {
@@ -148,41 +143,56 @@ SegmentTriangle segment_quad(const Vec3& p0, const Vec3& p1, const scene::Scene:
     const bool first = std::abs(s0) <= std::abs(s1);
     const Vec3& p = first ? p0 : p1;
     const double sp = first ? s0 : s1;
-    const Vec3 foot = p - (sp / q.nn) * n;
-    if (inside(foot, 0.0)) {
-      best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(q.nn);
+    const Vec3 foot = p - (sp / nn) * n;
+    if (face.inside(foot, 0.0)) {
+      best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(nn);
       return best;
     }
   } else if (s0 != s1) {
-    // Crossing the plane: inside the quad there (with a rounding's margin), distance 0.
+    // Crossing the plane: inside the face there (with a rounding's margin), distance 0.
     const Vec3 x = p0 + (s0 / (s0 - s1)) * (p1 - p0);
-    if (inside(x, 1e-12)) {
+    if (face.inside(x, 1e-12)) {
       best.on_segment = x, best.on_triangle = x, best.distance = 0;
       return best;
     }
   }
   Nearest nearest{best};
-  // Each end's foot inside is a candidate; an edge is, only where a foot lies beyond it (or
-  // within a nanometre of it): as for a plate's polygon (segment_polygon), the nearest point
-  // of a convex face to a point beyond its rim lies on an edge that point is beyond, and the
-  // side of an edge is linear along the segment.
-  const Vec3 foot0 = p0 - (s0 / q.nn) * n, foot1 = p1 - (s1 / q.nn) * n;
-  std::array<bool, 4> beyond{};
-  bool inside0 = true, inside1 = true;
-  for (std::size_t i = 0; i < 4; ++i) {
-    const double b0 = q.inward[i].dot(foot0 - q.corner[i]), b1 = q.inward[i].dot(foot1 - q.corner[i]);
-    inside0 = inside0 && b0 >= 0, inside1 = inside1 && b1 >= 0;
-    beyond[i] = !(b0 >= kEdgeSlack) || !(b1 >= kEdgeSlack);
-  }
-  if (inside0) nearest.offer(p0, foot0);
-  if (inside1) nearest.offer(p1, foot1);
-  const Vec3 d = p1 - p0;
-  Vec3 cs, ct;
-  for (std::size_t i = 0; i < 4; ++i)
-    if (beyond[i]) nearest_segments(p0, d, q.corner[i], q.edge[i], cs, ct), nearest.offer(cs, ct);
+  face.offer_beyond_plane(p0, p1, p0 - (s0 / nn) * n, p1 - (s1 / nn) * n, nearest);
   best.distance = std::sqrt(nearest.d2);
   return best;
 }
+
+// A quad as segment_convex takes it.
+struct QuadFace {
+  const scene::Scene::Quad& q;
+  // Inside the quad: on the inner side of each of its four outer edges (never of the diagonal
+  // between its triangles, which a point within rounding of it could fail on both sides of),
+  // within `eps` metres.
+  bool inside(const Vec3& x, double eps) const {
+    for (std::size_t i = 0; i < 4; ++i)
+      if (!(q.inward[i].dot(x - q.corner[i]) >= -eps)) return false;
+    return true;
+  }
+  // Each end's foot inside is a candidate; an edge is, only where a foot lies beyond it (or
+  // within a nanometre of it): the nearest point of a convex face to a point beyond its rim
+  // lies on an edge that point is beyond, and the side of an edge is linear along the segment
+  // (as for a plate's polygon, PolygonDistance).
+  void offer_beyond_plane(const Vec3& p0, const Vec3& p1, const Vec3& foot0, const Vec3& foot1, Nearest& nearest) const {
+    std::array<bool, 4> beyond{};
+    bool inside0 = true, inside1 = true;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const double b0 = q.inward[i].dot(foot0 - q.corner[i]), b1 = q.inward[i].dot(foot1 - q.corner[i]);
+      inside0 = inside0 && b0 >= 0, inside1 = inside1 && b1 >= 0;
+      beyond[i] = !(b0 >= kEdgeSlack) || !(b1 >= kEdgeSlack);
+    }
+    if (inside0) nearest.offer(p0, foot0);
+    if (inside1) nearest.offer(p1, foot1);
+    const Vec3 d = p1 - p0;
+    Vec3 cs, ct;
+    for (std::size_t i = 0; i < 4; ++i)
+      if (beyond[i]) nearest_segments(p0, d, q.corner[i], q.edge[i], cs, ct), nearest.offer(cs, ct);
+  }
+};
 
 // The closest points of a segment and a plate fanned from an inner point (scene::Scene::Polygon).
 // As a quad's, but with many corners: a point of the plane is placed in its wedge (between the
@@ -245,60 +255,36 @@ class PolygonDistance {
     return true;
   }
 
+  // The candidates beyond the plane's own (segment_convex): each end's foot inside, and the
+  // edges beyond the two feet (every edge, where they are more than the list keeps).
+  void offer_beyond_plane(const Vec3& p0, const Vec3& p1, const Vec3& foot0, const Vec3& foot1, Nearest& nearest) const {
+    if (inside(foot0, 0.0)) nearest.offer(p0, foot0);
+    if (inside(foot1, 0.0)) nearest.offer(p1, foot1);
+    std::array<std::size_t, 32> edges;  // NOLINT: the first `count` are set
+    std::size_t count = 0;
+    const bool some = p_.count > kAllEdges && edges_beyond(foot0, edges, count) && edges_beyond(foot1, edges, count);
+    if (some) std::sort(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(count));  // (in the rim's order, whichever end found them)
+    const Vec3 d = p1 - p0;
+    Vec3 cs, ct;
+    const std::size_t measured = some ? count : p_.count;
+    for (std::size_t j = 0; j < measured; ++j) {
+      const std::size_t i = some ? edges[j] : j;
+      nearest_segments(p0, d, p_.corner[i], p_.edge[i], cs, ct), nearest.offer(cs, ct);
+    }
+  }
+
   static constexpr std::size_t kAllEdges = 8;  // a polygon of so few corners has every edge measured
 
  private:
   const scene::Scene::Polygon& p_;
 };
 
-SegmentTriangle segment_polygon(const Vec3& p0, const Vec3& p1, const scene::Scene::Polygon& poly) {
-  const PolygonDistance P(poly);
-  const Vec3& n = poly.normal;
-  const Vec3& a = poly.centre;
-  SegmentTriangle best;
-  const double s0 = n.dot(p0 - a), s1 = n.dot(p1 - a);
-  if ((s0 > 0 && s1 > 0) || (s0 < 0 && s1 < 0)) {
-    // Both ends on one side: the nearer end's foot inside is the closest pair.
-    const bool first = std::abs(s0) <= std::abs(s1);
-    const Vec3& p = first ? p0 : p1;
-    const double sp = first ? s0 : s1;
-    const Vec3 foot = p - (sp / poly.nn) * n;
-    if (P.inside(foot, 0.0)) {
-      best.on_segment = p, best.on_triangle = foot, best.distance = std::abs(sp) / std::sqrt(poly.nn);
-      return best;
-    }
-  } else if (s0 != s1) {
-    // Crossing the plane: inside the polygon there (with a rounding's margin), distance 0.
-    const Vec3 x = p0 + (s0 / (s0 - s1)) * (p1 - p0);
-    if (P.inside(x, 1e-12)) {
-      best.on_segment = x, best.on_triangle = x, best.distance = 0;
-      return best;
-    }
-  }
-  Nearest nearest{best};
-  const Vec3 foot0 = p0 - (s0 / poly.nn) * n, foot1 = p1 - (s1 / poly.nn) * n;
-  if (P.inside(foot0, 0.0)) nearest.offer(p0, foot0);
-  if (P.inside(foot1, 0.0)) nearest.offer(p1, foot1);
-  std::array<std::size_t, 32> edges;  // NOLINT: the first n are set
-  std::size_t count = 0;
-  const bool some = poly.count > PolygonDistance::kAllEdges && P.edges_beyond(foot0, edges, count) && P.edges_beyond(foot1, edges, count);
-  if (some) std::sort(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(count));  // (in the rim's order, whichever end found them)
-  const Vec3 d = p1 - p0;
-  Vec3 cs, ct;
-  const std::size_t measured = some ? count : poly.count;
-  for (std::size_t j = 0; j < measured; ++j) {
-    const std::size_t i = some ? edges[j] : j;
-    nearest_segments(p0, d, poly.corner[i], poly.edge[i], cs, ct), nearest.offer(cs, ct);
-  }
-  best.distance = std::sqrt(nearest.d2);
-  return best;
-}
-
 }  // namespace
 
 SegmentTriangle segment_face(const Vec3& p0, const Vec3& p1, const scene::Scene& scene, std::uint32_t f) {
-  if (const scene::Scene::Quad* q = scene.face_quad(f)) return segment_quad(p0, p1, *q);
-  if (const scene::Scene::Polygon* poly = scene.face_polygon(f)) return segment_polygon(p0, p1, *poly);
+  if (const scene::Scene::Quad* q = scene.face_quad(f)) return segment_convex(p0, p1, q->normal, q->nn, q->corner[0], QuadFace{*q});
+  if (const scene::Scene::Polygon* poly = scene.face_polygon(f))
+    return segment_convex(p0, p1, poly->normal, poly->nn, poly->centre, PolygonDistance(*poly));
   return segment_triangle(p0, p1, scene.face_edges(f), scene.face_gram(f));
 }
 
