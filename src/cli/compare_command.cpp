@@ -131,7 +131,7 @@ int compare(const CompareOptions& o) {
   }
   const auto j = report::comparison_json(c);
   report::write_atomically(out.staged("compare.csv"), report::comparison_csv(c));
-  report::write_atomically(out.staged("compare.html"), report::comparison_html(j));
+  report::write_atomically(out.staged("compare.html"), report::comparison_html(report::as_saved(j)));  // (as a redraw draws it)
   report::write_atomically(out.staged("compare.json"), report::json_text(j) + "\n");
   out.commit();
   fmt::print("{}", report::comparison_text(c));
