@@ -220,20 +220,20 @@ class PolygonDistance {
   double inside_edge(const Vec3& x, std::size_t i) const { return p_.inward[i].dot(x - p_.corner[i]); }
   // Inside, within eps: inside its wedge's edge and the two beside it (an angle rounded across a
   // corner's ray places it in the next wedge; inside the true wedge's edge it is inside).
-  bool inside(const Vec3& x, double eps) const {
-    if (p_.count <= kAllEdges) {
-      for (std::size_t i = 0; i < p_.count; ++i)
-        if (!(inside_edge(x, i) >= -eps)) return false;
-      return true;
-    }
-    const std::size_t w = wedge(x);
+  bool inside(const Vec3& x, double eps) const { return p_.count <= kAllEdges ? inside_all(x, eps) : inside_wedge(x, wedge(x), eps); }
+  bool inside_all(const Vec3& x, double eps) const {
+    for (std::size_t i = 0; i < p_.count; ++i)
+      if (!(inside_edge(x, i) >= -eps)) return false;
+    return true;
+  }
+  bool inside_wedge(const Vec3& x, std::size_t w, double eps) const {
     return inside_edge(x, w) >= -eps && inside_edge(x, (w + 1) % p_.count) >= -eps && inside_edge(x, (w + p_.count - 1) % p_.count) >= -eps;
   }
   // Every edge the foot x lies beyond (or within kEdgeSlack of), added to `edges` once; false when
   // they do not fit (the caller then measures every edge).
   template <std::size_t N>
-  bool edges_beyond(const Vec3& x, std::array<std::size_t, N>& edges, std::size_t& n) const {
-    const std::size_t K = p_.count, w = wedge(x);
+  bool edges_beyond(const Vec3& x, std::size_t w, std::array<std::size_t, N>& edges, std::size_t& n) const {
+    const std::size_t K = p_.count;
     const auto beyond = [&](std::size_t i) { return !(inside_edge(x, i) >= kEdgeSlack); };
     const auto add = [&](std::size_t i) {
       for (std::size_t j = 0; j < n; ++j)
@@ -256,13 +256,16 @@ class PolygonDistance {
   }
 
   // The candidates beyond the plane's own (segment_convex): each end's foot inside, and the
-  // edges beyond the two feet (every edge, where they are more than the list keeps).
+  // edges beyond the two feet (every edge, where they are more than the list keeps, or the
+  // polygon has so few). Each foot's wedge is found once.
   void offer_beyond_plane(const Vec3& p0, const Vec3& p1, const Vec3& foot0, const Vec3& foot1, Nearest& nearest) const {
-    if (inside(foot0, 0.0)) nearest.offer(p0, foot0);
-    if (inside(foot1, 0.0)) nearest.offer(p1, foot1);
+    const bool few = p_.count <= kAllEdges;
+    const std::size_t w0 = few ? 0 : wedge(foot0), w1 = few ? 0 : wedge(foot1);
+    if (few ? inside_all(foot0, 0.0) : inside_wedge(foot0, w0, 0.0)) nearest.offer(p0, foot0);
+    if (few ? inside_all(foot1, 0.0) : inside_wedge(foot1, w1, 0.0)) nearest.offer(p1, foot1);
     std::array<std::size_t, 32> edges;  // NOLINT: the first `count` are set
     std::size_t count = 0;
-    const bool some = p_.count > kAllEdges && edges_beyond(foot0, edges, count) && edges_beyond(foot1, edges, count);
+    const bool some = !few && edges_beyond(foot0, w0, edges, count) && edges_beyond(foot1, w1, edges, count);
     if (some) std::sort(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(count));  // (in the rim's order, whichever end found them)
     const Vec3 d = p1 - p0;
     Vec3 cs, ct;
@@ -406,12 +409,9 @@ struct Search {
   // A time the capsule surely cannot touch face f before (slack: how far into it it may go).
   // `best`: the least such time of the faces before; nothing exact is computed when a cheap
   // bound already shows this face is farther. `known`: the exact closest points now, when
-  // the caller has them; `try_ball`: whether the face's ball is tried first all the same (else
-  // only without them). `computed`: where the closest points are written when they are worked
-  // out here (returns with *computed_now true).
-  double safe_time(std::uint32_t f, const Pose& p, double slack, double best, const SegmentTriangle* known, bool try_ball,
-                   SegmentTriangle* computed, bool& computed_now) const {
-    computed_now = false;
+  // the caller has them (`st`, with `have` true; else they are worked out into `st` when needed,
+  // and `have` set); `try_ball`: whether the face's ball is tried first.
+  double safe_time(std::uint32_t f, const Pose& p, double slack, double best, bool try_ball, SegmentTriangle& st, bool& have) const {
     const Vec3& fn = scene.face_normal(f);
     const Vec3& q = scene.face_edges(f)[0];
     const Vec3 n = fn.dot(p.centre - q) >= 0 ? fn : Vec3(-fn);
@@ -425,9 +425,7 @@ struct Search {
       const double ball_gap = (to - along_axis * p.axis).norm() - ball.radius - r + slack;
       if (ball_gap > 0 && std::max(safe, ball_gap / bound) >= best) return std::max(safe, ball_gap / bound);
     }
-    SegmentTriangle st;
-    if (known) st = *known;
-    else clearance(f, p, &st), *computed = st, computed_now = true;
+    if (!have) clearance(f, p, &st), have = true;
     const double g = st.distance - r + slack;
     if (!(g > 0)) return safe;
     // Across the line of the closest points, through the face's closest point.
@@ -591,12 +589,13 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   const double min_step = kMinFaceStep / s.bound;
   // Each face's safe time is a bound over the whole motion, so it holds until that time: a
   // face is looked at again only when the search reaches it (most faces of a chord once).
-  // (`known`: the face's closest points at `at` are fs.exact; `ball`: its ball is tried first.)
-  const auto bound_from = [&](FaceState& fs, const Pose& p, double at, double best, bool known, bool ball) {
-    bool computed_now = false;
+  // (The face's closest points at `at`, fs.exact, are used where it holds them; `ball`: its
+  // ball is tried first.)
+  const auto bound_from = [&](FaceState& fs, const Pose& p, double at, double best, bool ball) {
+    bool have = fs.exact_at == at;
     const auto safe_time = [&](double slack) {
-      const double safe = s.safe_time(fs.face, p, slack, best, known ? &fs.exact : nullptr, ball, &fs.exact, computed_now);
-      if (computed_now) fs.exact_at = at, known = true;
+      const double safe = s.safe_time(fs.face, p, slack, best, ball, fs.exact, have);
+      if (have) fs.exact_at = at;
       return safe;
     };
     double safe = safe_time(fs.leaving ? fs.slack : 0.0);
@@ -605,7 +604,8 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
     // counts again from where it is (a nail or stone is never pushed out of a face by this;
     // the audit bounds what it adds up to).
     if (fs.leaving && !(safe > 0)) {
-      fs.left_at = known ? fs.exact.distance - s.r : s.clearance(fs.face, p);
+      if (!have) s.clearance(fs.face, p, &fs.exact), have = true, fs.exact_at = at;
+      fs.left_at = fs.exact.distance - s.r;
       fs.slack = kLeavingSlack - std::min(0.0, fs.left_at);
       safe = safe_time(fs.slack);
       if (!(safe > 0)) safe = kLeavingSlack / s.bound;
@@ -617,7 +617,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   const auto bound_all = [&](const Pose& p, double at) {
     double best = until - at;
     for (std::size_t i = 0; i < n; ++i) {
-      bound_from(state[i], p, at, best, state[i].exact_at == at, true);
+      bound_from(state[i], p, at, best, true);
       if (!state[i].leaving) best = std::min(best, state[i].safe - at);
     }
   };
@@ -681,7 +681,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       double best = until - next;
       for (std::size_t i = 0; i < n; ++i)
         if (state[i].safe <= next) {
-          bound_from(state[i], q, next, best, true, false);
+          bound_from(state[i], q, next, best, false);  // (its closest points at `next` known: the step worked them out)
           if (!state[i].leaving) best = std::min(best, state[i].safe - next);
         }
       t = next;

@@ -201,6 +201,16 @@ void find_polygons(const Soup& soup, const std::vector<Vec3>& normals, std::vect
   }
 }
 
+// A sphere about the corners' centroid holding them all (so the whole flat convex face).
+Scene::Ball ball_about(const Vec3* corner, std::size_t count) {
+  Vec3 centre = Vec3::Zero();
+  for (std::size_t i = 0; i < count; ++i) centre += corner[i];
+  centre /= static_cast<double>(count);
+  double radius = 0;
+  for (std::size_t i = 0; i < count; ++i) radius = std::max(radius, (corner[i] - centre).norm());
+  return {centre, radius * (1 + 1e-12) + 1e-15};
+}
+
 }  // namespace
 
 bool engine_available(Engine e) {
@@ -271,36 +281,23 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
   find_polygons(m.soup, m.normals, runs, m.polygon_corners, m.polygon_angles);
   std::vector<bool> second(m.soup.triangles.size(), false), taken(m.soup.triangles.size(), false);
   m.polygon_of.assign(m.soup.triangles.size(), nullptr);
+  // (Reserved whole, so that the polygons' pointers into them stay valid.)
   m.polygons.reserve(runs.size());
-  {
-    std::size_t offset = 0;
-    for (const PolygonRun& run : runs) {
-      const std::size_t K = run.count;
-      for (std::size_t i = 0; i < K; ++i) {
-        const Vec3 edge = m.polygon_corners[offset + (i + 1) % K] - m.polygon_corners[offset + i];
-        m.polygon_edges.push_back(edge);
-        m.polygon_inward.push_back(m.normals[run.first_triangle].cross(edge).normalized());
-      }
-      offset += K;
+  m.polygon_edges.reserve(m.polygon_corners.size()), m.polygon_inward.reserve(m.polygon_corners.size());
+  for (std::size_t offset = 0; const PolygonRun& run : runs) {
+    const std::uint32_t t = run.first_triangle;
+    const std::size_t K = run.count;
+    for (std::size_t i = 0; i < K; ++i) {
+      const Vec3 edge = m.polygon_corners[offset + (i + 1) % K] - m.polygon_corners[offset + i];
+      m.polygon_edges.push_back(edge);
+      m.polygon_inward.push_back(m.normals[t].cross(edge).normalized());
     }
-    offset = 0;
-    for (const PolygonRun& run : runs) {
-      const std::uint32_t t = run.first_triangle;
-      Scene::Polygon poly{m.polygon_corners.data() + offset, m.polygon_edges.data() + offset, m.polygon_inward.data() + offset,
-                          m.polygon_angles.data() + offset, run.count, run.least, run.centre, run.u, run.v, m.grams[t].normal, m.grams[t].nn};
-      m.polygons.push_back(poly);
-      m.polygon_of[t] = &m.polygons.back();
-      // Its ball: about its corners' centroid, holding them all (so the whole polygon).
-      Vec3 centre = Vec3::Zero();
-      for (std::size_t i = 0; i < run.count; ++i) centre += poly.corner[i];
-      centre /= static_cast<double>(run.count);
-      double radius = 0;
-      for (std::size_t i = 0; i < run.count; ++i) radius = std::max(radius, (poly.corner[i] - centre).norm());
-      m.balls[t] = {centre, radius * (1 + 1e-12) + 1e-15};
-      for (std::size_t i = 0; i < run.count; ++i) taken[t + i] = true;
-      for (std::size_t i = 1; i < run.count; ++i) second[t + i] = true;
-      offset += run.count;
-    }
+    m.polygons.push_back({m.polygon_corners.data() + offset, m.polygon_edges.data() + offset, m.polygon_inward.data() + offset,
+                          m.polygon_angles.data() + offset, K, run.least, run.centre, run.u, run.v, m.grams[t].normal, m.grams[t].nn});
+    m.polygon_of[t] = &m.polygons.back();
+    m.balls[t] = ball_about(m.polygons.back().corner, K);
+    for (std::size_t i = 0; i < K; ++i) taken[t + i] = true, second[t + i] = i > 0;
+    offset += K;
   }
   std::vector<std::uint32_t> quad_first;  // each quad's first triangle
   find_quads(m.soup, m.normals, m.grams, taken, m.quads, quad_first);
@@ -308,12 +305,7 @@ Scene::Scene(Soup soup, Engine engine) : impl_(std::make_unique<Impl>()) {
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const std::uint32_t t = quad_first[i];
     m.quad_of[t] = &m.quads[i], second[t + 1] = true;
-    // The quad's ball: about its corners' centroid, holding all four.
-    const Scene::Quad& q = m.quads[i];
-    const Vec3 centre = 0.25 * (q.corner[0] + q.corner[1] + q.corner[2] + q.corner[3]);
-    double radius = 0;
-    for (const Vec3& c : q.corner) radius = std::max(radius, (c - centre).norm());
-    m.balls[t] = {centre, radius * (1 + 1e-12) + 1e-15};
+    m.balls[t] = ball_about(m.quads[i].corner.data(), 4);
   }
   for (std::uint32_t t = 0; t < m.soup.triangles.size(); ++t) {
     if (second[t]) continue;
