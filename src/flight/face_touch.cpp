@@ -220,7 +220,11 @@ class PolygonDistance {
   double inside_edge(const Vec3& x, std::size_t i) const { return p_.inward[i].dot(x - p_.corner[i]); }
   // Inside, within eps: inside its wedge's edge and the two beside it (an angle rounded across a
   // corner's ray places it in the next wedge; inside the true wedge's edge it is inside).
-  bool inside(const Vec3& x, double eps) const { return p_.count <= kAllEdges ? inside_all(x, eps) : inside_wedge(x, wedge(x), eps); }
+  bool inside(const Vec3& x, double eps) const { return inside_at(x, few() ? 0 : wedge(x), eps); }
+  // The same with x's wedge w known (unused when the polygon has so few corners that every edge
+  // is tested).
+  bool inside_at(const Vec3& x, std::size_t w, double eps) const { return few() ? inside_all(x, eps) : inside_wedge(x, w, eps); }
+  bool few() const { return p_.count <= kAllEdges; }
   bool inside_all(const Vec3& x, double eps) const {
     for (std::size_t i = 0; i < p_.count; ++i)
       if (!(inside_edge(x, i) >= -eps)) return false;
@@ -259,13 +263,12 @@ class PolygonDistance {
   // edges beyond the two feet (every edge, where they are more than the list keeps, or the
   // polygon has so few). Each foot's wedge is found once.
   void offer_beyond_plane(const Vec3& p0, const Vec3& p1, const Vec3& foot0, const Vec3& foot1, Nearest& nearest) const {
-    const bool few = p_.count <= kAllEdges;
-    const std::size_t w0 = few ? 0 : wedge(foot0), w1 = few ? 0 : wedge(foot1);
-    if (few ? inside_all(foot0, 0.0) : inside_wedge(foot0, w0, 0.0)) nearest.offer(p0, foot0);
-    if (few ? inside_all(foot1, 0.0) : inside_wedge(foot1, w1, 0.0)) nearest.offer(p1, foot1);
+    const std::size_t w0 = few() ? 0 : wedge(foot0), w1 = few() ? 0 : wedge(foot1);
+    if (inside_at(foot0, w0, 0.0)) nearest.offer(p0, foot0);
+    if (inside_at(foot1, w1, 0.0)) nearest.offer(p1, foot1);
     std::array<std::size_t, 32> edges;  // NOLINT: the first `count` are set
     std::size_t count = 0;
-    const bool some = !few && edges_beyond(foot0, w0, edges, count) && edges_beyond(foot1, w1, edges, count);
+    const bool some = !few() && edges_beyond(foot0, w0, edges, count) && edges_beyond(foot1, w1, edges, count);
     if (some) std::sort(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(count));  // (in the rim's order, whichever end found them)
     const Vec3 d = p1 - p0;
     Vec3 cs, ct;
@@ -408,9 +411,9 @@ struct Search {
 
   // A time the capsule surely cannot touch face f before (slack: how far into it it may go).
   // `best`: the least such time of the faces before; nothing exact is computed when a cheap
-  // bound already shows this face is farther. `known`: the exact closest points now, when
-  // the caller has them (`st`, with `have` true; else they are worked out into `st` when needed,
-  // and `have` set); `try_ball`: whether the face's ball is tried first.
+  // bound already shows this face is farther. `st`: the exact closest points now, when the
+  // caller has them (`have` true; else they are worked out into it when needed, and `have`
+  // set); `try_ball`: whether the face's ball is tried first.
   double safe_time(std::uint32_t f, const Pose& p, double slack, double best, bool try_ball, SegmentTriangle& st, bool& have) const {
     const Vec3& fn = scene.face_normal(f);
     const Vec3& q = scene.face_edges(f)[0];
