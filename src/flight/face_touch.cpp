@@ -606,11 +606,11 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
     // A face being left that the capsule has entered by the slack without moving into it
     // (its touching point turning about the contact as it slides over the face): the slack
     // counts again from where it is (a nail or stone is never pushed out of a face by this;
-    // the audit bounds what it adds up to). So it does where what is left of the slack lets
-    // the capsule move less than kSlackSpent: a bound that rounding leaves a hair above zero
-    // would otherwise step the search by nanoseconds, each ending in a touch of a contact with
-    // no rebound (a flap at e = 0 pressed by a nail sliding on under it: 100 000 gentle contacts,
-    // 2 ns apart, and the nail cut off).
+    // nothing here bounds what renewals add up to: the audit measures it). So it does where
+    // what is left of the slack lets the capsule move less than kSlackSpent: with a nanometre
+    // left, the bound is a few nanoseconds, not zero, and the search would step by them, each
+    // step ending in a touch of a contact with no rebound (a flap at e = 0 pressed by a nail
+    // sliding on under it: 100 000 gentle contacts, 2 ns apart, and the nail cut off).
     if (fs.leaving && !(safe * s.bound > kSlackSpent)) {
       if (!have) s.clearance(fs.face, p, &fs.exact), have = true, fs.exact_at = at;
       fs.left_at = fs.exact.distance - s.r;
