@@ -557,12 +557,13 @@ TEST_CASE("deck: a flap with restitution 0 runs to a verdict, none cut off by th
 }
 
 TEST_CASE("deck: a nail pressed along a flap at restitution 0 is not stepped by nanoseconds into the gentle-contact cap", "[deck][housing][long]") {
-  // A nail sliding on under a flap at e = 0, sunk within a hair of the 10 um a face being left
-  // may be entered (flight/face_touch.hpp), got a bound of a few nanoseconds on the nanometre
-  // of slack left, which was not renewed (only a bound of exactly zero was): the search stepped a few nanoseconds at a time, each step ending in a gentle contact with
-  // no rebound, 100 000 of them about 2 ns apart, and the nail was cut off. At these
-  // seeds the build before the fix cut off 2, 1 and 1 of the 15 000 nails (seeds 4, 8, 10); this
-  // build with only the renewal's condition put back (`!(safe > 0)`) cuts off one at seed 10.
+  // A nail sliding on under a flap at e = 0, sunk within a nanometre of the 10 um a face being
+  // left may be entered (flight/face_touch.hpp), got a bound of a few nanoseconds on what was
+  // left, which was not renewed (only a bound of exactly zero was): the search stepped a few
+  // nanoseconds at a time, each step ending in a gentle contact with no rebound, 100 000 of
+  // them, and the nail was cut off. At these seeds the build before the fix cut off 2, 1 and 1
+  // of the 15 000 nails (seeds 4, 8, 10); this build with only the renewal's condition put back
+  // (`!(safe > 0)`) cuts off one at seed 10. (tests/test_face_touch.cpp sets the state up directly.)
   const std::string text = flap_deck_at_restitution_zero();
   for (const std::uint64_t seed : {4u, 8u, 10u}) {
     auto sc = read(text);

@@ -129,7 +129,7 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
 namespace {
 
 constexpr double kEdgeSlack = 1e-9;  // m: an edge a foot is this close to being beyond is measured too
-constexpr double kSlackSpent = 0.1 * kLeavingSlack;  // m: a face being left that lets the capsule move less has spent its slack
+constexpr double kSlackSpent = 0.1 * kLeavingSlack;  // m: a face being left whose remaining slack lets the capsule move less than this has spent it
 
 // The closest points of a segment and a flat convex face (a quad, a plate's polygon: `Face`
 // tells whether a point of its plane is inside it, and offers the candidates beyond the plane's

@@ -17,7 +17,7 @@
 // until that point moves into it again; it is stepped past with a plane bound that lets it
 // sink at most kLeavingSlack into the face first (counted again from where it is when it is
 // spent: the search itself does not bound what that adds up to over a long pressed contact;
-// the audit, `j232 trace --check`, measures it, 0.076 mm at worst on a flap at e = 0). So the
+// the audit, `j232 trace --check`, measures it: docs/validation.md §3 and §4). So the
 // capsule does not pass through a face, nor a gap narrower than it is, nor bounce off a face
 // that is not there.
 #include <array>
