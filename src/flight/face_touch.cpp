@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "flight/first_root.hpp"
 #include "flight/regula_falsi.hpp"
@@ -127,6 +130,16 @@ SegmentTriangle segment_triangle(const Vec3& p0, const Vec3& p1, const std::arra
 }
 
 namespace {
+
+constexpr double kNever = std::numeric_limits<double>::quiet_NaN();  // FaceState::exact_at before any check
+
+// The next double above finite t (std::nextafter(t, +inf), without the library call: the
+// search's least step, taken hundreds of thousands of times a run).
+double next_up(double t) {
+  if (t == 0) return std::numeric_limits<double>::denorm_min();
+  const auto bits = std::bit_cast<std::uint64_t>(t);
+  return std::bit_cast<double>(t > 0 ? bits + 1 : bits - 1);
+}
 
 constexpr double kEdgeSlack = 1e-9;  // m: an edge a foot is this close to being beyond is measured too
 constexpr double kSlackSpent = 0.1 * kLeavingSlack;  // m: a face being left whose remaining slack lets the capsule move less than this has spent it
@@ -449,7 +462,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   std::array<FaceState, kCapacity> state;  // NOLINT: filled below for the first n
   std::size_t n = 0;
   for (std::size_t i = 0; i < count && n < kCapacity; ++i)
-    if (!filter.ignores(faces[i])) state[n].face = faces[i], state[n].leaving = false, state[n].slack = 0, state[n].left_at = 0, state[n].safe = 0, state[n].exact_at = std::nan(""), ++n;
+    if (!filter.ignores(faces[i])) state[n].face = faces[i], state[n].leaving = false, state[n].slack = 0, state[n].left_at = 0, state[n].safe = 0, state[n].exact_at = kNever, ++n;
   if (n == 0 || !(until >= from)) return std::nullopt;
   const double w = m.spin.norm();
   Search s{scene, m, nail, m.turning(), nail.half_segment(), nail.radius(), w};
@@ -500,8 +513,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   // What touches at time t among the faces within reach (those whose safe time the last step
   // did not clear): the lowest approaching face, with the count of distinct touching planes;
   // the others within tolerance are marked leaving, the rest not.
-  const auto settle = [&](double t, std::optional<FaceTouch>& touch) {
-    const Pose p = s.pose(t);
+  const auto settle = [&](double t, const Pose& p, std::optional<FaceTouch>& touch) {
     std::array<Vec3, 4> normals;
     int distinct = 0;
     near_count = 0;
@@ -588,7 +600,8 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
 
   double t = from;
   std::optional<FaceTouch> touch;
-  settle(t, touch);
+  Pose at_t = s.pose(t);
+  settle(t, at_t, touch);
   if (touch) return touch;
   const double min_step = kMinFaceStep / s.bound;
   // Each face's safe time is a bound over the whole motion, so it holds until that time: a
@@ -629,7 +642,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       if (!state[i].leaving) best = std::min(best, state[i].safe - at);
     }
   };
-  bound_all(s.pose(t), t);
+  bound_all(at_t, t);
   while (t < until) {
     
     if (++stats.steps > kMaxFaceSearchSteps) {
@@ -640,7 +653,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
     // motion), and of the faces being left (which may sink kLeavingSlack into their face first).
     double reach_new = HUGE_VAL, reach_leaving = HUGE_VAL;
     for (std::size_t i = 0; i < n; ++i) (state[i].leaving ? reach_leaving : reach_new) = std::min(state[i].leaving ? reach_leaving : reach_new, state[i].safe);
-    const double next = std::min(until, std::max(std::min(std::max(reach_new, t + min_step), reach_leaving), std::nextafter(t, HUGE_VAL)));
+    const double next = std::min(until, std::max(std::min(std::max(reach_new, t + min_step), reach_leaving), next_up(t)));
     // The faces the step may have reached, checked at its end: a face approached and now
     // within tolerance is brought back to its first touch; a face being left that is now
     // moving into it is touched there.
@@ -664,7 +677,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
         // after sinking the slack: struck and falling back again and again, it would sink by the
         // slack each time (an audit found a cobble 0.14 mm deeper after 14 strikes).
         const double target = fs.left_at - kFaceTolerance;
-        const double g_hi = g_next - target, g_lo = fs.left_at < -kEmbedded && g_hi <= 0 ? s.clearance(fs.face, s.pose(t)) - target : 0.0;
+        const double g_hi = g_next - target, g_lo = fs.left_at < -kEmbedded && g_hi <= 0 ? s.clearance(fs.face, at_t) - target : 0.0;
         first = std::min(first, g_lo > 0 ? illinois_root(
                                                t, g_lo, next, g_hi, [&](double t_mid) { return s.clearance(fs.face, s.pose(t_mid)) - target; },
                                                s.bound, kFaceTolerance, 80, [](double, double) { return false; })
@@ -674,7 +687,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       // Regula falsi (Illinois) on clearance - tolerance, from t (clear: the face was surely
       // not reached before its safe time) to next.
       double lo = t, hi = next, g_hi = g_next - kFaceTolerance;
-      double g_lo = (distance_at_t != HUGE_VAL ? distance_at_t - s.r : s.clearance(fs.face, s.pose(t))) - kFaceTolerance;
+      double g_lo = (distance_at_t != HUGE_VAL ? distance_at_t - s.r : s.clearance(fs.face, at_t)) - kFaceTolerance;
       if (g_lo <= 0) {  // within tolerance at t already (a face the step's start grazed): there
         first = std::min(first, t);
         continue;
@@ -693,16 +706,18 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
           if (!state[i].leaving) best = std::min(best, state[i].safe - next);
         }
       t = next;
+      at_t = q;
       continue;
     }
     // Something is within tolerance at `first`: a touch if a point there moves into a face;
     // else the capsule grazes on (those faces are now being left), every face bounded anew.
     // (From `first` itself, even when that is where the step began: the faces found there are
     // now bounded as faces being left, which the next step respects.)
-    settle(first, touch);
+    at_t = s.pose(first);
+    settle(first, at_t, touch);
     if (touch) return touch;
     t = first;
-    bound_all(s.pose(t), t);
+    bound_all(at_t, t);
   }
   return std::nullopt;
 }
