@@ -573,5 +573,9 @@ TEST_CASE("deck: a nail pressed along a flap at restitution 0 is not stepped by 
     INFO("seed " << seed);
     CHECK(a.cut_off_by.counts.at(static_cast<std::size_t>(flight::CutOff::MaxGentleContacts)) == 0);
     CHECK(a.cut_off_by.counts.at(static_cast<std::size_t>(flight::CutOff::MaxBounces)) == 0);
+    // Pressed on under the flap, a rare nail sinks on by renewed slacks; past kDeepestSink it is
+    // cut off, named (at seed 10, one: 0.13 mm into the flap before the cap, beyond the 0.1 mm the
+    // audit allows). Never more than a few in 15 000.
+    CHECK(a.cut_off_by.counts.at(static_cast<std::size_t>(flight::CutOff::SankIntoFace)) <= 2);
   }
 }

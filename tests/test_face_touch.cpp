@@ -481,6 +481,39 @@ TEST_CASE("face touch: a face being left whose slack is all but spent gets it af
   CHECK(flight::face_clearance(scene, 0, nail, centre, axis) > -2 * flight::kLeavingSlack);
 }
 
+TEST_CASE("face touch: a capsule deeper than kDeepestSink in a face it is leaving ends the search where nothing starts pressed in", "[flight][contact]") {
+  // The sheet and turning nail above, sunk a micrometre deeper than renewed slacks may take a
+  // capsule (which, with the slack on top, would be past the 0.1 mm the audit allows): in the
+  // deck's steel the search gives up (the flight cuts the nail off, counted); in a field's
+  // soil, which holds stones pressed in from their start, it goes on.
+  for (const auto surface : {scene::Surface::Housing, scene::Surface::Ground}) {
+    CAPTURE(scene::name(surface));
+    scene::Soup soup;
+    const auto a = soup.add_point({-0.1, 0, 0.02}), b = soup.add_point({0.1, 0, 0.02}), c = soup.add_point({0.1, 0, 0.1}), d = soup.add_point({-0.1, 0, 0.1});
+    soup.add_quad(a, b, c, d, surface);
+    const scene::Scene scene(soup);
+    const auto nail = projectile::Projectile::capsule(0.0508, 0.00287, 0.0021);
+    for (const double sunk : {flight::kDeepestSink - 1e-6, flight::kDeepestSink + 1e-6}) {
+      CAPTURE(sunk);
+      strike::Motion m;
+      m.p0 = {0, 0, 0.02 - (nail.radius() - sunk)};
+      m.v0 = Vec3::Zero(), m.a = Vec3::Zero();
+      m.axis0 = Vec3::UnitY();
+      m.spin = Vec3::UnitX() * 40.0;
+      REQUIRE(flight::face_clearance(scene, 0, nail, m.p0, m.axis0) == Approx(-sunk).margin(1e-12));
+      const std::array<std::uint32_t, 1> faces{0};
+      flight::FaceFilter filter{&scene};
+      filter.pressed_from_start[static_cast<std::size_t>(scene::Surface::Ground)] = true;  // (as a field's flight sets it)
+      flight::FaceSearchStats stats;
+      const auto touch = flight::first_face_touch(scene, faces.data(), 1, m, nail, 0.0, 0.01, filter, stats);
+      const bool gives_up = surface == scene::Surface::Housing && sunk > flight::kDeepestSink;
+      CHECK(stats.sank == gives_up);
+      if (gives_up) CHECK_FALSE(touch);
+      CHECK_FALSE(stats.gave_up);
+    }
+  }
+}
+
 TEST_CASE("audit: a stretch through a face is found, to the depth it reaches", "[flight][audit]") {
   scene::Soup soup;
   const auto a = soup.add_point({0.1, -1, -1}), b = soup.add_point({0.1, 1, -1}), c = soup.add_point({0.1, 0, 1});

@@ -40,6 +40,11 @@ std::string cut_off_limits(const Assessment& a, const scenario::Scenario& s) {
       case flight::CutOff::MaxGentleContacts:
         what = fmt::format("[run] max_gentle_contacts ({} contacts slower than sqrt(2 g D))", s.run.max_gentle_contacts);
         break;
+      case flight::CutOff::SankIntoFace:
+        what = fmt::format("a sustained contact the face search cannot follow (pressed {:g} mm into the steel, a flap or a test's "
+                           "turf as it slid or turned on it)",
+                           1e3 * (flight::kDeepestSink + flight::kLeavingSlack));
+        break;
       case flight::CutOff::None: break;
     }
     parts.emplace_back(n, std::move(what));

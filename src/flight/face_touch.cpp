@@ -308,6 +308,8 @@ SegmentTriangle segment_face(const Vec3& p0, const Vec3& p1, const scene::Scene&
   return segment_triangle(p0, p1, scene.face_edges(f), scene.face_gram(f));
 }
 
+bool FaceFilter::may_sink_into(std::uint32_t f) const { return pressed_from_start[static_cast<std::size_t>(scene->soup().labels[f])]; }
+
 bool FaceFilter::ignores(std::uint32_t f) const {
   if (ignored_guard < 0) return false;
   const auto& soup = scene->soup();
@@ -485,6 +487,12 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   std::array<Near, kCapacity> near;  // NOLINT: filled as it is used
   std::size_t near_count = 0;
 
+  // A face being left that the capsule is deeper in than kDeepestSink, where nothing starts
+  // pressed in: the search gives up on it (the caller cuts the nail off).
+  const auto sink_check = [&](const FaceState& fs) {
+    if (fs.left_at < -kDeepestSink && !stats.sank && !filter.may_sink_into(fs.face)) stats.sank = true, stats.sank_face = fs.face;
+  };
+
   // Whether the capsule meets near face e at an edge or corner (`normal`, from that point
   // toward the core, off the face's own normal) inside one flat surface built of several faces
   // (a fan of triangles, a mesh, pieces of a skirt): another face near the capsule, of the
@@ -555,6 +563,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
         // beyond what a touch of this search leaves) may sink no deeper than it is by the slack.
         if (!fs.leaving) fs.slack = g < -kEmbedded ? kLeavingSlack - g : kLeavingSlack, fs.left_at = g;
         fs.leaving = true;
+        sink_check(fs);
         continue;
       }
       bool seen = false;
@@ -602,6 +611,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   std::optional<FaceTouch> touch;
   Pose at_t = s.pose(t);
   settle(t, at_t, touch);
+  if (stats.sank) return std::nullopt;
   if (touch) return touch;
   const double min_step = kMinFaceStep / s.bound;
   // Each face's safe time is a bound over the whole motion, so it holds until that time: a
@@ -628,6 +638,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
       if (!have) s.clearance(fs.face, p, &fs.exact), have = true, fs.exact_at = at;
       fs.left_at = fs.exact.distance - s.r;
       fs.slack = kLeavingSlack - std::min(0.0, fs.left_at);
+      sink_check(fs);
       safe = safe_time(fs.slack);
       if (!(safe > 0)) safe = kLeavingSlack / s.bound;
     }
@@ -644,7 +655,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   };
   bound_all(at_t, t);
   while (t < until) {
-    
+    if (stats.sank) return std::nullopt;
     if (++stats.steps > kMaxFaceSearchSteps) {
       stats.gave_up = true;
       return std::nullopt;
@@ -715,6 +726,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
     // now bounded as faces being left, which the next step respects.)
     at_t = s.pose(first);
     settle(first, at_t, touch);
+    if (stats.sank) return std::nullopt;
     if (touch) return touch;
     t = first;
     bound_all(at_t, t);

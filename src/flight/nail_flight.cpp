@@ -47,6 +47,7 @@ const char* cut_off_name(CutOff c) {
     case CutOff::NonFinite: return "non_finite_state";
     case CutOff::MaxGentleContacts: return "max_gentle_contacts";
     case CutOff::Wedged: return "wedged";
+    case CutOff::SankIntoFace: return "sank_into_face";
   }
   return "unknown";
 }
@@ -64,6 +65,7 @@ const char* cut_off_setting(CutOff c) {
     case CutOff::NonFinite: return "a non-finite state";
     case CutOff::MaxGentleContacts: return "run.max_gentle_contacts";
     case CutOff::Wedged: return "a wedge that contacts one at a time cannot resolve";
+    case CutOff::SankIntoFace: return "a sustained contact the face search cannot follow";
   }
   return "unknown";
 }
@@ -1157,8 +1159,8 @@ bool NailFlight::slide(const scene::Hit& hit) {
     FaceSearchStats stats;
     const auto wall = first_face_touch(*ctx.scene, candidates.data(), candidate_count, m, nail, b.time, until, filter(), stats);
     r.search_steps += stats.steps;
-    if (stats.gave_up) {
-      cut(CutOff::SearchSteps);
+    if (stats.gave_up || stats.sank) {
+      cut(stats.sank ? CutOff::SankIntoFace : CutOff::SearchSteps);
       break;
     }
     // The knives meet an object sliding under the deck as they meet one in flight (a stone
@@ -1340,6 +1342,9 @@ std::size_t NailFlight::gather(const strike::Motion& m, double from, double unti
 // of every one of its faces.
 FaceFilter NailFlight::filter() {
   FaceFilter f{ctx.scene, passing_guard};
+  // A field's objects start pressed into its soil or under a chain curtain draped over them.
+  if (set.materials.ground().takes_strikes)
+    f.pressed_from_start[static_cast<std::size_t>(scene::Surface::Ground)] = f.pressed_from_start[static_cast<std::size_t>(scene::Surface::Guard)] = true;
   if (passing_guard >= 0) {
     bool clear = true;
     for (std::size_t i = 0; i < candidate_count && clear; ++i)
@@ -1402,6 +1407,7 @@ NailFlight::NextEvent NailFlight::event_find(const Chord& c) {
   e.touch = first_face_touch(*ctx.scene, candidates.data(), candidate_count, c.motion, nail, b.time, chord_end, filter(), stats);
   r.search_steps += stats.steps;
   if (stats.gave_up) cut(CutOff::SearchSteps);
+  if (stats.sank) cut(CutOff::SankIntoFace);
   e.contact = blade_contact(c.motion, e.touch ? e.touch->time : chord_end);
   if (cut_off) return e;
   e.kind = e.contact ? NextEvent::Kind::Blade : e.touch ? NextEvent::Kind::Surface : NextEvent::Kind::ChordEnd;

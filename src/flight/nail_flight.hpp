@@ -62,9 +62,10 @@ enum class CutOff : std::uint8_t {
   UnresolvedContact, // a blade touch the impulse could not resolve
   NonFinite,         // a non-finite state
   MaxGentleContacts, // [run] max_gentle_contacts
-  Wedged             // contacts ever closer in time without end: pinched between a blade and a fixed face, or wedged
+  Wedged,            // contacts ever closer in time without end: pinched between a blade and a fixed face, or wedged
+  SankIntoFace       // pressed deeper than flight::kDeepestSink into a face being left (a contact the search cannot follow)
 };
-inline constexpr int kCutOffReasons = 11;
+inline constexpr int kCutOffReasons = 12;
 const char* cut_off_name(CutOff c);  // "time_limit", "max_bounces", ...
 // The scenario setting that raises the limit ("run.max_bounces"), or what the limit is when
 // no setting raises it ("the flight's step cap").
