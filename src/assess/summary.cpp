@@ -41,9 +41,9 @@ std::string cut_off_limits(const Assessment& a, const scenario::Scenario& s) {
         what = fmt::format("[run] max_gentle_contacts ({} contacts slower than sqrt(2 g D))", s.run.max_gentle_contacts);
         break;
       case flight::CutOff::SankIntoFace:
-        what = fmt::format("a sustained contact the face search cannot follow (pressed {:g} mm into the steel, a flap or a test's "
-                           "turf as it slid or turned on it)",
-                           1e3 * (flight::kDeepestSink + flight::kLeavingSlack));
+        what = fmt::format("a sustained contact the face search cannot follow (pressed {:g} mm into a face as it slid or turned "
+                           "on it)",
+                           1e3 * flight::kDeepestSink);
         break;
       case flight::CutOff::None: break;
     }

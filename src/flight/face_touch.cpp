@@ -308,8 +308,6 @@ SegmentTriangle segment_face(const Vec3& p0, const Vec3& p1, const scene::Scene&
   return segment_triangle(p0, p1, scene.face_edges(f), scene.face_gram(f));
 }
 
-bool FaceFilter::may_sink_into(std::uint32_t f) const { return pressed_from_start[static_cast<std::size_t>(scene->soup().labels[f])]; }
-
 bool FaceFilter::ignores(std::uint32_t f) const {
   if (ignored_guard < 0) return false;
   const auto& soup = scene->soup();
@@ -488,9 +486,11 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   std::size_t near_count = 0;
 
   // A face being left that the capsule is deeper in than kDeepestSink, where nothing starts
-  // pressed in: the search gives up on it (the caller cuts the nail off).
+  // pressed in: the search gives up on it (the caller cuts the nail off). Not the board, whose
+  // touch ends the flight when it is approached: a nail laid flat on the turf at its foot can lie
+  // a fraction of a millimetre into it, slide on and reach it, as it always did.
   const auto sink_check = [&](const FaceState& fs) {
-    if (fs.left_at < -kDeepestSink && !stats.sank && !filter.may_sink_into(fs.face)) stats.sank = true, stats.sank_face = fs.face;
+    if (fs.left_at < -kDeepestSink && !filter.objects_start_pressed && !scene::is_target(scene.soup().labels[fs.face])) stats.sank = true;
   };
 
   // Whether the capsule meets near face e at an edge or corner (`normal`, from that point
@@ -629,7 +629,7 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
     // A face being left that the capsule has entered by the slack without moving into it
     // (its touching point turning about the contact as it slides over the face): the slack
     // counts again from where it is (a nail or stone is never pushed out of a face by this;
-    // nothing here bounds what renewals add up to: the audit measures it). So it does where
+    // past kDeepestSink, sink_check gives up). So it does where
     // what is left of the slack lets the capsule move less than kSlackSpent: with a nanometre
     // left, the bound is a few nanoseconds, not zero, and the search would step by them, each
     // step ending in a touch of a contact with no rebound (a flap at e = 0 pressed by a nail

@@ -16,8 +16,9 @@
 // leaving (its touching point moves away from it: the bounce just resolved) is no touch
 // until that point moves into it again; it is stepped past with a plane bound that lets it
 // sink at most kLeavingSlack into the face first (counted again from where it is when it is
-// spent: the search itself does not bound what that adds up to over a long pressed contact;
-// the audit, `j232 trace --check`, measures it: docs/validation.md §3 and §4). So the
+// spent; the slack does not bound what that adds up to over a long pressed contact, so the
+// search gives up past kDeepestSink, and the audit, `j232 trace --check`, measures what is
+// left: docs/validation.md §3 and §4). So the
 // capsule does not pass through a face, nor a gap narrower than it is, nor bounce off a face
 // that is not there.
 #include <array>
@@ -43,8 +44,10 @@ inline constexpr int kMaxFaceSearchSteps = 200000;
 // entered by kLeavingSlack before its touch counts, counted again from where the capsule is
 // each time it is spent, so a sustained pressed contact could sink on without end (a flap has
 // no thickness). Deeper than this, with the slack on top, would be deeper than the 0.1 mm the
-// audit allows (`j232 trace --check`): the nail is cut off instead (CutOff::SankIntoFace,
-// counted and named, never silent). The shipped runs come nowhere near it (docs/validation.md §3).
+// audit allows (`j232 trace --check`, kAuditOverlap): the nail is cut off instead
+// (CutOff::SankIntoFace, counted and named, never silent). Not the board (a target: its touch
+// ends the flight), and not in a field, whose objects may start pressed into a face
+// (FaceFilter::objects_start_pressed). docs/validation.md §3 has the depths the shipped runs reach.
 inline constexpr double kDeepestSink = 1e-4 - kLeavingSlack;
 
 // The closest points of the segment p0-p1 and the triangle (corner a, edges e1, e2): on the
@@ -92,19 +95,18 @@ struct FaceTouch {
 struct FaceSearchStats {
   int steps = 0;
   bool gave_up = false;
-  bool sank = false;  // gave up: a face being left entered deeper than kDeepestSink (the face in sank_face)
-  std::uint32_t sank_face = 0;
+  bool sank = false;  // gave up: a face being left entered deeper than kDeepestSink
 };
 
 // Faces the search passes over (a guard's curtain the nail is going through).
 struct FaceFilter {
   const scene::Scene* scene = nullptr;
   int ignored_guard = -1;  // faces of this guard (label Guard) are not met
-  // Faces of these kinds may hold an object pressed into them from its start (a field's soil
-  // and the chain curtains draped over its stones): no kDeepestSink there.
-  std::array<bool, scene::kSurfaceKinds> pressed_from_start{};
+  // A field: its objects may start pressed into any face (the soil, a chain curtain draped
+  // over a stone, the deck's skirt riding over a cobble), so kDeepestSink is not applied (the
+  // audit allows them as deep as they started; docs/validation.md §3).
+  bool objects_start_pressed = false;
   bool ignores(std::uint32_t f) const;
-  bool may_sink_into(std::uint32_t f) const;
 };
 
 // The first approaching touch of the capsule moving as `m` with any of `faces` (sorted)

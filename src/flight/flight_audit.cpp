@@ -7,6 +7,9 @@
 #include "flight/face_touch.hpp"
 #include "scene/capsule_audit.hpp"
 
+// The face search gives up before renewed slacks could take a capsule past what the audit allows.
+static_assert(j232::flight::kDeepestSink + j232::flight::kLeavingSlack <= j232::flight::kAuditOverlap * (1 + 1e-12));
+
 namespace j232::flight {
 
 void FlightAudit::merge(const FlightAudit& o) {

@@ -1342,9 +1342,7 @@ std::size_t NailFlight::gather(const strike::Motion& m, double from, double unti
 // of every one of its faces.
 FaceFilter NailFlight::filter() {
   FaceFilter f{ctx.scene, passing_guard};
-  // A field's objects start pressed into its soil or under a chain curtain draped over them.
-  if (set.materials.ground().takes_strikes)
-    f.pressed_from_start[static_cast<std::size_t>(scene::Surface::Ground)] = f.pressed_from_start[static_cast<std::size_t>(scene::Surface::Guard)] = true;
+  f.objects_start_pressed = set.materials.ground().takes_strikes;  // a field's ground: its objects lie pressed into things
   if (passing_guard >= 0) {
     bool clear = true;
     for (std::size_t i = 0; i < candidate_count && clear; ++i)
