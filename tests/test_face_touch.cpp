@@ -451,6 +451,26 @@ TEST_CASE("face touch: a capsule sliding along a face it touches is no touch; tu
   CHECK(touch->normal.z() == Approx(1.0));
 }
 
+namespace {
+// A sheet, the plane y = 0 above z = 0.02 (its lower edge along x), of the given surface.
+scene::Soup sheet(scene::Surface surface) {
+  scene::Soup soup;
+  const auto a = soup.add_point({-0.1, 0, 0.02}), b = soup.add_point({0.1, 0, 0.02}), c = soup.add_point({0.1, 0, 0.1}), d = soup.add_point({-0.1, 0, 0.1});
+  soup.add_quad(a, b, c, d, surface);
+  return soup;
+}
+// A nail across under the sheet's lower edge, `sunk` into it, turning at 40 rad/s about an axis
+// along the edge through its centre.
+strike::Motion turning_under_sheet(const projectile::Projectile& nail, double sunk) {
+  strike::Motion m;
+  m.p0 = {0, 0, 0.02 - (nail.radius() - sunk)};
+  m.v0 = Vec3::Zero(), m.a = Vec3::Zero();
+  m.axis0 = Vec3::UnitY();
+  m.spin = Vec3::UnitX() * 40.0;
+  return m;
+}
+}  // namespace
+
 TEST_CASE("face touch: a face being left whose slack is all but spent gets it afresh, not a touch nanoseconds on", "[flight][contact]") {
   // A sheet (the plane y = 0 above z = 0.02) and a nail across under its lower edge, sunk into
   // it within a nanometre of the slack a face being left may be entered by, turning about an
@@ -459,17 +479,10 @@ TEST_CASE("face touch: a face being left whose slack is all but spent gets it af
   // nanosecond. Renewed only at a bound of exactly zero, the search touched the face a
   // nanosecond on; at a flap of restitution 0 that repeated 100 000 times and cut the nail off
   // (tests/test_deck.cpp). Now the slack counts again from where the capsule is.
-  scene::Soup soup;
-  const auto a = soup.add_point({-0.1, 0, 0.02}), b = soup.add_point({0.1, 0, 0.02}), c = soup.add_point({0.1, 0, 0.1}), d = soup.add_point({-0.1, 0, 0.1});
-  soup.add_quad(a, b, c, d, scene::Surface::Housing);
-  const scene::Scene scene(soup);
+  const scene::Scene scene(sheet(scene::Surface::Housing));
   const auto nail = projectile::Projectile::capsule(0.0508, 0.00287, 0.0021);
   const double sunk = flight::kLeavingSlack - 1e-9;
-  strike::Motion m;
-  m.p0 = {0, 0, 0.02 - (nail.radius() - sunk)};
-  m.v0 = Vec3::Zero(), m.a = Vec3::Zero();
-  m.axis0 = Vec3::UnitY();
-  m.spin = Vec3::UnitX() * 40.0;
+  const strike::Motion m = turning_under_sheet(nail, sunk);
   REQUIRE(flight::face_clearance(scene, 0, nail, m.p0, m.axis0) == Approx(-sunk).margin(1e-12));
   const std::array<std::uint32_t, 1> faces{0};
   flight::FaceSearchStats stats;
@@ -490,18 +503,11 @@ TEST_CASE("face touch: a capsule deeper than kDeepestSink in a face it is leavin
   for (const auto& [field, surface] : {std::pair{false, scene::Surface::Housing}, std::pair{true, scene::Surface::Housing},
                                        std::pair{false, scene::Surface::TargetOutside}}) {
     CAPTURE(field, scene::name(surface));
-    scene::Soup soup;
-    const auto a = soup.add_point({-0.1, 0, 0.02}), b = soup.add_point({0.1, 0, 0.02}), c = soup.add_point({0.1, 0, 0.1}), d = soup.add_point({-0.1, 0, 0.1});
-    soup.add_quad(a, b, c, d, surface);
-    const scene::Scene scene(soup);
+    const scene::Scene scene(sheet(surface));
     const auto nail = projectile::Projectile::capsule(0.0508, 0.00287, 0.0021);
     for (const double sunk : {flight::kDeepestSink - 1e-6, flight::kDeepestSink + 1e-6}) {
       CAPTURE(sunk);
-      strike::Motion m;
-      m.p0 = {0, 0, 0.02 - (nail.radius() - sunk)};
-      m.v0 = Vec3::Zero(), m.a = Vec3::Zero();
-      m.axis0 = Vec3::UnitY();
-      m.spin = Vec3::UnitX() * 40.0;
+      const strike::Motion m = turning_under_sheet(nail, sunk);
       REQUIRE(flight::face_clearance(scene, 0, nail, m.p0, m.axis0) == Approx(-sunk).margin(1e-12));
       const std::array<std::uint32_t, 1> faces{0};
       flight::FaceFilter filter{&scene};
