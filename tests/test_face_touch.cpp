@@ -495,14 +495,17 @@ TEST_CASE("face touch: a face being left whose slack is all but spent gets it af
   CHECK(flight::face_clearance(scene, 0, nail, centre, axis) > -2 * flight::kLeavingSlack);
 }
 
-TEST_CASE("face touch: a capsule deeper than kDeepestSink in a face it is leaving ends the search where nothing starts pressed in", "[flight][contact]") {
+TEST_CASE("face touch: a capsule deeper than kDeepestSink in a face it is leaving ends the search, below where it started", "[flight][contact]") {
   // The sheet and turning nail above, sunk a micrometre deeper than renewed slacks may take a
   // capsule (which, with the slack on top, would be past the 0.1 mm the audit allows): in a
-  // test the search gives up (the flight cuts the nail off, counted); in a field, whose objects
-  // may start pressed into a face, and at the board, whose touch ends the flight, it goes on.
-  for (const auto& [field, surface] : {std::pair{false, scene::Surface::Housing}, std::pair{true, scene::Surface::Housing},
-                                       std::pair{false, scene::Surface::TargetOutside}}) {
-    CAPTURE(field, scene::name(surface));
+  // test the search gives up (the flight cuts the nail off, counted); at the board, whose touch
+  // ends the flight, it goes on; a field's object that started that deep in the face (placed
+  // pressed into it) goes on, and one that started clear of it, or in another face, does not.
+  enum class Start { Test, PressedHere, PressedElsewhere, Clear };
+  for (const auto& [start, surface] : {std::pair{Start::Test, scene::Surface::Housing}, std::pair{Start::PressedHere, scene::Surface::Housing},
+                                       std::pair{Start::PressedElsewhere, scene::Surface::Housing}, std::pair{Start::Clear, scene::Surface::Housing},
+                                       std::pair{Start::Test, scene::Surface::TargetOutside}}) {
+    CAPTURE(static_cast<int>(start), scene::name(surface));
     const scene::Scene scene(sheet(surface));
     const auto nail = projectile::Projectile::capsule(0.0508, 0.00287, 0.0021);
     for (const double sunk : {flight::kDeepestSink - 1e-6, flight::kDeepestSink + 1e-6}) {
@@ -511,15 +514,32 @@ TEST_CASE("face touch: a capsule deeper than kDeepestSink in a face it is leavin
       REQUIRE(flight::face_clearance(scene, 0, nail, m.p0, m.axis0) == Approx(-sunk).margin(1e-12));
       const std::array<std::uint32_t, 1> faces{0};
       flight::FaceFilter filter{&scene};
-      filter.objects_start_pressed = field;  // (as a field's flight sets it)
+      flight::StartDepths started;  // (as a field's flight records them at its start)
+      if (start == Start::PressedHere) started.add(0, sunk, false);
+      if (start == Start::PressedElsewhere) started.add(7, sunk, false);
+      if (start != Start::Test) filter.start_depths = &started;
       flight::FaceSearchStats stats;
       const auto touch = flight::first_face_touch(scene, faces.data(), 1, m, nail, 0.0, 0.01, filter, stats);
-      const bool gives_up = !field && surface == scene::Surface::Housing && sunk > flight::kDeepestSink;
+      const bool gives_up = start != Start::PressedHere && surface == scene::Surface::Housing && sunk > flight::kDeepestSink;
       CHECK(stats.sank == gives_up);
       if (gives_up) CHECK_FALSE(touch);
       CHECK_FALSE(stats.gave_up);
     }
   }
+}
+
+TEST_CASE("face touch: start depths count per face, the soil's for every ground face, the deepest for all past the list", "[flight][contact]") {
+  flight::StartDepths d;
+  d.add(3, 2e-4, false);
+  d.add(3, 1e-4, false);  // the deeper kept
+  d.add(5, 3e-4, true);
+  CHECK(d.of(3, false) == 2e-4);
+  CHECK(d.of(5, true) == 3e-4);
+  CHECK(d.of(9, true) == 3e-4);  // another ground face: the soil is one medium
+  CHECK(d.of(9, false) == 0.0);
+  for (std::uint32_t f = 10; f < 20; ++f) d.add(f, 1e-5, false);
+  CHECK(d.overflow);
+  CHECK(d.of(42, false) == 3e-4);  // past the list: never cut off for a depth not kept
 }
 
 TEST_CASE("audit: a stretch through a face is found, to the depth it reaches", "[flight][audit]") {

@@ -308,6 +308,29 @@ SegmentTriangle segment_face(const Vec3& p0, const Vec3& p1, const scene::Scene&
   return segment_triangle(p0, p1, scene.face_edges(f), scene.face_gram(f));
 }
 
+void StartDepths::add(std::uint32_t f, double depth, bool is_ground) {
+  deepest = std::max(deepest, depth);
+  if (is_ground) ground = std::max(ground, depth);
+  for (int i = 0; i < count; ++i)
+    if (faces[static_cast<std::size_t>(i)] == f) {
+      depths[static_cast<std::size_t>(i)] = std::max(depths[static_cast<std::size_t>(i)], depth);
+      return;
+    }
+  if (count == kMax) {
+    overflow = true;
+    return;
+  }
+  faces[static_cast<std::size_t>(count)] = f, depths[static_cast<std::size_t>(count)] = depth, ++count;
+}
+
+double StartDepths::of(std::uint32_t f, bool is_ground) const {
+  if (overflow) return deepest;
+  double d = is_ground ? ground : 0.0;
+  for (int i = 0; i < count; ++i)
+    if (faces[static_cast<std::size_t>(i)] == f) d = std::max(d, depths[static_cast<std::size_t>(i)]);
+  return d;
+}
+
 bool FaceFilter::ignores(std::uint32_t f) const {
   if (ignored_guard < 0) return false;
   const auto& soup = scene->soup();
@@ -485,12 +508,16 @@ std::optional<FaceTouch> first_face_touch(const scene::Scene& scene, const std::
   std::array<Near, kCapacity> near;  // NOLINT: filled as it is used
   std::size_t near_count = 0;
 
-  // A face being left that the capsule is deeper in than kDeepestSink, where nothing starts
-  // pressed in: the search gives up on it (the caller cuts the nail off). Not the board, whose
+  // A face being left that the capsule is deeper in than kDeepestSink (below the depth a field's
+  // object started at in it): the search gives up on it (the caller cuts the nail off). Not the board, whose
   // touch ends the flight when it is approached: a nail laid flat on the turf at its foot can lie
   // a fraction of a millimetre into it, slide on and reach it, as it always did.
   const auto sink_check = [&](const FaceState& fs) {
-    if (fs.left_at < -kDeepestSink && !filter.objects_start_pressed && !scene::is_target(scene.soup().labels[fs.face])) stats.sank = true;
+    if (!(fs.left_at < -kDeepestSink)) return;
+    const scene::Surface label = scene.soup().labels[fs.face];
+    if (scene::is_target(label)) return;
+    const double started = filter.start_depths ? filter.start_depths->of(fs.face, label == scene::Surface::Ground) : 0.0;
+    if (fs.left_at < -(kDeepestSink + started)) stats.sank = true;
   };
 
   // Whether the capsule meets near face e at an edge or corner (`normal`, from that point

@@ -46,8 +46,9 @@ inline constexpr int kMaxFaceSearchSteps = 200000;
 // no thickness). Deeper than this, with the slack on top, would be deeper than the 0.1 mm the
 // audit allows (`j232 trace --check`, kAuditOverlap): the nail is cut off instead
 // (CutOff::SankIntoFace, counted and named, never silent). Not the board (a target: its touch
-// ends the flight), and not in a field, whose objects may start pressed into a face
-// (FaceFilter::objects_start_pressed). docs/validation.md §3 has the depths the shipped runs reach.
+// ends the flight); in a field, whose objects may start pressed into a face, counted below the
+// depth they started at (FaceFilter::start_depths). docs/validation.md §3 has the depths the
+// shipped runs reach.
 inline constexpr double kDeepestSink = 1e-4 - kLeavingSlack;
 
 // The closest points of the segment p0-p1 and the triangle (corner a, edges e1, e2): on the
@@ -98,14 +99,31 @@ struct FaceSearchStats {
   bool sank = false;  // gave up: a face being left entered deeper than kDeepestSink
 };
 
+// How deep an object started in the faces it was placed pressed into (a field's stone in the
+// soil, under the deck's skirt riding over it, under a draped curtain): each such face's
+// kDeepestSink is counted below that depth, as the audit allows such an object as deep as it
+// started (docs/validation.md §3). The soil is one medium however it is tiled: a depth in any
+// ground face counts for every ground face. Allocation-free: at most kMax faces kept, and past
+// that the deepest counts for every face.
+struct StartDepths {
+  static constexpr int kMax = 8;
+  std::array<std::uint32_t, kMax> faces{};
+  std::array<double, kMax> depths{};
+  int count = 0;
+  bool overflow = false;
+  double ground = 0;   // m, the deepest in any ground face
+  double deepest = 0;  // m, the deepest in any face
+  void add(std::uint32_t f, double depth, bool is_ground);
+  double of(std::uint32_t f, bool is_ground) const;  // m, how deep it started in face f
+};
+
 // Faces the search passes over (a guard's curtain the nail is going through).
 struct FaceFilter {
   const scene::Scene* scene = nullptr;
   int ignored_guard = -1;  // faces of this guard (label Guard) are not met
-  // A field: its objects may start pressed into any face (the soil, a chain curtain draped
-  // over a stone, the deck's skirt riding over a cobble), so kDeepestSink is not applied (the
-  // audit allows them as deep as they started; docs/validation.md §3).
-  bool objects_start_pressed = false;
+  // A field's object: how deep it started in each face (kDeepestSink is counted below that).
+  // Null in a J232 test, whose nails start clear of every face.
+  const StartDepths* start_depths = nullptr;
   bool ignores(std::uint32_t f) const;
 };
 

@@ -195,6 +195,10 @@ struct NailFlight {
   // A guard's curtain the nail is passing through: its faces are not met until the capsule
   // is clear of them.
   int passing_guard = -1;
+  // A field's object: how deep it started in the faces it lies pressed into (its face search's
+  // cap on sinking is counted below that; FaceFilter::start_depths).
+  StartDepths start_depths{};
+  bool starts_pressed = false;
   // A flap just struck at this instant: touched again at once (the object still pushing the
   // flap it set swinging), it is met as a rigid stop, not as its mass again.
   int struck_flap = -1;
@@ -1342,7 +1346,7 @@ std::size_t NailFlight::gather(const strike::Motion& m, double from, double unti
 // of every one of its faces.
 FaceFilter NailFlight::filter() {
   FaceFilter f{ctx.scene, passing_guard};
-  f.objects_start_pressed = set.materials.ground().takes_strikes;  // a field's ground: its objects lie pressed into things
+  if (starts_pressed) f.start_depths = &start_depths;
   if (passing_guard >= 0) {
     bool clear = true;
     for (std::size_t i = 0; i < candidate_count && clear; ++i)
@@ -1535,6 +1539,16 @@ FlightResult NailFlight::run() {
   const double t_end = start.time + set.time_limit;
   int steps = 0;
   if (ctx.path) ctx.path->push_back(b.position);
+  if (set.materials.ground().takes_strikes) {
+    // A field's object lies where it was placed, maybe pressed into the soil, under a curtain
+    // draped over it or under the skirt riding over it: how deep, face by face.
+    starts_pressed = true;
+    gather_here();
+    const auto& labels = ctx.scene->soup().labels;
+    for (std::size_t i = 0; i < candidate_count; ++i)
+      if (const double g = face_clearance(*ctx.scene, candidates[i], nail, b.position, b.axis); g < 0)
+        start_depths.add(candidates[i], -g, labels[candidates[i]] == scene::Surface::Ground);
+  }
   while (event_check(t_end, steps)) {
     const Chord c = event_advance(t_end);
     if (cut_off) break;
