@@ -196,9 +196,9 @@ struct NailFlight {
   // is clear of them.
   int passing_guard = -1;
   // A field's object: how deep it started in the faces it lies pressed into (its face search's
-  // cap on sinking is counted below that; FaceFilter::start_depths).
+  // cap on sinking is counted below that; FaceFilter::start_depths). Recorded by run().
   StartDepths start_depths{};
-  bool starts_pressed = false;
+  bool in_field() const { return set.materials.ground().takes_strikes; }  // a field's ground takes strikes; a test's turf does not
   // A flap just struck at this instant: touched again at once (the object still pushing the
   // flap it set swinging), it is met as a rigid stop, not as its mass again.
   int struck_flap = -1;
@@ -1346,7 +1346,7 @@ std::size_t NailFlight::gather(const strike::Motion& m, double from, double unti
 // of every one of its faces.
 FaceFilter NailFlight::filter() {
   FaceFilter f{ctx.scene, passing_guard};
-  if (starts_pressed) f.start_depths = &start_depths;
+  if (in_field()) f.start_depths = &start_depths;
   if (passing_guard >= 0) {
     bool clear = true;
     for (std::size_t i = 0; i < candidate_count && clear; ++i)
@@ -1539,10 +1539,10 @@ FlightResult NailFlight::run() {
   const double t_end = start.time + set.time_limit;
   int steps = 0;
   if (ctx.path) ctx.path->push_back(b.position);
-  if (set.materials.ground().takes_strikes) {
+  if (in_field()) {
     // A field's object lies where it was placed, maybe pressed into the soil, under a curtain
-    // draped over it or under the skirt riding over it: how deep, face by face.
-    starts_pressed = true;
+    // draped over it or under the skirt riding over it: how deep, face by face (by the search's
+    // own distances; the audit measures the same against the whole soup, independently).
     gather_here();
     const auto& labels = ctx.scene->soup().labels;
     for (std::size_t i = 0; i < candidate_count; ++i)
