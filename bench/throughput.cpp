@@ -6,7 +6,8 @@
 // and the three-spindle deck (scenarios/deck-72in-three-spindle.toml). For each, and for
 // each scene engine built in (CGAL's AABB tree, Embree's BVH; --engine picks one):
 // simulated nails per second on 1 and on 2 threads (median of 3 runs each) and the wall
-// time of the full assessment; the mean number of scene queries per nail; and the raw
+// time of the full assessment; the mean number of scene queries per nail; the events a struck
+// nail's flight takes (bounces, gentle contacts, those on walls, blade strikes); and the raw
 // query rate on the same scene with chords like the nails' (ns per query), so the cost of
 // everything beyond the queries is visible.
 //
@@ -121,6 +122,7 @@ static void bench(const std::string& path, long long replicates, const std::vect
     const double build_seconds = std::chrono::duration<double>(Clock::now() - built).count();
     std::printf("  engine %s (scene built in %.3f s):\n", scene::engine_name(engine), build_seconds);
     double queries_per_nail = 0;
+    assess::Assessment last;
     for (int threads : {1, 2}) {
       std::vector<double> rates, walls;
       for (int rep = 0; rep < 3; ++rep) {
@@ -128,12 +130,18 @@ static void bench(const std::string& path, long long replicates, const std::vect
         rates.push_back(static_cast<double>(a.nails) / a.wall_seconds);
         walls.push_back(a.wall_seconds);
         queries_per_nail = static_cast<double>(a.queries) / static_cast<double>(a.nails);
+        last = a;
       }
       std::printf("    %d thread%s: %10.0f nails/s (median of 3; %.2f s per full assessment)\n", threads, threads == 1 ? " " : "s",
                   median(rates), median(walls));
       if (threads == 2) two_thread_rates.push_back(median(rates));
     }
     std::printf("    scene queries per nail: %.2f\n", queries_per_nail);
+    // What a nail's flight spends its events on (the cost is in their number: docs/validation.md §4).
+    const double struck = static_cast<double>(std::max<std::uint64_t>(last.struck, 1));
+    std::printf("    events per struck nail: %.2f bounces, %.2f gentle contacts (%.2f of either on walls), %.2f blade strikes\n",
+                static_cast<double>(last.bounces) / struck, static_cast<double>(last.gentle_contacts) / struck,
+                static_cast<double>(last.wall_contacts) / struck, static_cast<double>(last.blade_strikes) / struck);
 
     // Raw query rate: chords of 0.3 m from random points under the deck in random directions.
     const auto& scene = sim.scene();

@@ -130,6 +130,9 @@ struct FlightResult {
   int bounces = 0;          // contacts with the scene approaching at sqrt(2 g D) or faster
   int gentle_contacts = 0;  // slower: the micro-impacts of a sustained contact (docs/model.md §5.3)
   int simultaneous_contacts = 0;  // bounces of several points resolved together ([contacts] model = "simultaneous")
+  // Bounces and gentle contacts on a wall, the face's normal within 5.7 deg of level (|n_z| <
+  // 0.1: the skirt's sides and panels, where a nail rides round the deck): for the benchmark.
+  int wall_contacts = 0;
   int strikes = 1;                        // blade contacts, the first (the feed's) included
   // Passes: an edge's contacts with the nail until they part (docs/model.md §5.1b). A pass
   // with more than [run] max_contacts_per_pass contacts cuts the nail off (counted, never silent).
