@@ -122,7 +122,9 @@ static void bench(const std::string& path, long long replicates, const std::vect
     const double build_seconds = std::chrono::duration<double>(Clock::now() - built).count();
     std::printf("  engine %s (scene built in %.3f s):\n", scene::engine_name(engine), build_seconds);
     double queries_per_nail = 0;
-    assess::Assessment last;
+    struct Events {
+      double bounces = 0, gentle = 0, walls = 0, strikes = 0;  // per struck nail
+    } events;
     for (int threads : {1, 2}) {
       std::vector<double> rates, walls;
       for (int rep = 0; rep < 3; ++rep) {
@@ -130,7 +132,9 @@ static void bench(const std::string& path, long long replicates, const std::vect
         rates.push_back(static_cast<double>(a.nails) / a.wall_seconds);
         walls.push_back(a.wall_seconds);
         queries_per_nail = static_cast<double>(a.queries) / static_cast<double>(a.nails);
-        last = a;
+        const double struck = static_cast<double>(std::max<std::uint64_t>(a.struck, 1));
+        events = {static_cast<double>(a.bounces) / struck, static_cast<double>(a.gentle_contacts) / struck,
+                  static_cast<double>(a.wall_contacts) / struck, a.strikes.mean()};
       }
       std::printf("    %d thread%s: %10.0f nails/s (median of 3; %.2f s per full assessment)\n", threads, threads == 1 ? " " : "s",
                   median(rates), median(walls));
@@ -138,10 +142,8 @@ static void bench(const std::string& path, long long replicates, const std::vect
     }
     std::printf("    scene queries per nail: %.2f\n", queries_per_nail);
     // What a nail's flight spends its events on (the cost is in their number: docs/validation.md §4).
-    const double struck = static_cast<double>(std::max<std::uint64_t>(last.struck, 1));
     std::printf("    events per struck nail: %.2f bounces, %.2f gentle contacts (%.2f of either on walls), %.2f blade strikes\n",
-                static_cast<double>(last.bounces) / struck, static_cast<double>(last.gentle_contacts) / struck,
-                static_cast<double>(last.wall_contacts) / struck, static_cast<double>(last.blade_strikes) / struck);
+                events.bounces, events.gentle, events.walls, events.strikes);
 
     // Raw query rate: chords of 0.3 m from random points under the deck in random directions.
     const auto& scene = sim.scene();

@@ -95,7 +95,7 @@ void run_chunk(const Simulator& sim, std::uint64_t first, std::uint64_t count, C
       if (o.flight.fate == flight::Fate::NotStruck) continue;
       ++c.struck;
       c.bounces += static_cast<std::uint64_t>(o.flight.bounces), c.gentle_contacts += static_cast<std::uint64_t>(o.flight.gentle_contacts);
-      c.wall_contacts += static_cast<std::uint64_t>(o.flight.wall_contacts), c.blade_strikes += static_cast<std::uint64_t>(o.flight.strikes);
+      c.wall_contacts += static_cast<std::uint64_t>(o.flight.wall_contacts);
       if (o.flight.fate == flight::Fate::CutOff) c.cut_off_by.add(static_cast<double>(o.flight.cut_off));
       if (o.flight.non_finite) continue;  // nothing of it is a number worth recording
       c.exit_speed.add(o.exit_speed);

@@ -83,9 +83,9 @@ struct NailRecords {
   StationOutcomes outcomes;  // every nail fed: its counted marks by category, by feed station (the exact P(pass))
   std::uint64_t nails = 0, struck = 0;
   std::uint64_t queries = 0;          // the scene's queries (a chord's broad phase, a mark's label)
-  // The flights' events, for the benchmark: bounces, gentle contacts, those of either on a wall
-  // (flight::FlightResult::wall_contacts), and blade strikes (the feed's included).
-  std::uint64_t bounces = 0, gentle_contacts = 0, wall_contacts = 0, blade_strikes = 0;
+  // The flights' events, for the benchmark: bounces, gentle contacts, and those of either on a
+  // wall (flight::FlightResult::wall_contacts). (Blade strikes: the `strikes` histogram's mean.)
+  std::uint64_t bounces = 0, gentle_contacts = 0, wall_contacts = 0;
   std::uint64_t unlocated_marks = 0;  // marks whose point on the board was not found
   std::uint64_t non_finite = 0;       // nails whose state stopped being a number
 
@@ -114,7 +114,6 @@ struct NailRecords {
     f(a.bounces, b.bounces);
     f(a.gentle_contacts, b.gentle_contacts);
     f(a.wall_contacts, b.wall_contacts);
-    f(a.blade_strikes, b.blade_strikes);
     f(a.unlocated_marks, b.unlocated_marks);
     f(a.non_finite, b.non_finite);
   }

@@ -833,7 +833,7 @@ void NailFlight::bounced(const scene::Hit& hit, double approach, const Vec3& poi
   // bounces, so that a long slide does not spend the bounce cap.
   const bool gentle = approach < gentle_speed;
   ++(gentle ? r.gentle_contacts : r.bounces);
-  if (std::abs(hit.normal.z()) < 0.1) ++r.wall_contacts;
+  if (std::abs(hit.normal.z()) < kWallNormalZ) ++r.wall_contacts;
   if (together > 1) ++r.simultaneous_contacts;
   note_contact(b.time, hit.face);
   if (FlightEvent* e = log(FlightEvent::Kind::Bounce, point, hit.normal, speed_in))

@@ -74,6 +74,10 @@ const char* cut_off_setting(CutOff c);
 inline constexpr int kMaxFlightSteps = 200000;
 const char* fate_name(Fate f);
 
+// A wall, to the benchmark's count of events: a face whose normal is within 5.7 deg of level
+// (|n_z| below this: the skirt's sides and panels, where a nail rides round the deck).
+inline constexpr double kWallNormalZ = 0.1;
+
 struct MarkRecord {
   Vec3 point = Vec3::Zero();
   double normal_energy = 0;  // J
@@ -130,9 +134,7 @@ struct FlightResult {
   int bounces = 0;          // contacts with the scene approaching at sqrt(2 g D) or faster
   int gentle_contacts = 0;  // slower: the micro-impacts of a sustained contact (docs/model.md §5.3)
   int simultaneous_contacts = 0;  // bounces of several points resolved together ([contacts] model = "simultaneous")
-  // Bounces and gentle contacts on a wall, the face's normal within 5.7 deg of level (|n_z| <
-  // 0.1: the skirt's sides and panels, where a nail rides round the deck): for the benchmark.
-  int wall_contacts = 0;
+  int wall_contacts = 0;  // bounces and gentle contacts on a wall (kWallNormalZ): for the benchmark
   int strikes = 1;                        // blade contacts, the first (the feed's) included
   // Passes: an edge's contacts with the nail until they part (docs/model.md §5.1b). A pass
   // with more than [run] max_contacts_per_pass contacts cuts the nail off (counted, never silent).
